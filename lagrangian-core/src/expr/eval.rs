@@ -1,0 +1,84 @@
+//! Direct floating-point evaluation of expressions (checks and tests; the fast
+//! path is the optimized [`crate::program::Program`]).
+
+use super::{ExprId, Func, Node, Store, SymbolKind};
+use rustc_hash::FxHashMap;
+
+/// Values of a model's input functions at given arguments.
+pub trait InputFunctions {
+    /// Value of input function number `input` (declaration order) at `args`.
+    fn value(&self, input: usize, args: &[f64]) -> f64;
+}
+
+/// Every input function is the constant `self.0`.
+impl InputFunctions for f64 {
+    fn value(&self, _input: usize, _args: &[f64]) -> f64 {
+        *self
+    }
+}
+
+/// Evaluates expressions of one store at one point, caching shared nodes.
+pub struct Evaluator<'a> {
+    store: &'a Store,
+    symbol_values: Vec<f64>,
+    inputs: &'a dyn InputFunctions,
+    cache: FxHashMap<ExprId, f64>,
+}
+
+impl<'a> Evaluator<'a> {
+    /// `symbol_values[s]` is the value of symbol `s`; π is filled in automatically.
+    pub fn new(
+        store: &'a Store,
+        mut symbol_values: Vec<f64>,
+        inputs: &'a dyn InputFunctions,
+    ) -> Self {
+        symbol_values.resize(store.symbols().len(), 0.0);
+        for (i, s) in store.symbols().iter().enumerate() {
+            if s.kind == SymbolKind::Pi {
+                symbol_values[i] = std::f64::consts::PI;
+            }
+        }
+        Evaluator {
+            store,
+            symbol_values,
+            inputs,
+            cache: FxHashMap::default(),
+        }
+    }
+
+    pub fn eval(&mut self, e: ExprId) -> f64 {
+        if let Some(&v) = self.cache.get(&e) {
+            return v;
+        }
+        let v = match self.store.node(e) {
+            Node::Num(c) => c.to_f64(),
+            Node::Sym(s) => self.symbol_values[s.index()],
+            Node::Add(items) => items.iter().map(|&(t, c)| c.to_f64() * self.eval(t)).sum(),
+            Node::Mul(items) => items
+                .iter()
+                .map(|&(b, x)| {
+                    let base = self.eval(b);
+                    match x.to_i64().and_then(|n| i32::try_from(n).ok()) {
+                        Some(n) => base.powi(n),
+                        None => base.powf(x.to_f64()),
+                    }
+                })
+                .product(),
+            Node::Func(f, u) => {
+                let x = self.eval(*u);
+                match f {
+                    Func::Sin => x.sin(),
+                    Func::Cos => x.cos(),
+                    Func::Exp => x.exp(),
+                    Func::Ln => x.ln(),
+                }
+            }
+            Node::Input(input, args) => {
+                let values: Vec<f64> = args.iter().map(|&a| self.eval(a)).collect();
+                self.inputs.value(*input as usize, &values)
+            }
+        };
+        self.cache.insert(e, v);
+        v
+    }
+}

@@ -1,0 +1,422 @@
+//! The symbolic expression engine: a hash-consed DAG kept in an *expanded
+//! canonical form*.
+//!
+//! Every expression is a sum of monomials with exact rational coefficients:
+//!
+//! ```text
+//! e = Σ_k c_k · Π_j b_kj^(e_kj)
+//! ```
+//!
+//! where the bases `b` are *atoms* (symbols, `sin u`, `cos u`, `exp u`, `ln u`,
+//! input-function calls) or, with a negative or fractional exponent, a sum.
+//! Products of sums are distributed as soon as they are built, and products of
+//! sines and cosines are linearized (`cos a · cos b = ½cos(a−b) + ½cos(a+b)`),
+//! so every monomial carries at most one sine or cosine to a positive power.
+//! That form is canonical for the trigonometric polynomials of mechanics: the
+//! cross terms of a kinetic energy cancel exactly and `sin² + cos²` folds to 1.
+//!
+//! Nodes are interned, so structurally equal expressions share one [`ExprId`]
+//! and comparing expressions is comparing integers.
+
+mod arith;
+mod calculus;
+mod display;
+mod eval;
+mod trig;
+
+pub use calculus::CoordinateSymbols;
+pub use display::DisplayExpr;
+pub use eval::{Evaluator, InputFunctions};
+
+use crate::rational::Rational;
+use rustc_hash::FxHashMap;
+
+/// Index of an interned expression node in its [`Store`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct ExprId(u32);
+
+impl ExprId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Index of a symbol in its [`Store`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct SymbolId(u32);
+
+impl SymbolId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// What a symbol stands for.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum SymbolKind {
+    /// Generalized coordinate `q_i`.
+    Coordinate(usize),
+    /// Generalized velocity `q̇_i`.
+    Velocity(usize),
+    /// Generalized acceleration `q̈_i` (only in the mass-matrix Jacobian).
+    Acceleration(usize),
+    /// Model parameter, a constant during a run.
+    Parameter(usize),
+    /// Time `t`.
+    Time,
+    /// The constant π.
+    Pi,
+    /// Formal argument `i` of input function `input` (used in declared derivatives).
+    InputArgument { input: usize, position: usize },
+}
+
+#[derive(Clone, Debug)]
+pub struct Symbol {
+    pub name: String,
+    pub kind: SymbolKind,
+}
+
+/// Elementary functions kept as atoms.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub enum Func {
+    Sin,
+    Cos,
+    Exp,
+    Ln,
+}
+
+impl Func {
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+        }
+    }
+}
+
+/// An interned node. See the module documentation for the invariants.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    Num(Rational),
+    Sym(SymbolId),
+    /// `Σ c_k · term_k`, sorted by term id; the constant term uses [`Store::ONE`].
+    Add(Box<[(ExprId, Rational)]>),
+    /// `Π base_k ^ e_k`, sorted by base id, with no numeric coefficient.
+    Mul(Box<[(ExprId, Rational)]>),
+    Func(Func, ExprId),
+    /// A call of a run-time input function.
+    Input(u32, Box<[ExprId]>),
+}
+
+/// A run-time input function: its name, arity and declared partial derivatives.
+#[derive(Clone, Debug)]
+pub struct InputFunction {
+    pub name: String,
+    /// Formal arguments, as symbols of kind [`SymbolKind::InputArgument`].
+    pub arguments: Vec<SymbolId>,
+    /// `∂f/∂arg_i` in terms of the formal arguments, when declared.
+    pub derivatives: Vec<Option<ExprId>>,
+}
+
+/// Problems found while building expressions; reported by the caller with context.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum EngineError {
+    /// A coefficient left the range of exact 128-bit rationals.
+    Overflow,
+    /// A constant was divided by zero.
+    DivisionByZero,
+    /// An input function had to be differentiated with respect to an argument
+    /// whose derivative was not declared.
+    MissingDerivative { input: usize, argument: usize },
+}
+
+/// Owner of all nodes, symbols and input functions of one model.
+pub struct Store {
+    nodes: Vec<Node>,
+    /// Bit `s % 64` is set when the node may depend on symbol `s`.
+    masks: Vec<u64>,
+    index: FxHashMap<Node, ExprId>,
+    symbols: Vec<Symbol>,
+    inputs: Vec<InputFunction>,
+    diff_memo: FxHashMap<(ExprId, SymbolId), ExprId>,
+    mul_memo: FxHashMap<(ExprId, ExprId), ExprId>,
+    errors: Vec<EngineError>,
+}
+
+impl Default for Store {
+    fn default() -> Self {
+        Store::new()
+    }
+}
+
+impl Store {
+    /// The constant 0; always the first node.
+    pub const ZERO: ExprId = ExprId(0);
+    /// The constant 1; always the second node. Also the "term" of constants in sums.
+    pub const ONE: ExprId = ExprId(1);
+
+    pub fn new() -> Store {
+        let mut store = Store {
+            nodes: Vec::new(),
+            masks: Vec::new(),
+            index: FxHashMap::default(),
+            symbols: Vec::new(),
+            inputs: Vec::new(),
+            diff_memo: FxHashMap::default(),
+            mul_memo: FxHashMap::default(),
+            errors: Vec::new(),
+        };
+        let zero = store.intern(Node::Num(Rational::ZERO));
+        let one = store.intern(Node::Num(Rational::ONE));
+        debug_assert_eq!((zero, one), (Store::ZERO, Store::ONE));
+        store
+    }
+
+    /// Declares a new symbol and returns the expression standing for it.
+    pub fn symbol(&mut self, name: &str, kind: SymbolKind) -> (SymbolId, ExprId) {
+        let id = SymbolId(self.symbols.len() as u32);
+        self.symbols.push(Symbol {
+            name: name.to_string(),
+            kind,
+        });
+        (id, self.intern(Node::Sym(id)))
+    }
+
+    /// The expression standing for an existing symbol.
+    pub fn symbol_expr(&mut self, s: SymbolId) -> ExprId {
+        self.intern(Node::Sym(s))
+    }
+
+    /// Declares an input function with `arity` formal arguments named `argument_names`.
+    pub fn declare_input(&mut self, name: &str, argument_names: &[String]) -> usize {
+        let input = self.inputs.len();
+        let arguments = argument_names
+            .iter()
+            .enumerate()
+            .map(|(position, arg)| {
+                self.symbol(arg, SymbolKind::InputArgument { input, position })
+                    .0
+            })
+            .collect::<Vec<_>>();
+        self.inputs.push(InputFunction {
+            name: name.to_string(),
+            derivatives: vec![None; arguments.len()],
+            arguments,
+        });
+        input
+    }
+
+    /// Declares `∂input/∂argument = derivative` (in terms of the formal arguments).
+    pub fn set_input_derivative(&mut self, input: usize, argument: usize, derivative: ExprId) {
+        self.inputs[input].derivatives[argument] = Some(derivative);
+    }
+
+    pub fn symbols(&self) -> &[Symbol] {
+        &self.symbols
+    }
+
+    /// The symbol declared as `name`, if any.
+    pub fn symbol_named(&self, name: &str) -> Option<SymbolId> {
+        self.symbols
+            .iter()
+            .position(|s| s.name == name)
+            .map(|i| SymbolId(i as u32))
+    }
+
+    pub fn symbol_info(&self, s: SymbolId) -> &Symbol {
+        &self.symbols[s.index()]
+    }
+
+    pub fn inputs(&self) -> &[InputFunction] {
+        &self.inputs
+    }
+
+    pub fn node(&self, e: ExprId) -> &Node {
+        &self.nodes[e.index()]
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Errors recorded since the last call, which clears them.
+    pub fn take_errors(&mut self) -> Vec<EngineError> {
+        std::mem::take(&mut self.errors)
+    }
+
+    pub(crate) fn record(&mut self, error: EngineError) {
+        if !self.errors.contains(&error) {
+            self.errors.push(error);
+        }
+    }
+
+    /// A rational constant.
+    pub fn num(&mut self, value: Rational) -> ExprId {
+        if value.is_zero() {
+            Store::ZERO
+        } else if value.is_one() {
+            Store::ONE
+        } else {
+            self.intern(Node::Num(value))
+        }
+    }
+
+    pub fn int(&mut self, value: i64) -> ExprId {
+        self.num(Rational::integer(value))
+    }
+
+    /// The rational value of a constant node.
+    pub fn as_num(&self, e: ExprId) -> Option<Rational> {
+        match self.node(e) {
+            Node::Num(v) => Some(*v),
+            _ => None,
+        }
+    }
+
+    pub fn as_symbol(&self, e: ExprId) -> Option<SymbolId> {
+        match self.node(e) {
+            Node::Sym(s) => Some(*s),
+            _ => None,
+        }
+    }
+
+    /// May `e` depend on `s`? `false` is certain, `true` may be a false positive.
+    pub fn may_depend_on(&self, e: ExprId, s: SymbolId) -> bool {
+        self.masks[e.index()] & symbol_bit(s) != 0
+    }
+
+    /// Does `e` contain symbol `s`? Exact (walks the DAG when the mask says maybe).
+    pub fn depends_on(&self, e: ExprId, s: SymbolId) -> bool {
+        if !self.may_depend_on(e, s) {
+            return false;
+        }
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if !seen.insert(x) || !self.may_depend_on(x, s) {
+                continue;
+            }
+            match self.node(x) {
+                Node::Num(_) => {}
+                Node::Sym(t) => {
+                    if *t == s {
+                        return true;
+                    }
+                }
+                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
+                Node::Func(_, u) => stack.push(*u),
+                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            }
+        }
+        false
+    }
+
+    /// All symbols `e` contains, sorted.
+    pub fn free_symbols(&self, e: ExprId) -> Vec<SymbolId> {
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut found = Vec::new();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if !seen.insert(x) {
+                continue;
+            }
+            match self.node(x) {
+                Node::Num(_) => {}
+                Node::Sym(t) => found.push(*t),
+                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
+                Node::Func(_, u) => stack.push(*u),
+                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            }
+        }
+        found.sort();
+        found.dedup();
+        found
+    }
+
+    /// The number of distinct nodes reachable from `roots`.
+    pub fn dag_size(&self, roots: &[ExprId]) -> usize {
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut stack = roots.to_vec();
+        while let Some(x) = stack.pop() {
+            if !seen.insert(x) {
+                continue;
+            }
+            match self.node(x) {
+                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
+                Node::Func(_, u) => stack.push(*u),
+                Node::Input(_, args) => stack.extend(args.iter().copied()),
+                _ => {}
+            }
+        }
+        seen.len()
+    }
+
+    fn intern(&mut self, node: Node) -> ExprId {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let mask = match &node {
+            Node::Num(_) => 0,
+            Node::Sym(s) => symbol_bit(*s),
+            Node::Add(items) | Node::Mul(items) => {
+                items.iter().fold(0, |m, (t, _)| m | self.masks[t.index()])
+            }
+            Node::Func(_, u) => self.masks[u.index()],
+            Node::Input(_, args) => args.iter().fold(0, |m, a| m | self.masks[a.index()]),
+        };
+        let id = ExprId(self.nodes.len() as u32);
+        self.nodes.push(node.clone());
+        self.masks.push(mask);
+        self.index.insert(node, id);
+        id
+    }
+
+    /// The sum viewed as `(term, coefficient)` pairs; a constant is `(ONE, c)`.
+    pub fn terms(&self, e: ExprId) -> Vec<(ExprId, Rational)> {
+        match self.node(e) {
+            Node::Num(c) if c.is_zero() => Vec::new(),
+            Node::Num(c) => vec![(Store::ONE, *c)],
+            Node::Add(items) => items.to_vec(),
+            _ => vec![(e, Rational::ONE)],
+        }
+    }
+
+    /// A monomial (a term of a sum) viewed as `(base, exponent)` factors.
+    pub fn factors(&self, term: ExprId) -> Vec<(ExprId, Rational)> {
+        match self.node(term) {
+            Node::Mul(items) => items.to_vec(),
+            _ if term == Store::ONE => Vec::new(),
+            _ => vec![(term, Rational::ONE)],
+        }
+    }
+
+    /// The sine, cosine, exponential or logarithm node `f(u)` as built, if `e` is one.
+    pub fn as_func(&self, e: ExprId) -> Option<(Func, ExprId)> {
+        match self.node(e) {
+            Node::Func(f, u) => Some((*f, *u)),
+            _ => None,
+        }
+    }
+
+    /// An input-function call.
+    pub fn input_call(&mut self, input: usize, args: Vec<ExprId>) -> ExprId {
+        self.intern(Node::Input(input as u32, args.into_boxed_slice()))
+    }
+
+    pub(crate) fn mask(&self, e: ExprId) -> u64 {
+        self.masks[e.index()]
+    }
+}
+
+fn symbol_bit(s: SymbolId) -> u64 {
+    1u64 << (s.0 % 64)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,153 @@
+use super::*;
+use crate::rational::Rational;
+
+fn setup() -> (Store, Vec<ExprId>) {
+    let mut s = Store::new();
+    let names = ["x", "y", "a", "b"];
+    let ids = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| s.symbol(n, SymbolKind::Parameter(i)).1)
+        .collect();
+    (s, ids)
+}
+
+#[test]
+fn sums_collect_and_cancel() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let a = s.add(x, y);
+    let b = s.sub(a, x);
+    assert_eq!(b, y);
+    let two_x = s.add(x, x);
+    let q = s.div(two_x, x);
+    assert_eq!(s.as_num(q), Some(Rational::integer(2)));
+}
+
+#[test]
+fn products_distribute_and_hash_cons() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let sum = s.add(x, y);
+    let sq = s.mul(sum, sum);
+    let x2 = s.pow(x, Rational::integer(2));
+    let y2 = s.pow(y, Rational::integer(2));
+    let xy = s.mul(x, y);
+    let xy2 = s.scale(xy, Rational::integer(2));
+    let expected = s.sum(&[x2, xy2, y2]);
+    assert_eq!(sq, expected);
+    let diff = s.sub(x, y);
+    let prod = s.mul(sum, diff);
+    let expected = s.sub(x2, y2);
+    assert_eq!(prod, expected);
+}
+
+#[test]
+fn pythagorean_identity_folds() {
+    let (mut s, v) = setup();
+    let x = v[0];
+    let sin = s.sin(x);
+    let cos = s.cos(x);
+    let s2 = s.mul(sin, sin);
+    let c2 = s.mul(cos, cos);
+    assert_eq!(s.add(s2, c2), Store::ONE);
+}
+
+#[test]
+fn angle_addition_combines() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let (sx, cx, sy, cy) = (s.sin(x), s.cos(x), s.sin(y), s.cos(y));
+    let cc = s.mul(cx, cy);
+    let ss = s.mul(sx, sy);
+    let lhs = s.add(cc, ss);
+    let d = s.sub(x, y);
+    assert_eq!(lhs, s.cos(d));
+    let sc = s.mul(sx, cy);
+    let cs = s.mul(cx, sy);
+    let lhs = s.sub(sc, cs);
+    assert_eq!(lhs, s.sin(d));
+}
+
+#[test]
+fn trig_argument_sign_is_normalized() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let xy = s.sub(x, y);
+    let yx = s.sub(y, x);
+    assert_eq!(s.cos(xy), s.cos(yx));
+    let sin_xy = s.sin(xy);
+    let neg = s.neg(sin_xy);
+    assert_eq!(s.sin(yx), neg);
+    assert_eq!(s.sin(Store::ZERO), Store::ZERO);
+    assert_eq!(s.cos(Store::ZERO), Store::ONE);
+}
+
+#[test]
+fn derivatives_follow_the_usual_rules() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let xs = s.as_symbol(x).unwrap();
+    // d/dx (x^3 y) = 3 x^2 y
+    let x3 = s.pow(x, Rational::integer(3));
+    let e = s.mul(x3, y);
+    let d = s.diff(e, xs);
+    let x2 = s.pow(x, Rational::integer(2));
+    let x2y = s.mul(x2, y);
+    assert_eq!(d, s.scale(x2y, Rational::integer(3)));
+    // d/dx sin(x y) = y cos(x y)
+    let xy = s.mul(x, y);
+    let e = s.sin(xy);
+    let d = s.diff(e, xs);
+    let c = s.cos(xy);
+    assert_eq!(d, s.mul(y, c));
+    // d/dx sqrt(x) = 1/(2 sqrt(x))
+    let e = s.sqrt(x);
+    let d = s.diff(e, xs);
+    let inv = s.pow(x, Rational::new(-1, 2).unwrap());
+    assert_eq!(d, s.scale(inv, Rational::HALF));
+    // d/dx ln(x) = 1/x, d/dx exp(2x) = 2 exp(2x)
+    let e = s.ln(x);
+    assert_eq!(s.diff(e, xs), s.pow(x, Rational::MINUS_ONE));
+    let two_x = s.scale(x, Rational::integer(2));
+    let e = s.exp(two_x);
+    assert_eq!(s.diff(e, xs), s.scale(e, Rational::integer(2)));
+}
+
+#[test]
+fn powers_of_products_and_roots() {
+    let (mut s, v) = setup();
+    let x = v[0];
+    let r = s.sqrt(x);
+    assert_eq!(s.mul(r, r), x);
+    let x2 = s.mul(x, x);
+    let r2 = s.sqrt(x2);
+    assert_ne!(r2, x, "sqrt(x^2) is |x|, not x");
+    let four = s.int(4);
+    assert_eq!(s.sqrt(four), s.int(2));
+    let two = s.int(2);
+    let r2 = s.sqrt(two);
+    assert_eq!(s.mul(r2, r2), two);
+}
+
+#[test]
+fn evaluation_matches_direct_arithmetic() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let sum = s.add(x, y);
+    let c = s.cos(sum);
+    let q = s.div(c, y);
+    let e = s.mul(q, sum);
+    let mut ev = Evaluator::new(&s, vec![0.3, 1.7, 0.0, 0.0], &0.0);
+    let expected = (0.3f64 + 1.7).cos() / 1.7 * (0.3 + 1.7);
+    assert!((ev.eval(e) - expected).abs() < 1e-14);
+}
+
+#[test]
+fn overflow_is_recorded_not_silent() {
+    let (mut s, v) = setup();
+    let big = s.num(Rational::new(i128::MAX / 3, 1).unwrap());
+    let e = s.mul(big, v[0]);
+    let _ = s.scale(e, Rational::integer(1000));
+    assert_eq!(s.take_errors(), vec![EngineError::Overflow]);
+}

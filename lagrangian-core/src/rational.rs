@@ -1,0 +1,304 @@
+//! Exact rational numbers for the coefficients of symbolic expressions.
+//!
+//! Coefficients in Lagrangian mechanics stay small (½, 2, ¼ …), so a pair of
+//! `i128` is plenty. Every operation is checked: an overflow yields `None`, and
+//! the expression store turns that into a reported error instead of a wrong
+//! coefficient.
+
+use std::cmp::Ordering;
+use std::fmt;
+
+/// A normalized fraction `num / den` with `den > 0` and `gcd(num, den) = 1`.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Rational {
+    num: i128,
+    den: i128,
+}
+
+fn gcd(mut a: i128, mut b: i128) -> i128 {
+    a = a.abs();
+    b = b.abs();
+    while b != 0 {
+        let r = a % b;
+        a = b;
+        b = r;
+    }
+    a
+}
+
+impl Default for Rational {
+    fn default() -> Self {
+        Rational::ZERO
+    }
+}
+
+impl Rational {
+    pub const ZERO: Rational = Rational { num: 0, den: 1 };
+    pub const ONE: Rational = Rational { num: 1, den: 1 };
+    pub const MINUS_ONE: Rational = Rational { num: -1, den: 1 };
+    pub const HALF: Rational = Rational { num: 1, den: 2 };
+
+    /// `num / den`, normalized; `None` when `den == 0` or on overflow.
+    pub fn new(num: i128, den: i128) -> Option<Rational> {
+        if den == 0 {
+            return None;
+        }
+        let g = gcd(num, den);
+        let (mut n, mut d) = (num / g.max(1), den / g.max(1));
+        if d < 0 {
+            n = n.checked_neg()?;
+            d = d.checked_neg()?;
+        }
+        Some(Rational { num: n, den: d })
+    }
+
+    pub const fn integer(n: i64) -> Rational {
+        Rational {
+            num: n as i128,
+            den: 1,
+        }
+    }
+
+    pub fn numer(self) -> i128 {
+        self.num
+    }
+
+    pub fn denom(self) -> i128 {
+        self.den
+    }
+
+    pub fn is_zero(self) -> bool {
+        self.num == 0
+    }
+
+    pub fn is_one(self) -> bool {
+        self.num == 1 && self.den == 1
+    }
+
+    pub fn is_integer(self) -> bool {
+        self.den == 1
+    }
+
+    pub fn is_negative(self) -> bool {
+        self.num < 0
+    }
+
+    /// The value as an `i64` when it is an integer that fits.
+    pub fn to_i64(self) -> Option<i64> {
+        if self.den == 1 {
+            i64::try_from(self.num).ok()
+        } else {
+            None
+        }
+    }
+
+    /// Correctly rounded when numerator and denominator are below 2⁵³.
+    pub fn to_f64(self) -> f64 {
+        self.num as f64 / self.den as f64
+    }
+
+    pub fn checked_add(self, o: Rational) -> Option<Rational> {
+        if self.den == o.den {
+            return Rational::new(self.num.checked_add(o.num)?, self.den);
+        }
+        let g = gcd(self.den, o.den);
+        let lhs = self.num.checked_mul(o.den / g)?;
+        let rhs = o.num.checked_mul(self.den / g)?;
+        Rational::new(lhs.checked_add(rhs)?, self.den.checked_mul(o.den / g)?)
+    }
+
+    pub fn checked_sub(self, o: Rational) -> Option<Rational> {
+        self.checked_add(o.checked_neg()?)
+    }
+
+    pub fn checked_mul(self, o: Rational) -> Option<Rational> {
+        let g1 = gcd(self.num, o.den).max(1);
+        let g2 = gcd(o.num, self.den).max(1);
+        let n = (self.num / g1).checked_mul(o.num / g2)?;
+        let d = (self.den / g2).checked_mul(o.den / g1)?;
+        Rational::new(n, d)
+    }
+
+    pub fn checked_div(self, o: Rational) -> Option<Rational> {
+        self.checked_mul(o.checked_recip()?)
+    }
+
+    pub fn checked_neg(self) -> Option<Rational> {
+        Some(Rational {
+            num: self.num.checked_neg()?,
+            den: self.den,
+        })
+    }
+
+    pub fn checked_recip(self) -> Option<Rational> {
+        Rational::new(self.den, self.num)
+    }
+
+    /// `self^e` for an integer exponent.
+    pub fn checked_powi(self, e: i64) -> Option<Rational> {
+        let base = if e < 0 { self.checked_recip()? } else { self };
+        let mut result = Rational::ONE;
+        let mut b = base;
+        let mut k = e.unsigned_abs();
+        while k > 0 {
+            if k & 1 == 1 {
+                result = result.checked_mul(b)?;
+            }
+            k >>= 1;
+            if k > 0 {
+                b = b.checked_mul(b)?;
+            }
+        }
+        Some(result)
+    }
+
+    /// The exact rational `p/q`-th power when it exists (e.g. 4^(1/2) = 2).
+    pub fn exact_pow(self, e: Rational) -> Option<Rational> {
+        if e.is_integer() {
+            return self.checked_powi(i64::try_from(e.num).ok()?);
+        }
+        let root = u32::try_from(e.den).ok()?;
+        let num = exact_root(self.num, root)?;
+        let den = exact_root(self.den, root)?;
+        Rational::new(num, den)?.checked_powi(i64::try_from(e.num).ok()?)
+    }
+
+    /// Parses a decimal literal such as `9.81`, `1e-3`, `42` exactly.
+    pub fn parse_decimal(text: &str) -> Option<Rational> {
+        let text: String = text.chars().filter(|c| *c != '_').collect();
+        let (mantissa, exponent) = match text.find(['e', 'E']) {
+            Some(i) => (&text[..i], text[i + 1..].parse::<i32>().ok()?),
+            None => (text.as_str(), 0),
+        };
+        let (int_part, frac_part) = match mantissa.find('.') {
+            Some(i) => (&mantissa[..i], &mantissa[i + 1..]),
+            None => (mantissa, ""),
+        };
+        if int_part.is_empty() && frac_part.is_empty() {
+            return None;
+        }
+        let digits = format!("{int_part}{frac_part}");
+        if !digits.chars().all(|c| c.is_ascii_digit()) {
+            return None;
+        }
+        let mantissa_value: i128 = digits.trim_start_matches('0').parse().unwrap_or(0);
+        let scale = exponent.checked_sub(i32::try_from(frac_part.len()).ok()?)?;
+        let ten = Rational::integer(10);
+        Rational::new(mantissa_value, 1)?.checked_mul(ten.checked_powi(i64::from(scale))?)
+    }
+}
+
+/// The integer `root`-th root of `value` when it is exact.
+fn exact_root(value: i128, root: u32) -> Option<i128> {
+    if value < 0 {
+        return if root % 2 == 1 {
+            exact_root(value.checked_neg()?, root)?.checked_neg()
+        } else {
+            None
+        };
+    }
+    if value < 2 {
+        return Some(value);
+    }
+    let guess = (value as f64).powf(1.0 / f64::from(root)).round() as i128;
+    for candidate in [guess - 1, guess, guess + 1] {
+        if candidate >= 0 && candidate.checked_pow(root) == Some(value) {
+            return Some(candidate);
+        }
+    }
+    None
+}
+
+impl Ord for Rational {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Cross-multiplication can overflow i128 for huge coefficients; fall
+        // back to the float comparison, then to the raw parts for a total order.
+        match (
+            self.num.checked_mul(other.den),
+            other.num.checked_mul(self.den),
+        ) {
+            (Some(a), Some(b)) => a.cmp(&b),
+            _ => self
+                .to_f64()
+                .partial_cmp(&other.to_f64())
+                .unwrap_or(Ordering::Equal)
+                .then((self.num, self.den).cmp(&(other.num, other.den))),
+        }
+    }
+}
+
+impl PartialOrd for Rational {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl fmt::Display for Rational {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.den == 1 {
+            write!(f, "{}", self.num)
+        } else {
+            write!(f, "{}/{}", self.num, self.den)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(n: i128, d: i128) -> Rational {
+        Rational::new(n, d).unwrap()
+    }
+
+    #[test]
+    fn normalizes_sign_and_gcd() {
+        assert_eq!(r(2, -4), r(-1, 2));
+        assert_eq!(r(0, -7), Rational::ZERO);
+        assert_eq!(Rational::new(1, 0), None);
+    }
+
+    #[test]
+    fn arithmetic_is_exact() {
+        assert_eq!(r(1, 2).checked_add(r(1, 3)), Some(r(5, 6)));
+        assert_eq!(r(1, 2).checked_sub(r(1, 2)), Some(Rational::ZERO));
+        assert_eq!(r(2, 3).checked_mul(r(9, 4)), Some(r(3, 2)));
+        assert_eq!(r(2, 3).checked_div(r(4, 9)), Some(r(3, 2)));
+        assert_eq!(r(2, 3).checked_powi(-3), Some(r(27, 8)));
+        assert_eq!(Rational::ZERO.checked_recip(), None);
+    }
+
+    #[test]
+    fn overflow_is_reported() {
+        let big = Rational::new(i128::MAX / 2, 1).unwrap();
+        assert_eq!(big.checked_mul(Rational::integer(3)), None);
+        assert_eq!(big.checked_add(big).and_then(|x| x.checked_add(big)), None);
+    }
+
+    #[test]
+    fn exact_fractional_powers() {
+        assert_eq!(r(9, 4).exact_pow(r(1, 2)), Some(r(3, 2)));
+        assert_eq!(r(8, 27).exact_pow(r(-2, 3)), Some(r(9, 4)));
+        assert_eq!(r(2, 1).exact_pow(r(1, 2)), None);
+        assert_eq!(r(-8, 1).exact_pow(r(1, 3)), Some(r(-2, 1)));
+        assert_eq!(r(-4, 1).exact_pow(r(1, 2)), None);
+    }
+
+    #[test]
+    fn parses_decimal_literals_exactly() {
+        assert_eq!(Rational::parse_decimal("0.5"), Some(Rational::HALF));
+        assert_eq!(Rational::parse_decimal("9.81"), Some(r(981, 100)));
+        assert_eq!(Rational::parse_decimal("1e-3"), Some(r(1, 1000)));
+        assert_eq!(Rational::parse_decimal("2.5E2"), Some(r(250, 1)));
+        assert_eq!(Rational::parse_decimal("30_000"), Some(r(30000, 1)));
+        assert_eq!(Rational::parse_decimal("1e80"), None);
+        assert_eq!(Rational::parse_decimal("abc"), None);
+    }
+
+    #[test]
+    fn ordering_matches_values() {
+        assert!(r(1, 3) < r(1, 2));
+        assert!(r(-1, 2) < Rational::ZERO);
+        assert_eq!(r(2, 4).cmp(&r(1, 2)), Ordering::Equal);
+    }
+}

@@ -1,0 +1,106 @@
+//! The syntax tree of a model specification, as written (names unresolved).
+
+use proc_macro2::Span;
+use syn::{Expr, Ident};
+
+/// A whole spec: `model Name;` and its blocks and statements, in source order.
+pub struct SpecAst {
+    /// `//!` doc lines at the top of a spec file.
+    pub inner_doc: Vec<String>,
+    pub items: Vec<Item>,
+}
+
+/// A physical unit as written between brackets, e.g. `[N*s/m]`.
+#[derive(Clone, Debug)]
+pub struct UnitText {
+    pub text: String,
+    pub span: Span,
+}
+
+pub struct Declaration {
+    pub doc: Vec<String>,
+    pub name: Ident,
+    pub unit: Option<UnitText>,
+}
+
+pub struct ParameterDecl {
+    pub decl: Declaration,
+    /// Default value, a constant expression such as `2.0 * 30000.0`.
+    pub value: Option<Expr>,
+}
+
+pub struct InputDecl {
+    pub decl: Declaration,
+    pub arguments: Vec<Declaration>,
+    /// Declared partial derivatives: `d(arg) = expression`.
+    pub derivatives: Vec<(Ident, Expr)>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum EnergyKind {
+    Kinetic,
+    Potential,
+    Dissipation,
+}
+
+impl EnergyKind {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            EnergyKind::Kinetic => "kinetic",
+            EnergyKind::Potential => "potential",
+            EnergyKind::Dissipation => "dissipation",
+        }
+    }
+
+    pub fn description(self) -> &'static str {
+        match self {
+            EnergyKind::Kinetic => "kinetic energy",
+            EnergyKind::Potential => "potential energy",
+            EnergyKind::Dissipation => "dissipation function",
+        }
+    }
+}
+
+pub enum Item {
+    Model {
+        doc: Vec<String>,
+        name: Ident,
+    },
+    Coordinates {
+        keyword: Span,
+        decls: Vec<Declaration>,
+    },
+    Parameters {
+        decls: Vec<ParameterDecl>,
+    },
+    Inputs {
+        decls: Vec<InputDecl>,
+    },
+    Let {
+        name: Ident,
+        value: Expr,
+    },
+    Energy {
+        kind: EnergyKind,
+        keyword: Span,
+        value: Expr,
+    },
+    /// `force q = Q;` — a generalized force on coordinate `q`.
+    GeneralizedForce {
+        keyword: Span,
+        coordinate: Ident,
+        value: Expr,
+    },
+    /// `force at (x, z) = (Fx, Fz);` — a force applied at a point.
+    PointForce {
+        keyword: Span,
+        point: Vec<Expr>,
+        point_span: Span,
+        components: Vec<Expr>,
+        components_span: Span,
+    },
+    /// `jacobians;` — also derive ∂f/∂q, ∂f/∂q̇ and ∂(M a)/∂q.
+    Jacobians {
+        keyword: Span,
+    },
+}

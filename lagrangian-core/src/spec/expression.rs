@@ -1,0 +1,397 @@
+//! Translating `syn` expressions into canonical symbolic expressions.
+
+use crate::diagnostic::{Diagnostic, closest};
+use crate::expr::{CoordinateSymbols, EngineError, ExprId, Store, SymbolId};
+use crate::rational::Rational;
+use proc_macro2::Span;
+use rustc_hash::FxHashMap;
+use syn::spanned::Spanned;
+use syn::{BinOp, Expr, Lit, UnOp};
+
+/// What a name in an expression refers to.
+#[derive(Clone, Debug)]
+pub(super) enum Binding {
+    /// A value: coordinate, parameter, formal argument, time, π.
+    Value(ExprId),
+    /// A `let` definition, with the input calls it contains.
+    Definition(ExprId, Vec<(usize, Span)>),
+    /// An input function with its arity.
+    Input(usize, usize),
+}
+
+/// Name resolution and the model's symbols, shared by all statements.
+pub(super) struct Scope {
+    pub names: FxHashMap<String, (Binding, Span)>,
+    pub coordinates: Vec<CoordinateSymbols>,
+    pub time: SymbolId,
+    pub velocities: Vec<SymbolId>,
+}
+
+/// The result of lowering one expression.
+pub(super) struct Lowered {
+    pub value: ExprId,
+    pub input_calls: Vec<(usize, Span)>,
+}
+
+const FUNCTIONS: &[(&str, usize)] = &[
+    ("sin", 1),
+    ("cos", 1),
+    ("tan", 1),
+    ("exp", 1),
+    ("ln", 1),
+    ("sqrt", 1),
+    ("pow", 2),
+    ("dot", 1),
+];
+
+pub(super) struct ExpressionLowering<'a> {
+    pub store: &'a mut Store,
+    pub scope: &'a Scope,
+    pub input_names: &'a [String],
+    input_calls: Vec<(usize, Span)>,
+}
+
+impl<'a> ExpressionLowering<'a> {
+    pub fn new(store: &'a mut Store, scope: &'a Scope, input_names: &'a [String]) -> Self {
+        ExpressionLowering {
+            store,
+            scope,
+            input_names,
+            input_calls: Vec::new(),
+        }
+    }
+
+    pub fn lower(mut self, expr: &Expr) -> Result<Lowered, Diagnostic> {
+        let value = self.expr(expr)?;
+        self.check_engine(expr.span(), "this expression")?;
+        Ok(Lowered {
+            value,
+            input_calls: self.input_calls,
+        })
+    }
+
+    /// Turns errors recorded by the engine into a diagnostic at `span`.
+    fn check_engine(&mut self, span: Span, what: &str) -> Result<(), Diagnostic> {
+        match self.store.take_errors().into_iter().next() {
+            None => Ok(()),
+            Some(error) => Err(engine_diagnostic(
+                self.store,
+                self.input_names,
+                error,
+                span,
+                what,
+            )),
+        }
+    }
+
+    fn expr(&mut self, expr: &Expr) -> Result<ExprId, Diagnostic> {
+        match expr {
+            Expr::Lit(lit) => literal(&lit.lit).map(|r| self.store.num(r)),
+            Expr::Paren(p) => self.expr(&p.expr),
+            Expr::Group(g) => self.expr(&g.expr),
+            Expr::Unary(u) => match u.op {
+                UnOp::Neg(_) => {
+                    let v = self.expr(&u.expr)?;
+                    Ok(self.store.neg(v))
+                }
+                _ => Err(unsupported(expr, "this unary operator")),
+            },
+            Expr::Binary(b) => self.binary(b),
+            Expr::Path(p) => {
+                let ident = p.path.get_ident().filter(|_| p.qself.is_none());
+                let Some(ident) = ident else {
+                    return Err(Diagnostic::new(
+                        p.span(),
+                        "paths are not allowed in a spec; use a plain name",
+                    ));
+                };
+                self.name(ident)
+            }
+            Expr::Call(call) => {
+                let Expr::Path(p) = &*call.func else {
+                    return Err(unsupported(&call.func, "this kind of call"));
+                };
+                let Some(ident) = p.path.get_ident() else {
+                    return Err(Diagnostic::new(p.span(), "expected a function name"));
+                };
+                let args: Vec<&Expr> = call.args.iter().collect();
+                self.call(ident, &args, call.span())
+            }
+            Expr::MethodCall(m) => {
+                let mut args = vec![&*m.receiver];
+                args.extend(m.args.iter());
+                self.method(&m.method, &args, m.span())
+            }
+            _ => Err(unsupported(expr, "this expression")),
+        }
+    }
+
+    fn binary(&mut self, b: &syn::ExprBinary) -> Result<ExprId, Diagnostic> {
+        if let BinOp::BitXor(op) = b.op {
+            return Err(Diagnostic::new(
+                op.span(),
+                "`^` is bitwise XOR in Rust syntax and binds more loosely than `+` \
+                 (`x^2 + y` would mean `x^(2 + y)`)",
+            )
+            .with_help("write the power as `pow(x, 2)` or `x.powi(2)`"));
+        }
+        let lhs = self.expr(&b.left)?;
+        let rhs = self.expr(&b.right)?;
+        match b.op {
+            BinOp::Add(_) => Ok(self.store.add(lhs, rhs)),
+            BinOp::Sub(_) => Ok(self.store.sub(lhs, rhs)),
+            BinOp::Mul(_) => Ok(self.store.mul(lhs, rhs)),
+            BinOp::Div(_) => {
+                if rhs == Store::ZERO {
+                    return Err(Diagnostic::new(b.right.span(), "division by zero"));
+                }
+                Ok(self.store.div(lhs, rhs))
+            }
+            _ => Err(Diagnostic::new(
+                b.op.span(),
+                "unsupported operator in a spec; only `+`, `-`, `*` and `/` are allowed",
+            )),
+        }
+    }
+
+    fn name(&mut self, ident: &syn::Ident) -> Result<ExprId, Diagnostic> {
+        let name = ident.to_string();
+        match self.scope.names.get(&name) {
+            Some((Binding::Value(v), _)) => Ok(*v),
+            Some((Binding::Definition(v, calls), _)) => {
+                self.input_calls.extend(calls.iter().cloned());
+                Ok(*v)
+            }
+            Some((Binding::Input(_, arity), decl)) => Err(Diagnostic::new(
+                ident.span(),
+                format!("input function `{name}` must be called with its {arity} argument(s)"),
+            )
+            .with_note(format!("`{name}` is declared here"), *decl)),
+            None if FUNCTIONS.iter().any(|(f, _)| *f == name) => Err(Diagnostic::new(
+                ident.span(),
+                format!("`{name}` is a function; call it as `{name}(…)`"),
+            )),
+            None => Err(self.unknown(ident, "name")),
+        }
+    }
+
+    fn unknown(&self, ident: &syn::Ident, what: &str) -> Diagnostic {
+        let name = ident.to_string();
+        let candidates = self
+            .scope
+            .names
+            .keys()
+            .map(String::as_str)
+            .chain(FUNCTIONS.iter().map(|(f, _)| *f));
+        let diagnostic = Diagnostic::new(ident.span(), format!("unknown {what} `{name}`"));
+        match closest(&name, candidates) {
+            Some(best) => diagnostic.with_help(format!("did you mean `{best}`?")),
+            None => diagnostic.with_help(
+                "declare it under `coordinates`, `parameters` or `inputs`, or with `let`",
+            ),
+        }
+    }
+
+    fn call(
+        &mut self,
+        ident: &syn::Ident,
+        args: &[&Expr],
+        span: Span,
+    ) -> Result<ExprId, Diagnostic> {
+        let name = ident.to_string();
+        if let Some(&(_, arity)) = FUNCTIONS.iter().find(|(f, _)| *f == name) {
+            check_arity(ident, &name, arity, args.len(), span)?;
+            return self.builtin(&name, args, span);
+        }
+        match self.scope.names.get(&name) {
+            Some((Binding::Input(index, arity), _)) => {
+                let (index, arity) = (*index, *arity);
+                check_arity(ident, &name, arity, args.len(), span)?;
+                let values = args
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<Result<Vec<_>, _>>()?;
+                self.input_calls.push((index, span));
+                Ok(self.store.input_call(index, values))
+            }
+            Some(_) => Err(Diagnostic::new(
+                ident.span(),
+                format!("`{name}` is not a function"),
+            )),
+            None => Err(self.unknown(ident, "function")),
+        }
+    }
+
+    fn builtin(&mut self, name: &str, args: &[&Expr], span: Span) -> Result<ExprId, Diagnostic> {
+        if name == "pow" {
+            let base = self.expr(args[0])?;
+            let exponent = self.constant_exponent(args[1])?;
+            return self.power(base, exponent, span);
+        }
+        let x = self.expr(args[0])?;
+        Ok(match name {
+            "sin" => self.store.sin(x),
+            "cos" => self.store.cos(x),
+            "tan" => self.store.tan(x),
+            "exp" => self.store.exp(x),
+            "ln" => self.store.ln(x),
+            "sqrt" => self.store.sqrt(x),
+            _ => self.dot(x, span)?,
+        })
+    }
+
+    fn method(
+        &mut self,
+        method: &syn::Ident,
+        args: &[&Expr],
+        span: Span,
+    ) -> Result<ExprId, Diagnostic> {
+        let name = method.to_string();
+        match name.as_str() {
+            "sin" | "cos" | "tan" | "exp" | "ln" | "sqrt" => {
+                check_arity(method, &name, 0, args.len() - 1, span)?;
+                self.builtin(&name, args, span)
+            }
+            "powi" | "powf" => {
+                check_arity(method, &name, 1, args.len() - 1, span)?;
+                let base = self.expr(args[0])?;
+                let exponent = self.constant_exponent(args[1])?;
+                if name == "powi" && !exponent.is_integer() {
+                    return Err(Diagnostic::new(
+                        args[1].span(),
+                        "`powi` takes an integer exponent; use `powf` or `pow` for fractions",
+                    ));
+                }
+                self.power(base, exponent, span)
+            }
+            _ => Err(
+                Diagnostic::new(method.span(), format!("unsupported method `{name}`")).with_help(
+                    "supported: .sin() .cos() .tan() .exp() .ln() .sqrt() .powi(n) .powf(x)",
+                ),
+            ),
+        }
+    }
+
+    fn power(
+        &mut self,
+        base: ExprId,
+        exponent: Rational,
+        span: Span,
+    ) -> Result<ExprId, Diagnostic> {
+        if base == Store::ZERO && exponent.is_negative() {
+            return Err(Diagnostic::new(span, "zero raised to a negative power"));
+        }
+        Ok(self.store.pow(base, exponent))
+    }
+
+    /// Exponents must be exact constants, so that derivatives stay exact.
+    fn constant_exponent(&mut self, expr: &Expr) -> Result<Rational, Diagnostic> {
+        let value = self.expr(expr)?;
+        self.store.as_num(value).ok_or_else(|| {
+            Diagnostic::new(expr.span(), "the exponent must be a constant number")
+                .with_help("write exp(y * ln(x)) for a variable exponent")
+        })
+    }
+
+    /// `dot(e)`: the total time derivative of a function of coordinates and time.
+    fn dot(&mut self, x: ExprId, span: Span) -> Result<ExprId, Diagnostic> {
+        if let Some(v) = self
+            .scope
+            .velocities
+            .iter()
+            .find(|v| self.store.depends_on(x, **v))
+        {
+            let name = self.store.symbol_info(*v).name.clone();
+            return Err(Diagnostic::new(
+                span,
+                format!("`dot` of an expression that already contains the velocity `{name}`"),
+            )
+            .with_help("`dot` applies to positions (functions of the coordinates and time); accelerations cannot appear in T, V, D or forces"));
+        }
+        let d = self
+            .store
+            .time_derivative(x, &self.scope.coordinates, self.scope.time);
+        self.check_engine(span, "`dot`")?;
+        Ok(d)
+    }
+}
+
+fn check_arity(
+    ident: &syn::Ident,
+    name: &str,
+    expected: usize,
+    found: usize,
+    span: Span,
+) -> Result<(), Diagnostic> {
+    if expected == found {
+        return Ok(());
+    }
+    let _ = ident;
+    Err(Diagnostic::new(
+        span,
+        format!("`{name}` takes {expected} argument(s) but {found} were given"),
+    ))
+}
+
+fn unsupported(expr: &impl Spanned, what: &str) -> Diagnostic {
+    Diagnostic::new(expr.span(), format!("{what} is not supported in a spec"))
+        .with_help("expressions are numbers, names, `+ - * /`, parentheses, function calls and `.powi(n)`-style methods")
+}
+
+/// An integer or decimal literal as an exact rational.
+pub(super) fn literal(lit: &Lit) -> Result<Rational, Diagnostic> {
+    let (digits, suffix) = match lit {
+        Lit::Int(i) => (i.base10_digits().to_string(), i.suffix().to_string()),
+        Lit::Float(f) => (f.base10_digits().to_string(), f.suffix().to_string()),
+        _ => {
+            return Err(Diagnostic::new(
+                lit.span(),
+                "only numeric literals are allowed in expressions",
+            ));
+        }
+    };
+    if !suffix.is_empty() && suffix != "f64" {
+        return Err(
+            Diagnostic::new(lit.span(), format!("unsupported literal suffix `{suffix}`"))
+                .with_help("units go in brackets after a declaration, e.g. `m1 [kg] = 539.0`"),
+        );
+    }
+    Rational::parse_decimal(&digits).ok_or_else(|| {
+        Diagnostic::new(
+            lit.span(),
+            format!("`{digits}` cannot be represented as an exact fraction of 128-bit integers"),
+        )
+    })
+}
+
+/// Explains an engine error that happened while building `what` at `span`.
+pub(crate) fn engine_diagnostic(
+    store: &Store,
+    input_names: &[String],
+    error: EngineError,
+    span: Span,
+    what: &str,
+) -> Diagnostic {
+    match error {
+        EngineError::Overflow => Diagnostic::new(
+            span,
+            format!("exact coefficients in {what} exceed 128-bit fractions"),
+        ),
+        EngineError::DivisionByZero => Diagnostic::new(span, format!("division by zero in {what}")),
+        EngineError::MissingDerivative { input, argument } => {
+            let info = &store.inputs()[input];
+            let arg = store.symbol_info(info.arguments[argument]).name.clone();
+            Diagnostic::new(
+                span,
+                format!(
+                    "{what} needs the derivative of input function `{}` with respect to its argument `{arg}`, which is not declared",
+                    input_names[input]
+                ),
+            )
+            .with_help(format!(
+                "declare it in the `inputs` block: `{}(…) {{ d({arg}) = … }}`",
+                input_names[input]
+            ))
+        }
+    }
+}

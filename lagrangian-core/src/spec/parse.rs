@@ -1,0 +1,271 @@
+//! Parsing the spec language with `syn`. The grammar, in Rust token syntax:
+//!
+//! ```text
+//! spec        = inner-doc* item*
+//! item        = doc* ( "model" IDENT ";"
+//!                    | "coordinates" "{" decl,* "}"
+//!                    | "parameters"  "{" (decl "=" EXPR),* "}"
+//!                    | "inputs"      "{" (IDENT "(" decl,* ")" unit? derivs?),* "}"
+//!                    | "let" IDENT "=" EXPR ";"
+//!                    | ("kinetic" | "potential" | "dissipation") "=" EXPR ";"
+//!                    | "force" IDENT "=" EXPR ";"
+//!                    | "force" "at" "(" EXPR,* ")" "=" "(" EXPR,* ")" ";"
+//!                    | "jacobians" ";" )
+//! decl        = doc* IDENT unit?
+//! unit        = "[" unit tokens "]"              e.g. [N*s/m], [m/s^2]
+//! derivs      = "{" ("d" "(" IDENT ")" "=" EXPR),* "}"
+//! ```
+
+use super::ast::*;
+use proc_macro2::{Span, TokenStream};
+use syn::parse::{Parse, ParseStream};
+use syn::spanned::Spanned;
+use syn::{Attribute, Expr, Ident, Token, braced, bracketed, parenthesized};
+
+mod kw {
+    syn::custom_keyword!(model);
+    syn::custom_keyword!(coordinates);
+    syn::custom_keyword!(parameters);
+    syn::custom_keyword!(inputs);
+    syn::custom_keyword!(kinetic);
+    syn::custom_keyword!(potential);
+    syn::custom_keyword!(dissipation);
+    syn::custom_keyword!(force);
+    syn::custom_keyword!(at);
+    syn::custom_keyword!(jacobians);
+    syn::custom_keyword!(d);
+}
+
+impl Parse for SpecAst {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let inner = input.call(Attribute::parse_inner)?;
+        let inner_doc = doc_lines(&inner)?;
+        let mut items = Vec::new();
+        while !input.is_empty() {
+            items.push(parse_item(input)?);
+        }
+        Ok(SpecAst { inner_doc, items })
+    }
+}
+
+/// The text of `///` comments; any other attribute is an error.
+fn doc_lines(attrs: &[Attribute]) -> syn::Result<Vec<String>> {
+    attrs
+        .iter()
+        .map(|attr| {
+            if let syn::Meta::NameValue(nv) = &attr.meta
+                && nv.path.is_ident("doc")
+                && let Expr::Lit(syn::ExprLit {
+                    lit: syn::Lit::Str(s),
+                    ..
+                }) = &nv.value
+            {
+                let text = s.value();
+                return Ok(text.strip_prefix(' ').unwrap_or(&text).to_string());
+            }
+            Err(syn::Error::new(
+                attr.span(),
+                "only doc comments (`///`) may annotate spec items",
+            ))
+        })
+        .collect()
+}
+
+fn parse_item(input: ParseStream) -> syn::Result<Item> {
+    let attrs = input.call(Attribute::parse_outer)?;
+    let doc = doc_lines(&attrs)?;
+    let look = input.lookahead1();
+    if look.peek(kw::model) {
+        input.parse::<kw::model>()?;
+        let name = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Model { doc, name })
+    } else if look.peek(kw::coordinates) {
+        let keyword = input.parse::<kw::coordinates>()?.span;
+        let decls = parse_braced_list(input, parse_declaration)?;
+        Ok(Item::Coordinates { keyword, decls })
+    } else if look.peek(kw::parameters) {
+        input.parse::<kw::parameters>()?;
+        let decls = parse_braced_list(input, parse_parameter)?;
+        Ok(Item::Parameters { decls })
+    } else if look.peek(kw::inputs) {
+        input.parse::<kw::inputs>()?;
+        let decls = parse_braced_list(input, parse_input)?;
+        Ok(Item::Inputs { decls })
+    } else if look.peek(Token![let]) {
+        input.parse::<Token![let]>()?;
+        let name = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let value = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Let { name, value })
+    } else if look.peek(kw::kinetic) || look.peek(kw::potential) || look.peek(kw::dissipation) {
+        let (kind, keyword) = if input.peek(kw::kinetic) {
+            (EnergyKind::Kinetic, input.parse::<kw::kinetic>()?.span)
+        } else if input.peek(kw::potential) {
+            (EnergyKind::Potential, input.parse::<kw::potential>()?.span)
+        } else {
+            (
+                EnergyKind::Dissipation,
+                input.parse::<kw::dissipation>()?.span,
+            )
+        };
+        input.parse::<Token![=]>()?;
+        let value = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Energy {
+            kind,
+            keyword,
+            value,
+        })
+    } else if look.peek(kw::force) {
+        parse_force(input)
+    } else if look.peek(kw::jacobians) {
+        let keyword = input.parse::<kw::jacobians>()?.span;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Jacobians { keyword })
+    } else {
+        Err(look.error())
+    }
+}
+
+fn parse_force(input: ParseStream) -> syn::Result<Item> {
+    let keyword = input.parse::<kw::force>()?.span;
+    if input.peek(kw::at) {
+        input.parse::<kw::at>()?;
+        let (point, point_span) = parse_tuple(input)?;
+        input.parse::<Token![=]>()?;
+        let (components, components_span) = parse_tuple(input)?;
+        input.parse::<Token![;]>()?;
+        if point.len() != components.len() {
+            return Err(syn::Error::new(
+                components_span,
+                format!(
+                    "the force has {} components but the point has {} coordinates",
+                    components.len(),
+                    point.len()
+                ),
+            ));
+        }
+        Ok(Item::PointForce {
+            keyword,
+            point,
+            point_span,
+            components,
+            components_span,
+        })
+    } else {
+        let coordinate = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let value = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::GeneralizedForce {
+            keyword,
+            coordinate,
+            value,
+        })
+    }
+}
+
+fn parse_tuple(input: ParseStream) -> syn::Result<(Vec<Expr>, Span)> {
+    let content;
+    let paren = parenthesized!(content in input);
+    let items = content.parse_terminated(Expr::parse, Token![,])?;
+    if items.is_empty() {
+        return Err(syn::Error::new(
+            paren.span.join(),
+            "expected at least one component",
+        ));
+    }
+    Ok((items.into_iter().collect(), paren.span.join()))
+}
+
+fn parse_braced_list<T>(
+    input: ParseStream,
+    item: fn(ParseStream) -> syn::Result<T>,
+) -> syn::Result<Vec<T>> {
+    let content;
+    braced!(content in input);
+    let mut out = Vec::new();
+    while !content.is_empty() {
+        out.push(item(&content)?);
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    Ok(out)
+}
+
+fn parse_declaration(input: ParseStream) -> syn::Result<Declaration> {
+    let attrs = input.call(Attribute::parse_outer)?;
+    let doc = doc_lines(&attrs)?;
+    let name = input.parse()?;
+    let unit = parse_unit(input)?;
+    Ok(Declaration { doc, name, unit })
+}
+
+fn parse_unit(input: ParseStream) -> syn::Result<Option<UnitText>> {
+    if !input.peek(syn::token::Bracket) {
+        return Ok(None);
+    }
+    let content;
+    let bracket = bracketed!(content in input);
+    let tokens: TokenStream = content.parse()?;
+    let text = tokens.to_string();
+    Ok(Some(UnitText {
+        text: text.split_whitespace().collect::<String>(),
+        span: bracket.span.join(),
+    }))
+}
+
+fn parse_parameter(input: ParseStream) -> syn::Result<ParameterDecl> {
+    let decl = parse_declaration(input)?;
+    let value = if input.peek(Token![=]) {
+        input.parse::<Token![=]>()?;
+        Some(input.parse()?)
+    } else {
+        None
+    };
+    Ok(ParameterDecl { decl, value })
+}
+
+fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
+    let attrs = input.call(Attribute::parse_outer)?;
+    let doc = doc_lines(&attrs)?;
+    let name: Ident = input.parse()?;
+    let content;
+    parenthesized!(content in input);
+    let mut arguments = Vec::new();
+    while !content.is_empty() {
+        arguments.push(parse_declaration(&content)?);
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    let unit = parse_unit(input)?;
+    let mut derivatives = Vec::new();
+    if input.peek(syn::token::Brace) {
+        let body;
+        braced!(body in input);
+        while !body.is_empty() {
+            body.parse::<kw::d>()?;
+            let arg;
+            parenthesized!(arg in body);
+            let argument: Ident = arg.parse()?;
+            body.parse::<Token![=]>()?;
+            let value: Expr = body.parse()?;
+            derivatives.push((argument, value));
+            if body.is_empty() {
+                break;
+            }
+            body.parse::<Token![,]>()?;
+        }
+    }
+    Ok(InputDecl {
+        decl: Declaration { doc, name, unit },
+        arguments,
+        derivatives,
+    })
+}
