@@ -1,1 +1,38 @@
-//! Umbrella crate (filled in below).
+//! Euler–Lagrange equations derived at compile time, emitted as optimized Rust.
+//!
+//! Declare a model — coordinates, parameters, positions, kinetic and potential
+//! energy, Rayleigh dissipation, forces — and [`lagrangian!`] derives
+//! `M(q) q̈ = f(q, q̇, t)` symbolically while your crate compiles, then
+//! generates a struct implementing [`LagrangianSystem`].
+//!
+//! ```
+//! use lagrangian::{lagrangian, LagrangianSystem, NoInputs};
+//! use lagrangian::nalgebra::Vector1;
+//!
+//! lagrangian! {
+//!     /// A point-mass pendulum.
+//!     model Pendulum;
+//!     coordinates { theta [rad] }
+//!     parameters { m [kg] = 1.0, l [m] = 2.0, g [m/s^2] = 9.81 }
+//!     let x = l * sin(theta);
+//!     let y = -l * cos(theta);
+//!     kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(y), 2));
+//!     potential = m * g * y;
+//! }
+//!
+//! let p = Pendulum::default();
+//! let (q, qd) = (Vector1::new(0.3), Vector1::new(0.0));
+//! let a = p.accelerations(0.0, &q, &qd, &NoInputs).unwrap();
+//! assert!((a[0] + 9.81 / 2.0 * 0.3f64.sin()).abs() < 1e-12);
+//! ```
+//!
+//! Input functions (run-time data such as a crush characteristic or a force
+//! table) are declared in the spec and supplied through [`InputFunctions`]; a
+//! closure `|index, args| …` is one. The generated type has an `INPUT_<NAME>`
+//! constant with each input's index.
+
+pub use lagrangian_macro::lagrangian;
+pub use lagrangian_model::*;
+
+/// The compiler itself: spec parser, symbolic engine, derivation, optimizer, emitters.
+pub use lagrangian_core as compiler;

@@ -29,4 +29,22 @@ fn main() {
     println!("T = {}", model.store.to_text(d.kinetic));
     println!("V = {}", model.store.to_text(d.potential));
     println!("nodes: {}", model.store.len());
+    let compiled =
+        lagrangian_core::Compiled::new(lagrangian_core::Model::from_source(&src).unwrap()).unwrap();
+    for r in &compiled.program.routines {
+        println!(
+            "{:?}: {:?} total {}",
+            r.kind,
+            compiled.program.counts(r),
+            compiled.program.counts(r).total()
+        );
+    }
+    if std::env::var("EMIT").is_ok() {
+        println!(
+            "{}",
+            lagrangian_core::emit::emit_file(&compiled, &Default::default(), "// header")
+        );
+    }
 }
+#[allow(dead_code)]
+fn unused() {}

@@ -263,7 +263,7 @@ fn sample_coordinate(i: usize) -> f64 {
 fn check_positive_definite(model: &Model, mass: &[ExprId]) -> Result<(), SpecErrors> {
     let n = model.dimension();
     let values = sample_symbol_values(model);
-    let mut evaluator = Evaluator::new(&model.store, values, &1.0);
+    let mut evaluator = Evaluator::new(&model.store, values, &|_: usize, _: &[f64]| 1.0);
     let m: Vec<f64> = mass.iter().map(|&e| evaluator.eval(e)).collect();
     let failing = cholesky_failure(&m, n);
     let Some(k) = failing else {

@@ -7,7 +7,9 @@
 
 pub mod derive;
 pub mod diagnostic;
+pub mod emit;
 pub mod examples;
+pub mod expand;
 pub mod expr;
 pub mod optimize;
 pub mod program;
@@ -15,7 +17,7 @@ pub mod rational;
 pub mod spec;
 
 pub use diagnostic::{Diagnostic, SpecErrors};
-pub use expr::InputFunctions;
+pub use expr::{ConstantInputs, InputFunctions, NoInputs};
 pub use spec::Model;
 
 use derive::Derivation;

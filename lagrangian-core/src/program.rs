@@ -179,14 +179,14 @@ impl OpCounts {
 }
 
 /// The values a routine reads: time, state, parameters and input functions.
-pub struct EvalContext<'a> {
+pub struct EvalContext<'a, I: InputFunctions + ?Sized> {
     pub t: f64,
     pub q: &'a [f64],
     pub qd: &'a [f64],
     /// Accelerations (only the Jacobians routine reads them).
     pub qdd: &'a [f64],
     pub parameters: &'a [f64],
-    pub inputs: &'a dyn InputFunctions,
+    pub inputs: &'a I,
 }
 
 /// An optimized straight-line program for all outputs of a model.
@@ -231,10 +231,10 @@ impl Program {
     ///
     /// `registers` must come from [`Program::registers`]; `out` must hold
     /// `routine.outputs.len()` values.
-    pub fn run(
+    pub fn run<I: InputFunctions + ?Sized>(
         &self,
         routine: &Routine,
-        ctx: &EvalContext,
+        ctx: &EvalContext<I>,
         registers: &mut [f64],
         out: &mut [f64],
     ) {

@@ -26,7 +26,7 @@ mod trig;
 
 pub use calculus::CoordinateSymbols;
 pub use display::DisplayExpr;
-pub use eval::{Evaluator, InputFunctions};
+pub use eval::{ConstantInputs, Evaluator, InputFunctions, NoInputs};
 
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;

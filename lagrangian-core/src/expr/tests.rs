@@ -1,4 +1,5 @@
 use super::*;
+use crate::expr::NoInputs;
 use crate::rational::Rational;
 
 fn setup() -> (Store, Vec<ExprId>) {
@@ -138,7 +139,7 @@ fn evaluation_matches_direct_arithmetic() {
     let c = s.cos(sum);
     let q = s.div(c, y);
     let e = s.mul(q, sum);
-    let mut ev = Evaluator::new(&s, vec![0.3, 1.7, 0.0, 0.0], &0.0);
+    let mut ev = Evaluator::new(&s, vec![0.3, 1.7, 0.0, 0.0], &NoInputs);
     let expected = (0.3f64 + 1.7).cos() / 1.7 * (0.3 + 1.7);
     assert!((ev.eval(e) - expected).abs() < 1e-14);
 }

@@ -4,7 +4,7 @@ use super::ast::*;
 use super::expression::{Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal};
 use super::{Coordinate, ForceStatement, Input, Model, Parameter, RESERVED_NAMES, Statement};
 use crate::diagnostic::{Diagnostic, SpecErrors};
-use crate::expr::{CoordinateSymbols, Evaluator, ExprId, Store, SymbolKind};
+use crate::expr::{CoordinateSymbols, Evaluator, ExprId, NoInputs, Store, SymbolKind};
 use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
@@ -405,7 +405,7 @@ fn constant_value(
             "a parameter default must be a constant",
         ));
     }
-    let result = Evaluator::new(store, Vec::new(), &0.0).eval(lowered.value);
+    let result = Evaluator::new(store, Vec::new(), &NoInputs).eval(lowered.value);
     if result.is_finite() {
         Ok(result)
     } else {

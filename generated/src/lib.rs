@@ -1,0 +1,1 @@
+//! Generated models (filled by `lpm generate`).

@@ -1,0 +1,7 @@
+fn main() {
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10);
+    print!("{}", lagrangian_core::examples::pendulum_chain(n));
+}

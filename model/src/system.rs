@@ -1,0 +1,251 @@
+//! The interface every derived model implements, compiled or interpreted.
+
+use crate::InputFunctions;
+use nalgebra::{SMatrix, SVector};
+use std::fmt;
+
+/// Energy bookkeeping at one state.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energies {
+    /// Kinetic energy `T`.
+    pub kinetic: f64,
+    /// Potential energy `V`.
+    pub potential: f64,
+    /// Rayleigh dissipation function `D`.
+    pub dissipation: f64,
+    /// `Σ_i ∂D/∂q̇_i q̇_i`: power dissipated by `D` (= 2D when D is quadratic).
+    pub damping_power: f64,
+    /// `Σ_i Q_i q̇_i`: power of the generalized forces of the force statements.
+    pub external_power: f64,
+}
+
+/// Jacobians of the equations of motion `M(q) q̈ = f(q, q̇, t)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Jacobians<const N: usize> {
+    /// `∂f_i/∂q_k`.
+    pub forcing_q: SMatrix<f64, N, N>,
+    /// `∂f_i/∂q̇_k`.
+    pub forcing_qd: SMatrix<f64, N, N>,
+    /// `∂(M a)_i/∂q_k` for the acceleration vector `a` passed in.
+    pub mass_times_acceleration_q: SMatrix<f64, N, N>,
+}
+
+impl<const N: usize> Default for Jacobians<N> {
+    fn default() -> Self {
+        Jacobians {
+            forcing_q: SMatrix::zeros(),
+            forcing_qd: SMatrix::zeros(),
+            mass_times_acceleration_q: SMatrix::zeros(),
+        }
+    }
+}
+
+/// Why a model could not do what was asked.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModelError {
+    /// No parameter of that name; `suggestion` is the closest existing one.
+    UnknownParameter {
+        name: String,
+        suggestion: Option<String>,
+    },
+    /// The spec did not ask for Jacobians (`jacobians;`).
+    JacobiansNotDerived,
+    /// `M(q)` is singular or not positive definite at this state.
+    SingularMassMatrix { t: f64, q: Vec<f64> },
+    /// The dimension of a state does not match the model's.
+    DimensionMismatch { expected: usize, found: usize },
+}
+
+impl ModelError {
+    /// An unknown-parameter error suggesting the closest of `candidates`.
+    pub fn unknown_parameter(name: &str, candidates: &[&str]) -> ModelError {
+        ModelError::UnknownParameter {
+            name: name.to_string(),
+            suggestion: lagrangian_core::diagnostic::closest(name, candidates.iter().copied())
+                .map(str::to_string),
+        }
+    }
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ModelError::UnknownParameter { name, suggestion } => {
+                write!(f, "unknown parameter `{name}`")?;
+                if let Some(s) = suggestion {
+                    write!(f, " (did you mean `{s}`?)")?;
+                }
+                Ok(())
+            }
+            ModelError::JacobiansNotDerived => write!(
+                f,
+                "the model's spec does not request Jacobians; add `jacobians;` to it"
+            ),
+            ModelError::SingularMassMatrix { t, q } => write!(
+                f,
+                "the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"
+            ),
+            ModelError::DimensionMismatch { expected, found } => {
+                write!(f, "expected {expected} values, found {found}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+/// A mechanical model in the form `M(q, t) q̈ = f(q, q̇, t)` with `N` coordinates.
+///
+/// The `lagrangian!` macro implements it for the type it generates; the
+/// in-place methods are what implementors write, the others build on them.
+pub trait LagrangianSystem<const N: usize> {
+    /// The model's name as declared in its spec.
+    fn model_name(&self) -> &str;
+
+    /// Names of the generalized coordinates, in order.
+    fn coordinate_names(&self) -> Vec<&str>;
+
+    /// Names of the parameters, in order.
+    fn parameter_names(&self) -> Vec<&str>;
+
+    /// Names of the input functions, in order (the `index` of [`InputFunctions::value`]).
+    fn input_names(&self) -> Vec<&str>;
+
+    /// Current parameter values, in the order of [`LagrangianSystem::parameter_names`].
+    fn parameters(&self) -> Vec<f64>;
+
+    /// Sets a parameter by name.
+    fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), ModelError>;
+
+    /// Writes `M(q, t)` and `f(q, q̇, t)` at one state.
+    fn mass_matrix_and_forcing<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        mass: &mut SMatrix<f64, N, N>,
+        forcing: &mut SVector<f64, N>,
+    );
+
+    /// `T`, `V`, `D` and the powers of dissipation and of the generalized forces.
+    fn energies<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> Energies;
+
+    /// Writes `∂f/∂q`, `∂f/∂q̇` and `∂(M a)/∂q` for the accelerations `qdd`.
+    fn jacobians<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        qdd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut Jacobians<N>,
+    ) -> Result<(), ModelError> {
+        let _ = (t, q, qd, qdd, inputs, out);
+        Err(ModelError::JacobiansNotDerived)
+    }
+
+    /// `M(q, t)` (convenience over [`LagrangianSystem::mass_matrix_and_forcing`]).
+    fn mass_matrix<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> SMatrix<f64, N, N> {
+        self.mass_matrix_and_forcing_pair(t, q, qd, inputs).0
+    }
+
+    /// `f(q, q̇, t)` (convenience over [`LagrangianSystem::mass_matrix_and_forcing`]).
+    fn forcing<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> SVector<f64, N> {
+        self.mass_matrix_and_forcing_pair(t, q, qd, inputs).1
+    }
+
+    /// `(M, f)` returned by value.
+    fn mass_matrix_and_forcing_pair<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> (SMatrix<f64, N, N>, SVector<f64, N>) {
+        let mut mass = SMatrix::zeros();
+        let mut forcing = SVector::zeros();
+        self.mass_matrix_and_forcing(t, q, qd, inputs, &mut mass, &mut forcing);
+        (mass, forcing)
+    }
+
+    /// `q̈ = M⁻¹ f` by Cholesky factorization (`M` is symmetric positive
+    /// definite for a physical kinetic energy), falling back to LU.
+    fn accelerations<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> Result<SVector<f64, N>, ModelError> {
+        let (mass, forcing) = self.mass_matrix_and_forcing_pair(t, q, qd, inputs);
+        solve_mass_matrix(mass, &forcing).ok_or_else(|| ModelError::SingularMassMatrix {
+            t,
+            q: q.iter().copied().collect(),
+        })
+    }
+}
+
+/// Solves `M x = f` by Cholesky, falling back to Gaussian elimination with
+/// partial pivoting; `None` if `M` is singular or the result is not finite.
+pub fn solve_mass_matrix<const N: usize>(
+    mass: SMatrix<f64, N, N>,
+    forcing: &SVector<f64, N>,
+) -> Option<SVector<f64, N>> {
+    let x = match mass.cholesky() {
+        Some(chol) => chol.solve(forcing),
+        None => solve_with_pivoting(mass, *forcing)?,
+    };
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Gaussian elimination with partial pivoting, in place; `None` on a zero pivot.
+fn solve_with_pivoting<const N: usize>(
+    mut a: SMatrix<f64, N, N>,
+    mut b: SVector<f64, N>,
+) -> Option<SVector<f64, N>> {
+    let scale = a.amax();
+    for k in 0..N {
+        let (p, pivot) = (k..N)
+            .map(|i| (i, a[(i, k)].abs()))
+            .fold((k, -1.0), |best, c| if c.1 > best.1 { c } else { best });
+        if !(pivot > f64::EPSILON * scale * N as f64) {
+            return None;
+        }
+        a.swap_rows(k, p);
+        b.swap_rows(k, p);
+        for i in k + 1..N {
+            let factor = a[(i, k)] / a[(k, k)];
+            for j in k..N {
+                a[(i, j)] -= factor * a[(k, j)];
+            }
+            b[i] -= factor * b[k];
+        }
+    }
+    for k in (0..N).rev() {
+        let mut sum = b[k];
+        for j in k + 1..N {
+            sum -= a[(k, j)] * b[j];
+        }
+        b[k] = sum / a[(k, k)];
+    }
+    Some(b)
+}

@@ -1,0 +1,167 @@
+//! The macro's compiled code and the run-time interpreter evaluate the same
+//! optimized program, so they must agree to the last few ulps on every spec.
+
+use lagrangian::nalgebra::SVector;
+use lagrangian::{Interpreted, InterpretedModel, Jacobians, LagrangianSystem};
+
+mod models {
+    lagrangian::lagrangian!(file = "specs/simple_pendulum.lpm");
+    lagrangian::lagrangian!(file = "specs/double_pendulum.lpm");
+    lagrangian::lagrangian!(file = "specs/spring_mass_damper.lpm");
+    lagrangian::lagrangian!(file = "specs/elastic_pendulum.lpm");
+    lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
+    lagrangian::lagrangian!(file = "specs/pendulum_chain_10.lpm");
+}
+
+/// Smooth, argument-dependent input values, so wrong arguments show up.
+fn inputs(index: usize, args: &[f64]) -> f64 {
+    args.iter()
+        .enumerate()
+        .fold(10.0 * (index as f64 + 1.0), |acc, (i, a)| {
+            acc + (a * (i as f64 + 1.7)).sin()
+        })
+}
+
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+    fn vector<const N: usize>(&mut self, scale: f64) -> SVector<f64, N> {
+        SVector::from_fn(|_, _| scale * self.next())
+    }
+}
+
+/// Distance in units in the last place (0 for bitwise equal values).
+fn ulps(a: f64, b: f64) -> u64 {
+    if a == b {
+        return 0;
+    }
+    if a.is_nan() || b.is_nan() || a.signum() != b.signum() {
+        return u64::MAX;
+    }
+    a.to_bits().abs_diff(b.to_bits())
+}
+
+fn assert_close(what: &str, a: &[f64], b: &[f64], worst: &mut u64) {
+    assert_eq!(a.len(), b.len());
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        let d = ulps(*x, *y);
+        // Near zero, ulps are meaningless: accept an absolute 1e-300 too.
+        assert!(
+            d <= 4 || (x - y).abs() < 1e-300,
+            "{what}[{k}]: compiled {x:e} vs interpreted {y:e} ({d} ulps)"
+        );
+        *worst = (*worst).max(if (x - y).abs() < 1e-300 { 0 } else { d });
+    }
+}
+
+fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 {
+    let source = std::fs::read_to_string(spec).unwrap();
+    let mut interpreted =
+        Interpreted::<N>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let mut compiled = M::default();
+    assert_eq!(
+        compiled.parameters(),
+        interpreted.parameters(),
+        "{spec}: defaults differ"
+    );
+    assert_eq!(compiled.coordinate_names(), interpreted.coordinate_names());
+    let mut rng = Lcg(7);
+    let mut worst = 0;
+    let names: Vec<String> = compiled
+        .parameter_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    for _ in 0..200 {
+        for (name, value) in names.iter().zip(compiled.parameters()) {
+            let v = value * (1.0 + 0.2 * rng.next()) + 0.1 * rng.next();
+            compiled.set_parameter(name, v).unwrap();
+            interpreted.set_parameter(name, v).unwrap();
+        }
+        let t = rng.next().abs();
+        let (q, qd, qdd) = (
+            rng.vector::<N>(1.0),
+            rng.vector::<N>(3.0),
+            rng.vector::<N>(5.0),
+        );
+        let (mc, fc) = compiled.mass_matrix_and_forcing_pair(t, &q, &qd, &inputs);
+        let (mi, fi) = interpreted.mass_matrix_and_forcing_pair(t, &q, &qd, &inputs);
+        assert_close("M", mc.as_slice(), mi.as_slice(), &mut worst);
+        assert_close("f", fc.as_slice(), fi.as_slice(), &mut worst);
+        let (ec, ei) = (
+            compiled.energies(t, &q, &qd, &inputs),
+            interpreted.energies(t, &q, &qd, &inputs),
+        );
+        let pack = |e: lagrangian::Energies| {
+            [
+                e.kinetic,
+                e.potential,
+                e.dissipation,
+                e.damping_power,
+                e.external_power,
+            ]
+        };
+        assert_close("energies", &pack(ec), &pack(ei), &mut worst);
+        let (mut jc, mut ji) = (Jacobians::<N>::default(), Jacobians::<N>::default());
+        let rc = compiled.jacobians(t, &q, &qd, &qdd, &inputs, &mut jc);
+        let ri = interpreted.jacobians(t, &q, &qd, &qdd, &inputs, &mut ji);
+        assert_eq!(rc.is_ok(), ri.is_ok());
+        if rc.is_ok() {
+            assert_close(
+                "df/dq",
+                jc.forcing_q.as_slice(),
+                ji.forcing_q.as_slice(),
+                &mut worst,
+            );
+            assert_close(
+                "df/dqd",
+                jc.forcing_qd.as_slice(),
+                ji.forcing_qd.as_slice(),
+                &mut worst,
+            );
+            assert_close(
+                "d(Ma)/dq",
+                jc.mass_times_acceleration_q.as_slice(),
+                ji.mass_times_acceleration_q.as_slice(),
+                &mut worst,
+            );
+        }
+    }
+    worst
+}
+
+#[test]
+fn every_spec_agrees() {
+    let worst = [
+        compare::<1, models::SimplePendulum>("specs/simple_pendulum.lpm"),
+        compare::<2, models::DoublePendulum>("specs/double_pendulum.lpm"),
+        compare::<1, models::SpringMassDamper>("specs/spring_mass_damper.lpm"),
+        compare::<2, models::ElasticPendulum>("specs/elastic_pendulum.lpm"),
+        compare::<3, models::YarisDoublePendulum>("specs/yaris_double_pendulum.lpm"),
+        compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
+    ];
+    println!("worst ulp difference per spec: {worst:?}");
+}
+
+#[test]
+fn the_yaris_model_has_jacobians_and_input_constants() {
+    use models::YarisDoublePendulum as Y;
+    assert_eq!(Y::INPUT_CRUSH, 0);
+    assert_eq!(Y::INPUTS[Y::INPUT_BARRIER_Z2], "barrier_z2");
+    assert_eq!(Y::COORDINATES, ["r", "theta1", "theta2"]);
+    let err = models::DoublePendulum::default().jacobians(
+        0.0,
+        &SVector::zeros(),
+        &SVector::zeros(),
+        &SVector::zeros(),
+        &inputs,
+        &mut Jacobians::default(),
+    );
+    assert_eq!(err, Err(lagrangian::ModelError::JacobiansNotDerived));
+}
