@@ -12,10 +12,9 @@
 //! acceleration vector `a`, which implicit integrators and sensitivity
 //! analyses need.
 
-use crate::diagnostic::{Diagnostic, SpecErrors};
+use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{Evaluator, ExprId, Store, SymbolKind};
 use crate::spec::{Model, Statement};
-use proc_macro2::Span;
 
 /// The derived equations of motion and energy bookkeeping of a model.
 #[derive(Clone, Debug)]
@@ -200,8 +199,8 @@ fn check(model: &mut Model, statement: Option<&Statement>, what: &str) -> Result
         _ => None,
     }
     .or(statement.map(|s| s.span))
-    .or(model.jacobians_span)
-    .unwrap_or(model.name_span);
+    .or(model.jacobians_span.map(SpanRange::from))
+    .unwrap_or(model.name_span.into());
     let mut diagnostic = expression_diagnostic(model, &input_names, error, span, what);
     if statement.is_none()
         && let Some(j) = model.jacobians_span
@@ -215,14 +214,18 @@ fn expression_diagnostic(
     model: &Model,
     input_names: &[String],
     error: crate::expr::EngineError,
-    span: Span,
+    span: SpanRange,
     what: &str,
 ) -> Diagnostic {
     crate::spec::engine_diagnostic(&model.store, input_names, error, span, what)
 }
 
 /// Where `input` is called: inside `statement` if it is, else anywhere.
-fn locate_input_call(model: &Model, statement: Option<&Statement>, input: usize) -> Option<Span> {
+fn locate_input_call(
+    model: &Model,
+    statement: Option<&Statement>,
+    input: usize,
+) -> Option<SpanRange> {
     let in_statement = statement.and_then(|s| s.input_calls.iter().find(|(i, _)| *i == input));
     let anywhere = || {
         std::iter::once(&model.kinetic)

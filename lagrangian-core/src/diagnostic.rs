@@ -1,25 +1,72 @@
 //! Errors that point at the user's source: a `syn::Error` with the offending
 //! token's span inside the macro, `file:line:col` with a snippet for spec files.
 
-use proc_macro2::Span;
+use proc_macro2::{Span, TokenStream};
+use quote::{ToTokens, quote_spanned};
 use std::fmt;
 
-/// One problem in a spec, located at a span of its source.
+/// The source range from the first to the last token of a construct.
+///
+/// On stable Rust a procedural macro cannot join two spans into one, so a
+/// range is kept as its two ends; `syn::Error::new_spanned` underlines both.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    pub start: Span,
+    pub end: Span,
+}
+
+impl SpanRange {
+    /// The range covered by `tokens`.
+    pub fn of(tokens: &impl ToTokens) -> SpanRange {
+        let stream = tokens.to_token_stream();
+        let mut iter = stream.into_iter();
+        let start = iter.next().map_or_else(Span::call_site, |t| t.span());
+        let end = iter.last().map_or(start, |t| t.span());
+        SpanRange { start, end }
+    }
+
+    /// From the start of `self` to the end of `other`.
+    pub fn to(self, other: SpanRange) -> SpanRange {
+        SpanRange {
+            start: self.start,
+            end: other.end,
+        }
+    }
+}
+
+impl From<Span> for SpanRange {
+    fn from(span: Span) -> SpanRange {
+        SpanRange {
+            start: span,
+            end: span,
+        }
+    }
+}
+
+impl ToTokens for SpanRange {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        let (start, end) = (self.start, self.end);
+        tokens.extend(quote_spanned!(start=> __start));
+        tokens.extend(quote_spanned!(end=> __end));
+    }
+}
+
+/// One problem in a spec, located at a range of its source.
 #[derive(Clone, Debug)]
 pub struct Diagnostic {
     pub message: String,
-    pub span: Span,
+    pub span: SpanRange,
     /// How to fix it, when we can say.
     pub help: Option<String>,
     /// A second location that explains the first (e.g. the earlier declaration).
-    pub note: Option<(String, Span)>,
+    pub note: Option<(String, SpanRange)>,
 }
 
 impl Diagnostic {
-    pub fn new(span: Span, message: impl Into<String>) -> Diagnostic {
+    pub fn new(span: impl Into<SpanRange>, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             message: message.into(),
-            span,
+            span: span.into(),
             help: None,
             note: None,
         }
@@ -30,16 +77,26 @@ impl Diagnostic {
         self
     }
 
-    pub fn with_note(mut self, note: impl Into<String>, span: Span) -> Diagnostic {
-        self.note = Some((note.into(), span));
+    pub fn with_note(mut self, note: impl Into<String>, span: impl Into<SpanRange>) -> Diagnostic {
+        self.note = Some((note.into(), span.into()));
         self
     }
 
-    /// The message with its help line, as the compiler shows it for a macro.
+    /// The message with its note and help lines, as the compiler shows it for
+    /// a macro (which can underline only one place: the note gives its line).
     pub fn full_message(&self) -> String {
         let mut text = self.message.clone();
-        if let Some((note, _)) = &self.note {
-            text.push_str(&format!("\nnote: {note}"));
+        if let Some((note, span)) = &self.note {
+            let at = span.start.start();
+            if at.line > 0 {
+                text.push_str(&format!(
+                    "\nnote: {note} (line {}, column {})",
+                    at.line,
+                    at.column + 1
+                ));
+            } else {
+                text.push_str(&format!("\nnote: {note}"));
+            }
         }
         if let Some(help) = &self.help {
             text.push_str(&format!("\nhelp: {help}"));
@@ -48,7 +105,7 @@ impl Diagnostic {
     }
 
     pub fn to_syn_error(&self) -> syn::Error {
-        syn::Error::new(self.span, self.full_message())
+        syn::Error::new_spanned(self.span, self.full_message())
     }
 
     /// `error: …` / `--> file:line:col` / source line with carets, rustc style.
@@ -56,10 +113,10 @@ impl Diagnostic {
     /// outside a procedural macro (proc-macro2's own span tracking).
     pub fn render(&self, file: &str, source: &str) -> String {
         let mut out = format!("error: {}\n", self.message);
-        out.push_str(&snippet(file, source, self.span, ""));
+        out.push_str(&snippet(file, source, self.span));
         if let Some((note, span)) = &self.note {
             out.push_str(&format!("note: {note}\n"));
-            out.push_str(&snippet(file, source, *span, ""));
+            out.push_str(&snippet(file, source, *span));
         }
         if let Some(help) = &self.help {
             out.push_str(&format!("  = help: {help}\n"));
@@ -68,16 +125,16 @@ impl Diagnostic {
     }
 }
 
-/// `file:line:col` of a span (1-based line and column).
-pub fn location(file: &str, span: Span) -> String {
-    let start = span.start();
-    format!("{file}:{}:{}", start.line, start.column + 1)
+/// `file:line:col` of a span (1-based line and column; line 0 means unknown).
+pub fn location(file: &str, span: impl Into<SpanRange>) -> String {
+    let start = span.into().start.start();
+    format!("{file}:{}:{}", start.line.max(1), start.column + 1)
 }
 
-fn snippet(file: &str, source: &str, span: Span, label: &str) -> String {
-    let (start, end) = (span.start(), span.end());
+fn snippet(file: &str, source: &str, span: SpanRange) -> String {
+    let (start, end) = (span.start.start(), span.end.end());
     let mut out = format!(" --> {}\n", location(file, span));
-    let Some(line_text) = source.lines().nth(start.line.saturating_sub(1)) else {
+    let Some(line_text) = source.lines().nth(start.line.max(1) - 1) else {
         return out;
     };
     let width = start.line.to_string().len();
@@ -94,10 +151,9 @@ fn snippet(file: &str, source: &str, span: Span, label: &str) -> String {
     out.push_str(&format!("{pad} |\n"));
     out.push_str(&format!("{} | {}\n", start.line, line_text));
     out.push_str(&format!(
-        "{pad} | {}{} {}\n",
+        "{pad} | {}{}\n",
         " ".repeat(start.column),
-        "^".repeat(caret_len),
-        label
+        "^".repeat(caret_len)
     ));
     out
 }

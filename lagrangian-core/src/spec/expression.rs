@@ -1,6 +1,6 @@
 //! Translating `syn` expressions into canonical symbolic expressions.
 
-use crate::diagnostic::{Diagnostic, closest};
+use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{CoordinateSymbols, EngineError, ExprId, Store, SymbolId};
 use crate::rational::Rational;
 use proc_macro2::Span;
@@ -14,7 +14,7 @@ pub(super) enum Binding {
     /// A value: coordinate, parameter, formal argument, time, π.
     Value(ExprId),
     /// A `let` definition, with the input calls it contains.
-    Definition(ExprId, Vec<(usize, Span)>),
+    Definition(ExprId, Vec<(usize, SpanRange)>),
     /// An input function with its arity.
     Input(usize, usize),
 }
@@ -30,7 +30,7 @@ pub(super) struct Scope {
 /// The result of lowering one expression.
 pub(super) struct Lowered {
     pub value: ExprId,
-    pub input_calls: Vec<(usize, Span)>,
+    pub input_calls: Vec<(usize, SpanRange)>,
 }
 
 const FUNCTIONS: &[(&str, usize)] = &[
@@ -48,7 +48,7 @@ pub(super) struct ExpressionLowering<'a> {
     pub store: &'a mut Store,
     pub scope: &'a Scope,
     pub input_names: &'a [String],
-    input_calls: Vec<(usize, Span)>,
+    input_calls: Vec<(usize, SpanRange)>,
 }
 
 impl<'a> ExpressionLowering<'a> {
@@ -63,7 +63,7 @@ impl<'a> ExpressionLowering<'a> {
 
     pub fn lower(mut self, expr: &Expr) -> Result<Lowered, Diagnostic> {
         let value = self.expr(expr)?;
-        self.check_engine(expr.span(), "this expression")?;
+        self.check_engine(SpanRange::of(expr), "this expression")?;
         Ok(Lowered {
             value,
             input_calls: self.input_calls,
@@ -71,7 +71,7 @@ impl<'a> ExpressionLowering<'a> {
     }
 
     /// Turns errors recorded by the engine into a diagnostic at `span`.
-    fn check_engine(&mut self, span: Span, what: &str) -> Result<(), Diagnostic> {
+    fn check_engine(&mut self, span: SpanRange, what: &str) -> Result<(), Diagnostic> {
         match self.store.take_errors().into_iter().next() {
             None => Ok(()),
             Some(error) => Err(engine_diagnostic(
@@ -101,7 +101,7 @@ impl<'a> ExpressionLowering<'a> {
                 let ident = p.path.get_ident().filter(|_| p.qself.is_none());
                 let Some(ident) = ident else {
                     return Err(Diagnostic::new(
-                        p.span(),
+                        SpanRange::of(p),
                         "paths are not allowed in a spec; use a plain name",
                     ));
                 };
@@ -112,15 +112,18 @@ impl<'a> ExpressionLowering<'a> {
                     return Err(unsupported(&call.func, "this kind of call"));
                 };
                 let Some(ident) = p.path.get_ident() else {
-                    return Err(Diagnostic::new(p.span(), "expected a function name"));
+                    return Err(Diagnostic::new(
+                        SpanRange::of(p),
+                        "expected a function name",
+                    ));
                 };
                 let args: Vec<&Expr> = call.args.iter().collect();
-                self.call(ident, &args, call.span())
+                self.call(ident, &args, SpanRange::of(call))
             }
             Expr::MethodCall(m) => {
                 let mut args = vec![&*m.receiver];
                 args.extend(m.args.iter());
-                self.method(&m.method, &args, m.span())
+                self.method(&m.method, &args, SpanRange::of(m))
             }
             _ => Err(unsupported(expr, "this expression")),
         }
@@ -143,7 +146,7 @@ impl<'a> ExpressionLowering<'a> {
             BinOp::Mul(_) => Ok(self.store.mul(lhs, rhs)),
             BinOp::Div(_) => {
                 if rhs == Store::ZERO {
-                    return Err(Diagnostic::new(b.right.span(), "division by zero"));
+                    return Err(Diagnostic::new(SpanRange::of(&b.right), "division by zero"));
                 }
                 Ok(self.store.div(lhs, rhs))
             }
@@ -196,7 +199,7 @@ impl<'a> ExpressionLowering<'a> {
         &mut self,
         ident: &syn::Ident,
         args: &[&Expr],
-        span: Span,
+        span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         let name = ident.to_string();
         if let Some(&(_, arity)) = FUNCTIONS.iter().find(|(f, _)| *f == name) {
@@ -222,7 +225,12 @@ impl<'a> ExpressionLowering<'a> {
         }
     }
 
-    fn builtin(&mut self, name: &str, args: &[&Expr], span: Span) -> Result<ExprId, Diagnostic> {
+    fn builtin(
+        &mut self,
+        name: &str,
+        args: &[&Expr],
+        span: SpanRange,
+    ) -> Result<ExprId, Diagnostic> {
         if name == "pow" {
             let base = self.expr(args[0])?;
             let exponent = self.constant_exponent(args[1])?;
@@ -244,7 +252,7 @@ impl<'a> ExpressionLowering<'a> {
         &mut self,
         method: &syn::Ident,
         args: &[&Expr],
-        span: Span,
+        span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         let name = method.to_string();
         match name.as_str() {
@@ -258,7 +266,7 @@ impl<'a> ExpressionLowering<'a> {
                 let exponent = self.constant_exponent(args[1])?;
                 if name == "powi" && !exponent.is_integer() {
                     return Err(Diagnostic::new(
-                        args[1].span(),
+                        SpanRange::of(args[1]),
                         "`powi` takes an integer exponent; use `powf` or `pow` for fractions",
                     ));
                 }
@@ -276,7 +284,7 @@ impl<'a> ExpressionLowering<'a> {
         &mut self,
         base: ExprId,
         exponent: Rational,
-        span: Span,
+        span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         if base == Store::ZERO && exponent.is_negative() {
             return Err(Diagnostic::new(span, "zero raised to a negative power"));
@@ -288,13 +296,16 @@ impl<'a> ExpressionLowering<'a> {
     fn constant_exponent(&mut self, expr: &Expr) -> Result<Rational, Diagnostic> {
         let value = self.expr(expr)?;
         self.store.as_num(value).ok_or_else(|| {
-            Diagnostic::new(expr.span(), "the exponent must be a constant number")
-                .with_help("write exp(y * ln(x)) for a variable exponent")
+            Diagnostic::new(
+                SpanRange::of(expr),
+                "the exponent must be a constant number",
+            )
+            .with_help("write exp(y * ln(x)) for a variable exponent")
         })
     }
 
     /// `dot(e)`: the total time derivative of a function of coordinates and time.
-    fn dot(&mut self, x: ExprId, span: Span) -> Result<ExprId, Diagnostic> {
+    fn dot(&mut self, x: ExprId, span: SpanRange) -> Result<ExprId, Diagnostic> {
         if let Some(v) = self
             .scope
             .velocities
@@ -321,7 +332,7 @@ fn check_arity(
     name: &str,
     expected: usize,
     found: usize,
-    span: Span,
+    span: SpanRange,
 ) -> Result<(), Diagnostic> {
     if expected == found {
         return Ok(());
@@ -333,8 +344,8 @@ fn check_arity(
     ))
 }
 
-fn unsupported(expr: &impl Spanned, what: &str) -> Diagnostic {
-    Diagnostic::new(expr.span(), format!("{what} is not supported in a spec"))
+fn unsupported(expr: &impl quote::ToTokens, what: &str) -> Diagnostic {
+    Diagnostic::new(SpanRange::of(expr), format!("{what} is not supported in a spec"))
         .with_help("expressions are numbers, names, `+ - * /`, parentheses, function calls and `.powi(n)`-style methods")
 }
 
@@ -369,7 +380,7 @@ pub(crate) fn engine_diagnostic(
     store: &Store,
     input_names: &[String],
     error: EngineError,
-    span: Span,
+    span: SpanRange,
     what: &str,
 ) -> Diagnostic {
     match error {

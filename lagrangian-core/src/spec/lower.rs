@@ -3,12 +3,11 @@
 use super::ast::*;
 use super::expression::{Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal};
 use super::{Coordinate, ForceStatement, Input, Model, Parameter, RESERVED_NAMES, Statement};
-use crate::diagnostic::{Diagnostic, SpecErrors};
+use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, Evaluator, ExprId, NoInputs, Store, SymbolKind};
 use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
-use syn::spanned::Spanned;
 
 /// Diagnostics collected while lowering; lowering goes on after an error where it can.
 #[derive(Default)]
@@ -266,7 +265,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
                 if let Some(l) = problems.take(lowered) {
                     *slot = Some(Statement {
                         value: l.value,
-                        span: value.span(),
+                        span: SpanRange::of(value),
                         input_calls: l.input_calls,
                     });
                 }
@@ -298,7 +297,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
                     ExpressionLowering::new(&mut store, &scope, &input_names).lower(value);
                 if let Some(l) = problems.take(lowered) {
                     forces.push(ForceStatement {
-                        span: value.span(),
+                        span: SpanRange::of(value),
                         generalized: vec![(index, l.value)],
                         input_calls: l.input_calls,
                     });
@@ -401,7 +400,7 @@ fn constant_value(
         .any(|s| store.symbol_info(*s).kind != SymbolKind::Pi)
     {
         return Err(Diagnostic::new(
-            value.span(),
+            SpanRange::of(value),
             "a parameter default must be a constant",
         ));
     }
@@ -410,7 +409,7 @@ fn constant_value(
         Ok(result)
     } else {
         Err(Diagnostic::new(
-            value.span(),
+            SpanRange::of(value),
             format!("this default evaluates to {result}"),
         ))
     }
@@ -501,7 +500,7 @@ fn point_force(
             .find(|v| store.depends_on(l.value, **v))
         {
             return Err(Diagnostic::new(
-                p.span(),
+                SpanRange::of(p),
                 format!(
                     "the point of application depends on the velocity `{}`",
                     store.symbol_info(*v).name
@@ -530,7 +529,7 @@ fn point_force(
                 store,
                 input_names,
                 error,
-                point_span,
+                point_span.into(),
                 "the point force",
             ));
         }
@@ -541,7 +540,10 @@ fn point_force(
     }
     let _ = keyword;
     Ok(ForceStatement {
-        span: point_span.join(components_span).unwrap_or(point_span),
+        span: SpanRange {
+            start: point_span,
+            end: components_span,
+        },
         generalized,
         input_calls,
     })

@@ -8,7 +8,7 @@ mod parse;
 pub use ast::{EnergyKind, UnitText};
 pub(crate) use expression::engine_diagnostic;
 
-use crate::diagnostic::SpecErrors;
+use crate::diagnostic::{SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, ExprId, Store, SymbolId};
 use proc_macro2::{Span, TokenStream};
 
@@ -50,18 +50,18 @@ pub struct Input {
 #[derive(Clone, Debug)]
 pub struct Statement {
     pub value: ExprId,
-    pub span: Span,
+    pub span: SpanRange,
     /// `(input index, span of a call)` for every input the statement calls,
     /// directly or through `let` definitions.
-    pub input_calls: Vec<(usize, Span)>,
+    pub input_calls: Vec<(usize, SpanRange)>,
 }
 
 /// A force statement turned into generalized forces `Q_i`, by coordinate.
 #[derive(Clone, Debug)]
 pub struct ForceStatement {
-    pub span: Span,
+    pub span: SpanRange,
     pub generalized: Vec<(usize, ExprId)>,
-    pub input_calls: Vec<(usize, Span)>,
+    pub input_calls: Vec<(usize, SpanRange)>,
 }
 
 /// A resolved model: symbols and expressions ready for derivation.

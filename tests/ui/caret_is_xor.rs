@@ -1,0 +1,9 @@
+lagrangian::lagrangian! {
+    model Cart;
+    coordinates { x }
+    parameters { m = 1.0, k = 1.0 }
+    kinetic = 0.5 * m * pow(dot(x), 2);
+    potential = 0.5 * k * x^2 + m;
+}
+
+fn main() {}

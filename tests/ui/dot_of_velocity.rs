@@ -1,0 +1,8 @@
+lagrangian::lagrangian! {
+    model Cart;
+    coordinates { x }
+    parameters { m = 1.0 }
+    kinetic = 0.5 * m * pow(dot(dot(x)), 2);
+}
+
+fn main() {}

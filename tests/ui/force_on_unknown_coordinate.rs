@@ -1,0 +1,9 @@
+lagrangian::lagrangian! {
+    model Cart;
+    coordinates { x }
+    parameters { m = 1.0 }
+    kinetic = 0.5 * m * pow(dot(x), 2);
+    force y = 3.0;
+}
+
+fn main() {}

@@ -1,0 +1,3 @@
+lagrangian::lagrangian!(file = "specs/no_such_model.lpm");
+
+fn main() {}
