@@ -145,7 +145,7 @@ fn undamped_crash_pendulum_and_oscillator_conserve_energy() {
         &ConstantInputs(vec![]),
         [-0.1, 0.05],
         [-15.6, 0.0],
-        2e-3,
+        1e-3,
         0.3,
     );
     let mut interpreted = interpreted::<2>("specs/elastic_pendulum.lpm");
@@ -157,7 +157,7 @@ fn undamped_crash_pendulum_and_oscillator_conserve_energy() {
         &ConstantInputs(vec![]),
         [-0.1, 0.05],
         [-15.6, 0.0],
-        2e-3,
+        1e-3,
         0.3,
     );
     let mut oscillator = models::SpringMassDamper::default();
