@@ -29,7 +29,32 @@
 //! Input functions (run-time data such as a crush characteristic or a force
 //! table) are declared in the spec and supplied through [`InputFunctions`]; a
 //! closure `|index, args| …` is one. The generated type has an `INPUT_<NAME>`
-//! constant with each input's index.
+//! constant with each input's index:
+//!
+//! ```
+//! use lagrangian::{lagrangian, LagrangianSystem};
+//! use lagrangian::nalgebra::Vector1;
+//!
+//! lagrangian! {
+//!     model Driven;
+//!     coordinates { theta [rad] }
+//!     parameters { m [kg] = 1.0, l [m] = 2.0 }
+//!     inputs { torque(t [s]) [N*m] }
+//!     kinetic = 0.5 * m * pow(l * dot(theta), 2);
+//!     force theta = torque(t);
+//! }
+//!
+//! let model = Driven { l: 1.5, ..Default::default() };
+//! let torque = |index: usize, args: &[f64]| match index {
+//!     Driven::INPUT_TORQUE => 0.1 * args[0], // args[0] is t
+//!     _ => f64::NAN,
+//! };
+//! let (q, qd) = (Vector1::new(0.2), Vector1::new(0.0));
+//! let qdd = model.accelerations(2.0, &q, &qd, &torque).unwrap();
+//! assert!((qdd[0] - 0.2 / (1.0 * 1.5 * 1.5)).abs() < 1e-15); // τ / (m l²)
+//! let e = model.energies(2.0, &q, &Vector1::new(3.0), &torque);
+//! assert!((e.external_power - 0.2 * 3.0).abs() < 1e-15); // Q·q̇
+//! ```
 
 pub use lagrangian_macro::lagrangian;
 pub use lagrangian_model::*;

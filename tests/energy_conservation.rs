@@ -81,8 +81,10 @@ fn interpreted<const N: usize>(path: &str) -> Interpreted<N> {
 #[test]
 fn pendulums_conserve_energy() {
     let none = ConstantInputs(vec![]);
-    let mut compound = models::SimplePendulum::default();
-    compound.I = 0.3;
+    let compound = models::SimplePendulum {
+        I: 0.3,
+        ..Default::default()
+    };
     check(
         "simple pendulum",
         &models::SimplePendulum::default(),
@@ -136,9 +138,11 @@ fn pendulums_conserve_energy() {
 
 #[test]
 fn undamped_crash_pendulum_and_oscillator_conserve_energy() {
-    let mut elastic = models::ElasticPendulum::default();
-    elastic.c = 0.0;
-    elastic.cs = 0.0;
+    let elastic = models::ElasticPendulum {
+        c: 0.0,
+        cs: 0.0,
+        ..Default::default()
+    };
     check(
         "elastic pendulum (c = cs = 0)",
         &elastic,
@@ -160,8 +164,10 @@ fn undamped_crash_pendulum_and_oscillator_conserve_energy() {
         1e-3,
         0.3,
     );
-    let mut oscillator = models::SpringMassDamper::default();
-    oscillator.c = 0.0;
+    let oscillator = models::SpringMassDamper {
+        c: 0.0,
+        ..Default::default()
+    };
     check(
         "spring-mass (c = 0, no push)",
         &oscillator,

@@ -307,7 +307,7 @@ pub fn cholesky_failure(m: &[f64], n: usize) -> Option<usize> {
         for k in 0..j {
             d -= l[j * n + k] * l[j * n + k];
         }
-        if !(d > 1e-12 * scale) || !d.is_finite() {
+        if d.is_nan() || d <= 1e-12 * scale || !d.is_finite() {
             return Some(j);
         }
         let d = d.sqrt();

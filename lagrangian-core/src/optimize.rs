@@ -240,9 +240,7 @@ impl Builder<'_> {
         let terms = self.store.terms(u);
         let mut linear = Vec::with_capacity(terms.len());
         for (t, c) in terms {
-            if self.store.as_symbol(t).is_none() {
-                return None;
-            }
+            self.store.as_symbol(t)?;
             let n = c.to_i64()?;
             if n.abs() > 16 {
                 return None;

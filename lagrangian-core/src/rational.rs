@@ -201,12 +201,9 @@ fn exact_root(value: i128, root: u32) -> Option<i128> {
         return Some(value);
     }
     let guess = (value as f64).powf(1.0 / f64::from(root)).round() as i128;
-    for candidate in [guess - 1, guess, guess + 1] {
-        if candidate >= 0 && candidate.checked_pow(root) == Some(value) {
-            return Some(candidate);
-        }
-    }
-    None
+    [guess - 1, guess, guess + 1]
+        .into_iter()
+        .find(|&c| c >= 0 && c.checked_pow(root) == Some(value))
 }
 
 impl Ord for Rational {

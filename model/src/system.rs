@@ -227,7 +227,7 @@ fn solve_with_pivoting<const N: usize>(
         let (p, pivot) = (k..N)
             .map(|i| (i, a[(i, k)].abs()))
             .fold((k, -1.0), |best, c| if c.1 > best.1 { c } else { best });
-        if !(pivot > f64::EPSILON * scale * N as f64) {
+        if pivot.is_nan() || pivot <= f64::EPSILON * scale * N as f64 {
             return None;
         }
         a.swap_rows(k, p);

@@ -1,6 +1,11 @@
-//! Emitters: Rust source for the macro and `generated/`, text for `lpm derive`.
+//! Emitters: Rust source for the macro and `generated/`, equations as text or LaTeX.
 
+mod equations;
 mod names;
+mod notation;
+pub mod pretty;
 mod rust;
 
+pub use equations::render_equations;
+pub use notation::{Notation, latex_name};
 pub use rust::{RustOptions, emit_file, emit_model};

@@ -275,10 +275,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
                 coordinate,
                 value,
             } => {
-                let Some(index) = coordinates
-                    .iter()
-                    .position(|c| c.name == coordinate.to_string())
-                else {
+                let Some(index) = coordinates.iter().position(|c| *coordinate == c.name) else {
                     let names = coordinates.iter().map(|c| c.name.as_str());
                     let mut d = Diagnostic::new(
                         coordinate.span(),

@@ -1,1 +1,97 @@
-fn main() {}
+//! `lpm`: derive, inspect and evaluate lumped-parameter models from spec files.
+//!
+//! Exit status: 0 success, 1 input/output error, 2 bad command line, 3 the spec
+//! does not compile, 4 the model cannot be evaluated at the requested state.
+
+mod commands;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "lpm",
+    version,
+    about = "Euler–Lagrange compiler and simulator for lumped-parameter models"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum DeriveFormat {
+    /// M, f, Q, T, V, D in the spec's own notation.
+    Text,
+    /// The same as a LaTeX `aligned` block.
+    Latex,
+    /// The Rust code the `lagrangian!` macro generates.
+    Rust,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the derived equations of motion M(q) q̈ = f(q, q̇, t) and the energies.
+    Derive {
+        /// The spec file (`.lpm`).
+        spec: PathBuf,
+        #[arg(long, value_enum, default_value = "text")]
+        format: DeriveFormat,
+        /// Path of the runtime crate in generated Rust (`--format rust`).
+        #[arg(long, default_value = "::lagrangian")]
+        runtime: String,
+    },
+    /// Evaluate M and f at one state with the interpreter; prints JSON.
+    Eval {
+        /// The spec file (`.lpm`).
+        spec: PathBuf,
+        /// Coordinates then velocities: q1,…,qN,q̇1,…,q̇N.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            allow_negative_numbers = true,
+            required = true
+        )]
+        state: Vec<f64>,
+        /// Time.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        time: f64,
+        /// Set a parameter, or give an input function a constant value: name=value.
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+    },
+    /// Print the spec of an N-link planar pendulum chain.
+    Chain {
+        /// Number of links.
+        links: usize,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Derive {
+            spec,
+            format,
+            runtime,
+        } => commands::derive(&spec, format, &runtime),
+        Command::Eval {
+            spec,
+            state,
+            time,
+            set,
+        } => commands::eval(&spec, &state, time, &set),
+        Command::Chain { links } => commands::chain(links),
+    };
+    match result {
+        Ok(text) => {
+            print!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(failure) => {
+            eprintln!("{}", failure.message.trim_end());
+            ExitCode::from(failure.code)
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! The `lpm` binary: derive, eval and chain, their output and exit codes.
+
+use std::process::{Command, Output};
+
+fn lpm(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lpm"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("lpm runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn derive_prints_the_compact_paper_mass_matrix() {
+    let out = lpm(&["derive", "specs/yaris_double_pendulum.lpm"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("M[r, r] = m1 + m2\n"), "{text}");
+    assert!(text.contains("M[r, theta1] = 0\n"), "{text}");
+    assert!(
+        text.contains("M[theta1, theta1] = m2*(r + l0 + l1)^2 + m1*(r + l0)^2 + I1\n"),
+        "{text}"
+    );
+}
+
+#[test]
+fn derive_latex_and_rust() {
+    let latex = stdout(&lpm(&[
+        "derive",
+        "specs/double_pendulum.lpm",
+        "--format",
+        "latex",
+    ]));
+    assert!(
+        latex.contains("\\begin{aligned}") && latex.contains("\\end{aligned}"),
+        "{latex}"
+    );
+    assert!(latex.contains("M_{\\theta_{1} \\theta_{2}} &="), "{latex}");
+    assert!(latex.contains("\\dot{\\theta}_{2}^{2}"), "{latex}");
+    let rust = stdout(&lpm(&[
+        "derive",
+        "specs/double_pendulum.lpm",
+        "--format",
+        "rust",
+        "--runtime",
+        "::lagrangian_model",
+    ]));
+    assert!(rust.starts_with("// @generated"), "{rust}");
+    syn::parse_file(&rust).expect("generated Rust parses");
+    assert!(
+        rust.contains("impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum"),
+        "{rust}"
+    );
+}
+
+#[test]
+fn eval_matches_the_textbook_double_pendulum() {
+    let (t1, t2, w1, w2) = (0.3f64, -0.2f64, 1.0f64, 0.5f64);
+    let (m1, m2, l1, l2, g) = (1.5f64, 0.7f64, 1.2f64, 0.8f64, 9.81f64);
+    let out = lpm(&[
+        "eval",
+        "specs/double_pendulum.lpm",
+        "--state",
+        "0.3,-0.2,1,0.5",
+        "--set",
+        "m1=1.5",
+        "--set",
+        "m2=0.7",
+        "--set",
+        "l1=1.2",
+        "--set",
+        "l2=0.8",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let m = |i: usize, j: usize| json["mass_matrix"][i][j].as_f64().unwrap();
+    let f = |i: usize| json["forcing"][i].as_f64().unwrap();
+    // Textbook: M = [[(m1+m2) l1², m2 l1 l2 c], [·, m2 l2²]],
+    // f = [−m2 l1 l2 s ω2² − (m1+m2) g l1 sin θ1, m2 l1 l2 s ω1² − m2 g l2 sin θ2], s, c of θ1 − θ2.
+    let (s, c) = (t1 - t2).sin_cos();
+    let expected_m = [
+        [(m1 + m2) * l1 * l1, m2 * l1 * l2 * c],
+        [m2 * l1 * l2 * c, m2 * l2 * l2],
+    ];
+    let expected_f = [
+        -m2 * l1 * l2 * s * w2 * w2 - (m1 + m2) * g * l1 * t1.sin(),
+        m2 * l1 * l2 * s * w1 * w1 - m2 * g * l2 * t2.sin(),
+    ];
+    for (i, row) in expected_m.iter().enumerate() {
+        for (j, expected) in row.iter().enumerate() {
+            assert!((m(i, j) - expected).abs() < 1e-14, "M[{i}][{j}]");
+        }
+        assert!(
+            (f(i) - expected_f[i]).abs() < 1e-13,
+            "f[{i}] {} vs {}",
+            f(i),
+            expected_f[i]
+        );
+    }
+}
+
+#[test]
+fn eval_demands_values_for_the_inputs_it_needs() {
+    let out = lpm(&["eval", "specs/spring_mass_damper.lpm", "--state", "0.1,0"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("push"), "{}", stderr(&out));
+    let out = lpm(&[
+        "eval",
+        "specs/spring_mass_damper.lpm",
+        "--state",
+        "0.1,0",
+        "--set",
+        "push=3",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    // m ẍ = −k x + push = −100·0.1 + 3.
+    assert_eq!(json["forcing"][0].as_f64(), Some(-7.0));
+}
+
+#[test]
+fn bad_input_gets_distinct_exit_codes() {
+    let wrong_length = lpm(&["eval", "specs/double_pendulum.lpm", "--state", "1,2,3"]);
+    assert_eq!(wrong_length.status.code(), Some(2));
+    assert!(
+        stderr(&wrong_length).contains("needs 4 values"),
+        "{}",
+        stderr(&wrong_length)
+    );
+    let typo = lpm(&[
+        "eval",
+        "specs/double_pendulum.lpm",
+        "--state",
+        "0,0,0,0",
+        "--set",
+        "l3=1",
+    ]);
+    assert_eq!(typo.status.code(), Some(2));
+    assert!(
+        stderr(&typo).contains("did you mean `l1`?"),
+        "{}",
+        stderr(&typo)
+    );
+    let missing = lpm(&["derive", "specs/none.lpm"]);
+    assert_eq!(missing.status.code(), Some(1));
+    let bad_spec = lpm(&["derive", "lagrangian-core/tests/fixtures/unknown_name.lpm"]);
+    assert_eq!(bad_spec.status.code(), Some(3));
+    assert!(
+        stderr(&bad_spec).contains("unknown_name.lpm:8:19"),
+        "{}",
+        stderr(&bad_spec)
+    );
+}
+
+#[test]
+fn chain_specs_compile() {
+    let out = lpm(&["chain", "4"]);
+    assert!(out.status.success());
+    let spec = stdout(&out);
+    let compiled = lagrangian_core::Compiled::from_source(&spec).unwrap();
+    assert_eq!(compiled.derivation.dimension, 4);
+    assert_eq!(lpm(&["chain", "0"]).status.code(), Some(2));
+}
