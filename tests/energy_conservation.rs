@@ -13,6 +13,34 @@ mod models {
     lagrangian::lagrangian!(file = "specs/pendulum_chain_10.lpm");
 }
 
+type State<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
+
+/// One classical RK4 step of `M q̈ = f` from `(q, q̇)` at `t`; also returns
+/// the two midpoint stage states (for quadrature along the step).
+fn rk4_step<const N: usize, S: LagrangianSystem<N>>(
+    system: &S,
+    inputs: &impl InputFunctions,
+    t: f64,
+    (q, qd): State<N>,
+    h: f64,
+) -> (State<N>, [State<N>; 2]) {
+    let a = |t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>| {
+        system.accelerations(t, q, v, inputs).unwrap()
+    };
+    let a1 = a(t, &q, &qd);
+    let (q2, v2) = (q + qd * (h / 2.0), qd + a1 * (h / 2.0));
+    let a2 = a(t + h / 2.0, &q2, &v2);
+    let (q3, v3) = (q + v2 * (h / 2.0), qd + a2 * (h / 2.0));
+    let a3 = a(t + h / 2.0, &q3, &v3);
+    let (q4, v4) = (q + v3 * h, qd + a3 * h);
+    let a4 = a(t + h, &q4, &v4);
+    let next = (
+        q + (qd + v2 * 2.0 + v3 * 2.0 + v4) * (h / 6.0),
+        qd + (a1 + a2 * 2.0 + a3 * 2.0 + a4) * (h / 6.0),
+    );
+    (next, [(q2, v2), (q3, v3)])
+}
+
 /// Largest |E(t) − E(0)| over the run, relative to max(|T| + |V|).
 fn energy_drift<const N: usize, S: LagrangianSystem<N>>(
     system: &S,
@@ -22,9 +50,6 @@ fn energy_drift<const N: usize, S: LagrangianSystem<N>>(
     h: f64,
     t_end: f64,
 ) -> f64 {
-    let rhs = |t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>| {
-        system.accelerations(t, q, qd, inputs).unwrap()
-    };
     let energy = |t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>| {
         let e = system.energies(t, q, qd, inputs);
         (e.kinetic + e.potential, e.kinetic.abs() + e.potential.abs())
@@ -34,15 +59,7 @@ fn energy_drift<const N: usize, S: LagrangianSystem<N>>(
     let mut drift = 0.0f64;
     let steps = (t_end / h).round() as usize;
     for _ in 0..steps {
-        let a1 = rhs(t, &q, &qd);
-        let (q2, v2) = (q + qd * (h / 2.0), qd + a1 * (h / 2.0));
-        let a2 = rhs(t + h / 2.0, &q2, &v2);
-        let (q3, v3) = (q + v2 * (h / 2.0), qd + a2 * (h / 2.0));
-        let a3 = rhs(t + h / 2.0, &q3, &v3);
-        let (q4, v4) = (q + v3 * h, qd + a3 * h);
-        let a4 = rhs(t + h, &q4, &v4);
-        q += (qd + v2 * 2.0 + v3 * 2.0 + v4) * (h / 6.0);
-        qd += (a1 + a2 * 2.0 + a3 * 2.0 + a4) * (h / 6.0);
+        ((q, qd), _) = rk4_step(system, inputs, t, (q, qd), h);
         t += h;
         let (e, s) = energy(t, &q, &qd);
         drift = drift.max((e - e0).abs());
@@ -192,20 +209,10 @@ fn damping_dissipates_what_the_dissipation_function_says() {
     let mut work = 0.0;
     for _ in 0..20_000 {
         let p0 = e(t, &q, &qd);
-        let a = |t: f64, q: &SVector<f64, 1>, v: &SVector<f64, 1>| {
-            system.accelerations(t, q, v, &push).unwrap()
-        };
-        let a1 = a(t, &q, &qd);
-        let (q2, v2) = (q + qd * (h / 2.0), qd + a1 * (h / 2.0));
-        let a2 = a(t + h / 2.0, &q2, &v2);
-        let (q3, v3) = (q + v2 * (h / 2.0), qd + a2 * (h / 2.0));
-        let a3 = a(t + h / 2.0, &q3, &v3);
-        let (q4, v4) = (q + v3 * h, qd + a3 * h);
-        let a4 = a(t + h, &q4, &v4);
+        let [(q2, v2), (q3, v3)];
+        ((q, qd), [(q2, v2), (q3, v3)]) = rk4_step(&system, &push, t, (q, qd), h);
         let pm = e(t + h / 2.0, &q2, &v2);
         let pm2 = e(t + h / 2.0, &q3, &v3);
-        q += (qd + v2 * 2.0 + v3 * 2.0 + v4) * (h / 6.0);
-        qd += (a1 + a2 * 2.0 + a3 * 2.0 + a4) * (h / 6.0);
         t += h;
         let p1 = e(t, &q, &qd);
         // Simpson's rule on the net power (external − damping).
