@@ -8,6 +8,8 @@
 //!   force tables) reach a model.
 
 mod interpreted;
+pub mod linalg;
+pub mod ode;
 mod system;
 
 pub use interpreted::{Interpreted, InterpretedModel};

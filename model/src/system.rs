@@ -212,40 +212,7 @@ pub fn solve_mass_matrix<const N: usize>(
 ) -> Option<SVector<f64, N>> {
     let x = match mass.cholesky() {
         Some(chol) => chol.solve(forcing),
-        None => solve_with_pivoting(mass, *forcing)?,
+        None => crate::linalg::Lu::new(mass)?.solve(forcing),
     };
     x.iter().all(|v| v.is_finite()).then_some(x)
-}
-
-/// Gaussian elimination with partial pivoting, in place; `None` on a zero pivot.
-fn solve_with_pivoting<const N: usize>(
-    mut a: SMatrix<f64, N, N>,
-    mut b: SVector<f64, N>,
-) -> Option<SVector<f64, N>> {
-    let scale = a.amax();
-    for k in 0..N {
-        let (p, pivot) = (k..N)
-            .map(|i| (i, a[(i, k)].abs()))
-            .fold((k, -1.0), |best, c| if c.1 > best.1 { c } else { best });
-        if pivot.is_nan() || pivot <= f64::EPSILON * scale * N as f64 {
-            return None;
-        }
-        a.swap_rows(k, p);
-        b.swap_rows(k, p);
-        for i in k + 1..N {
-            let factor = a[(i, k)] / a[(k, k)];
-            for j in k..N {
-                a[(i, j)] -= factor * a[(k, j)];
-            }
-            b[i] -= factor * b[k];
-        }
-    }
-    for k in (0..N).rev() {
-        let mut sum = b[k];
-        for j in k + 1..N {
-            sum -= a[(k, j)] * b[j];
-        }
-        b[k] = sum / a[(k, k)];
-    }
-    Some(b)
 }

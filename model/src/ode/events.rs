@@ -1,0 +1,203 @@
+//! Detecting zero crossings of event functions within a step and locating
+//! them on the dense output.
+
+use super::{DenseStep, OdeProblem, OdeVector, SolverError};
+
+/// Which zero crossings of an event function trigger it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// From negative to non-negative.
+    Rising,
+    /// From positive to non-positive.
+    Falling,
+    Either,
+}
+
+/// What the integration does after an event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventAction {
+    /// End the integration at the event.
+    Stop,
+    /// Go on from the event: the step sequence restarts there (the problem's
+    /// mode, parameters or state may have changed).
+    Restart,
+}
+
+/// The time tolerance of event location: 1e-12 s, or a few ulps of `t`.
+fn time_tolerance(t: f64) -> f64 {
+    1e-12f64.max(4.0 * f64::EPSILON * t.abs())
+}
+
+impl Direction {
+    fn crosses(self, before: f64, after: f64) -> bool {
+        match self {
+            Direction::Rising => before < 0.0 && after >= 0.0,
+            Direction::Falling => before > 0.0 && after <= 0.0,
+            Direction::Either => (before < 0.0 && after >= 0.0) || (before > 0.0 && after <= 0.0),
+        }
+    }
+}
+
+/// Event function values at the start and end of the current step.
+pub(crate) struct EventTracker {
+    start: Vec<f64>,
+    middle: Vec<f64>,
+    end: Vec<f64>,
+    probe: Vec<f64>,
+}
+
+impl EventTracker {
+    pub fn new(count: usize) -> EventTracker {
+        EventTracker {
+            start: vec![0.0; count],
+            middle: vec![0.0; count],
+            end: vec![0.0; count],
+            probe: vec![0.0; count],
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.start.is_empty()
+    }
+
+    /// Evaluates the event functions at the start of a step sequence.
+    ///
+    /// A function that is exactly zero there (typically right after its own
+    /// event) takes the sign it has just after `t`, found by an Euler probe
+    /// along `f = y'`, so that the crossing it just made is not seen again
+    /// and the next one is not missed.
+    pub fn reset<Y: OdeVector, P: OdeProblem<Y>>(
+        &mut self,
+        problem: &mut P,
+        t: f64,
+        y: &Y,
+        f: &Y,
+    ) -> Result<(), SolverError> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        problem.events(t, y, &mut self.start)?;
+        check_finite(&self.start, t)?;
+        if self.start.contains(&0.0) {
+            let delta = 1e-9 * t.abs().max(1.0);
+            let mut ahead = y.clone();
+            ahead.set_combination(y, &[(delta, f)]);
+            problem.events(t + delta, &ahead, &mut self.probe)?;
+            for (g, probe) in self.start.iter_mut().zip(&self.probe) {
+                if *g == 0.0 {
+                    *g = *probe;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The earliest event crossing in the accepted step, located to
+    /// `|Δt| ≤ 1e-12`, as `(event, time after the crossing)`.
+    pub fn locate<Y: OdeVector, P: OdeProblem<Y>>(
+        &mut self,
+        problem: &mut P,
+        dense: &dyn DenseStep<Y>,
+        y_end: &Y,
+        scratch: &mut Y,
+    ) -> Result<Option<(usize, f64)>, SolverError> {
+        if self.is_empty() {
+            return Ok(None);
+        }
+        let (t0, t1) = (dense.t0(), dense.t1());
+        problem.events(t1, y_end, &mut self.end)?;
+        check_finite(&self.end, t1)?;
+        // The midpoint catches a function that crosses and returns within one step.
+        let tm = 0.5 * (t0 + t1);
+        dense.eval(tm, scratch);
+        problem.events(tm, scratch, &mut self.middle)?;
+        check_finite(&self.middle, tm)?;
+        let mut earliest: Option<(usize, f64)> = None;
+        for k in 0..self.start.len() {
+            let direction = problem.event_direction(k);
+            let bracket = if direction.crosses(self.start[k], self.middle[k]) {
+                ((t0, self.start[k]), (tm, self.middle[k]))
+            } else if direction.crosses(self.middle[k], self.end[k]) {
+                ((tm, self.middle[k]), (t1, self.end[k]))
+            } else {
+                continue;
+            };
+            let t = self.illinois(problem, dense, scratch, k, bracket.0, bracket.1)?;
+            if earliest.is_none_or(|(_, limit)| t < limit) {
+                earliest = Some((k, t));
+            }
+        }
+        Ok(earliest)
+    }
+
+    /// Makes the step's end values the next step's start values.
+    pub fn advance(&mut self) {
+        std::mem::swap(&mut self.start, &mut self.end);
+    }
+
+    /// Illinois (modified regula falsi) on `g_k` along the dense output; the
+    /// bracket keeps `a` strictly before the crossing and `b` after it.
+    #[allow(clippy::too_many_arguments)]
+    fn illinois<Y: OdeVector, P: OdeProblem<Y>>(
+        &mut self,
+        problem: &mut P,
+        dense: &dyn DenseStep<Y>,
+        scratch: &mut Y,
+        k: usize,
+        (mut a, mut ga): (f64, f64),
+        (mut b, mut gb): (f64, f64),
+    ) -> Result<f64, SolverError> {
+        let before_sign = ga.signum();
+        let mut side = 0i8;
+        for _ in 0..200 {
+            if b - a <= time_tolerance(b) {
+                return Ok(b);
+            }
+            let mut c = (a * gb - b * ga) / (gb - ga);
+            if !(c > a && c < b) {
+                c = 0.5 * (a + b);
+            }
+            // Guard against slow one-sided convergence: bisect when the new
+            // point sits within 1% of an end of a wide bracket.
+            let width = b - a;
+            if (c - a) < 0.01 * width || (b - c) < 0.01 * width {
+                c = 0.5 * (a + b);
+            }
+            dense.eval(c, scratch);
+            problem.events(c, scratch, &mut self.probe)?;
+            let gc = self.probe[k];
+            if !gc.is_finite() {
+                return Err(SolverError::NonFinite {
+                    t: c,
+                    what: format!("event function {k}"),
+                });
+            }
+            if gc.signum() == before_sign && gc != 0.0 {
+                a = c;
+                ga = gc;
+                if side == -1 {
+                    gb *= 0.5;
+                }
+                side = -1;
+            } else {
+                b = c;
+                gb = gc;
+                if side == 1 {
+                    ga *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        Err(SolverError::EventNotLocated { t: b, event: k })
+    }
+}
+
+fn check_finite(values: &[f64], t: f64) -> Result<(), SolverError> {
+    match values.iter().position(|g| !g.is_finite()) {
+        None => Ok(()),
+        Some(k) => Err(SolverError::NonFinite {
+            t,
+            what: format!("event function {k}"),
+        }),
+    }
+}

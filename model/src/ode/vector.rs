@@ -1,0 +1,135 @@
+//! State vectors the integrators work on.
+
+use nalgebra::{DVector, SVector};
+
+/// A state vector: fixed-size ones live on the stack, so integrating them
+/// does not allocate.
+pub trait OdeVector: Clone {
+    fn len(&self) -> usize;
+
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn get(&self, i: usize) -> f64;
+
+    /// `self ← base + Σ_k c_k · x_k`.
+    fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]);
+
+    /// `self ← Σ_k c_k · x_k`.
+    fn set_sum(&mut self, terms: &[(f64, &Self)]);
+
+    fn all_finite(&self) -> bool {
+        (0..self.len()).all(|i| self.get(i).is_finite())
+    }
+}
+
+impl<const D: usize> OdeVector for SVector<f64, D> {
+    fn len(&self) -> usize {
+        D
+    }
+
+    fn get(&self, i: usize) -> f64 {
+        self[i]
+    }
+
+    fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
+        *self = *base;
+        for (c, x) in terms {
+            self.axpy(*c, x, 1.0);
+        }
+    }
+
+    fn set_sum(&mut self, terms: &[(f64, &Self)]) {
+        self.fill(0.0);
+        for (c, x) in terms {
+            self.axpy(*c, x, 1.0);
+        }
+    }
+}
+
+impl OdeVector for DVector<f64> {
+    fn len(&self) -> usize {
+        self.nrows()
+    }
+
+    fn get(&self, i: usize) -> f64 {
+        self[i]
+    }
+
+    fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
+        self.copy_from(base);
+        for (c, x) in terms {
+            self.axpy(*c, x, 1.0);
+        }
+    }
+
+    fn set_sum(&mut self, terms: &[(f64, &Self)]) {
+        self.fill(0.0);
+        for (c, x) in terms {
+            self.axpy(*c, x, 1.0);
+        }
+    }
+}
+
+/// The state of a mechanical model: coordinates `q`, velocities `v = q̇`, and
+/// two running integrals for energy bookkeeping: `work[0] = ∫ Σ ∂D/∂q̇·q̇ dt`
+/// (energy dissipated by `D`) and `work[1] = ∫ Σ Q·q̇ dt` (work of the
+/// generalized forces). Integrating them with the state makes the energy
+/// balance as accurate as the solution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhaseState<const N: usize> {
+    pub q: SVector<f64, N>,
+    pub v: SVector<f64, N>,
+    pub work: [f64; 2],
+}
+
+impl<const N: usize> PhaseState<N> {
+    pub fn new(q: SVector<f64, N>, v: SVector<f64, N>) -> Self {
+        PhaseState {
+            q,
+            v,
+            work: [0.0; 2],
+        }
+    }
+
+    pub fn zeros() -> Self {
+        PhaseState::new(SVector::zeros(), SVector::zeros())
+    }
+}
+
+impl<const N: usize> OdeVector for PhaseState<N> {
+    fn len(&self) -> usize {
+        2 * N + 2
+    }
+
+    fn get(&self, i: usize) -> f64 {
+        if i < N {
+            self.q[i]
+        } else if i < 2 * N {
+            self.v[i - N]
+        } else {
+            self.work[i - 2 * N]
+        }
+    }
+
+    fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
+        *self = *base;
+        for (c, x) in terms {
+            self.q.axpy(*c, &x.q, 1.0);
+            self.v.axpy(*c, &x.v, 1.0);
+            self.work[0] += c * x.work[0];
+            self.work[1] += c * x.work[1];
+        }
+    }
+
+    fn set_sum(&mut self, terms: &[(f64, &Self)]) {
+        *self = PhaseState::zeros();
+        for (c, x) in terms {
+            self.q.axpy(*c, &x.q, 1.0);
+            self.v.axpy(*c, &x.v, 1.0);
+            self.work[0] += c * x.work[0];
+            self.work[1] += c * x.work[1];
+        }
+    }
+}
