@@ -108,6 +108,28 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 
             ]
         };
         assert_close("energies", &pack(ec), &pack(ei), &mut worst);
+        // The input-argument routine reproduces the arguments the inputs receive.
+        assert_eq!(compiled.input_sites(), interpreted.input_sites());
+        let total: usize = compiled.input_sites().iter().map(|s| s.1).sum();
+        let (mut ac, mut ai) = (vec![0.0; total], vec![0.0; total]);
+        compiled.input_arguments(t, &q, &qd, &mut ac);
+        interpreted.input_arguments(t, &q, &qd, &mut ai);
+        assert_close("input arguments", &ac, &ai, &mut worst);
+        let seen = std::cell::RefCell::new(vec![Vec::new(); compiled.input_names().len()]);
+        let recording = |index: usize, args: &[f64]| {
+            seen.borrow_mut()[index] = args.to_vec();
+            inputs(index, args)
+        };
+        let _ = compiled.mass_matrix_and_forcing_pair(t, &q, &qd, &recording);
+        let mut offset = 0;
+        for &(input, arity) in compiled.input_sites() {
+            assert_eq!(
+                seen.borrow()[input],
+                ac[offset..offset + arity],
+                "{spec}: arguments of input {input}"
+            );
+            offset += arity;
+        }
         let (mut jc, mut ji) = (Jacobians::<N>::default(), Jacobians::<N>::default());
         let rc = compiled.jacobians(t, &q, &qd, &qdd, &inputs, &mut jc);
         let ri = interpreted.jacobians(t, &q, &qd, &qdd, &inputs, &mut ji);

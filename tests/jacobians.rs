@@ -16,6 +16,9 @@ fn inputs(index: usize, args: &[f64]) -> f64 {
         Yaris::INPUT_CRUSH => k * args[0] + c * args[1] + a * args[0].powi(3),
         Yaris::INPUT_CRUSH_STIFFNESS => k + 3.0 * a * args[0].powi(2),
         Yaris::INPUT_CRUSH_DAMPING => c,
+        Yaris::INPUT_WELD => 2.0e4 * args[0] + 300.0 * args[1] + 5.0e5 * args[0].powi(3),
+        Yaris::INPUT_WELD_STIFFNESS => 2.0e4 + 1.5e6 * args[0].powi(2),
+        Yaris::INPUT_WELD_DAMPING => 300.0,
         _ => 1.0e4 * (index as f64 * args[0] + 0.3).sin(),
     }
 }

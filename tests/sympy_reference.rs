@@ -47,6 +47,9 @@ impl InputFunctions for RecordedInputs<'_> {
             "crush" | "crush_stiffness" | "crush_damping" => {
                 assert_eq!(args, [self.q[0], self.qd[0]])
             }
+            "weld" | "weld_stiffness" | "weld_damping" => {
+                assert_eq!(args, [self.q[2], self.qd[2]])
+            }
             _ => assert_eq!(
                 args,
                 [self.t],

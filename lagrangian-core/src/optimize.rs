@@ -111,7 +111,7 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
             .collect();
         outputs.push((RoutineKind::Jacobians, regs));
     }
-    let routines = outputs
+    let mut routines: Vec<Routine> = outputs
         .into_iter()
         .map(|(kind, outputs)| Routine {
             kind,
@@ -119,10 +119,29 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
             outputs,
         })
         .collect();
+    // The arguments of each input call of the dynamics, for event functions
+    // and diagnostics that need them without evaluating the whole model.
+    let mut calls: Vec<(u32, Vec<Reg>)> = routines[0]
+        .ops
+        .iter()
+        .filter_map(|&r| match &b.ops[r as usize] {
+            Op::Input { index, args } => Some((*index, args.to_vec())),
+            _ => None,
+        })
+        .collect();
+    calls.sort_by_key(|(index, _)| *index);
+    let input_sites = calls.iter().map(|(i, a)| (*i as usize, a.len())).collect();
+    let argument_outputs: Vec<Reg> = calls.into_iter().flat_map(|(_, a)| a).collect();
+    routines.push(Routine {
+        kind: RoutineKind::InputArguments,
+        ops: dependency_closure(&b.ops, &argument_outputs),
+        outputs: argument_outputs,
+    });
     Program {
         dimension: n,
         ops: b.ops,
         routines,
+        input_sites,
     }
 }
 

@@ -148,6 +148,9 @@ pub enum RoutineKind {
     Energies,
     /// `∂f/∂q`, `∂f/∂q̇`, `∂(M a)/∂q`, each row-major `n × n`.
     Jacobians,
+    /// The arguments of every input-function call of the dynamics routine,
+    /// concatenated in the order of [`Program::input_sites`].
+    InputArguments,
 }
 
 /// A group of outputs and the operations needed to compute them, in order.
@@ -195,6 +198,9 @@ pub struct Program {
     pub dimension: usize,
     pub ops: Vec<Op>,
     pub routines: Vec<Routine>,
+    /// Every distinct input-function call of the dynamics routine, as
+    /// `(input index, number of arguments)`, ordered by input index.
+    pub input_sites: Vec<(usize, usize)>,
 }
 
 impl Program {

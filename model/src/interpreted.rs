@@ -189,6 +189,27 @@ impl InterpretedModel {
         })
     }
 
+    /// `(input index, number of arguments)` of every input call of the dynamics.
+    pub fn input_sites(&self) -> &[(usize, usize)] {
+        &self.program.input_sites
+    }
+
+    /// The arguments of every input call at one state (see [`InterpretedModel::input_sites`]).
+    pub fn evaluate_input_arguments(
+        &self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        self.run(
+            RoutineKind::InputArguments,
+            (t, q, qd, &[]),
+            &crate::NoInputs,
+            |values| out[..values.len()].copy_from_slice(values),
+        )
+    }
+
     /// `∂f/∂q`, `∂f/∂q̇`, `∂(M a)/∂q`, each row-major `n × n`, concatenated.
     pub fn evaluate_jacobians<I: InputFunctions + ?Sized>(
         &self,
@@ -249,6 +270,17 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
 
     fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), ModelError> {
         self.0.set_parameter(name, value)
+    }
+
+    fn input_sites(&self) -> &[(usize, usize)] {
+        self.0.input_sites()
+    }
+
+    fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]) {
+        // The dimension is N by construction, so this cannot fail.
+        let _ = self
+            .0
+            .evaluate_input_arguments(t, q.as_slice(), qd.as_slice(), out);
     }
 
     fn mass_matrix_and_forcing<I: InputFunctions + ?Sized>(

@@ -137,6 +137,14 @@ pub trait LagrangianSystem<const N: usize> {
         inputs: &I,
     ) -> Energies;
 
+    /// The input-function calls of the dynamics: `(input index, number of
+    /// arguments)` per distinct call, ordered by input index.
+    fn input_sites(&self) -> &[(usize, usize)];
+
+    /// The arguments of every call of [`LagrangianSystem::input_sites`] at
+    /// this state, concatenated (`out` holds at least their total count).
+    fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]);
+
     /// Writes `∂f/∂q`, `∂f/∂q̇` and `∂(M a)/∂q` for the accelerations `qdd`.
     fn jacobians<I: InputFunctions + ?Sized>(
         &self,

@@ -22,7 +22,7 @@ Conventions
   (``force q = Q;`` in a spec) are added here.
 * Input functions (``push(t)``, ``crush(r, r')``, ``barrier_x1(t)``, ...) are
   plain symbols; their value at each state is stored with the state.  Inputs
-  that do not enter M or f (``crush_stiffness``, ``crush_damping``) are
+  that do not enter M or f (``crush_stiffness``, ``weld_damping``, ...) are
   stored as 0.0 (their random value is still drawn, then discarded).
 * States are drawn with one ``random.Random(20261122)`` per model, in this
   order per state: t, q (spec order), q', parameters (spec order), inputs
@@ -231,15 +231,17 @@ def yaris_double_pendulum():
     """Noorsumar et al. section 2.2, as corrected in the spec file."""
     relpath = "specs/yaris_double_pendulum.lpm"
     p_names = ["m1", "m2", "l0", "l1", "l2", "l3", "I1", "I2", "k1", "k2",
-               "c1", "c2", "k_tor", "c_tor", "g"]
+               "c1", "c2", "k_comp", "c_comp", "k_tor", "c_tor", "g"]
     in_names = ["crush", "crush_stiffness", "crush_damping", "barrier_x1",
-                "barrier_z1", "barrier_x2", "barrier_z2"]
+                "barrier_z1", "barrier_x2", "barrier_z2", "weld",
+                "weld_stiffness", "weld_damping"]
     q, p, defaults, u = _spec_model(
         "yaris_double_pendulum", relpath, ["r", "theta1", "theta2"],
         p_names, in_names)
     r, theta1, theta2 = q
-    m1, m2, l0, l1, l2, l3, i1, i2, k1, k2, c1, c2, k_tor, c_tor, g = p
-    crush, _, _, bx1, bz1, bx2, bz2 = u
+    (m1, m2, l0, l1, l2, l3, i1, i2, k1, k2, c1, c2, k_comp, c_comp, k_tor,
+     c_tor, g) = p
+    crush, _, _, bx1, bz1, bx2, bz2, weld, _, _ = u
 
     # Positions of the two lumped masses (eqs 4-7); x into the car, z up.
     x1 = (l0 + r) * sp.cos(theta1)
@@ -253,10 +255,11 @@ def yaris_double_pendulum():
     kinetic = (HALF * m1 * (dot(x1)**2 + dot(z1)**2)
                + HALF * m2 * (dot(x2)**2 + dot(z2)**2)
                + HALF * i1 * dot(theta1)**2 + HALF * i2 * dot(theta2)**2)
-    potential = (m1 * g * z1 + m2 * g * z2 + HALF * k1 * r1**2
-                 + HALF * k2 * r2**2 + HALF * k_tor * theta2**2)
-    dissipation = (HALF * c1 * dot(r1)**2 + HALF * c2 * dot(r2)**2
-                   + HALF * c_tor * dot(theta2)**2)
+    potential = (m1 * g * z1 + m2 * g * z2 + HALF * k_comp * r**2
+                 + HALF * k1 * r1**2 + HALF * k2 * r2**2
+                 + HALF * k_tor * theta2**2)
+    dissipation = (HALF * c_comp * dot(r)**2 + HALF * c1 * dot(r1)**2
+                   + HALF * c2 * dot(r2)**2 + HALF * c_tor * dot(theta2)**2)
 
     # Barrier forces act at the two mass points (virtual work, eqs 31-39).
     frame = ReferenceFrame("N")
@@ -272,7 +275,8 @@ def yaris_double_pendulum():
     return Model("yaris_double_pendulum", relpath, q, p, defaults, u,
                  kinetic, potential, dissipation, frame=frame,
                  origin=origin, forcelist=forcelist,
-                 direct_forces={r: -crush},    # force r = -crush(r, dot(r));
+                 # force r = -crush(r, dot(r)); force theta2 = -weld(...);
+                 direct_forces={r: -crush, theta2: -weld},
                  q_ranges=[(-0.6, 0.2), (-1.0, 1.0), (-1.0, 1.0)],
                  qd_ranges=[(-16.0, 2.0), (-2.0, 2.0), (-2.0, 2.0)],
                  input_range=1.0e5)
@@ -522,10 +526,10 @@ def check_simple_closed_forms(model, results):
 def check_yaris_against_paper(derived):
     """Symbolic checks of the Yaris model against the paper's equations.
 
-    Barrier generalized forces: eqs 37-39.  Potential: eq 23 without the
-    ½k_comp term (the crush spring is the `crush` input).  Dissipation: eq 40
-    with ½c_tor·θ̇2² (eq 40 prints ½c_tor·θ̇2) and without the ½c_comp·ṙ²
-    term (part of `crush`).
+    Barrier generalized forces: eqs 37-39.  Potential: eq 23 with ½k_comp·r²
+    (eq 23 prints ½k_comp·r1²; eq 25 has k_comp·r).  Dissipation: eq 40 with
+    ½c_tor·θ̇2² (eq 40 prints ½c_tor·θ̇2).  The piecewise-linear crush force
+    and the weld moment are the `crush` and `weld` inputs on top.
     """
     model = derived.model
     r, th1, th2 = derived.q_syms
@@ -552,11 +556,13 @@ def check_yaris_against_paper(derived):
                  + m2 * p["g"] * ((l0 + r) * s1 + l1 * s1 + l2 * s2)
                  + HALF * k1 * (l0 + r - l3)**2 * th1**2
                  + HALF * k2 * ((l0 + r + l1) * th1 + l2 * th2)**2
+                 + HALF * p["k_comp"] * r**2
                  + HALF * p["k_tor"] * th2**2)
     assert sp.expand(derived.plain["potential"] - potential) == 0
     dissipation = (HALF * c1 * ((l0 + r - l3) * th1d + rd * th1)**2     # (40)
                    + HALF * c2 * ((l0 + r + l1) * th1d + rd * th1
                                   + l2 * th2d)**2
+                   + HALF * p["c_comp"] * rd**2
                    + HALF * p["c_tor"] * th2d**2)
     assert sp.expand(derived.plain["dissipation"] - dissipation) == 0
 

@@ -138,6 +138,14 @@ pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
     let dynamics = routine_method(compiled, &names, RoutineKind::Dynamics, rt);
     let energies = routine_method(compiled, &names, RoutineKind::Energies, rt);
     let jacobians = routine_method(compiled, &names, RoutineKind::Jacobians, rt);
+    let arguments = routine_method(compiled, &names, RoutineKind::InputArguments, rt);
+    let sites = compiled.program.input_sites.iter().map(|&(input, arity)| {
+        let (input, arity) = (
+            Literal::usize_unsuffixed(input),
+            Literal::usize_unsuffixed(arity),
+        );
+        quote!((#input, #arity))
+    });
 
     let struct_doc = doc_lines(&struct_doc);
     quote! {
@@ -198,9 +206,14 @@ pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
                 ::core::result::Result::Ok(())
             }
 
+            fn input_sites(&self) -> &'static [(usize, usize)] {
+                &[#(#sites),*]
+            }
+
             #dynamics
             #energies
             #jacobians
+            #arguments
         }
     }
 }
@@ -271,6 +284,18 @@ fn routine_method(
                         damping_power: #damping_power,
                         external_power: #external_power,
                     }
+                }
+            }
+        }
+        RoutineKind::InputArguments => {
+            let writes = outputs.iter().enumerate().map(|(k, value)| {
+                let k = Literal::usize_unsuffixed(k);
+                quote! { out[#k] = #value; }
+            });
+            quote! {
+                fn input_arguments(&self, t: f64, q: &#vector, qd: &#vector, out: &mut [f64]) {
+                    #(#statements)*
+                    #(#writes)*
                 }
             }
         }
