@@ -19,6 +19,8 @@ pub struct InterpretedModel {
     coordinates: Vec<String>,
     parameter_names: Vec<String>,
     input_names: Vec<String>,
+    coordinate_units: Vec<Option<String>>,
+    input_units: Vec<Option<String>>,
     program: Arc<Program>,
     parameters: Vec<f64>,
     registers: RefCell<Vec<f64>>,
@@ -41,6 +43,16 @@ impl InterpretedModel {
             coordinates: model.coordinates.iter().map(|c| c.name.clone()).collect(),
             parameter_names: model.parameters.iter().map(|p| p.name.clone()).collect(),
             input_names: model.inputs.iter().map(|i| i.name.clone()).collect(),
+            coordinate_units: model
+                .coordinates
+                .iter()
+                .map(|c| c.unit.as_ref().map(|u| u.text.clone()))
+                .collect(),
+            input_units: model
+                .inputs
+                .iter()
+                .map(|i| i.unit.as_ref().map(|u| u.text.clone()))
+                .collect(),
             registers: RefCell::new(program.registers()),
             outputs: RefCell::new(vec![0.0; longest]),
             program: Arc::new(program),
@@ -73,6 +85,16 @@ impl InterpretedModel {
 
     pub fn input_names(&self) -> &[String] {
         &self.input_names
+    }
+
+    /// Units of the coordinates as written in the spec.
+    pub fn coordinate_units(&self) -> &[Option<String>] {
+        &self.coordinate_units
+    }
+
+    /// Units of the input functions' values as written in the spec.
+    pub fn input_units(&self) -> &[Option<String>] {
+        &self.input_units
     }
 
     pub fn parameters(&self) -> &[f64] {

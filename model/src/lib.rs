@@ -7,9 +7,14 @@
 //! * [`InputFunctions`]: how run-time inputs (crush characteristics, barrier
 //!   force tables) reach a model.
 
+pub mod crash;
 mod interpreted;
 pub mod linalg;
 pub mod ode;
+pub mod plot;
+pub mod report;
+pub mod scenario;
+pub mod simulate;
 mod system;
 
 pub use interpreted::{Interpreted, InterpretedModel};

@@ -22,8 +22,8 @@ impl OdeProblem<Vector2<f64>> for Oscillator {
     }
 }
 
-fn no_observer<Y>() -> impl FnMut(&dyn DenseStep<Y>) {
-    |_| {}
+fn no_observer<P, Y>() -> impl FnMut(&mut P, &dyn DenseStep<Y>) {
+    |_, _| {}
 }
 
 /// Global error at t = 10 of x'' = −x with fixed steps h, 2h: the order.
@@ -66,7 +66,7 @@ fn dense_output_is_accurate_between_steps() {
         ..Options::default()
     };
     let mut worst = 0.0f64;
-    let mut observer = |step: &dyn DenseStep<Vector2<f64>>| {
+    let mut observer = |_: &mut Oscillator, step: &dyn DenseStep<Vector2<f64>>| {
         let mut y = Vector2::zeros();
         for k in 1..10 {
             let t = step.t0() + (step.t1() - step.t0()) * k as f64 / 10.0;

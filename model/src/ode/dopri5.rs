@@ -99,15 +99,15 @@ pub struct Outcome<Y> {
     pub stopped_by: Option<usize>,
 }
 
-/// Integrates from `(t0, y0)` to `t_end`, calling `observer` with every
-/// accepted step (truncated at events).
+/// Integrates from `(t0, y0)` to `t_end`, calling `observer` with the problem
+/// and every accepted step (truncated at events).
 pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
     problem: &mut P,
     t0: f64,
     y0: Y,
     t_end: f64,
     options: &Options,
-    observer: &mut dyn FnMut(&dyn DenseStep<Y>),
+    observer: &mut dyn FnMut(&mut P, &dyn DenseStep<Y>),
 ) -> Result<Outcome<Y>, SolverError> {
     options.validate()?;
     let mut stats = Stats::default();
@@ -215,7 +215,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
         let dense = dense_output(t, h, &y, &y1, &k1, &k3, &k4, &k5, &k6, &k7);
         if let Some((k, te)) = events.locate(problem, &dense, &y1, &mut scratch)? {
             let truncated = Dense { t1: te, ..dense };
-            observer(&truncated);
+            observer(problem, &truncated);
             let mut ye = y.clone();
             truncated.eval(te, &mut ye);
             stats.events.push((k, te));
@@ -238,7 +238,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
                 }
             }
         }
-        observer(&dense);
+        observer(problem, &dense);
         events.advance();
         t += h;
         std::mem::swap(&mut y, &mut y1);

@@ -47,7 +47,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
     y0: Y,
     t_end: f64,
     options: &Options,
-    observer: &mut dyn FnMut(&dyn DenseStep<Y>),
+    observer: &mut dyn FnMut(&mut P, &dyn DenseStep<Y>),
 ) -> Result<Outcome<Y>, SolverError> {
     options.validate()?;
     let h_fixed = options
@@ -102,7 +102,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
         };
         if let Some((k, te)) = events.locate(problem, &dense, &y1, &mut scratch)? {
             let truncated = Hermite { end: te, ..dense };
-            observer(&truncated);
+            observer(problem, &truncated);
             let mut ye = y.clone();
             truncated.eval(te, &mut ye);
             stats.events.push((k, te));
@@ -124,7 +124,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
                 }
             }
         }
-        observer(&dense);
+        observer(problem, &dense);
         events.advance();
         t += h;
         y = y1.clone();

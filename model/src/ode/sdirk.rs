@@ -51,7 +51,7 @@ pub fn integrate<const N: usize, P>(
     y0: PhaseState<N>,
     t_end: f64,
     options: &Options,
-    observer: &mut dyn FnMut(&dyn DenseStep<PhaseState<N>>),
+    observer: &mut dyn FnMut(&mut P, &dyn DenseStep<PhaseState<N>>),
 ) -> Result<Outcome<PhaseState<N>>, SolverError>
 where
     P: OdeProblem<PhaseState<N>> + AccelerationJacobians<N>,
@@ -152,7 +152,7 @@ where
         };
         if let Some((k, te)) = events.locate(problem, &dense, &y3, &mut scratch)? {
             let truncated = Hermite { end: te, ..dense };
-            observer(&truncated);
+            observer(problem, &truncated);
             let mut ye = y;
             truncated.eval(te, &mut ye);
             stats.events.push((k, te));
@@ -174,7 +174,7 @@ where
                 }
             }
         }
-        observer(&dense);
+        observer(problem, &dense);
         events.advance();
         t += h;
         y = y3;

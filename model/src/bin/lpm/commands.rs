@@ -13,22 +13,22 @@ pub struct Failure {
 }
 
 impl Failure {
-    fn io(message: String) -> Failure {
+    pub fn io(message: String) -> Failure {
         Failure { message, code: 1 }
     }
-    fn usage(message: String) -> Failure {
+    pub fn usage(message: String) -> Failure {
         Failure { message, code: 2 }
     }
-    fn spec(message: String) -> Failure {
+    pub fn spec(message: String) -> Failure {
         Failure { message, code: 3 }
     }
-    fn evaluation(message: String) -> Failure {
+    pub fn evaluation(message: String) -> Failure {
         Failure { message, code: 4 }
     }
 }
 
 /// Reads and compiles a spec, rendering errors as `file:line:col` snippets.
-fn compile(path: &Path) -> Result<Compiled, Failure> {
+pub fn compile(path: &Path) -> Result<Compiled, Failure> {
     let source = std::fs::read_to_string(path)
         .map_err(|e| Failure::io(format!("error: cannot read {}: {e}", path.display())))?;
     Compiled::from_source(&source)

@@ -1,9 +1,11 @@
 //! `lpm`: derive, inspect and evaluate lumped-parameter models from spec files.
 //!
-//! Exit status: 0 success, 1 input/output error, 2 bad command line, 3 the spec
-//! does not compile, 4 the model cannot be evaluated at the requested state.
+//! Exit status: 0 success, 1 input/output error, 2 bad command line or
+//! scenario, 3 the spec does not compile, 4 the model cannot be evaluated or
+//! simulated.
 
 mod commands;
+mod simulate;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -61,6 +63,31 @@ enum Command {
         #[arg(long = "set", value_name = "NAME=VALUE")]
         set: Vec<String>,
     },
+    /// Simulate a spec under a scenario; writes trajectory.csv, summary.json
+    /// and plots.svg and prints a summary.
+    Simulate {
+        /// The spec file (`.lpm`).
+        spec: PathBuf,
+        /// The scenario (TOML); by default the one in `scenarios/` beside the spec that names it.
+        #[arg(long)]
+        scenario: Option<PathBuf>,
+        /// Override a parameter (`k1=7e4`), give an input a constant (`barrier_x1=0`)
+        /// or set a scenario entry (`components.front_end.unloading=elastic`).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// End time [s].
+        #[arg(long)]
+        t_end: Option<f64>,
+        #[arg(long)]
+        rtol: Option<f64>,
+        #[arg(long)]
+        atol: Option<f64>,
+        #[arg(long, value_parser = ["dopri5", "rk4", "implicit"])]
+        method: Option<String>,
+        /// Output directory (default lpm-out/<spec name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Print the spec of an N-link planar pendulum chain.
     Chain {
         /// Number of links.
@@ -83,6 +110,25 @@ fn main() -> ExitCode {
             set,
         } => commands::eval(&spec, &state, time, &set),
         Command::Chain { links } => commands::chain(links),
+        Command::Simulate {
+            spec,
+            scenario,
+            set,
+            t_end,
+            rtol,
+            atol,
+            method,
+            out,
+        } => simulate::run(simulate::SimulateOptions {
+            spec,
+            scenario,
+            settings: set,
+            t_end,
+            rtol,
+            atol,
+            method,
+            out,
+        }),
     };
     match result {
         Ok(text) => {

@@ -1,0 +1,257 @@
+//! The front-end crush element: spring and damper of the paper's eqs 1–2,
+//! with plastic unloading and compression-only contact as options.
+//!
+//! In terms of the crush `δ` (compression positive) and its rate `δ̇`, the
+//! compressive force is `P = S(δ) + D(δ̇)`:
+//!
+//! * loading: `S = k(δ)·δ` (eq 1), `D = c(|δ̇|)·δ̇` (eq 2);
+//! * plastic unloading from the peak `(δ_p, S_p)` reached: `S = S_p − k_u (δ_p − δ)`,
+//!   back along that line on reloading and onto the loading curve beyond `δ_p`
+//!   (permanent set `δ_p − S_p/k_u`). Elastic unloading follows the loading
+//!   curve, which returns all the stored energy (the paper's model);
+//! * compression only: the barrier pushes but never pulls, so the force is 0
+//!   while `S + D < 0` (the car has separated).
+//!
+//! Each change of regime is an event of the integration, so the force is
+//! smooth within a step.
+
+use super::curve::{Characteristic, OutOfRange};
+use crate::ode::Direction;
+
+/// How the crush spring unloads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Unloading {
+    /// Along the loading curve (the paper's elastic spring).
+    Elastic,
+    /// Linearly from the peak with this stiffness [N/m].
+    Plastic { stiffness: f64 },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Phase {
+    Loading,
+    Unloading { peak_crush: f64, peak_force: f64 },
+}
+
+/// The crush element and its state during a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CrushElement {
+    pub stiffness: Characteristic,
+    pub damping: Characteristic,
+    pub unloading: Unloading,
+    /// `+1` if compression is a positive input argument, `−1` if negative
+    /// (the paper's `r < 0`).
+    pub compression_sign: f64,
+    /// The barrier pushes but never pulls.
+    pub contact_only: bool,
+    phase: Phase,
+    in_contact: bool,
+}
+
+/// Names of the element's events, in index order.
+pub const EVENTS: [&str; 4] = [
+    "peak crush",
+    "reloading past the peak",
+    "separation",
+    "contact",
+];
+
+impl CrushElement {
+    pub fn new(
+        stiffness: Characteristic,
+        damping: Characteristic,
+        unloading: Unloading,
+        compression_sign: f64,
+        contact_only: bool,
+    ) -> CrushElement {
+        CrushElement {
+            stiffness,
+            damping,
+            unloading,
+            compression_sign,
+            contact_only,
+            phase: Phase::Loading,
+            in_contact: true,
+        }
+    }
+
+    /// Back to the undeformed, loading state.
+    pub fn reset(&mut self) {
+        self.phase = Phase::Loading;
+        self.in_contact = true;
+    }
+
+    /// The crush `δ` and rate `δ̇` from the input's arguments `(x, v)`.
+    fn crush(&self, args: &[f64]) -> (f64, f64) {
+        (
+            self.compression_sign * args[0],
+            self.compression_sign * args[1],
+        )
+    }
+
+    /// `(S, dS/dδ)` of the current phase.
+    fn spring(&self, delta: f64) -> Result<(f64, f64), OutOfRange> {
+        match (self.phase, self.unloading) {
+            (
+                Phase::Unloading {
+                    peak_crush,
+                    peak_force,
+                },
+                Unloading::Plastic { stiffness },
+            ) => Ok((peak_force - stiffness * (peak_crush - delta), stiffness)),
+            _ => self.stiffness.force(delta),
+        }
+    }
+
+    /// `(P, ∂P/∂δ, ∂P/∂δ̇)`: the compressive force and its derivatives.
+    fn compressive(&self, args: &[f64]) -> Result<(f64, f64, f64), OutOfRange> {
+        let (delta, rate) = self.crush(args);
+        let (s, ds) = self.spring(delta)?;
+        let (d, dd) = self.damping.force(rate)?;
+        if self.contact_only && !self.in_contact {
+            return Ok((0.0, 0.0, 0.0));
+        }
+        Ok((s + d, ds, dd))
+    }
+
+    /// The input's value `F = ±P` in the sign convention of its argument
+    /// (for `compression_sign = −1`, `F(x, v) = k(|x|)x + c(|v|)v` as in eqs 1–2).
+    pub fn force(&self, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(self.compression_sign * self.compressive(args)?.0)
+    }
+
+    /// `∂F/∂x` (the tangent stiffness).
+    pub fn force_stiffness(&self, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(self.compressive(args)?.1)
+    }
+
+    /// `∂F/∂v` (the tangent damping).
+    pub fn force_damping(&self, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(self.compressive(args)?.2)
+    }
+
+    pub fn event_direction(k: usize) -> Direction {
+        match k {
+            0 | 2 => Direction::Falling,
+            _ => Direction::Rising,
+        }
+    }
+
+    /// The event functions; one that does not apply in the current regime is
+    /// held at a constant of the sign that cannot trigger it.
+    pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
+        let (delta, rate) = self.crush(args);
+        let plastic = matches!(self.unloading, Unloading::Plastic { .. });
+        g[0] = match self.phase {
+            Phase::Loading if plastic => rate,
+            _ => 1.0,
+        };
+        g[1] = match self.phase {
+            Phase::Unloading { peak_crush, .. } => delta - peak_crush,
+            Phase::Loading => -1.0,
+        };
+        let total = if self.contact_only {
+            self.spring(delta)?.0 + self.damping.force(rate)?.0
+        } else {
+            0.0
+        };
+        g[2] = if self.contact_only && self.in_contact {
+            total
+        } else {
+            1.0
+        };
+        g[3] = if self.contact_only && !self.in_contact {
+            total
+        } else {
+            -1.0
+        };
+        Ok(())
+    }
+
+    /// Applies event `k` at the state with input arguments `args`; returns
+    /// a description of the change.
+    pub fn on_event(&mut self, k: usize, args: &[f64]) -> Result<String, OutOfRange> {
+        let (delta, _) = self.crush(args);
+        Ok(match k {
+            0 => {
+                let peak_force = self.stiffness.force(delta)?.0;
+                self.phase = Phase::Unloading {
+                    peak_crush: delta,
+                    peak_force,
+                };
+                format!(
+                    "peak crush {delta:.4} m at {:.1} kN; unloading",
+                    peak_force / 1e3
+                )
+            }
+            1 => {
+                self.phase = Phase::Loading;
+                format!("crush {delta:.4} m passes the previous peak; loading")
+            }
+            2 => {
+                self.in_contact = false;
+                format!("separation from the barrier at crush {delta:.4} m")
+            }
+            _ => {
+                self.in_contact = true;
+                format!("contact with the barrier at crush {delta:.4} m")
+            }
+        })
+    }
+
+    /// The permanent crush after plastic unloading from the peak, if any.
+    pub fn permanent_set(&self) -> Option<f64> {
+        match (self.phase, self.unloading) {
+            (
+                Phase::Unloading {
+                    peak_crush,
+                    peak_force,
+                },
+                Unloading::Plastic { stiffness },
+            ) => Some(peak_crush - peak_force / stiffness),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crash::curve::Outside;
+
+    fn element(unloading: Unloading) -> CrushElement {
+        let k = Characteristic::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
+        CrushElement::new(k, Characteristic::constant(1.0e3), unloading, -1.0, true)
+    }
+
+    #[test]
+    fn loading_follows_eqs_1_and_2_with_the_paper_sign() {
+        let e = element(Unloading::Elastic);
+        // r = −0.1 (0.1 m of crush), ṙ = −2: F = k(0.1)·r + c·ṙ.
+        let f = e.force(&[-0.1, -2.0]).unwrap();
+        assert!((f - (2.0e6 * -0.1 + 1.0e3 * -2.0)).abs() < 1e-6, "{f}");
+        assert_eq!(e.force_damping(&[-0.1, -2.0]).unwrap(), 1.0e3);
+    }
+
+    #[test]
+    fn plastic_unloading_leaves_a_permanent_set_and_separates() {
+        let mut e = element(Unloading::Plastic { stiffness: 1.0e8 });
+        let mut g = [0.0; 4];
+        // At the peak the crush rate passes zero: event 0.
+        e.events(&[-0.3, 0.0], &mut g).unwrap();
+        assert_eq!(g[0], 0.0);
+        let note = e.on_event(0, &[-0.3, 0.0]).unwrap();
+        assert!(note.contains("peak crush 0.3000 m"), "{note}");
+        let peak_force = 1.5e6 * 0.3; // k(0.3) = 1.5e6 N/m
+        let set = e.permanent_set().unwrap();
+        assert!((set - (0.3 - peak_force / 1.0e8)).abs() < 1e-12);
+        // Unloading is steep: 1 mm back leaves S = 450 kN − 100 kN.
+        let f = e.force(&[-0.299, 0.0]).unwrap();
+        assert!((f + (peak_force - 1.0e8 * 0.001)).abs() < 1e-6, "{f}");
+        // Below the permanent set, S + D < 0: the separation event function is negative.
+        e.events(&[-(set - 1e-4), 1.0], &mut g).unwrap();
+        assert!(g[2] < 0.0);
+        e.on_event(2, &[-(set - 1e-4), 1.0]).unwrap();
+        assert_eq!(e.force(&[-(set - 1e-4), 1.0]).unwrap(), 0.0);
+    }
+}

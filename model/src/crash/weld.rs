@@ -1,0 +1,126 @@
+//! A torsional spring for a weld or heat-affected zone that fails.
+//!
+//! Intact, its moment follows a curve of angle plus viscous damping,
+//! `M = M_intact(θ) + c·θ̇`; when `|M_intact(θ)|` reaches the failure moment
+//! (or `|θ|` the failure angle) an event switches it to the post-failure
+//! curve and damping for the rest of the run.
+
+use super::curve::{Curve, OutOfRange};
+use crate::ode::Direction;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Weld {
+    pub intact: Curve,
+    pub damping: f64,
+    pub failure_moment: Option<f64>,
+    pub failure_angle: Option<f64>,
+    /// `None`: no moment after failure.
+    pub post_failure: Option<Curve>,
+    pub post_failure_damping: f64,
+    failed_at: Option<f64>,
+}
+
+/// Names of the weld's events.
+pub const EVENTS: [&str; 2] = ["weld failure (moment)", "weld failure (angle)"];
+
+impl Weld {
+    pub fn new(
+        intact: Curve,
+        damping: f64,
+        failure_moment: Option<f64>,
+        failure_angle: Option<f64>,
+        post_failure: Option<Curve>,
+        post_failure_damping: f64,
+    ) -> Weld {
+        Weld {
+            intact,
+            damping,
+            failure_moment,
+            failure_angle,
+            post_failure,
+            post_failure_damping,
+            failed_at: None,
+        }
+    }
+
+    pub fn reset(&mut self) {
+        self.failed_at = None;
+    }
+
+    /// The time of failure, if the weld failed.
+    pub fn failed_at(&self) -> Option<f64> {
+        self.failed_at
+    }
+
+    /// `(M, ∂M/∂θ, ∂M/∂θ̇)` at arguments `(θ, θ̇)`.
+    pub fn moment(&self, args: &[f64]) -> Result<(f64, f64, f64), OutOfRange> {
+        let (angle, rate) = (args[0], args[1]);
+        if self.failed_at.is_some() {
+            let (m, dm) = match &self.post_failure {
+                Some(curve) => curve.eval(angle)?,
+                None => (0.0, 0.0),
+            };
+            return Ok((
+                m + self.post_failure_damping * rate,
+                dm,
+                self.post_failure_damping,
+            ));
+        }
+        let (m, dm) = self.intact.eval(angle)?;
+        Ok((m + self.damping * rate, dm, self.damping))
+    }
+
+    pub fn event_direction(_k: usize) -> Direction {
+        Direction::Rising
+    }
+
+    /// `|M_intact(θ)| − M_fail` and `|θ| − θ_fail` while intact; −1 otherwise.
+    pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
+        let intact = self.failed_at.is_none();
+        g[0] = match self.failure_moment {
+            Some(limit) if intact => self.intact.eval(args[0])?.0.abs() - limit,
+            _ => -1.0,
+        };
+        g[1] = match self.failure_angle {
+            Some(limit) if intact => args[0].abs() - limit,
+            _ => -1.0,
+        };
+        Ok(())
+    }
+
+    pub fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
+        let moment = self.intact.eval(args[0])?.0;
+        self.failed_at = Some(t);
+        Ok(format!(
+            "weld fails at θ = {:.3}° (spring moment {:.2} kN·m)",
+            args[0].to_degrees(),
+            moment / 1e3
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crash::curve::Outside;
+
+    #[test]
+    fn fails_at_the_threshold_and_switches_curves() {
+        let intact =
+            Curve::new(vec![-0.1, 0.1], vec![-1.0e4, 1.0e4], Outside::Extrapolate).unwrap();
+        let mut weld = Weld::new(intact, 100.0, Some(5.0e3), None, None, 10.0);
+        let (m, dm, dc) = weld.moment(&[0.02, 1.0]).unwrap();
+        assert!(
+            (m - 2.1e3).abs() < 1e-9 && dm == 1.0e5 && dc == 100.0,
+            "{m} {dm} {dc}"
+        );
+        let mut g = [0.0; 2];
+        weld.events(&[0.05, 0.0], &mut g).unwrap();
+        assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");
+        weld.on_event(0, 0.042, &[0.05, 0.0]).unwrap();
+        assert_eq!(weld.failed_at(), Some(0.042));
+        assert_eq!(weld.moment(&[0.05, 2.0]).unwrap(), (20.0, 0.0, 10.0));
+        weld.events(&[0.09, 0.0], &mut g).unwrap();
+        assert_eq!(g, [-1.0, -1.0]);
+    }
+}

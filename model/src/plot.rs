@@ -1,0 +1,242 @@
+//! The figure of a run (SVG): crush, velocity, deceleration, pitch, energy
+//! bookkeeping and the crush force–deflection loop.
+
+use crate::simulate::SimulationResult;
+use plotters::prelude::*;
+
+/// What to draw beyond the raw coordinates.
+#[derive(Clone, Debug, Default)]
+pub struct PlotSetup {
+    /// Crush coordinate and the sign that makes compression positive.
+    pub crush: Option<(usize, f64)>,
+    /// Pitch coordinates (drawn relative to their initial values).
+    pub pitch: Vec<usize>,
+    /// Input column of the crush force and the sign that makes compression positive.
+    pub crush_force: Option<(usize, f64)>,
+    pub g: f64,
+    pub title: String,
+}
+
+type Series = (String, Vec<(f64, f64)>);
+
+const COLORS: [RGBColor; 5] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+];
+
+/// The figure as SVG text.
+pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1500, 900)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let root = root
+            .titled(&setup.title, ("sans-serif", 22))
+            .map_err(|e| e.to_string())?;
+        let panels = root.split_evenly((2, 3));
+        for (area, (title, x_label, y_label, series)) in panels.iter().zip(panels_of(result, setup))
+        {
+            draw_panel(area, &title, &x_label, &y_label, &series).map_err(|e| e.to_string())?;
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}
+
+fn panels_of(
+    result: &SimulationResult,
+    setup: &PlotSetup,
+) -> Vec<(String, String, String, Vec<Series>)> {
+    let ms = |t: f64| t * 1e3;
+    let time = "t [ms]".to_string();
+    let s = &result.samples;
+    let mut panels = Vec::new();
+    match setup.crush {
+        Some((k, sign)) => {
+            let crush = s.iter().map(|x| (ms(x.t), sign * x.q[k])).collect();
+            let velocity = s.iter().map(|x| (ms(x.t), sign * x.v[k])).collect();
+            let deceleration = s
+                .iter()
+                .map(|x| (ms(x.t), -sign * x.a[k] / setup.g))
+                .collect();
+            panels.push((
+                "Crush".into(),
+                time.clone(),
+                "crush [m]".into(),
+                vec![("crush".into(), crush)],
+            ));
+            panels.push((
+                "Velocity towards the barrier".into(),
+                time.clone(),
+                "velocity [m/s]".into(),
+                vec![("velocity".into(), velocity)],
+            ));
+            panels.push((
+                "Deceleration (unfiltered)".into(),
+                time.clone(),
+                "deceleration [g]".into(),
+                vec![("deceleration".into(), deceleration)],
+            ));
+        }
+        None => {
+            let coordinates = result
+                .coordinates
+                .iter()
+                .enumerate()
+                .map(|(k, name)| (name.clone(), s.iter().map(|x| (ms(x.t), x.q[k])).collect()))
+                .collect();
+            let velocities = result
+                .coordinates
+                .iter()
+                .enumerate()
+                .map(|(k, name)| {
+                    (
+                        format!("d{name}/dt"),
+                        s.iter().map(|x| (ms(x.t), x.v[k])).collect(),
+                    )
+                })
+                .collect();
+            panels.push(("Coordinates".into(), time.clone(), "q".into(), coordinates));
+            panels.push((
+                "Velocities".into(),
+                time.clone(),
+                "dq/dt".into(),
+                velocities,
+            ));
+        }
+    }
+    if !setup.pitch.is_empty() {
+        let pitch = setup
+            .pitch
+            .iter()
+            .map(|&k| {
+                let q0 = result.initial_q[k];
+                (
+                    result.coordinates[k].clone(),
+                    s.iter()
+                        .map(|x| (ms(x.t), (x.q[k] - q0).to_degrees()))
+                        .collect(),
+                )
+            })
+            .collect();
+        panels.push((
+            "Pitch from static equilibrium".into(),
+            time.clone(),
+            "angle [°]".into(),
+            pitch,
+        ));
+    }
+    let first = s.first().map_or(0.0, |x| x.potential);
+    let kj = 1e-3;
+    panels.push((
+        "Energy".into(),
+        time.clone(),
+        "energy [kJ]".into(),
+        vec![
+            (
+                "kinetic".into(),
+                s.iter().map(|x| (ms(x.t), kj * x.kinetic)).collect(),
+            ),
+            (
+                "potential − V(0)".into(),
+                s.iter()
+                    .map(|x| (ms(x.t), kj * (x.potential - first)))
+                    .collect(),
+            ),
+            (
+                "dissipated by D".into(),
+                s.iter().map(|x| (ms(x.t), kj * x.dissipated)).collect(),
+            ),
+            (
+                "absorbed by inputs".into(),
+                s.iter().map(|x| (ms(x.t), -kj * x.external_work)).collect(),
+            ),
+        ],
+    ));
+    if let (Some((k, sign)), Some((column, force_sign))) = (setup.crush, setup.crush_force) {
+        let loop_points = s
+            .iter()
+            .map(|x| (sign * x.q[k], 1e-3 * force_sign * x.inputs[column]))
+            .collect();
+        panels.push((
+            "Crush force against crush".into(),
+            "crush [m]".into(),
+            "force [kN]".into(),
+            vec![("crush force".into(), loop_points)],
+        ));
+    }
+    panels
+}
+
+fn bounds(series: &[Series]) -> ((f64, f64), (f64, f64)) {
+    let points = series
+        .iter()
+        .flat_map(|(_, p)| p.iter())
+        .filter(|(x, y)| x.is_finite() && y.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in points {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (0.0, 1.0));
+    }
+    let pad = |a: f64, b: f64| {
+        let span = (b - a).abs().max(1e-9 * a.abs().max(1.0));
+        (a - 0.05 * span, b + 0.05 * span)
+    };
+    (pad(x0, x1), pad(y0, y1))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let ((x0, x1), (y0, y1)) = bounds(series);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_labels(8)
+        .y_labels(8)
+        .label_style(("sans-serif", 13))
+        .draw()?;
+    for (i, (name, points)) in series.iter().enumerate() {
+        let color = COLORS[i % COLORS.len()];
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(2),
+            ))?
+            .label(name.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 13))
+        .draw()?;
+    Ok(())
+}

@@ -1,0 +1,166 @@
+//! Writing a run's results: `trajectory.csv`, `summary.json`, a text summary.
+//! Files are written to a temporary name and renamed, so a reader never sees
+//! a half-written file.
+
+use crate::simulate::SimulationResult;
+use std::fmt::Write as _;
+use std::io;
+use std::path::Path;
+
+/// Writes `contents` to `path` atomically (temporary file, then rename).
+pub fn write_atomically(path: &Path, contents: &[u8]) -> io::Result<()> {
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temporary = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, contents)?;
+    std::fs::rename(&temporary, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&temporary);
+    })
+}
+
+/// Units of the columns, where the spec declares them.
+#[derive(Clone, Debug, Default)]
+pub struct Units {
+    pub coordinates: Vec<Option<String>>,
+    pub inputs: Vec<Option<String>>,
+}
+
+fn with_unit(name: &str, unit: Option<&str>) -> String {
+    match unit {
+        Some(u) => format!("{name} [{u}]"),
+        None => name.to_string(),
+    }
+}
+
+/// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…` per sample.
+pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
+    let mut header = vec!["t [s]".to_string()];
+    let unit = |i: usize, suffix: &str| {
+        units
+            .coordinates
+            .get(i)
+            .cloned()
+            .flatten()
+            .map(|u| format!("{u}{suffix}"))
+    };
+    for (i, c) in result.coordinates.iter().enumerate() {
+        header.push(with_unit(c, unit(i, "").as_deref()));
+    }
+    for (i, c) in result.coordinates.iter().enumerate() {
+        header.push(with_unit(&format!("{c}_dot"), unit(i, "/s").as_deref()));
+    }
+    for (i, c) in result.coordinates.iter().enumerate() {
+        header.push(with_unit(&format!("{c}_ddot"), unit(i, "/s^2").as_deref()));
+    }
+    for name in [
+        "kinetic_energy",
+        "potential_energy",
+        "dissipated_energy",
+        "external_work",
+    ] {
+        header.push(format!("{name} [J]"));
+    }
+    for (k, name) in result.input_columns.iter().enumerate() {
+        header.push(with_unit(
+            name,
+            units.inputs.get(k).cloned().flatten().as_deref(),
+        ));
+    }
+    let mut out = header.join(",");
+    out.push('\n');
+    for s in &result.samples {
+        let mut row: Vec<String> = vec![format!("{:.7}", s.t)];
+        row.extend(
+            s.q.iter()
+                .chain(&s.v)
+                .chain(&s.a)
+                .map(|x| format!("{x:.10e}")),
+        );
+        row.extend(
+            [s.kinetic, s.potential, s.dissipated, s.external_work]
+                .iter()
+                .map(|x| format!("{x:.10e}")),
+        );
+        row.extend(s.inputs.iter().map(|x| format!("{x:.10e}")));
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+pub fn summary_json(result: &SimulationResult) -> String {
+    serde_json::to_string_pretty(&result.summary).unwrap_or_else(|_| "{}".to_string()) + "\n"
+}
+
+/// The one-screen summary printed after a run.
+pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
+    let s = &result.summary;
+    let mut out = String::new();
+    let value = |v: Option<f64>, scale: f64, unit: &str, digits: usize| match v {
+        Some(x) => format!("{:.*} {unit}", digits, x * scale),
+        None => "–".to_string(),
+    };
+    let _ = writeln!(out, "{} — {}", result.model, scenario_name);
+    let _ = writeln!(
+        out,
+        "  max dynamic crush      {}",
+        value(s.max_crush_m, 1.0, "m", 3)
+    );
+    let _ = writeln!(
+        out,
+        "  at                     {}",
+        value(s.time_of_max_crush_s, 1e3, "ms", 1)
+    );
+    let _ = writeln!(
+        out,
+        "  time to zero velocity  {}",
+        value(s.time_to_zero_velocity_s, 1e3, "ms", 1)
+    );
+    let _ = writeln!(
+        out,
+        "  peak deceleration      {} (unfiltered)",
+        value(s.peak_deceleration_g, 1.0, "g", 1)
+    );
+    let _ = writeln!(
+        out,
+        "  rebound velocity       {}",
+        value(s.rebound_velocity_mps, 1.0, "m/s", 2)
+    );
+    let _ = writeln!(
+        out,
+        "  max pitch θ1, θ2       {}, {} (from static equilibrium)",
+        value(s.max_theta1_deg, 1.0, "°", 2),
+        value(s.max_theta2_deg, 1.0, "°", 2)
+    );
+    let _ = writeln!(
+        out,
+        "  weld failure           {}",
+        s.weld_failure_time_s
+            .map_or("none".to_string(), |t| format!("{:.1} ms", t * 1e3))
+    );
+    let _ = writeln!(
+        out,
+        "  energy balance error   {:.1e} (relative)",
+        s.energy_balance_error_rel
+    );
+    let _ = writeln!(
+        out,
+        "  solver                 {:?}: {} steps, {} rejected, {} right-hand sides",
+        result.method, s.steps, s.rejected_steps, s.rhs_evaluations
+    );
+    if !result.events.is_empty() {
+        let _ = writeln!(out, "  events:");
+        for e in &result.events {
+            let _ = writeln!(
+                out,
+                "    {:7.2} ms  {}: {}",
+                e.t * 1e3,
+                e.component,
+                e.description
+            );
+        }
+    }
+    out
+}

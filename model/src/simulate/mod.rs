@@ -1,0 +1,210 @@
+//! Running a scenario: static equilibrium, integration with events, output
+//! samples, summary metrics.
+
+mod equilibrium;
+mod problem;
+mod summary;
+
+pub use equilibrium::static_equilibrium;
+pub use problem::{CrashProblem, EventRecord};
+pub use summary::Summary;
+
+use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
+use crate::scenario::{Method, Scenario};
+use crate::{LagrangianSystem, ModelError};
+use nalgebra::SVector;
+use std::fmt;
+
+/// The state and derived quantities at one output time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+    pub kinetic: f64,
+    pub potential: f64,
+    /// Energy dissipated by `D` since the start.
+    pub dissipated: f64,
+    /// Work of the generalized forces since the start.
+    pub external_work: f64,
+    /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
+    pub inputs: Vec<f64>,
+}
+
+/// Everything a run produced.
+#[derive(Clone, Debug)]
+pub struct SimulationResult {
+    pub model: String,
+    pub coordinates: Vec<String>,
+    /// `(name, unit)` of each column of [`Sample::inputs`].
+    pub input_columns: Vec<String>,
+    /// The coordinates at the start (after the static-equilibrium solve).
+    pub initial_q: Vec<f64>,
+    pub samples: Vec<Sample>,
+    pub stats: Stats,
+    pub events: Vec<EventRecord>,
+    pub summary: Summary,
+    pub method: Method,
+}
+
+/// Why a run failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimulationError {
+    /// A scenario value does not apply to the model.
+    Model(ModelError),
+    /// Newton's method found no static equilibrium.
+    Equilibrium(String),
+    /// The integration stopped.
+    Solver(SolverError),
+}
+
+impl fmt::Display for SimulationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimulationError::Model(e) => write!(f, "{e}"),
+            SimulationError::Equilibrium(m) => write!(f, "no static equilibrium: {m}"),
+            SimulationError::Solver(e) => write!(f, "integration failed: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for SimulationError {}
+
+impl From<SolverError> for SimulationError {
+    fn from(e: SolverError) -> Self {
+        SimulationError::Solver(e)
+    }
+}
+
+/// Simulates `system` under `scenario` (the scenario's parameter overrides are
+/// applied to a copy of `system`).
+pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<SimulationResult, SimulationError> {
+    let mut model = system.clone();
+    let parameter_names: Vec<String> = model
+        .parameter_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    for &(index, value) in &scenario.parameters {
+        model
+            .set_parameter(&parameter_names[index], value)
+            .map_err(SimulationError::Model)?;
+    }
+    let mut q = SVector::<f64, N>::zeros();
+    let mut v = SVector::<f64, N>::zeros();
+    for &(i, value) in &scenario.initial_coordinates {
+        q[i] = value;
+    }
+    for &(i, value) in &scenario.initial_velocities {
+        v[i] = value;
+    }
+    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    if !scenario.equilibrium.is_empty() {
+        q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
+    }
+    let y0 = PhaseState::new(q, v);
+    let mut samples = Vec::new();
+    let mut sample_error = None;
+    let interval = scenario.output_interval;
+    let mut next = 0usize;
+    let mut record =
+        |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(problem, t, y) {
+            Ok(s) => samples.push(s),
+            Err(e) => {
+                sample_error.get_or_insert(e);
+            }
+        };
+    record(&mut problem, 0.0, &y0);
+    next += 1;
+    let t_end = scenario.t_end;
+    let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
+        let mut y = PhaseState::zeros();
+        loop {
+            let t = (next as f64 * interval).min(t_end);
+            if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
+                break;
+            }
+            step.eval(t, &mut y);
+            record(problem, t, &y);
+            next += 1;
+        }
+    };
+    let options: Options = scenario.options;
+    let outcome = match scenario.method {
+        Method::Dopri5 => dopri5::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+        Method::Rk4 => rk4::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+        Method::Implicit => sdirk::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+    }?;
+    if let Some(message) = problem.failure.take() {
+        return Err(SimulationError::Solver(SolverError::Rhs {
+            t: outcome.t,
+            message,
+        }));
+    }
+    if let Some(e) = sample_error {
+        return Err(e.into());
+    }
+    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
+    let input_columns = model
+        .input_sites()
+        .iter()
+        .map(|&(input, _)| model.input_names()[input].to_string())
+        .collect();
+    let summary = Summary::compute(
+        &samples,
+        scenario,
+        q.as_slice(),
+        &outcome.stats,
+        weld,
+        gravity(&model),
+    );
+    Ok(SimulationResult {
+        model: model.model_name().to_string(),
+        coordinates: model
+            .coordinate_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        input_columns,
+        initial_q: q.as_slice().to_vec(),
+        samples,
+        stats: outcome.stats,
+        events: problem.events,
+        summary,
+        method: scenario.method,
+    })
+}
+
+/// The model's `g` parameter if it has one, else standard gravity.
+fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
+    model
+        .parameter_names()
+        .iter()
+        .position(|p| *p == "g")
+        .map_or(9.80665, |i| model.parameters()[i])
+}
+
+fn sample<const N: usize, S: LagrangianSystem<N>>(
+    problem: &mut CrashProblem<N, S>,
+    t: f64,
+    y: &PhaseState<N>,
+) -> Result<Sample, SolverError> {
+    let a = problem.accelerations(t, &y.q, &y.v)?;
+    let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
+    let inputs = problem.input_values(t, &y.q, &y.v);
+    Ok(Sample {
+        t,
+        q: y.q.as_slice().to_vec(),
+        v: y.v.as_slice().to_vec(),
+        a: a.as_slice().to_vec(),
+        kinetic: energies.kinetic,
+        potential: energies.potential,
+        dissipated: y.work[0],
+        external_work: y.work[1],
+        inputs,
+    })
+}

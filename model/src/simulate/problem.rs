@@ -1,0 +1,180 @@
+//! A model with its crash components as an ODE problem in `(q, q̇, work)`.
+
+use crate::crash::BoundInputs;
+use crate::ode::sdirk::{AccelerationJacobian, AccelerationJacobians};
+use crate::ode::{Direction, EventAction, OdeProblem, PhaseState, SolverError};
+use crate::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
+use nalgebra::{SMatrix, SVector};
+
+/// One event handled during a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord {
+    pub t: f64,
+    pub component: String,
+    pub description: String,
+}
+
+/// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`.
+pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
+    pub system: &'a S,
+    pub inputs: BoundInputs,
+    pub events: Vec<EventRecord>,
+    /// A failure inside an event handler, reported after the run.
+    pub failure: Option<String>,
+    arguments: Vec<f64>,
+}
+
+impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
+    pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
+        let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
+        CrashProblem {
+            system,
+            inputs,
+            events: Vec::new(),
+            failure: None,
+            arguments,
+        }
+    }
+
+    fn input_failure(&self, t: f64) -> Result<(), SolverError> {
+        match self.inputs.take_failure() {
+            Some(message) => Err(SolverError::Rhs { t, message }),
+            None => Ok(()),
+        }
+    }
+
+    /// `q̈` at a state, by Cholesky (LU fallback) solution of `M q̈ = f`.
+    pub fn accelerations(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, SolverError> {
+        let result = self.system.accelerations(t, q, v, &self.inputs);
+        self.input_failure(t)?;
+        result.map_err(|e| match e {
+            ModelError::SingularMassMatrix { t, q } => SolverError::Rhs {
+                t,
+                message: format!(
+                    "the mass matrix is singular or not positive definite at q = {q:?}"
+                ),
+            },
+            other => SolverError::Rhs {
+                t,
+                message: other.to_string(),
+            },
+        })
+    }
+
+    /// The value of every input the dynamics calls, in input-site order.
+    pub fn input_values(&mut self, t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>) -> Vec<f64> {
+        self.system.input_arguments(t, q, v, &mut self.arguments);
+        let mut offset = 0;
+        let mut values = Vec::with_capacity(self.system.input_sites().len());
+        for &(input, arity) in self.system.input_sites() {
+            values.push(
+                self.inputs
+                    .value(input, &self.arguments[offset..offset + arity]),
+            );
+            offset += arity;
+        }
+        values
+    }
+}
+
+impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for CrashProblem<'_, N, S> {
+    fn rhs(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+        dy: &mut PhaseState<N>,
+    ) -> Result<(), SolverError> {
+        let a = self.accelerations(t, &y.q, &y.v)?;
+        let energies = self.system.energies(t, &y.q, &y.v, &self.inputs);
+        self.input_failure(t)?;
+        *dy = PhaseState {
+            q: y.v,
+            v: a,
+            work: [energies.damping_power, energies.external_power],
+        };
+        Ok(())
+    }
+
+    fn event_count(&self) -> usize {
+        self.inputs.event_count()
+    }
+
+    fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), SolverError> {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        self.inputs
+            .events(&self.arguments, g)
+            .map_err(|message| SolverError::Rhs { t, message })
+    }
+
+    fn event_direction(&self, k: usize) -> Direction {
+        self.inputs.event_direction(k)
+    }
+
+    fn on_event(&mut self, k: usize, t: f64, y: &mut PhaseState<N>) -> EventAction {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        match self.inputs.on_event(k, t, &self.arguments) {
+            Ok((component, description)) => {
+                self.events.push(EventRecord {
+                    t,
+                    component,
+                    description,
+                });
+                EventAction::Restart
+            }
+            Err(message) => {
+                self.failure = Some(message);
+                EventAction::Stop
+            }
+        }
+    }
+}
+
+impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashProblem<'_, N, S> {
+    /// `∂a/∂q = M⁻¹ (∂f/∂q − ∂(M a)/∂q)`, `∂a/∂v = M⁻¹ ∂f/∂q̇` from the
+    /// model's derived Jacobians; `None` when the spec did not ask for them.
+    fn acceleration_jacobians(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+    ) -> Result<Option<AccelerationJacobian<N>>, SolverError> {
+        let a = self.accelerations(t, &y.q, &y.v)?;
+        let mut j = Jacobians::<N>::default();
+        match self
+            .system
+            .jacobians(t, &y.q, &y.v, &a, &self.inputs, &mut j)
+        {
+            Err(ModelError::JacobiansNotDerived) => return Ok(None),
+            Err(e) => {
+                return Err(SolverError::Rhs {
+                    t,
+                    message: e.to_string(),
+                });
+            }
+            Ok(()) => {}
+        }
+        self.input_failure(t)?;
+        let mass = self.system.mass_matrix(t, &y.q, &y.v, &self.inputs);
+        let solve = |m: SMatrix<f64, N, N>| -> Option<SMatrix<f64, N, N>> {
+            let mut out = SMatrix::<f64, N, N>::zeros();
+            for k in 0..N {
+                let column: SVector<f64, N> = m.column(k).into_owned();
+                out.set_column(k, &crate::solve_mass_matrix(mass, &column)?);
+            }
+            Some(out)
+        };
+        let singular = || SolverError::Rhs {
+            t,
+            message: format!("singular mass matrix at q = {:?}", y.q.as_slice()),
+        };
+        let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
+        let a_v = solve(j.forcing_qd).ok_or_else(singular)?;
+        Ok(Some((a_q, a_v)))
+    }
+}
