@@ -168,3 +168,168 @@ fn chain_specs_compile() {
     assert_eq!(compiled.derivation.dimension, 4);
     assert_eq!(lpm(&["chain", "0"]).status.code(), Some(2));
 }
+
+fn temporary_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("lpm-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn simulate_writes_the_summary_trajectory_and_plots() {
+    let out = temporary_dir("simulate");
+    let run = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = stdout(&run);
+    assert!(
+        text.contains("specs/scenarios/yaris_full_frontal.toml"),
+        "found the default scenario: {text}"
+    );
+    assert!(
+        text.contains("max dynamic crush") && text.contains("weld failure"),
+        "{text}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let mut keys: Vec<&str> = summary
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    keys.sort();
+    let mut expected = vec![
+        "max_crush_m",
+        "time_of_max_crush_s",
+        "time_to_zero_velocity_s",
+        "max_theta1_deg",
+        "max_theta2_deg",
+        "peak_deceleration_g",
+        "rebound_velocity_mps",
+        "weld_failure_time_s",
+        "steps",
+        "rejected_steps",
+        "rhs_evaluations",
+        "energy_balance_error_rel",
+    ];
+    expected.sort();
+    assert_eq!(keys, expected);
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("t [s],r [m],theta1 [rad],theta2 [rad],r_dot [m/s],"),
+        "{header}"
+    );
+    for column in [
+        "kinetic_energy [J]",
+        "dissipated_energy [J]",
+        "external_work [J]",
+        "crush [N]",
+        "weld [N*m]",
+        "barrier_z1 [N]",
+    ] {
+        assert!(header.contains(column), "{column} missing from {header}");
+    }
+    assert_eq!(csv.lines().count(), 1 + 1501, "0–150 ms at 0.1 ms");
+    let svg = std::fs::read_to_string(out.join("plots.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("Crush force against crush"));
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn simulate_rejects_unknown_names_with_suggestions() {
+    let out = temporary_dir("bad");
+    let o = out.to_str().unwrap();
+    let typo = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        o,
+        "--set",
+        "k9=1",
+    ]);
+    assert_eq!(typo.status.code(), Some(2));
+    assert!(
+        stderr(&typo).contains("`k9` does not exist in the spec; did you mean `k1`?"),
+        "{}",
+        stderr(&typo)
+    );
+    let key = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        o,
+        "--set",
+        "components.front_end.unloding=\"elastic\"",
+    ]);
+    assert_eq!(key.status.code(), Some(2));
+    assert!(
+        stderr(&key).contains("unknown field `unloding`"),
+        "{}",
+        stderr(&key)
+    );
+    let method = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        o,
+        "--set",
+        "simulation.rtol=-1",
+    ]);
+    assert_eq!(method.status.code(), Some(2));
+    assert!(
+        !out.join("summary.json").exists(),
+        "nothing written on failure"
+    );
+}
+
+#[test]
+fn simulate_runs_a_spec_without_a_scenario_given_constants() {
+    let out = temporary_dir("plain");
+    let run = lpm(&[
+        "simulate",
+        "specs/spring_mass_damper.lpm",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "push=1",
+        "--t-end",
+        "0.5",
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    // m ẍ + c ẋ + k x = 1 from rest: x(0.5 s) is close to the static 1/k = 0.01 m
+    // (damped oscillation, ω = 10 rad/s, ζ = 0.025: still ringing, within ±1e-2).
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let x = last[1];
+    let (zeta, omega) = (0.025f64, 10.0f64);
+    let wd = omega * (1.0 - zeta * zeta).sqrt();
+    let t = 0.5;
+    let exact = 0.01
+        * (1.0 - (-zeta * omega * t).exp() * ((wd * t).cos() + zeta * omega / wd * (wd * t).sin()));
+    assert!((x - exact).abs() < 1e-8, "x(0.5) = {x}, exact {exact}");
+    let missing = lpm(&[
+        "simulate",
+        "specs/spring_mass_damper.lpm",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(missing.status.code(), Some(4));
+    assert!(
+        stderr(&missing).contains("input function `push` has no value"),
+        "{}",
+        stderr(&missing)
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}
