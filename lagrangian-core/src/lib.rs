@@ -15,6 +15,7 @@ pub mod optimize;
 pub mod program;
 pub mod rational;
 pub mod spec;
+pub mod units;
 
 pub use diagnostic::{Diagnostic, SpecErrors};
 pub use expr::{ConstantInputs, InputFunctions, NoInputs};

@@ -328,6 +328,19 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
             _ => {}
         }
     }
+    // Dimensional consistency, where units are declared.
+    let mut unit_problems = Vec::new();
+    let mut dimensions =
+        super::unit_check::scope(&coordinates, &parameters, &input_decls, &mut unit_problems);
+    unit_problems.extend(super::unit_check::check(
+        &mut dimensions,
+        &statements,
+        &input_decls,
+        &coordinates,
+    ));
+    for d in unit_problems {
+        problems.push(d);
+    }
     let [kinetic, potential, dissipation] = energies;
     let Some(kinetic) = kinetic else {
         if problems.0.is_empty() {

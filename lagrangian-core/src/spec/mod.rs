@@ -1,9 +1,11 @@
 //! Model specifications: the spec language, its parser and the resolved [`Model`].
 
 mod ast;
+mod dimensions;
 mod expression;
 mod lower;
 mod parse;
+mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
 pub(crate) use expression::engine_diagnostic;

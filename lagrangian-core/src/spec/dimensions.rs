@@ -1,0 +1,234 @@
+//! Dimensional consistency of the expressions as written.
+//!
+//! Dimensions are inferred on the syntax tree, so a mismatch is reported at
+//! the term the user wrote: in a sum, the terms whose dimension differs from
+//! that of most terms. A name without a declared unit has an unknown
+//! dimension, and checks involving it are skipped, so specs without units
+//! are not checked at all.
+
+use crate::diagnostic::{Diagnostic, SpanRange};
+use crate::rational::Rational;
+use crate::units::Dimension;
+use rustc_hash::FxHashMap;
+use syn::{BinOp, Expr, Lit, UnOp};
+
+/// The declared dimensions of an input function.
+#[derive(Clone, Debug)]
+pub(super) struct InputDimensions {
+    pub arguments: Vec<Option<Dimension>>,
+    pub value: Option<Dimension>,
+}
+
+/// Dimensions of the names in scope (`None`: unknown).
+#[derive(Default)]
+pub(super) struct DimensionScope {
+    pub names: FxHashMap<String, Option<Dimension>>,
+    pub inputs: FxHashMap<String, InputDimensions>,
+}
+
+/// A dimension that is not the required one.
+pub(super) fn mismatch(
+    span: SpanRange,
+    what: &str,
+    found: Dimension,
+    expected: Dimension,
+) -> Diagnostic {
+    Diagnostic::new(
+        span,
+        format!("{what} has dimension {found}, but must have {expected}"),
+    )
+}
+
+impl DimensionScope {
+    /// Infers the dimension of `expr` and checks it against `expected`.
+    pub fn check(
+        &self,
+        expr: &Expr,
+        expected: Option<Dimension>,
+        what: &str,
+    ) -> Result<Option<Dimension>, Diagnostic> {
+        let found = self.infer(expr)?;
+        if let (Some(f), Some(e)) = (found, expected)
+            && f != e
+        {
+            return Err(mismatch(SpanRange::of(expr), what, f, e)
+                .with_help("check the units of the parameters and coordinates it uses"));
+        }
+        Ok(found)
+    }
+
+    pub fn infer(&self, expr: &Expr) -> Result<Option<Dimension>, Diagnostic> {
+        Ok(match expr {
+            Expr::Lit(_) => Some(Dimension::NONE),
+            Expr::Paren(p) => self.infer(&p.expr)?,
+            Expr::Group(g) => self.infer(&g.expr)?,
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.infer(&u.expr)?,
+            Expr::Binary(b) => match b.op {
+                BinOp::Add(_) | BinOp::Sub(_) => self.sum(expr)?,
+                BinOp::Mul(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, false),
+                BinOp::Div(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, true),
+                _ => None,
+            },
+            Expr::Path(p) => p
+                .path
+                .get_ident()
+                .and_then(|i| self.names.get(&i.to_string()).copied())
+                .flatten(),
+            Expr::Call(call) => {
+                let Expr::Path(p) = &*call.func else {
+                    return Ok(None);
+                };
+                let Some(name) = p.path.get_ident().map(|i| i.to_string()) else {
+                    return Ok(None);
+                };
+                let args: Vec<&Expr> = call.args.iter().collect();
+                self.call(&name, &args, SpanRange::of(call))?
+            }
+            Expr::MethodCall(m) => {
+                let mut args = vec![&*m.receiver];
+                args.extend(m.args.iter());
+                let name = match m.method.to_string().as_str() {
+                    "powi" | "powf" => "pow".to_string(),
+                    other => other.to_string(),
+                };
+                self.call(&name, &args, SpanRange::of(m))?
+            }
+            _ => None,
+        })
+    }
+
+    fn call(
+        &self,
+        name: &str,
+        args: &[&Expr],
+        span: SpanRange,
+    ) -> Result<Option<Dimension>, Diagnostic> {
+        match name {
+            "sin" | "cos" | "tan" | "exp" | "ln" => {
+                if let Some(d) = self.infer(args[0])?
+                    && !d.is_none()
+                {
+                    return Err(Diagnostic::new(
+                        SpanRange::of(args[0]),
+                        format!(
+                            "the argument of `{name}` has dimension {d}; it must be dimensionless (an angle in rad, or a ratio)"
+                        ),
+                    ));
+                }
+                Ok(Some(Dimension::NONE))
+            }
+            "sqrt" => Ok(self.infer(args[0])?.map(|d| d.pow(Rational::HALF))),
+            "pow" => {
+                let base = self.infer(args[0])?;
+                Ok(base.zip(constant(args[1])).map(|(d, e)| d.pow(e)))
+            }
+            "dot" => Ok(self.infer(args[0])?.map(|d| d.div(Dimension::TIME))),
+            "ddot" => Ok(self
+                .infer(args[0])?
+                .map(|d| d.div(Dimension::TIME.pow(Rational::integer(2))))),
+            _ => {
+                let Some(input) = self.inputs.get(name) else {
+                    return Ok(None);
+                };
+                for (k, (arg, declared)) in args.iter().zip(&input.arguments).enumerate() {
+                    if let (Some(found), Some(declared)) = (self.infer(arg)?, declared)
+                        && found != *declared
+                    {
+                        return Err(mismatch(
+                            SpanRange::of(*arg),
+                            &format!("argument {} of `{name}`", k + 1),
+                            found,
+                            *declared,
+                        ));
+                    }
+                }
+                let _ = span;
+                Ok(input.value)
+            }
+        }
+    }
+
+    /// A sum's terms must agree; the ones that differ from most are reported.
+    fn sum(&self, expr: &Expr) -> Result<Option<Dimension>, Diagnostic> {
+        let mut terms = Vec::new();
+        addends(expr, &mut terms);
+        let mut known: Vec<(&Expr, Dimension)> = Vec::new();
+        for term in &terms {
+            if let Some(d) = self.infer(term)? {
+                known.push((term, d));
+            }
+        }
+        let Some(majority) = majority(known.iter().map(|(_, d)| *d)) else {
+            return Ok(None);
+        };
+        if let Some((term, d)) = known.iter().find(|(_, d)| *d != majority) {
+            return Err(Diagnostic::new(
+                SpanRange::of(*term),
+                format!(
+                    "this term has dimension {d}, but the other terms of the sum have {majority}"
+                ),
+            ));
+        }
+        Ok(if known.len() == terms.len() {
+            Some(majority)
+        } else {
+            None
+        })
+    }
+}
+
+/// The terms of a sum `a + b − c …` (the sign does not matter here).
+pub(super) fn addends<'a>(expr: &'a Expr, out: &mut Vec<&'a Expr>) {
+    match expr {
+        Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
+            addends(&b.left, out);
+            addends(&b.right, out);
+        }
+        Expr::Paren(p) if matches!(&*p.expr, Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_))) =>
+        {
+            // A parenthesized sum is one term of the outer sum.
+            out.push(expr);
+        }
+        _ => out.push(expr),
+    }
+}
+
+/// The most frequent value (the first on a tie).
+pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimension> {
+    let mut counts: Vec<(Dimension, usize)> = Vec::new();
+    for v in values {
+        match counts.iter_mut().find(|(d, _)| *d == v) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((v, 1)),
+        }
+    }
+    let mut best: Option<(Dimension, usize)> = None;
+    for (d, n) in counts {
+        if best.is_none_or(|(_, m)| n > m) {
+            best = Some((d, n));
+        }
+    }
+    best.map(|(d, _)| d)
+}
+
+fn product(a: Option<Dimension>, b: Option<Dimension>, divide: bool) -> Option<Dimension> {
+    let (a, b) = (a?, b?);
+    Some(if divide { a.div(b) } else { a.mul(b) })
+}
+
+/// A constant exponent written as `n`, `-n`, `p/q` or `-(p/q)`.
+fn constant(expr: &Expr) -> Option<Rational> {
+    match expr {
+        Expr::Lit(l) => match &l.lit {
+            Lit::Int(i) => Rational::parse_decimal(i.base10_digits()),
+            Lit::Float(f) => Rational::parse_decimal(f.base10_digits()),
+            _ => None,
+        },
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => constant(&u.expr)?.checked_neg(),
+        Expr::Paren(p) => constant(&p.expr),
+        Expr::Binary(b) if matches!(b.op, BinOp::Div(_)) => {
+            constant(&b.left)?.checked_div(constant(&b.right)?)
+        }
+        _ => None,
+    }
+}

@@ -1,0 +1,262 @@
+//! Physical dimensions for consistency checks: exponents of mass, length and
+//! time. The radian is dimensionless (SI), so `N*m/rad · rad = N*m = J`.
+//!
+//! Units are written between brackets in a spec: `[kg]`, `[N*s/m]`,
+//! `[m/s^2]`, `[kg*m^2]`, `[s^-1]`. Known names: kg, m, s, N, J, W, Pa, Hz,
+//! rad and 1. Only dimensions are checked; values are taken to be in SI units.
+
+use crate::rational::Rational;
+use std::fmt;
+
+/// `kg^mass · m^length · s^time`.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Dimension {
+    pub mass: Rational,
+    pub length: Rational,
+    pub time: Rational,
+}
+
+const fn dim(mass: i64, length: i64, time: i64) -> Dimension {
+    Dimension {
+        mass: Rational::integer(mass),
+        length: Rational::integer(length),
+        time: Rational::integer(time),
+    }
+}
+
+impl Dimension {
+    pub const NONE: Dimension = dim(0, 0, 0);
+    pub const MASS: Dimension = dim(1, 0, 0);
+    pub const LENGTH: Dimension = dim(0, 1, 0);
+    pub const TIME: Dimension = dim(0, 0, 1);
+    pub const FORCE: Dimension = dim(1, 1, -2);
+    pub const ENERGY: Dimension = dim(1, 2, -2);
+    pub const POWER: Dimension = dim(1, 2, -3);
+
+    pub fn mul(self, o: Dimension) -> Dimension {
+        self.combine(o, Rational::ONE)
+    }
+
+    pub fn div(self, o: Dimension) -> Dimension {
+        self.combine(o, Rational::MINUS_ONE)
+    }
+
+    fn combine(self, o: Dimension, sign: Rational) -> Dimension {
+        let add = |a: Rational, b: Rational| {
+            a.checked_add(b.checked_mul(sign).unwrap_or_default())
+                .unwrap_or_default()
+        };
+        Dimension {
+            mass: add(self.mass, o.mass),
+            length: add(self.length, o.length),
+            time: add(self.time, o.time),
+        }
+    }
+
+    pub fn pow(self, e: Rational) -> Dimension {
+        let p = |a: Rational| a.checked_mul(e).unwrap_or_default();
+        Dimension {
+            mass: p(self.mass),
+            length: p(self.length),
+            time: p(self.time),
+        }
+    }
+
+    pub fn is_none(self) -> bool {
+        self == Dimension::NONE
+    }
+
+    /// Parses a unit such as `N*m/rad` or `m/s^2`.
+    pub fn parse(text: &str) -> Result<Dimension, String> {
+        let tokens = tokenize(text)?;
+        let mut parser = Parser { tokens, at: 0 };
+        let d = parser.product()?;
+        match parser.tokens.get(parser.at) {
+            None => Ok(d),
+            Some(t) => Err(format!("unexpected `{t}` in unit `{text}`")),
+        }
+    }
+}
+
+fn tokenize(text: &str) -> Result<Vec<String>, String> {
+    let mut tokens = Vec::new();
+    let mut chars = text.chars().peekable();
+    while let Some(&c) = chars.peek() {
+        if c.is_whitespace() {
+            chars.next();
+        } else if c.is_alphabetic() {
+            let mut word = String::new();
+            while let Some(&c) = chars.peek().filter(|c| c.is_alphanumeric() || **c == '_') {
+                word.push(c);
+                chars.next();
+            }
+            tokens.push(word);
+        } else if c.is_ascii_digit() {
+            let mut number = String::new();
+            while let Some(&c) = chars.peek().filter(|c| c.is_ascii_digit()) {
+                number.push(c);
+                chars.next();
+            }
+            tokens.push(number);
+        } else if "*/^()-·".contains(c) {
+            tokens.push(if c == '·' {
+                "*".to_string()
+            } else {
+                c.to_string()
+            });
+            chars.next();
+        } else {
+            return Err(format!("unexpected character `{c}` in unit `{text}`"));
+        }
+    }
+    Ok(tokens)
+}
+
+struct Parser {
+    tokens: Vec<String>,
+    at: usize,
+}
+
+impl Parser {
+    fn peek(&self) -> Option<&str> {
+        self.tokens.get(self.at).map(String::as_str)
+    }
+
+    fn next(&mut self) -> Option<String> {
+        let t = self.tokens.get(self.at).cloned();
+        self.at += 1;
+        t
+    }
+
+    fn product(&mut self) -> Result<Dimension, String> {
+        let mut d = self.power()?;
+        while let Some(op) = self
+            .peek()
+            .filter(|t| *t == "*" || *t == "/")
+            .map(str::to_string)
+        {
+            self.next();
+            let rhs = self.power()?;
+            d = if op == "*" { d.mul(rhs) } else { d.div(rhs) };
+        }
+        Ok(d)
+    }
+
+    fn power(&mut self) -> Result<Dimension, String> {
+        let base = self.atom()?;
+        if self.peek() != Some("^") {
+            return Ok(base);
+        }
+        self.next();
+        let negative = self.peek() == Some("-");
+        if negative {
+            self.next();
+        }
+        let exponent = match self.next() {
+            Some(n) if n.chars().all(|c| c.is_ascii_digit()) => {
+                n.parse::<i64>().map_err(|e| e.to_string())?
+            }
+            other => {
+                return Err(format!(
+                    "expected an integer exponent, found `{}`",
+                    other.unwrap_or_default()
+                ));
+            }
+        };
+        Ok(base.pow(Rational::integer(if negative {
+            -exponent
+        } else {
+            exponent
+        })))
+    }
+
+    fn atom(&mut self) -> Result<Dimension, String> {
+        match self.next().as_deref() {
+            Some("(") => {
+                let d = self.product()?;
+                match self.next().as_deref() {
+                    Some(")") => Ok(d),
+                    _ => Err("missing `)` in unit".to_string()),
+                }
+            }
+            Some("1") | Some("rad") => Ok(Dimension::NONE),
+            Some("kg") => Ok(Dimension::MASS),
+            Some("m") => Ok(Dimension::LENGTH),
+            Some("s") => Ok(Dimension::TIME),
+            Some("N") => Ok(Dimension::FORCE),
+            Some("J") => Ok(Dimension::ENERGY),
+            Some("W") => Ok(Dimension::POWER),
+            Some("Pa") => Ok(Dimension::FORCE.div(Dimension::LENGTH.pow(Rational::integer(2)))),
+            Some("Hz") => Ok(Dimension::NONE.div(Dimension::TIME)),
+            Some(other) => Err(format!(
+                "unknown unit `{other}`; use kg, m, s, N, J, W, Pa, Hz or rad (values are SI)"
+            )),
+            None => Err("incomplete unit".to_string()),
+        }
+    }
+}
+
+impl fmt::Display for Dimension {
+    /// `N`, `J`, `W` when it is one, else `kg·m²·s⁻²`-style; `1` when dimensionless.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (name, d) in [
+            ("N", Dimension::FORCE),
+            ("J", Dimension::ENERGY),
+            ("W", Dimension::POWER),
+        ] {
+            if *self == d {
+                return write!(f, "{name}");
+            }
+        }
+        if self.is_none() {
+            return write!(f, "1 (dimensionless)");
+        }
+        let mut parts = Vec::new();
+        for (name, e) in [("kg", self.mass), ("m", self.length), ("s", self.time)] {
+            if e.is_zero() {
+                continue;
+            }
+            if e.is_one() {
+                parts.push(name.to_string());
+            } else {
+                parts.push(format!("{name}^{e}"));
+            }
+        }
+        write!(f, "{}", parts.join("·"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_the_units_of_the_specs() {
+        assert_eq!(Dimension::parse("N*m/rad").unwrap(), Dimension::ENERGY);
+        assert_eq!(Dimension::parse("N*s/m").unwrap(), dim(1, 0, -1));
+        assert_eq!(Dimension::parse("m/s^2").unwrap(), dim(0, 1, -2));
+        assert_eq!(Dimension::parse("kg*m^2").unwrap(), dim(1, 2, 0));
+        assert_eq!(
+            Dimension::parse("s^-1").unwrap(),
+            Dimension::parse("Hz").unwrap()
+        );
+        assert_eq!(
+            Dimension::parse("N*m*s/rad").unwrap(),
+            Dimension::parse("J*s").unwrap()
+        );
+        assert_eq!(Dimension::parse("(m/s)^2").unwrap(), dim(0, 2, -2));
+        assert!(
+            Dimension::parse("km")
+                .unwrap_err()
+                .contains("unknown unit `km`")
+        );
+        assert!(Dimension::parse("m^x").is_err());
+    }
+
+    #[test]
+    fn displays_named_and_compound_dimensions() {
+        assert_eq!(Dimension::ENERGY.to_string(), "J");
+        assert_eq!(dim(1, 0, -1).to_string(), "kg·s^-1");
+        assert_eq!(Dimension::NONE.to_string(), "1 (dimensionless)");
+    }
+}

@@ -1,0 +1,96 @@
+//! Dimensional analysis catches inconsistent terms and names them.
+
+use lagrangian_core::Compiled;
+
+const HEADER: &str = "model Cart;
+coordinates { x [m], theta [rad] }
+parameters { m [kg] = 1.0, k [N/m] = 10.0, c [N*s/m] = 1.0, l [m] = 1.0, g [m/s^2] = 9.81, kt [N*m/rad] = 5.0 }
+inputs { push(t [s]) [N], torque(angle [rad]) [N*m] }
+kinetic = 0.5 * m * pow(dot(x), 2) + 0.5 * m * pow(l * dot(theta), 2);
+";
+
+fn error_of(body: &str) -> String {
+    let source = format!("{HEADER}{body}");
+    match Compiled::from_source(&source) {
+        Ok(_) => panic!("should not compile:\n{body}"),
+        Err(e) => e.render("cart.lpm", &source),
+    }
+}
+
+#[test]
+fn a_consistent_spec_with_units_compiles() {
+    let source = format!(
+        "{HEADER}potential = 0.5 * k * pow(x, 2) + 0.5 * kt * pow(theta, 2) + m * g * l * (1.0 - cos(theta));
+dissipation = 0.5 * c * pow(dot(x), 2);
+force x = push(t);
+force theta = torque(theta);
+force at (x + l * sin(theta)) = (push(t));"
+    );
+    Compiled::from_source(&source).unwrap();
+}
+
+#[test]
+fn a_planted_term_in_the_potential_is_named() {
+    let text = error_of("potential = 0.5 * k * pow(x, 2) + m * g * x + k * theta;");
+    assert!(
+        text.contains("this term has dimension kg·s^-2, but the other terms of the sum have J"),
+        "{text}"
+    );
+    assert!(text.contains("cart.lpm:6:47"), "{text}");
+    assert!(
+        text.contains("^^^^^^^^^"),
+        "the caret spans `k * theta`: {text}"
+    );
+}
+
+#[test]
+fn energies_powers_and_forces_have_their_dimensions() {
+    let text = error_of("potential = k * x;");
+    assert!(
+        text.contains("the potential energy has dimension N, but must have J"),
+        "{text}"
+    );
+    let text = error_of("dissipation = 0.5 * c * pow(dot(x), 2) * l;");
+    assert!(
+        text.contains("the dissipation function has dimension"),
+        "{text}"
+    );
+    assert!(text.contains("must have W"), "{text}");
+    let text = error_of("force theta = push(t);");
+    assert!(
+        text.contains("the generalized force on `theta` has dimension N, but must have J"),
+        "{text}"
+    );
+    let text = error_of("force at (x) = (torque(theta));");
+    assert!(text.contains("this force component"), "{text}");
+}
+
+#[test]
+fn function_arguments_are_checked() {
+    let text = error_of("potential = m * g * l * cos(x);");
+    assert!(
+        text.contains("the argument of `cos` has dimension m; it must be dimensionless"),
+        "{text}"
+    );
+    let text = error_of("force theta = torque(x);");
+    assert!(
+        text.contains("argument 1 of `torque` has dimension m, but must have 1 (dimensionless)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn unknown_units_are_reported_at_the_unit() {
+    let source = "model A; coordinates { x [km] } parameters { m [kg] = 1.0 } kinetic = 0.5 * m * pow(dot(x), 2);";
+    let text = Compiled::from_source(source)
+        .err()
+        .unwrap()
+        .render("a.lpm", source);
+    assert!(text.contains("unknown unit `km`"), "{text}");
+}
+
+#[test]
+fn specs_without_units_are_not_checked() {
+    let source = "model A; coordinates { x } parameters { m = 1.0, k = 2.0 } kinetic = 0.5 * m * pow(dot(x), 2); potential = k * x + m;";
+    Compiled::from_source(source).unwrap();
+}
