@@ -33,14 +33,6 @@ impl Dimension {
     pub const ENERGY: Dimension = dim(1, 2, -2);
     pub const POWER: Dimension = dim(1, 2, -3);
 
-    pub fn mul(self, o: Dimension) -> Dimension {
-        self.combine(o, Rational::ONE)
-    }
-
-    pub fn div(self, o: Dimension) -> Dimension {
-        self.combine(o, Rational::MINUS_ONE)
-    }
-
     fn combine(self, o: Dimension, sign: Rational) -> Dimension {
         let add = |a: Rational, b: Rational| {
             a.checked_add(b.checked_mul(sign).unwrap_or_default())
@@ -137,7 +129,7 @@ impl Parser {
         {
             self.next();
             let rhs = self.power()?;
-            d = if op == "*" { d.mul(rhs) } else { d.div(rhs) };
+            d = if op == "*" { d * rhs } else { d / rhs };
         }
         Ok(d)
     }
@@ -186,13 +178,27 @@ impl Parser {
             Some("N") => Ok(Dimension::FORCE),
             Some("J") => Ok(Dimension::ENERGY),
             Some("W") => Ok(Dimension::POWER),
-            Some("Pa") => Ok(Dimension::FORCE.div(Dimension::LENGTH.pow(Rational::integer(2)))),
-            Some("Hz") => Ok(Dimension::NONE.div(Dimension::TIME)),
+            Some("Pa") => Ok(Dimension::FORCE / Dimension::LENGTH.pow(Rational::integer(2))),
+            Some("Hz") => Ok(Dimension::NONE / Dimension::TIME),
             Some(other) => Err(format!(
                 "unknown unit `{other}`; use kg, m, s, N, J, W, Pa, Hz or rad (values are SI)"
             )),
             None => Err("incomplete unit".to_string()),
         }
+    }
+}
+
+impl std::ops::Mul for Dimension {
+    type Output = Dimension;
+    fn mul(self, o: Dimension) -> Dimension {
+        self.combine(o, Rational::ONE)
+    }
+}
+
+impl std::ops::Div for Dimension {
+    type Output = Dimension;
+    fn div(self, o: Dimension) -> Dimension {
+        self.combine(o, Rational::MINUS_ONE)
     }
 }
 

@@ -122,10 +122,10 @@ impl DimensionScope {
                 let base = self.infer(args[0])?;
                 Ok(base.zip(constant(args[1])).map(|(d, e)| d.pow(e)))
             }
-            "dot" => Ok(self.infer(args[0])?.map(|d| d.div(Dimension::TIME))),
+            "dot" => Ok(self.infer(args[0])?.map(|d| d / Dimension::TIME)),
             "ddot" => Ok(self
                 .infer(args[0])?
-                .map(|d| d.div(Dimension::TIME.pow(Rational::integer(2))))),
+                .map(|d| d / Dimension::TIME.pow(Rational::integer(2)))),
             _ => {
                 let Some(input) = self.inputs.get(name) else {
                     return Ok(None);
@@ -213,7 +213,7 @@ pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimens
 
 fn product(a: Option<Dimension>, b: Option<Dimension>, divide: bool) -> Option<Dimension> {
     let (a, b) = (a?, b?);
-    Some(if divide { a.div(b) } else { a.mul(b) })
+    Some(if divide { a / b } else { a * b })
 }
 
 /// A constant exponent written as `n`, `-n`, `p/q` or `-(p/q)`.

@@ -80,7 +80,7 @@ pub(super) fn check(
             let expected = position
                 .and_then(|p| dims.arguments[p])
                 .zip(dims.value)
-                .map(|(a, v)| v.div(a));
+                .map(|(a, v)| v / a);
             take(local.check(
                 expr,
                 expected,
@@ -124,7 +124,7 @@ pub(super) fn check(
                 coordinate, value, ..
             } => {
                 let expected =
-                    coordinate_dimension(&coordinate.to_string()).map(|d| Dimension::ENERGY.div(d));
+                    coordinate_dimension(&coordinate.to_string()).map(|d| Dimension::ENERGY / d);
                 take(scope.check(
                     value,
                     expected,
@@ -136,7 +136,7 @@ pub(super) fn check(
             } => {
                 for (p, f) in point.iter().zip(components) {
                     let position = take(scope.infer(p));
-                    let expected = position.map(|d| Dimension::ENERGY.div(d));
+                    let expected = position.map(|d| Dimension::ENERGY / d);
                     take(scope.check(
                         f,
                         expected,
