@@ -5,6 +5,7 @@
 //! → [`program::Program`] (optimized straight-line code) → Rust source
 //! ([`emit`]) or direct evaluation ([`program::Program::run`]).
 
+pub mod audit;
 pub mod derive;
 pub mod diagnostic;
 pub mod emit;

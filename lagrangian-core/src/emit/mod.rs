@@ -7,5 +7,5 @@ pub mod pretty;
 mod rust;
 
 pub use equations::render_equations;
-pub use notation::{Notation, latex_name};
+pub use notation::{Notation, Printer, latex_name};
 pub use rust::{RustOptions, emit_file, emit_model};

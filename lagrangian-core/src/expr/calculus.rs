@@ -128,6 +128,64 @@ impl Store {
         acc.finish(self)
     }
 
+    /// `e` with every node `a` for which `replace(a)` gives a value replaced by
+    /// it (outermost first), rebuilt in canonical form.
+    pub fn replace_atoms(
+        &mut self,
+        e: ExprId,
+        replace: &mut dyn FnMut(&mut Store, ExprId) -> Option<ExprId>,
+    ) -> ExprId {
+        let mut memo = FxHashMap::default();
+        self.replace_memo(e, replace, &mut memo)
+    }
+
+    fn replace_memo(
+        &mut self,
+        e: ExprId,
+        replace: &mut dyn FnMut(&mut Store, ExprId) -> Option<ExprId>,
+        memo: &mut FxHashMap<ExprId, ExprId>,
+    ) -> ExprId {
+        if let Some(&r) = memo.get(&e) {
+            return r;
+        }
+        let r = match replace(self, e) {
+            Some(value) => value,
+            None => match self.node(e).clone() {
+                Node::Num(_) | Node::Sym(_) => e,
+                Node::Add(items) => {
+                    let mut acc = TermAccumulator::default();
+                    for &(t, c) in items.iter() {
+                        let rt = self.replace_memo(t, replace, memo);
+                        acc.add_expr(self, rt, c);
+                    }
+                    acc.finish(self)
+                }
+                Node::Mul(items) => {
+                    let mut result = Store::ONE;
+                    for &(b, x) in items.iter() {
+                        let rb = self.replace_memo(b, replace, memo);
+                        let p = self.pow(rb, x);
+                        result = self.mul(result, p);
+                    }
+                    result
+                }
+                Node::Func(f, u) => {
+                    let ru = self.replace_memo(u, replace, memo);
+                    self.apply(f, ru)
+                }
+                Node::Input(input, args) => {
+                    let new_args = args
+                        .iter()
+                        .map(|&a| self.replace_memo(a, replace, memo))
+                        .collect();
+                    self.input_call(input as usize, new_args)
+                }
+            },
+        };
+        memo.insert(e, r);
+        r
+    }
+
     /// `e` with symbols replaced by expressions, rebuilt in canonical form.
     pub fn substitute(&mut self, e: ExprId, binding: &FxHashMap<SymbolId, ExprId>) -> ExprId {
         let mask = binding.keys().fold(0u64, |m, s| m | super::symbol_bit(*s));

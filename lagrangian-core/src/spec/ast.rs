@@ -103,4 +103,24 @@ pub enum Item {
     Jacobians {
         keyword: Span,
     },
+    /// `hand_derived { … }` — equations derived by hand, for the audit.
+    HandDerived(HandSection),
+}
+
+/// A user's own equations of motion, to be audited against the derivation.
+pub struct HandSection {
+    pub keyword: Span,
+    pub doc: Vec<String>,
+    /// `convention = name;`
+    pub convention: Option<Ident>,
+    /// `small_angle_order = n;`
+    pub small_angle_order: Option<syn::LitInt>,
+    /// `symbols { name = expression, … }`: the hand derivation's own names.
+    pub symbols: Vec<(Ident, Expr)>,
+    /// `assume { input = expression, … }`: values of inputs the hand model lacks.
+    pub assumptions: Vec<(Ident, Expr)>,
+    /// `q = expression;`: the left-hand side of the equation of coordinate `q`.
+    pub equations: Vec<(Ident, Expr)>,
+    /// `force q = expression;`: the generalized force on `q`.
+    pub forces: Vec<(Ident, Expr)>,
 }

@@ -42,6 +42,7 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("sqrt", 1),
     ("pow", 2),
     ("dot", 1),
+    ("ddot", 1),
 ];
 
 pub(super) struct ExpressionLowering<'a> {
@@ -49,6 +50,8 @@ pub(super) struct ExpressionLowering<'a> {
     pub scope: &'a Scope,
     pub input_names: &'a [String],
     input_calls: Vec<(usize, SpanRange)>,
+    /// `ddot(q)` is allowed (hand-derived equations only).
+    accelerations: bool,
 }
 
 impl<'a> ExpressionLowering<'a> {
@@ -58,7 +61,14 @@ impl<'a> ExpressionLowering<'a> {
             scope,
             input_names,
             input_calls: Vec::new(),
+            accelerations: false,
         }
+    }
+
+    /// Allows `ddot(q)`, the second time derivative (hand-derived equations).
+    pub fn with_accelerations(mut self) -> Self {
+        self.accelerations = true;
+        self
     }
 
     pub fn lower(mut self, expr: &Expr) -> Result<Lowered, Diagnostic> {
@@ -244,6 +254,18 @@ impl<'a> ExpressionLowering<'a> {
             "exp" => self.store.exp(x),
             "ln" => self.store.ln(x),
             "sqrt" => self.store.sqrt(x),
+            "ddot" => {
+                if !self.accelerations {
+                    return Err(Diagnostic::new(span, "`ddot` is only available in `hand_derived` equations")
+                        .with_help("accelerations are what the derivation solves for; T, V, D and forces cannot contain them"));
+                }
+                let velocity = self.dot(x, span)?;
+                let d =
+                    self.store
+                        .time_derivative(velocity, &self.scope.coordinates, self.scope.time);
+                self.check_engine(span, "`ddot`")?;
+                d
+            }
             _ => self.dot(x, span)?,
         })
     }

@@ -341,6 +341,35 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     for d in unit_problems {
         problems.push(d);
     }
+    let coordinate_dimensions = coordinates
+        .iter()
+        .map(|c| dimensions.names.get(&c.name).copied().flatten())
+        .collect();
+    let mut hand_derived = None;
+    for item in &statements {
+        if let Item::HandDerived(section) = item {
+            if hand_derived.is_some() {
+                problems.push(Diagnostic::new(
+                    section.keyword,
+                    "only one `hand_derived` section is allowed",
+                ));
+                continue;
+            }
+            let context = super::hand::HandContext {
+                store: &mut store,
+                scope: &scope,
+                input_names: &input_names,
+                dimensions: &mut dimensions,
+                coordinates: &coordinates,
+                parameters: &parameters,
+                inputs: &inputs,
+            };
+            match super::hand::lower(section, context) {
+                Ok(h) => hand_derived = Some(h),
+                Err(list) => list.into_iter().for_each(|d| problems.push(d)),
+            }
+        }
+    }
     let [kinetic, potential, dissipation] = energies;
     let Some(kinetic) = kinetic else {
         if problems.0.is_empty() {
@@ -374,6 +403,8 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         definitions,
         jacobians: jacobians_span.is_some(),
         jacobians_span,
+        hand_derived,
+        coordinate_dimensions,
     })
 }
 

@@ -3,12 +3,14 @@
 mod ast;
 mod dimensions;
 mod expression;
+mod hand;
 mod lower;
 mod parse;
 mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
 pub(crate) use expression::engine_diagnostic;
+pub use hand::{Assumed, Convention, HandDerived, HandEquation, HandTerm};
 
 use crate::diagnostic::{SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, ExprId, Store, SymbolId};
@@ -85,6 +87,10 @@ pub struct Model {
     /// Whether the spec asks for the Jacobians (`jacobians;`).
     pub jacobians: bool,
     pub jacobians_span: Option<Span>,
+    /// Hand-derived equations to audit (`hand_derived { … }`).
+    pub hand_derived: Option<HandDerived>,
+    /// Dimensions of the coordinates, where declared.
+    pub coordinate_dimensions: Vec<Option<crate::units::Dimension>>,
 }
 
 impl Model {
@@ -111,5 +117,5 @@ impl Model {
 
 /// Names that the spec language gives a meaning of its own.
 pub const RESERVED_NAMES: &[&str] = &[
-    "t", "pi", "dot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow",
+    "t", "pi", "dot", "ddot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow",
 ];

@@ -10,10 +10,14 @@
 //!                    | ("kinetic" | "potential" | "dissipation") "=" EXPR ";"
 //!                    | "force" IDENT "=" EXPR ";"
 //!                    | "force" "at" "(" EXPR,* ")" "=" "(" EXPR,* ")" ";"
-//!                    | "jacobians" ";" )
+//!                    | "jacobians" ";"
+//!                    | "hand_derived" "{" hand-entry* "}" )
 //! decl        = doc* IDENT unit?
 //! unit        = "[" unit tokens "]"              e.g. [N*s/m], [m/s^2]
 //! derivs      = "{" ("d" "(" IDENT ")" "=" EXPR),* "}"
+//! hand-entry  = "convention" "=" IDENT ";" | "small_angle_order" "=" INT ";"
+//!             | ("symbols" | "assume") "{" (IDENT "=" EXPR),* "}"
+//!             | "force"? IDENT "=" EXPR ";"       (EXPR may use ddot(q))
 //! ```
 
 use super::ast::*;
@@ -34,6 +38,11 @@ mod kw {
     syn::custom_keyword!(at);
     syn::custom_keyword!(jacobians);
     syn::custom_keyword!(d);
+    syn::custom_keyword!(hand_derived);
+    syn::custom_keyword!(convention);
+    syn::custom_keyword!(small_angle_order);
+    syn::custom_keyword!(symbols);
+    syn::custom_keyword!(assume);
 }
 
 impl Parse for SpecAst {
@@ -124,6 +133,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         let keyword = input.parse::<kw::jacobians>()?.span;
         input.parse::<Token![;]>()?;
         Ok(Item::Jacobians { keyword })
+    } else if look.peek(kw::hand_derived) {
+        parse_hand_section(input, doc)
     } else {
         Err(look.error())
     }
@@ -268,4 +279,65 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
         arguments,
         derivatives,
     })
+}
+
+/// `hand_derived { convention = …; small_angle_order = …; symbols {…} assume {…} q = …; force q = …; }`
+fn parse_hand_section(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
+    let keyword = input.parse::<kw::hand_derived>()?.span;
+    let body;
+    braced!(body in input);
+    let mut section = HandSection {
+        keyword,
+        doc,
+        convention: None,
+        small_angle_order: None,
+        symbols: Vec::new(),
+        assumptions: Vec::new(),
+        equations: Vec::new(),
+        forces: Vec::new(),
+    };
+    while !body.is_empty() {
+        // Comments before entries arrive as doc attributes only for `///`; skip them.
+        body.call(Attribute::parse_outer)?;
+        if body.peek(kw::convention) {
+            body.parse::<kw::convention>()?;
+            body.parse::<Token![=]>()?;
+            section.convention = Some(body.parse()?);
+            body.parse::<Token![;]>()?;
+        } else if body.peek(kw::small_angle_order) {
+            body.parse::<kw::small_angle_order>()?;
+            body.parse::<Token![=]>()?;
+            section.small_angle_order = Some(body.parse()?);
+            body.parse::<Token![;]>()?;
+        } else if body.peek(kw::symbols) || body.peek(kw::assume) {
+            let is_symbols = body.peek(kw::symbols);
+            if is_symbols {
+                body.parse::<kw::symbols>()?;
+            } else {
+                body.parse::<kw::assume>()?;
+            }
+            let pairs = parse_braced_list(&body, |s: ParseStream| {
+                let name: Ident = s.parse()?;
+                s.parse::<Token![=]>()?;
+                Ok((name, s.parse::<Expr>()?))
+            })?;
+            if is_symbols {
+                section.symbols.extend(pairs);
+            } else {
+                section.assumptions.extend(pairs);
+            }
+        } else if body.peek(kw::force) {
+            body.parse::<kw::force>()?;
+            let coordinate: Ident = body.parse()?;
+            body.parse::<Token![=]>()?;
+            section.forces.push((coordinate, body.parse()?));
+            body.parse::<Token![;]>()?;
+        } else {
+            let coordinate: Ident = body.parse()?;
+            body.parse::<Token![=]>()?;
+            section.equations.push((coordinate, body.parse()?));
+            body.parse::<Token![;]>()?;
+        }
+    }
+    Ok(Item::HandDerived(section))
 }

@@ -2,8 +2,9 @@
 //!
 //! Exit status: 0 success, 1 input/output error, 2 bad command line or
 //! scenario, 3 the spec does not compile, 4 the model cannot be evaluated or
-//! simulated.
+//! simulated, 5 the audit found equations that disagree.
 
+mod audit;
 mod commands;
 mod simulate;
 
@@ -88,6 +89,14 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Audit the spec's hand-derived equations against the derivation; exits
+    /// with status 5 when an equation disagrees.
+    Audit {
+        /// The spec file (`.lpm`) with a `hand_derived` section.
+        spec: PathBuf,
+        #[arg(long, value_parser = ["markdown", "json"], default_value = "markdown")]
+        format: String,
+    },
     /// Print the spec of an N-link planar pendulum chain.
     Chain {
         /// Number of links.
@@ -97,19 +106,22 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let success = |text: String| (text, 0u8);
     let result = match cli.command {
         Command::Derive {
             spec,
             format,
             runtime,
-        } => commands::derive(&spec, format, &runtime),
+        } => commands::derive(&spec, format, &runtime).map(success),
         Command::Eval {
             spec,
             state,
             time,
             set,
-        } => commands::eval(&spec, &state, time, &set),
-        Command::Chain { links } => commands::chain(links),
+        } => commands::eval(&spec, &state, time, &set).map(success),
+        Command::Chain { links } => commands::chain(links).map(success),
+        Command::Audit { spec, format } => audit::run(&spec, format == "json")
+            .map(|(text, disagrees)| (text, if disagrees { audit::DISAGREES } else { 0 })),
         Command::Simulate {
             spec,
             scenario,
@@ -128,12 +140,13 @@ fn main() -> ExitCode {
             atol,
             method,
             out,
-        }),
+        })
+        .map(success),
     };
     match result {
-        Ok(text) => {
+        Ok((text, code)) => {
             print!("{text}");
-            ExitCode::SUCCESS
+            ExitCode::from(code)
         }
         Err(failure) => {
             eprintln!("{}", failure.message.trim_end());

@@ -1,0 +1,316 @@
+//! Term-by-term comparison of a derived and a hand-derived expression.
+
+use super::small_angle;
+use crate::emit::{Notation, Printer};
+use crate::expr::{Evaluator, ExprId, Node, Store, SymbolKind};
+use crate::rational::Rational;
+use rustc_hash::FxHashMap;
+
+/// How one group of terms compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupVerdict {
+    /// Identical.
+    Match,
+    /// Identical after the small-angle approximation.
+    SmallAngle,
+    /// Both sides have terms here, and they differ.
+    Differs,
+    /// The derivation has terms here, the hand derivation none.
+    MissingByHand,
+    /// The hand derivation has terms here, the derivation none.
+    ExtraByHand,
+}
+
+/// A difference between the two sides after the small-angle approximation.
+/// Terms are combined by kind, and the combination printed factored.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Finding {
+    /// Terms of the derivation that the hand derivation lacks.
+    Missing {
+        expr: ExprId,
+        term: String,
+        latex: String,
+    },
+    /// Terms of the hand derivation that the derivation lacks.
+    Extra {
+        expr: ExprId,
+        term: String,
+        latex: String,
+    },
+    /// Terms of the derivation that the hand derivation has with the opposite sign.
+    Sign {
+        expr: ExprId,
+        term: String,
+        latex: String,
+    },
+    /// Terms of the derivation that the hand derivation has `ratio` times.
+    Scaled {
+        expr: ExprId,
+        term: String,
+        latex: String,
+        ratio: Rational,
+    },
+}
+
+impl Finding {
+    /// The terms concerned (derived side, except for `Extra`), in the store.
+    pub fn expr(&self) -> ExprId {
+        match self {
+            Finding::Missing { expr, .. }
+            | Finding::Extra { expr, .. }
+            | Finding::Sign { expr, .. }
+            | Finding::Scaled { expr, .. } => *expr,
+        }
+    }
+
+    /// The terms concerned (derived side, except for `Extra`), as text.
+    pub fn term(&self) -> &str {
+        match self {
+            Finding::Missing { term, .. }
+            | Finding::Extra { term, .. }
+            | Finding::Sign { term, .. }
+            | Finding::Scaled { term, .. } => term,
+        }
+    }
+}
+
+/// The terms multiplying one acceleration, velocity product or input.
+#[derive(Clone, Debug)]
+pub struct GroupAudit {
+    /// What the terms multiply (a monomial of velocities, accelerations and inputs).
+    pub motion_expr: ExprId,
+    /// The coefficients on both sides, in the store.
+    pub derived_expr: ExprId,
+    pub hand_expr: ExprId,
+    /// What the terms multiply, e.g. `dot(r)*dot(theta1)`; `1` for none.
+    pub motion: String,
+    pub motion_latex: String,
+    pub derived: String,
+    pub derived_latex: String,
+    pub hand: String,
+    pub hand_latex: String,
+    pub verdict: GroupVerdict,
+    pub findings: Vec<Finding>,
+}
+
+/// Velocities, accelerations and input values head a group.
+fn is_motion(store: &Store, base: ExprId) -> bool {
+    match store.node(base) {
+        Node::Sym(s) => matches!(
+            store.symbol_info(*s).kind,
+            SymbolKind::Velocity(_) | SymbolKind::Acceleration(_)
+        ),
+        Node::Input(..) => true,
+        _ => false,
+    }
+}
+
+type Groups = Vec<(ExprId, ExprId)>;
+
+/// `(motion monomial, coefficient)` pairs of `e`.
+fn split(store: &mut Store, e: ExprId) -> Groups {
+    let mut map: FxHashMap<ExprId, Vec<(ExprId, Rational)>> = FxHashMap::default();
+    let mut order = Vec::new();
+    for (t, c) in store.terms(e) {
+        let (motion, rest): (Vec<_>, Vec<_>) = store
+            .factors(t)
+            .into_iter()
+            .partition(|(b, _)| is_motion(store, *b));
+        let key = store.raw_monomial(motion);
+        let coefficient = store.raw_monomial(rest);
+        if !map.contains_key(&key) {
+            order.push(key);
+        }
+        map.entry(key).or_default().push((coefficient, c));
+    }
+    order
+        .into_iter()
+        .map(|key| {
+            let items = map.remove(&key).unwrap_or_default();
+            (key, store.linear_combination(&items))
+        })
+        .collect()
+}
+
+fn text(store: &mut Store, e: ExprId, notation: Notation) -> String {
+    Printer { store, notation }.expr(e)
+}
+
+/// The groups of both sides, in the order of the derivation then the hand's extras.
+pub fn groups(store: &mut Store, derived: ExprId, hand: ExprId, order: u32) -> Vec<GroupAudit> {
+    let d = split(store, derived);
+    let h = split(store, hand);
+    let mut keys: Vec<ExprId> = d.iter().map(|(k, _)| *k).collect();
+    keys.extend(
+        h.iter()
+            .map(|(k, _)| *k)
+            .filter(|k| !d.iter().any(|(x, _)| x == k)),
+    );
+    let find = |list: &Groups, k: ExprId| {
+        list.iter()
+            .find(|(x, _)| *x == k)
+            .map_or(Store::ZERO, |(_, c)| *c)
+    };
+    keys.into_iter()
+        .map(|key| {
+            let (cd, ch) = (find(&d, key), find(&h, key));
+            let (sd, sh) = (small_angle(store, cd, order), small_angle(store, ch, order));
+            let verdict = if cd == ch {
+                GroupVerdict::Match
+            } else if sd == sh {
+                GroupVerdict::SmallAngle
+            } else if ch == Store::ZERO {
+                GroupVerdict::MissingByHand
+            } else if cd == Store::ZERO {
+                GroupVerdict::ExtraByHand
+            } else {
+                GroupVerdict::Differs
+            };
+            let findings = match verdict {
+                GroupVerdict::Match | GroupVerdict::SmallAngle => Vec::new(),
+                _ => term_findings(store, sd, sh),
+            };
+            GroupAudit {
+                motion_expr: key,
+                derived_expr: cd,
+                hand_expr: ch,
+                motion: text(store, key, Notation::Text),
+                motion_latex: text(store, key, Notation::Latex),
+                derived: text(store, cd, Notation::Text),
+                derived_latex: text(store, cd, Notation::Latex),
+                hand: text(store, ch, Notation::Text),
+                hand_latex: text(store, ch, Notation::Latex),
+                verdict,
+                findings,
+            }
+        })
+        .collect()
+}
+
+/// Term-level differences between two (small-angle) coefficients, combined
+/// by kind: missing, extra, opposite sign, and each coefficient ratio.
+fn term_findings(store: &mut Store, derived: ExprId, hand: ExprId) -> Vec<Finding> {
+    let d = store.terms(derived);
+    let h = store.terms(hand);
+    let mut missing = Vec::new();
+    let mut scaled: Vec<(Rational, Vec<(ExprId, Rational)>)> = Vec::new();
+    for &(t, cd) in &d {
+        match h.iter().find(|(x, _)| *x == t) {
+            None => missing.push((t, cd)),
+            Some(&(_, ch)) if ch == cd => {}
+            Some(&(_, ch)) => {
+                let ratio = ch.checked_div(cd).unwrap_or_default();
+                match scaled.iter_mut().find(|(r, _)| *r == ratio) {
+                    Some((_, list)) => list.push((t, cd)),
+                    None => scaled.push((ratio, vec![(t, cd)])),
+                }
+            }
+        }
+    }
+    let extra: Vec<(ExprId, Rational)> = h
+        .iter()
+        .filter(|(t, _)| !d.iter().any(|(x, _)| x == t))
+        .copied()
+        .collect();
+    let render = |store: &mut Store, terms: &[(ExprId, Rational)]| {
+        let e = store.linear_combination(terms);
+        (
+            e,
+            text(store, e, Notation::Text),
+            text(store, e, Notation::Latex),
+        )
+    };
+    let mut findings = Vec::new();
+    if !missing.is_empty() {
+        let (expr, term, latex) = render(store, &missing);
+        findings.push(Finding::Missing { expr, term, latex });
+    }
+    for (ratio, terms) in scaled {
+        let (expr, term, latex) = render(store, &terms);
+        findings.push(if ratio == Rational::MINUS_ONE {
+            Finding::Sign { expr, term, latex }
+        } else {
+            Finding::Scaled {
+                expr,
+                term,
+                latex,
+                ratio,
+            }
+        });
+    }
+    if !extra.is_empty() {
+        let (expr, term, latex) = render(store, &extra);
+        findings.push(Finding::Extra { expr, term, latex });
+    }
+    findings
+}
+
+/// Random symbol values: coordinates within ±0.1 (the small-angle regime),
+/// velocities within ±1, accelerations within ±10, default parameters.
+pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
+    let mut seed = 0x5eed_u64;
+    let mut uniform = move |a: f64, b: f64| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    (0..count)
+        .map(|_| {
+            model
+                .store
+                .symbols()
+                .iter()
+                .map(|s| match s.kind {
+                    SymbolKind::Coordinate(_) => uniform(-0.1, 0.1),
+                    SymbolKind::Velocity(_) => uniform(-1.0, 1.0),
+                    SymbolKind::Acceleration(_) => uniform(-10.0, 10.0),
+                    SymbolKind::Parameter(i) => model.parameters[i].default,
+                    SymbolKind::Time => uniform(0.0, 0.1),
+                    SymbolKind::Pi => std::f64::consts::PI,
+                    SymbolKind::InputArgument { .. } => 0.0,
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Input values for the residuals: smooth functions of the arguments.
+fn inputs(index: usize, args: &[f64]) -> f64 {
+    1.0e3 * (1.0 + index as f64) * (1.0 + args.iter().map(|a| (3.0 * a).sin()).sum::<f64>())
+}
+
+/// `(max, median)` of `|derived − hand| / (Σ|derived terms| + Σ|hand terms|)`.
+pub fn residuals(
+    model: &crate::Model,
+    derived: ExprId,
+    hand: ExprId,
+    states: &[Vec<f64>],
+) -> (f64, f64) {
+    let store = &model.store;
+    let terms: Vec<(ExprId, Rational)> = store
+        .terms(derived)
+        .into_iter()
+        .chain(store.terms(hand))
+        .collect();
+    let mut values: Vec<f64> = states
+        .iter()
+        .map(|state| {
+            let mut ev = Evaluator::new(store, state.clone(), &inputs);
+            let scale: f64 = terms
+                .iter()
+                .map(|&(t, c)| (c.to_f64() * ev.eval(t)).abs())
+                .sum();
+            let difference = (ev.eval(derived) - ev.eval(hand)).abs();
+            if scale > 0.0 {
+                difference / scale
+            } else {
+                difference
+            }
+        })
+        .collect();
+    values.sort_by(f64::total_cmp);
+    let max = values.last().copied().unwrap_or(0.0);
+    let median = values.get(values.len() / 2).copied().unwrap_or(0.0);
+    (max, median)
+}
