@@ -12,6 +12,7 @@ pub mod emit;
 pub mod examples;
 pub mod expand;
 pub mod expr;
+pub mod generate;
 pub mod optimize;
 pub mod program;
 pub mod rational;

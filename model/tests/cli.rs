@@ -333,3 +333,76 @@ fn simulate_runs_a_spec_without_a_scenario_given_constants() {
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn audit_reports_the_paper_and_exits_with_status_5() {
+    let markdown = lpm(&["audit", "specs/yaris_double_pendulum.lpm"]);
+    assert_eq!(markdown.status.code(), Some(5), "{}", stderr(&markdown));
+    let text = stdout(&markdown);
+    assert!(
+        text.starts_with("# Audit of the hand-derived equations of `YarisDoublePendulum`"),
+        "{text}"
+    );
+    assert!(
+        text.contains("Terms written with the wrong dimension"),
+        "{text}"
+    );
+    let json = lpm(&[
+        "audit",
+        "specs/yaris_double_pendulum.lpm",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(json.status.code(), Some(5));
+    let report: serde_json::Value = serde_json::from_str(&stdout(&json)).unwrap();
+    assert_eq!(report["disagrees"], true);
+    assert_eq!(report["audits"].as_array().unwrap().len(), 6);
+    let r = &report["audits"][0];
+    assert_eq!(
+        (r["part"].as_str(), r["coordinate"].as_str()),
+        (Some("equation"), Some("r"))
+    );
+    assert!(
+        r["groups"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|g| g["multiplies"] == "ddot(r)" && g["comparison"] == "match")
+    );
+    let none = lpm(&["audit", "specs/double_pendulum.lpm"]);
+    assert_eq!(none.status.code(), Some(2));
+    assert!(stderr(&none).contains("no `hand_derived` section"));
+}
+
+#[test]
+fn generate_check_finds_the_committed_files_up_to_date() {
+    let check = lpm(&["generate", "--check"]);
+    assert_eq!(
+        check.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&check),
+        stderr(&check)
+    );
+    assert!(stdout(&check).contains("up to date"));
+}
+
+#[test]
+fn derive_markdown_renders_github_math() {
+    let out = stdout(&lpm(&[
+        "derive",
+        "specs/yaris_double_pendulum.lpm",
+        "--format",
+        "markdown",
+    ]));
+    assert!(
+        out.starts_with("# Equations of motion of `YarisDoublePendulum`"),
+        "{out}"
+    );
+    assert!(out.contains("| $\\theta_{1}$ | `rad` |"), "{out}");
+    assert!(out.contains("$$\nM_{r r} = m_{1} + m_{2}\n$$"), "{out}");
+    assert!(
+        out.contains("\\begin{aligned}"),
+        "long equations are broken over lines"
+    );
+}

@@ -68,6 +68,18 @@ impl Printer<'_> {
         self.tree(&tree, Prec::Sum)
     }
 
+    /// The top-level terms of the display form, each with its sign, for
+    /// breaking a long equation over lines.
+    pub fn terms(&mut self, e: ExprId) -> Vec<(bool, String)> {
+        match super::pretty::pretty(self.store, e) {
+            Tree::Add(parts) => parts
+                .iter()
+                .map(|(negated, t)| (*negated, self.tree(t, Prec::Product)))
+                .collect(),
+            other => vec![(false, self.tree(&other, Prec::Sum))],
+        }
+    }
+
     fn tree(&mut self, t: &Tree, min: Prec) -> String {
         let (text, prec) = match t {
             Tree::Num(c) => (

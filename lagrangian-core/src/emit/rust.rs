@@ -163,7 +163,6 @@ pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
             }
         }
 
-        #[automatically_derived]
         #[allow(non_camel_case_types)]
         impl #ty {
             /// Names of the generalized coordinates, in order.

@@ -1,7 +1,7 @@
 //! The subcommands, each returning the text to print or a failure.
 
 use crate::DeriveFormat;
-use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations};
+use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
 use lagrangian_core::{Compiled, ConstantInputs};
 use lagrangian_model::InterpretedModel;
 use std::path::Path;
@@ -40,6 +40,7 @@ pub fn derive(path: &Path, format: DeriveFormat, runtime: &str) -> Result<String
     match format {
         DeriveFormat::Text => Ok(render_equations(&mut compiled, Notation::Text)),
         DeriveFormat::Latex => Ok(render_equations(&mut compiled, Notation::Latex)),
+        DeriveFormat::Markdown => Ok(render_markdown(&mut compiled, &path.display().to_string())),
         DeriveFormat::Rust => {
             let runtime = syn::parse_str::<syn::Path>(runtime).map_err(|e| {
                 Failure::usage(format!(

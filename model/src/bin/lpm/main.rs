@@ -2,10 +2,12 @@
 //!
 //! Exit status: 0 success, 1 input/output error, 2 bad command line or
 //! scenario, 3 the spec does not compile, 4 the model cannot be evaluated or
-//! simulated, 5 the audit found equations that disagree.
+//! simulated, 5 the audit found equations that disagree, 6 generated files
+//! are stale (`generate --check`).
 
 mod audit;
 mod commands;
+mod generate;
 mod simulate;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -29,6 +31,8 @@ pub enum DeriveFormat {
     Text,
     /// The same as a LaTeX `aligned` block.
     Latex,
+    /// A Markdown document with `$$` math (GitHub renders it).
+    Markdown,
     /// The Rust code the `lagrangian!` macro generates.
     Rust,
 }
@@ -97,6 +101,15 @@ enum Command {
         #[arg(long, value_parser = ["markdown", "json"], default_value = "markdown")]
         format: String,
     },
+    /// Regenerate the committed files of generated/ from specs/ (or, with
+    /// --check, list the stale ones and exit with status 6).
+    Generate {
+        /// The workspace root (with specs/ and generated/).
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+        #[arg(long)]
+        check: bool,
+    },
     /// Print the spec of an N-link planar pendulum chain.
     Chain {
         /// Number of links.
@@ -120,6 +133,7 @@ fn main() -> ExitCode {
             set,
         } => commands::eval(&spec, &state, time, &set).map(success),
         Command::Chain { links } => commands::chain(links).map(success),
+        Command::Generate { root, check } => generate::run(&root, check),
         Command::Audit { spec, format } => audit::run(&spec, format == "json")
             .map(|(text, disagrees)| (text, if disagrees { audit::DISAGREES } else { 0 })),
         Command::Simulate {
