@@ -78,10 +78,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
-                        name,
-                        Self::PARAMETERS,
-                    ),
+                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
                 );
             }
         }
@@ -135,5 +132,6 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         out: &mut [f64],
-    ) {}
+    ) {
+    }
 }

@@ -1,0 +1,197 @@
+//! One evaluation of the paper model's accelerations q̈ = M⁻¹ f (M, f and the
+//! Cholesky solve): the macro-compiled code, the interpreter, and a
+//! hand-written implementation of the same equations (written here from the
+//! SymPy-verified derivation, the way one would by hand).
+//!
+//! `cargo bench -p lagrangian --bench evaluation`
+
+use lagrangian::nalgebra::{Matrix3, Vector3};
+use lagrangian::{
+    InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, solve_mass_matrix,
+};
+use std::hint::black_box;
+use std::time::Instant;
+
+mod models {
+    lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
+}
+use models::YarisDoublePendulum as Yaris;
+
+/// Cheap input values: a linear crush spring and damper, constant barrier
+/// forces, a linear weld.
+fn inputs(index: usize, args: &[f64]) -> f64 {
+    match index {
+        Yaris::INPUT_CRUSH => 8.0e5 * args[0] + 3.0e3 * args[1],
+        Yaris::INPUT_WELD => 1.0e5 * args[0] + 1.0e3 * args[1],
+        _ => 1.0e3,
+    }
+}
+
+/// The paper's model (as in specs/yaris_double_pendulum.lpm) written by hand.
+fn hand_written<I: InputFunctions>(
+    p: &Yaris,
+    t: f64,
+    q: &Vector3<f64>,
+    v: &Vector3<f64>,
+    inputs: &I,
+) -> (Matrix3<f64>, Vector3<f64>) {
+    let (r, th1, th2) = (q[0], q[1], q[2]);
+    let (rd, w1, w2) = (v[0], v[1], v[2]);
+    let (s1, c1) = th1.sin_cos();
+    let (s2, c2) = th2.sin_cos();
+    let sd = s1 * c2 - c1 * s2; // sin(θ1 − θ2)
+    let cd = c1 * c2 + s1 * s2; // cos(θ1 − θ2)
+    let a = p.l0 + r; // radius of body 1
+    let b = a + p.l1; // radius of the weld
+    let c = a - p.l3; // radius of the front suspension
+    let (m1, m2, l2) = (p.m1, p.m2, p.l2);
+    let m2l2 = m2 * l2;
+    let moment = m1 * a + m2 * b;
+    // Suspension deflections and rates (eqs 21–22).
+    let r1 = c * th1;
+    let r2 = b * th1 + l2 * th2;
+    let r1d = rd * th1 + c * w1;
+    let r2d = rd * th1 + b * w1 + l2 * w2;
+    let crush = inputs.value(Yaris::INPUT_CRUSH, &[r, rd]);
+    let weld = inputs.value(Yaris::INPUT_WELD, &[th2, w2]);
+    let bx1 = inputs.value(Yaris::INPUT_BARRIER_X1, &[t]);
+    let bz1 = inputs.value(Yaris::INPUT_BARRIER_Z1, &[t]);
+    let bx2 = inputs.value(Yaris::INPUT_BARRIER_X2, &[t]);
+    let bz2 = inputs.value(Yaris::INPUT_BARRIER_Z2, &[t]);
+    let m12 = m2l2 * sd;
+    let m13 = m2l2 * b * cd;
+    let mass = Matrix3::new(
+        m1 + m2,
+        0.0,
+        m12,
+        0.0,
+        m1 * a * a + m2 * b * b + p.I1,
+        m13,
+        m12,
+        m13,
+        m2l2 * l2 + p.I2,
+    );
+    let f_r = moment * w1 * w1 + m2l2 * cd * w2 * w2
+        - (m1 + m2) * p.g * s1
+        - p.k_comp * r
+        - (p.k1 * r1 + p.k2 * r2 + p.c1 * r1d + p.c2 * r2d) * th1
+        - p.c_comp * rd
+        - crush
+        + c1 * (bx1 + bx2)
+        + s1 * (bz1 + bz2);
+    let f_1 = -2.0 * moment * rd * w1
+        - b * m12 * w2 * w2
+        - moment * p.g * c1
+        - c * (p.k1 * r1 + p.c1 * r1d)
+        - b * (p.k2 * r2 + p.c2 * r2d)
+        - s1 * (a * bx1 + b * bx2)
+        + c1 * (a * bz1 + b * bz2);
+    let f_2 = -2.0 * m2l2 * cd * rd * w1 + b * m12 * w1 * w1
+        - l2 * (p.k2 * r2 + p.c2 * r2d + m2 * p.g * c2)
+        - p.k_tor * th2
+        - p.c_tor * w2
+        - weld
+        + l2 * (c2 * bz2 - s2 * bx2);
+    (mass, Vector3::new(f_r, f_1, f_2))
+}
+
+/// Median nanoseconds per call of `f` over 11 batches of `n` calls.
+fn median_ns(n: usize, mut f: impl FnMut(usize) -> f64) -> f64 {
+    let mut sink = 0.0;
+    for i in 0..n {
+        sink += f(i);
+    }
+    let mut times: Vec<f64> = (0..11)
+        .map(|_| {
+            let start = Instant::now();
+            for i in 0..n {
+                sink += f(i);
+            }
+            start.elapsed().as_nanos() as f64 / n as f64
+        })
+        .collect();
+    black_box(sink);
+    times.sort_by(f64::total_cmp);
+    times[5]
+}
+
+fn main() {
+    let compiled = Yaris::default();
+    let source = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/specs/yaris_double_pendulum.lpm"
+    ))
+    .unwrap();
+    let interpreted =
+        Interpreted::<3>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let states: Vec<(Vector3<f64>, Vector3<f64>)> = (0..64)
+        .map(|k| {
+            let x = k as f64 / 64.0;
+            (
+                Vector3::new(-0.5 * x, 0.1 - 0.2 * x, 0.05 * x),
+                Vector3::new(-15.0 + x, 0.3 * x, -0.2 * x),
+            )
+        })
+        .collect();
+    // The three implementations agree before anything is timed.
+    for (q, v) in &states {
+        let (mh, fh) = hand_written(&compiled, 0.01, q, v, &inputs);
+        let (mc, fc) = compiled.mass_matrix_and_forcing_pair(0.01, q, v, &inputs);
+        assert!((mh - mc).amax() <= 1e-12 * mc.amax(), "M differs");
+        assert!(
+            (fh - fc).amax() <= 1e-10 * fc.amax(),
+            "f differs: {fh} vs {fc}"
+        );
+    }
+    let n = 200_000;
+    let pick = |i: usize| &states[i % states.len()];
+    let compiled_ns = median_ns(n, |i| {
+        let (q, v) = pick(i);
+        compiled
+            .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
+            .unwrap()[0]
+    });
+    let interpreted_ns = median_ns(n, |i| {
+        let (q, v) = pick(i);
+        interpreted
+            .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
+            .unwrap()[0]
+    });
+    let hand_ns = median_ns(n, |i| {
+        let (q, v) = pick(i);
+        let (m, f) = hand_written(
+            &compiled,
+            black_box(0.01),
+            black_box(q),
+            black_box(v),
+            &inputs,
+        );
+        solve_mass_matrix(m, &f).unwrap()[0]
+    });
+    let dynamics_ns = median_ns(n, |i| {
+        let (q, v) = pick(i);
+        compiled
+            .mass_matrix_and_forcing_pair(black_box(0.01), black_box(q), black_box(v), &inputs)
+            .1[0]
+    });
+    let energies_ns = median_ns(n, |i| {
+        let (q, v) = pick(i);
+        compiled
+            .energies(black_box(0.01), black_box(q), black_box(v), &inputs)
+            .external_power
+    });
+    println!("| implementation | q̈ = M⁻¹f (ns) | ratio to hand-written |");
+    println!("|---|---|---|");
+    println!("| hand-written | {hand_ns:.1} | 1.00 |");
+    println!(
+        "| compiled (lagrangian!) | {compiled_ns:.1} | {:.2} |",
+        compiled_ns / hand_ns
+    );
+    println!(
+        "| interpreted (spec file) | {interpreted_ns:.1} | {:.2} ({:.2}× compiled) |",
+        interpreted_ns / hand_ns,
+        interpreted_ns / compiled_ns
+    );
+    println!();
+    println!("compiled M and f alone: {dynamics_ns:.1} ns; energies: {energies_ns:.1} ns");
+}
