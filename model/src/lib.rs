@@ -15,6 +15,7 @@ pub mod plot;
 pub mod report;
 pub mod scenario;
 pub mod simulate;
+pub mod sweep;
 mod system;
 
 pub use interpreted::{Interpreted, InterpretedModel};

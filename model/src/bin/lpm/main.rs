@@ -9,6 +9,7 @@ mod audit;
 mod commands;
 mod generate;
 mod simulate;
+mod sweep;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -35,6 +36,14 @@ pub enum DeriveFormat {
     Markdown,
     /// The Rust code the `lagrangian!` macro generates.
     Rust,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum DesignArg {
+    /// One run in each of N equal strata of every axis.
+    LatinHypercube,
+    /// Independent uniform draws.
+    Random,
 }
 
 #[derive(Subcommand)]
@@ -93,6 +102,56 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Run a scenario many times with values varied (a grid or a sampled
+    /// design), in parallel; writes one row of summary metrics per run.
+    ///
+    /// KEY is anything --set takes: a parameter (`k1`), an input given a
+    /// constant, or a dotted scenario entry (`initial.velocities.r`).
+    /// `KEY*=…` multiplies the entry instead (every number of a list:
+    /// `components.front_end.stiffness_values*=0.8:1.2`).
+    #[command(group(clap::ArgGroup::new("plan").required(true).args(["grid", "samples"])))]
+    Sweep {
+        /// The scenario (TOML); its `spec` key names the model.
+        scenario: PathBuf,
+        /// The spec, if not the one the scenario names.
+        #[arg(long)]
+        spec: Option<PathBuf>,
+        /// A grid axis: KEY=a,b,c or KEY=low:high:count; every combination of
+        /// the axes is run, the last varying fastest.
+        #[arg(long, value_name = "KEY=VALUES")]
+        grid: Vec<String>,
+        /// Number of sampled runs (with --vary).
+        #[arg(long, requires = "vary")]
+        samples: Option<usize>,
+        /// A sampled axis: KEY=low:high (uniform) or KEY=low:high:log.
+        #[arg(long, value_name = "KEY=LOW:HIGH", requires = "samples")]
+        vary: Vec<String>,
+        /// How samples are placed.
+        #[arg(long, value_enum, default_value = "latin-hypercube")]
+        design: DesignArg,
+        /// Seed of the sampled design (run i's values depend only on seed and i).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// A setting for every run, as in `lpm simulate --set`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Output table: .csv or .parquet.
+        #[arg(long)]
+        out: PathBuf,
+        /// Output format (default: from the --out extension).
+        #[arg(long, value_parser = ["csv", "parquet"])]
+        format: Option<String>,
+        /// Run only block i of n of the runs (1 ≤ i ≤ n), e.g. a Slurm array
+        /// task: `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Worker threads (default: one per core).
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Audit the spec's hand-derived equations against the derivation; exits
     /// with status 5 when an equation disagrees.
     Audit {
@@ -136,6 +195,39 @@ fn main() -> ExitCode {
         Command::Generate { root, check } => generate::run(&root, check),
         Command::Audit { spec, format } => audit::run(&spec, format == "json")
             .map(|(text, disagrees)| (text, if disagrees { audit::DISAGREES } else { 0 })),
+        Command::Sweep {
+            scenario,
+            spec,
+            grid,
+            samples,
+            vary,
+            design,
+            seed,
+            set,
+            out,
+            format,
+            shard,
+            threads,
+            quiet,
+        } => sweep::run(sweep::SweepOptions {
+            scenario,
+            spec,
+            grid,
+            samples,
+            vary,
+            design: match design {
+                DesignArg::LatinHypercube => lagrangian_model::sweep::Design::LatinHypercube,
+                DesignArg::Random => lagrangian_model::sweep::Design::Random,
+            },
+            seed,
+            settings: set,
+            out,
+            parquet: format.map(|f| f == "parquet"),
+            shard,
+            threads,
+            quiet,
+        })
+        .map(success),
         Command::Simulate {
             spec,
             scenario,

@@ -1,0 +1,15 @@
+//! Ensembles: one scenario run many times with some of its values varied —
+//! over a full-factorial grid or a sampled design — in parallel, one output
+//! row of summary metrics per run.
+//!
+//! A run's values depend only on the plan and the run's index, so a sweep
+//! can be split into [`Shard`]s computed anywhere (a Slurm job array, GNU
+//! parallel) whose tables, concatenated in shard order, are the full sweep.
+
+mod plan;
+mod run;
+mod table;
+
+pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
+pub use run::{BaseScenario, Row, Settings, run_scenario, run_sweep};
+pub use table::{columns, sweep_csv, sweep_parquet};

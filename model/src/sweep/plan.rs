@@ -1,0 +1,439 @@
+//! Which runs a sweep makes: a full-factorial grid or a sampled design, the
+//! values of run `i`, and the block of runs of one shard.
+
+use rand_chacha::ChaCha8Rng;
+use rand_chacha::rand_core::{Rng, SeedableRng};
+use std::fmt;
+use std::ops::Range;
+
+/// How an axis changes its scenario entry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Assignment {
+    /// `KEY=…`: the entry takes the value.
+    Set,
+    /// `KEY*=…`: every number of the entry is multiplied by the value.
+    Scale,
+}
+
+/// One swept quantity: a `--set` key and how its value is applied.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// A parameter or input name, or a dotted scenario key (`components.weld.failure_moment`).
+    pub key: String,
+    pub assignment: Assignment,
+}
+
+impl Axis {
+    /// The column name of the axis in the output: `KEY`, or `KEY*` for a factor.
+    pub fn column(&self) -> String {
+        match self.assignment {
+            Assignment::Set => self.key.clone(),
+            Assignment::Scale => format!("{}*", self.key),
+        }
+    }
+}
+
+impl fmt::Display for Axis {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.column())
+    }
+}
+
+/// A sampled axis: uniform between `low` and `high`, or log-uniform.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SampledAxis {
+    pub axis: Axis,
+    pub low: f64,
+    pub high: f64,
+    pub logarithmic: bool,
+}
+
+/// How sampled designs place their points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Design {
+    /// Latin hypercube: each axis's range is cut into `count` equal strata
+    /// and every stratum holds exactly one run.
+    LatinHypercube,
+    /// Independent uniform draws.
+    Random,
+}
+
+/// The runs of a sweep. Run `i`'s values depend only on the plan and `i`,
+/// so shards computed on different machines agree with a single full run.
+#[derive(Clone, Debug)]
+pub enum Plan {
+    /// Every combination of the axes' values; the last axis varies fastest.
+    Grid(Vec<(Axis, Vec<f64>)>),
+    Samples {
+        count: usize,
+        axes: Vec<SampledAxis>,
+        seed: u64,
+        design: Design,
+        /// For a Latin hypercube: the stratum of each run on each axis.
+        strata: Vec<Vec<u32>>,
+    },
+}
+
+/// Splits `KEY=VALUE` or `KEY*=VALUE`.
+fn split_assignment(text: &str, flag: &str) -> Result<(Axis, String), String> {
+    let (key, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("{flag} `{text}` is not of the form KEY=VALUES or KEY*=VALUES"))?;
+    let (key, assignment) = match key.trim().strip_suffix('*') {
+        Some(k) => (k.trim(), Assignment::Scale),
+        None => (key.trim(), Assignment::Set),
+    };
+    if key.is_empty() {
+        return Err(format!("{flag} `{text}` names no key"));
+    }
+    let axis = Axis {
+        key: key.to_string(),
+        assignment,
+    };
+    Ok((axis, value.trim().to_string()))
+}
+
+fn number(text: &str, flag: &str, axis: &Axis) -> Result<f64, String> {
+    let value: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{flag} {axis}: `{text}` is not a number"))?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!("{flag} {axis}: `{text}` is not finite"))
+    }
+}
+
+/// `a,b,c` or `low:high:count` (count evenly spaced values, ends included).
+fn grid_values(text: &str, axis: &Axis) -> Result<Vec<f64>, String> {
+    let flag = "--grid";
+    let parts: Vec<&str> = text.split(':').collect();
+    match parts.as_slice() {
+        [low, high, count] => {
+            let (low, high) = (number(low, flag, axis)?, number(high, flag, axis)?);
+            let count: usize = count
+                .trim()
+                .parse()
+                .ok()
+                .filter(|&n| n >= 2)
+                .ok_or_else(|| {
+                    format!("{flag} {axis}: `{count}` is not a count of at least 2 values")
+                })?;
+            Ok((0..count)
+                .map(|k| low + (high - low) * k as f64 / (count - 1) as f64)
+                .collect())
+        }
+        [list] => list.split(',').map(|v| number(v, flag, axis)).collect(),
+        _ => Err(format!(
+            "{flag} {axis}: `{text}` is neither a list `a,b,c` nor a range `low:high:count`"
+        )),
+    }
+}
+
+/// Rejects an axis named twice.
+fn check_distinct<'a>(axes: impl Iterator<Item = &'a Axis>) -> Result<(), String> {
+    let mut seen: Vec<&str> = Vec::new();
+    for axis in axes {
+        if seen.contains(&axis.key.as_str()) {
+            return Err(format!("`{}` is swept twice", axis.key));
+        }
+        seen.push(&axis.key);
+    }
+    Ok(())
+}
+
+impl Plan {
+    /// A grid from `--grid KEY=a,b,c` / `KEY=low:high:count` / `KEY*=…` arguments.
+    pub fn grid(arguments: &[String]) -> Result<Plan, String> {
+        if arguments.is_empty() {
+            return Err("--grid needs at least one KEY=VALUES".into());
+        }
+        let mut axes = Vec::new();
+        for argument in arguments {
+            let (axis, values) = split_assignment(argument, "--grid")?;
+            let values = grid_values(&values, &axis)?;
+            axes.push((axis, values));
+        }
+        check_distinct(axes.iter().map(|(a, _)| a))?;
+        let total = axes
+            .iter()
+            .try_fold(1usize, |n, (_, v)| n.checked_mul(v.len()));
+        match total {
+            Some(n) if n <= u32::MAX as usize => Ok(Plan::Grid(axes)),
+            _ => Err("the grid has more than 2³² runs".into()),
+        }
+    }
+
+    /// `count` runs sampled from `--vary KEY=low:high[:log]` ranges.
+    pub fn samples(
+        count: usize,
+        arguments: &[String],
+        seed: u64,
+        design: Design,
+    ) -> Result<Plan, String> {
+        if count == 0 || count > u32::MAX as usize {
+            return Err(format!("--samples {count}: give between 1 and 2³² runs"));
+        }
+        if arguments.is_empty() {
+            return Err("--samples needs at least one --vary KEY=LOW:HIGH".into());
+        }
+        let mut axes = Vec::new();
+        for argument in arguments {
+            let (axis, range) = split_assignment(argument, "--vary")?;
+            let parts: Vec<&str> = range.split(':').collect();
+            let (low, high, logarithmic) = match parts.as_slice() {
+                [low, high] => (low, high, false),
+                [low, high, "log"] => (low, high, true),
+                _ => {
+                    return Err(format!(
+                        "--vary {axis}: `{range}` is not a range `low:high` or `low:high:log`"
+                    ));
+                }
+            };
+            let (low, high) = (
+                number(low, "--vary", &axis)?,
+                number(high, "--vary", &axis)?,
+            );
+            if logarithmic && (low <= 0.0 || high <= 0.0) {
+                return Err(format!(
+                    "--vary {axis}: a logarithmic range needs positive ends, got {low}:{high}"
+                ));
+            }
+            axes.push(SampledAxis {
+                axis,
+                low,
+                high,
+                logarithmic,
+            });
+        }
+        check_distinct(axes.iter().map(|a| &a.axis))?;
+        let strata = match design {
+            Design::Random => Vec::new(),
+            Design::LatinHypercube => (0..axes.len())
+                .map(|k| {
+                    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+                    rng.set_stream(u64::MAX - k as u64);
+                    permutation(count, &mut rng)
+                })
+                .collect(),
+        };
+        Ok(Plan::Samples {
+            count,
+            axes,
+            seed,
+            design,
+            strata,
+        })
+    }
+
+    /// Number of runs.
+    pub fn len(&self) -> usize {
+        match self {
+            Plan::Grid(axes) => axes.iter().map(|(_, v)| v.len()).product(),
+            Plan::Samples { count, .. } => *count,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The swept quantities, in column order.
+    pub fn axes(&self) -> Vec<&Axis> {
+        match self {
+            Plan::Grid(axes) => axes.iter().map(|(a, _)| a).collect(),
+            Plan::Samples { axes, .. } => axes.iter().map(|a| &a.axis).collect(),
+        }
+    }
+
+    /// The values of run `run` (`run < self.len()`), one per axis.
+    pub fn point(&self, run: usize) -> Vec<f64> {
+        match self {
+            Plan::Grid(axes) => {
+                let mut rest = run;
+                let mut values = vec![0.0; axes.len()];
+                for (k, (_, list)) in axes.iter().enumerate().rev() {
+                    values[k] = list[rest % list.len()];
+                    rest /= list.len();
+                }
+                values
+            }
+            Plan::Samples {
+                count,
+                axes,
+                seed,
+                design,
+                strata,
+            } => {
+                let mut rng = ChaCha8Rng::seed_from_u64(*seed);
+                rng.set_stream(run as u64);
+                axes.iter()
+                    .enumerate()
+                    .map(|(k, a)| {
+                        let u = unit_interval(&mut rng);
+                        let fraction = match design {
+                            Design::Random => u,
+                            Design::LatinHypercube => (strata[k][run] as f64 + u) / *count as f64,
+                        };
+                        if a.logarithmic {
+                            (a.low.ln() + fraction * (a.high.ln() - a.low.ln())).exp()
+                        } else {
+                            a.low + fraction * (a.high - a.low)
+                        }
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+/// A uniform draw from [0, 1) with 53 random bits.
+fn unit_interval(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// A uniformly random permutation of `0..n` (Fisher–Yates).
+fn permutation(n: usize, rng: &mut ChaCha8Rng) -> Vec<u32> {
+    let mut p: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        let j = (rng.next_u64() % (i as u64 + 1)) as usize;
+        p.swap(i, j);
+    }
+    p
+}
+
+/// Shard `index` of `count` (1-based, as `--shard 3/8`): a contiguous block
+/// of runs, so that the shards' outputs concatenated in order are the full sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole sweep.
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+
+    /// Parses `i/n` with `1 ≤ i ≤ n`.
+    pub fn parse(text: &str) -> Result<Shard, String> {
+        let parsed = text.split_once('/').and_then(|(i, n)| {
+            Some((
+                i.trim().parse::<usize>().ok()?,
+                n.trim().parse::<usize>().ok()?,
+            ))
+        });
+        match parsed {
+            Some((index, count)) if index >= 1 && index <= count => Ok(Shard { index, count }),
+            _ => Err(format!(
+                "--shard `{text}` is not of the form i/n with 1 ≤ i ≤ n (e.g. 3/8)"
+            )),
+        }
+    }
+
+    /// The runs of this shard out of `total`.
+    pub fn runs(&self, total: usize) -> Range<usize> {
+        let bound = |k: usize| (total as u128 * k as u128 / self.count as u128) as usize;
+        bound(self.index - 1)..bound(self.index)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn strings(items: &[&str]) -> Vec<String> {
+        items.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn grid_enumerates_every_combination_last_axis_fastest() {
+        let plan = Plan::grid(&strings(&["a=1,2", "b*=0:1:3"])).unwrap();
+        assert_eq!(plan.len(), 6);
+        let points: Vec<Vec<f64>> = (0..6).map(|i| plan.point(i)).collect();
+        assert_eq!(
+            points,
+            vec![
+                vec![1.0, 0.0],
+                vec![1.0, 0.5],
+                vec![1.0, 1.0],
+                vec![2.0, 0.0],
+                vec![2.0, 0.5],
+                vec![2.0, 1.0]
+            ]
+        );
+        let columns: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+        assert_eq!(columns, ["a", "b*"]);
+    }
+
+    #[test]
+    fn bad_axes_are_reported_with_the_offending_text() {
+        let error = |args: &[&str]| Plan::grid(&strings(args)).unwrap_err();
+        assert!(error(&["a"]).contains("`a`"));
+        assert!(error(&["a=1,x"]).contains("`x` is not a number"));
+        assert!(error(&["a=1:2:1"]).contains("at least 2"));
+        assert!(error(&["a=1,2", "a*=3"]).contains("swept twice"));
+        assert!(error(&["a=inf"]).contains("not finite"));
+        let vary = |args: &[&str]| Plan::samples(4, &strings(args), 1, Design::Random).unwrap_err();
+        assert!(vary(&["k=0:1:lin"]).contains("low:high:log"));
+        assert!(vary(&["k=-1:1:log"]).contains("positive"));
+    }
+
+    #[test]
+    fn latin_hypercube_puts_one_run_in_each_stratum() {
+        let n = 50;
+        let plan = Plan::samples(
+            n,
+            &strings(&["a=0:1", "b=10:20"]),
+            7,
+            Design::LatinHypercube,
+        )
+        .unwrap();
+        for (k, (low, high)) in [(0.0, 1.0), (10.0, 20.0)].into_iter().enumerate() {
+            let mut strata: Vec<usize> = (0..n)
+                .map(|i| {
+                    let x = plan.point(i)[k];
+                    assert!((low..high).contains(&x));
+                    ((x - low) / (high - low) * n as f64) as usize
+                })
+                .collect();
+            strata.sort();
+            assert_eq!(strata, (0..n).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn samples_depend_only_on_seed_and_run() {
+        let args = strings(&["a=1:100:log", "b=0:1"]);
+        let plan = Plan::samples(100, &args, 3, Design::Random).unwrap();
+        let again = Plan::samples(100, &args, 3, Design::Random).unwrap();
+        let other = Plan::samples(100, &args, 4, Design::Random).unwrap();
+        assert_eq!(plan.point(42), again.point(42));
+        assert_ne!(plan.point(42), other.point(42));
+        assert_ne!(plan.point(42), plan.point(43));
+        let logs: Vec<f64> = (0..100).map(|i| plan.point(i)[0].log10()).collect();
+        assert!(logs.iter().all(|&l| (0.0..2.0).contains(&l)));
+        // Log-uniform: about half the runs below 10.
+        let below = logs.iter().filter(|&&l| l < 1.0).count();
+        assert!((30..70).contains(&below), "{below}");
+    }
+
+    #[test]
+    fn shards_partition_the_runs_in_order() {
+        for total in [0, 1, 7, 10, 1000] {
+            for count in 1..=9 {
+                let mut next = 0;
+                for index in 1..=count {
+                    let runs = Shard { index, count }.runs(total);
+                    assert_eq!(runs.start, next);
+                    next = runs.end;
+                }
+                assert_eq!(next, total);
+            }
+        }
+        assert_eq!(Shard::parse("3/8").unwrap(), Shard { index: 3, count: 8 });
+        for bad in ["0/4", "5/4", "3", "a/b", "1/0"] {
+            assert!(Shard::parse(bad).unwrap_err().contains(bad));
+        }
+    }
+}
