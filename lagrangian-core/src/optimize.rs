@@ -16,6 +16,8 @@ use crate::program::{Op, Program, Reg, Routine, RoutineKind};
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
+mod shift;
+
 /// A register whose value is to be negated when `negative` is set.
 #[derive(Clone, Copy, Debug)]
 struct Signed {
@@ -63,6 +65,8 @@ struct Builder<'a> {
     vars: Vec<Var>,
     var_index: FxHashMap<Var, u32>,
     var_regs: FxHashMap<u32, Signed>,
+    /// Variables that are shifted coordinates `q + Σ ±p` (see `shift`).
+    shifted_vars: rustc_hash::FxHashSet<u32>,
 }
 
 /// Builds the program for all outputs of `derivation`.
@@ -77,6 +81,7 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
         vars: Vec::new(),
         var_index: FxHashMap::default(),
         var_regs: FxHashMap::default(),
+        shifted_vars: Default::default(),
     };
     let mut dynamics = Vec::new();
     for i in 0..n {
@@ -428,7 +433,8 @@ impl Builder<'_> {
     }
 
     /// Greedy multivariate Horner factorization of `Σ terms`.
-    fn horner(&mut self, mut terms: Vec<Term>) -> Signed {
+    fn horner(&mut self, terms: Vec<Term>) -> Signed {
+        let mut terms = self.shifted(terms);
         match terms.len() {
             0 => return Signed::plus(self.constant(0.0)),
             1 => return self.monomial(&terms[0]),
