@@ -17,6 +17,7 @@ pub mod optimize;
 pub mod program;
 pub mod rational;
 pub mod spec;
+pub mod tape;
 pub mod units;
 
 pub use diagnostic::{Diagnostic, SpecErrors};

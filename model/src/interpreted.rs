@@ -3,7 +3,8 @@
 
 use crate::InputFunctions;
 use crate::system::{Energies, Jacobians, LagrangianSystem, ModelError};
-use lagrangian_core::program::{EvalContext, Program, RoutineKind};
+use lagrangian_core::program::{Program, RoutineKind};
+use lagrangian_core::tape::Tape;
 use lagrangian_core::{Compiled, SpecErrors};
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
@@ -22,7 +23,9 @@ pub struct InterpretedModel {
     coordinate_units: Vec<Option<String>>,
     input_units: Vec<Option<String>>,
     program: Arc<Program>,
+    tape: Arc<Tape>,
     parameters: Vec<f64>,
+    /// The tape's register file, holding the constants and the parameters.
     registers: RefCell<Vec<f64>>,
     outputs: RefCell<Vec<f64>>,
 }
@@ -38,6 +41,8 @@ impl InterpretedModel {
             .map(|r| r.outputs.len())
             .max()
             .unwrap_or(0);
+        let parameters = compiled.default_parameters();
+        let tape = Tape::new(&program, parameters.len());
         InterpretedModel {
             name: model.name.clone(),
             coordinates: model.coordinates.iter().map(|c| c.name.clone()).collect(),
@@ -53,10 +58,11 @@ impl InterpretedModel {
                 .iter()
                 .map(|i| i.unit.as_ref().map(|u| u.text.clone()))
                 .collect(),
-            registers: RefCell::new(program.registers()),
+            registers: RefCell::new(tape.registers(&parameters)),
             outputs: RefCell::new(vec![0.0; longest]),
             program: Arc::new(program),
-            parameters: compiled.default_parameters(),
+            tape: Arc::new(tape),
+            parameters,
         }
     }
 
@@ -114,6 +120,8 @@ impl InterpretedModel {
         match self.parameter_names.iter().position(|p| p == name) {
             Some(i) => {
                 self.parameters[i] = value;
+                self.tape
+                    .set_parameters(self.registers.get_mut(), &self.parameters);
                 Ok(())
             }
             None => Err(ModelError::UnknownParameter {
@@ -146,25 +154,14 @@ impl InterpretedModel {
         inputs: &I,
         take: impl FnOnce(&[f64]) -> R,
     ) -> Result<R, ModelError> {
-        let (t, q, qd, qdd) = state;
-        self.check(q)?;
-        self.check(qd)?;
-        let routine = self
-            .program
-            .routine(kind)
-            .ok_or(ModelError::JacobiansNotDerived)?;
-        let ctx = EvalContext {
-            t,
-            q,
-            qd,
-            qdd,
-            parameters: &self.parameters,
-            inputs,
-        };
+        self.check(state.1)?;
+        self.check(state.2)?;
         let mut registers = self.registers.borrow_mut();
         let mut outputs = self.outputs.borrow_mut();
-        let out = &mut outputs[..routine.outputs.len()];
-        self.program.run(routine, &ctx, &mut registers, out);
+        let out = &mut outputs[..self.tape.output_count(kind)];
+        if !self.tape.run(kind, state, inputs, &mut registers, out) {
+            return Err(ModelError::JacobiansNotDerived);
+        }
         Ok(take(out))
     }
 
