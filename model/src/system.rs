@@ -195,8 +195,7 @@ pub trait LagrangianSystem<const N: usize> {
         (mass, forcing)
     }
 
-    /// `q̈ = M⁻¹ f` by Cholesky factorization (`M` is symmetric positive
-    /// definite for a physical kinetic energy), falling back to LU.
+    /// `q̈ = M⁻¹ f` by [`solve_mass_matrix`].
     fn accelerations<I: InputFunctions + ?Sized>(
         &self,
         t: f64,
@@ -212,14 +211,15 @@ pub trait LagrangianSystem<const N: usize> {
     }
 }
 
-/// Solves `M x = f` by Cholesky, falling back to Gaussian elimination with
-/// partial pivoting; `None` if `M` is singular or the result is not finite.
+/// Solves `M x = f` by `L D Lᵀ` (M is symmetric positive definite for a
+/// proper kinetic energy), falling back to Gaussian elimination with partial
+/// pivoting; `None` if `M` is singular or the result is not finite.
 pub fn solve_mass_matrix<const N: usize>(
     mass: SMatrix<f64, N, N>,
     forcing: &SVector<f64, N>,
 ) -> Option<SVector<f64, N>> {
-    let x = match mass.cholesky() {
-        Some(chol) => chol.solve(forcing),
+    let x = match crate::linalg::Ldlt::new(&mass) {
+        Some(ldlt) => ldlt.solve(forcing),
         None => crate::linalg::Lu::new(mass)?.solve(forcing),
     };
     x.iter().all(|v| v.is_finite()).then_some(x)
