@@ -1,6 +1,7 @@
 //! Piecewise-linear curves: tabulated inputs, weld moment curves, and the
 //! crush characteristics of the paper's eqs 1–2.
 
+use std::cell::Cell;
 use std::fmt;
 
 /// What a curve does outside its first and last points.
@@ -89,11 +90,20 @@ impl fmt::Display for CurveError {
 }
 
 /// `y(x)` by linear interpolation between points with increasing `x`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Curve {
     xs: Vec<f64>,
     ys: Vec<f64>,
     outside: Outside,
+    /// The segment of the last lookup: an integration asks for nearby `x`
+    /// again and again (a time table at advancing `t`), so it is tried first.
+    hint: Cell<usize>,
+}
+
+impl PartialEq for Curve {
+    fn eq(&self, other: &Curve) -> bool {
+        self.xs == other.xs && self.ys == other.ys && self.outside == other.outside
+    }
 }
 
 /// The result of evaluating outside a curve whose policy is `Outside::Error`.
@@ -129,7 +139,12 @@ impl Curve {
                 });
             }
         }
-        Ok(Curve { xs, ys, outside })
+        Ok(Curve {
+            xs,
+            ys,
+            outside,
+            hint: Cell::new(0),
+        })
     }
 
     pub fn xs(&self) -> &[f64] {
@@ -143,10 +158,20 @@ impl Curve {
     /// The segment `[x_i, x_{i+1}]` that `x` falls in (the end segments beyond).
     fn segment(&self, x: f64) -> usize {
         let last = self.xs.len() - 2;
-        match self.xs.partition_point(|&p| p <= x) {
+        let within = |i: usize| (i == 0 || self.xs[i] <= x) && (i == last || x < self.xs[i + 1]);
+        let hint = self.hint.get();
+        for i in [hint, hint + 1] {
+            if i <= last && within(i) {
+                self.hint.set(i);
+                return i;
+            }
+        }
+        let i = match self.xs.partition_point(|&p| p <= x) {
             0 => 0,
             i => (i - 1).min(last),
-        }
+        };
+        self.hint.set(i);
+        i
     }
 
     /// `(y(x), dy/dx)`.
@@ -229,6 +254,7 @@ impl Characteristic {
                 xs: vec![0.0, 1.0],
                 ys: vec![value, value],
                 outside: Outside::Hold,
+                hint: Cell::new(0),
             },
         }
     }
@@ -254,6 +280,24 @@ impl Characteristic {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_segment_hint_never_changes_the_segment() {
+        let xs: Vec<f64> = vec![0.0, 0.5, 1.0, 2.5, 3.0, 7.0];
+        let curve = Curve::new(xs.clone(), vec![0.0; 6], Outside::Extrapolate).unwrap();
+        let reference = |x: f64| match xs.partition_point(|&p| p <= x) {
+            0 => 0,
+            i => (i - 1).min(xs.len() - 2),
+        };
+        // Sweeps forward and backward, jumps, exact breakpoints, beyond both ends, NaN.
+        let mut probes: Vec<f64> = (0..200).map(|k| -1.0 + 0.05 * k as f64).collect();
+        probes.extend((0..200).rev().map(|k| -1.0 + 0.05 * k as f64));
+        probes.extend(xs.iter().copied());
+        probes.extend([8.0, -3.0, 2.5, 0.0, 7.0, 6.99, f64::NAN, 1.0, 0.5]);
+        for x in probes {
+            assert_eq!(curve.segment(x), reference(x), "x = {x}");
+        }
+    }
 
     #[test]
     fn eq_1_interpolates_between_breakpoints() {
