@@ -62,8 +62,17 @@ impl ElasticPendulum {
     /// Names of the generalized coordinates, in order.
     pub const COORDINATES: [&'static str; 2] = ["r", "theta"];
     /// Names of the parameters (the fields), in order.
-    pub const PARAMETERS: &'static [&'static str] =
-        &["m", "I", "l0", "ls", "k", "c", "ks", "cs", "g"];
+    pub const PARAMETERS: &'static [&'static str] = &[
+        "m",
+        "I",
+        "l0",
+        "ls",
+        "k",
+        "c",
+        "ks",
+        "cs",
+        "g",
+    ];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[];
 }
@@ -110,7 +119,10 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -142,23 +154,21 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let theta = q[1];
         let r_dot = qd[0];
         let theta_dot = qd[1];
-        let x0 = l0 * 2.0;
-        let x1 = ls - r - l0;
+        let x0 = r + l0;
+        let x1 = x0 - ls;
         let x2 = r_dot * cs;
-        let x3 = 2.0 * ls;
-        let x4 = x3 - r - x0;
-        let x5 = 2.0 * (m * r_dot);
-        let x6 = m * g * theta.cos();
-        let x7 = x3 - l0;
+        let x3 = ls * 2.0 - x0;
         mass[(0, 0)] = m;
         mass[(0, 1)] = 0.0;
         mass[(1, 0)] = mass[(0, 1)];
-        mass[(1, 1)] = m * (r * (r + x0) + l0 * l0) + I_;
-        forcing[0] = theta * ((x1 * ks - x2) * theta + x1 * cs * theta_dot)
-            + (m * (theta_dot * (theta_dot * (r + l0)) - g * theta.sin()) - (r * k + r_dot * c));
-        forcing[1] = r * (theta_dot * (cs * x4 - x5) + (theta * (ks * x4 - x2) - x6))
-            + (l0 * (theta_dot * (cs * x7 - x5) + (theta * (ks * x7 - x2) - x6))
-                + ls * (theta * (x2 - ls * ks) - cs * (ls * theta_dot)));
+        mass[(1, 1)] = I_ + m * (x0 * x0);
+        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * theta.sin())
+            - (r * k + r_dot * c)
+            - theta * ((ks * x1 + x2) * theta + x1 * (cs * theta_dot));
+        forcing[1] = x0
+            * (theta_dot * (cs * x3 - 2.0 * (m * r_dot))
+                + (theta * (ks * x3 - x2) - m * g * theta.cos()))
+            + ls * (theta * (x2 - ks * ls) - cs * (ls * theta_dot));
     }
     fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
@@ -180,26 +190,23 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let theta = q[1];
         let r_dot = qd[0];
         let theta_dot = qd[1];
-        let x0 = theta.sin();
-        let x1 = 2.0 * ls;
-        let x2 = l0 + r * 0.5;
+        let x0 = r + l0;
+        let x1 = x0 - ls;
+        let x2 = theta_dot * theta_dot;
         let x3 = r_dot * r_dot;
-        let x4 = ls * ls;
-        let x5 = r * (x2 - ls) + (l0 * (l0 * 0.5 - ls) + 0.5 * x4);
-        let x6 = theta * (r_dot * (r + l0 - ls));
-        let x7 = x3 * (theta * theta);
-        let x8 = c * x3;
+        let x4 = theta * theta;
+        let x5 = ks * x4;
+        let x6 = x1 * theta_dot;
+        let x7 = r_dot * theta;
+        let x8 = x3 * x4;
+        let x9 = c * x3;
         ::lagrangian_model::Energies {
-            kinetic: m * (theta_dot * (theta_dot * (r * x2 + l0 * l0 * 0.5)) + 0.5 * x3)
-                + 0.5 * (I_ * (theta_dot * theta_dot)),
-            potential: theta * (theta * (ks * x5))
-                + (r * (x0 * (m * g) + r * k * 0.5) + x0 * (g * (m * l0))),
-            dissipation: cs * (theta_dot * (theta_dot * x5 + x6) + 0.5 * x7) + 0.5 * x8,
-            damping_power: x8
-                + cs * (x7
-                    + theta_dot
-                        * (theta_dot * (r * (r + l0 * 2.0 - x1) + (x4 + l0 * (l0 - x1)))
-                            + 2.0 * x6)),
+            kinetic: (m * (x3 + x0 * x0 * x2) + I_ * x2) * 0.5,
+            potential: x0
+                * (x0 * (0.5 * (k + x5)) + (theta.sin() * (m * g) - l0 * k - ls * x5))
+                + 0.5 * (k * (l0 * l0) + x5 * (ls * ls)),
+            dissipation: cs * (theta_dot * (x1 * (0.5 * x6 + x7)) + 0.5 * x8) + 0.5 * x9,
+            damping_power: x9 + cs * (x8 + theta_dot * (x1 * (x6 + 2.0 * x7))),
             external_power: 0.0,
         }
     }
@@ -209,6 +216,5 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         out: &mut [f64],
-    ) {
-    }
+    ) {}
 }

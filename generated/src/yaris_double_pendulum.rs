@@ -103,8 +103,23 @@ impl YarisDoublePendulum {
     pub const COORDINATES: [&'static str; 3] = ["r", "theta1", "theta2"];
     /// Names of the parameters (the fields), in order.
     pub const PARAMETERS: &'static [&'static str] = &[
-        "m1", "m2", "l0", "l1", "l2", "l3", "I1", "I2", "k1", "k2", "c1", "c2", "k_comp", "c_comp",
-        "k_tor", "c_tor", "g",
+        "m1",
+        "m2",
+        "l0",
+        "l1",
+        "l2",
+        "l3",
+        "I1",
+        "I2",
+        "k1",
+        "k2",
+        "c1",
+        "c2",
+        "k_comp",
+        "c_comp",
+        "k_tor",
+        "c_tor",
+        "g",
     ];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[
@@ -175,23 +190,9 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
     }
     fn parameters(&self) -> ::std::vec::Vec<f64> {
         ::std::vec![
-            self.m1,
-            self.m2,
-            self.l0,
-            self.l1,
-            self.l2,
-            self.l3,
-            self.I1,
-            self.I2,
-            self.k1,
-            self.k2,
-            self.c1,
-            self.c2,
-            self.k_comp,
-            self.c_comp,
-            self.k_tor,
-            self.c_tor,
-            self.g
+            self.m1, self.m2, self.l0, self.l1, self.l2, self.l3, self.I1, self.I2, self
+            .k1, self.k2, self.c1, self.c2, self.k_comp, self.c_comp, self.k_tor, self
+            .c_tor, self.g
         ]
     }
     fn set_parameter(
@@ -219,7 +220,10 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -268,66 +272,61 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x4 = theta2.cos();
         let x5 = x1 * x4 - x2 * x3;
         let x6 = x2 * x4 + x1 * x3;
-        let x7 = l1 * 2.0;
-        let x8 = 2.0 * l0;
-        let x9 = r + x8;
-        let x10 = r + l0;
-        let x11 = l1 + x10;
-        let x12 = l3 - r - l0;
-        let x13 = x11 * k2;
-        let x14 = c1 + c2;
-        let x15 = x14 * r_dot;
-        let x16 = x11 * c2;
-        let x17 = theta2 * k2;
-        let x18 = l2 * (x17 + c2 * theta2_dot);
-        let x19 = theta2_dot * theta2_dot;
-        let x20 = x1 * g;
-        let x21 = inputs.value(3, &[t]);
-        let x22 = inputs.value(5, &[t]);
-        let x23 = x21 + x22;
-        let x24 = inputs.value(4, &[t]);
-        let x25 = inputs.value(6, &[t]);
-        let x26 = x24 + x25;
-        let x27 = inputs.value(0, &[r, r_dot]);
-        let x28 = 2.0 * l3 - r - x8;
-        let x29 = x7 + x9;
-        let x30 = x0 * r_dot;
-        let x31 = x2 * (x26 - x0 * g)
-            - (l2 * (x17 + theta2_dot * (c2 + theta2_dot * (m2 * x5))) + x1 * x23);
-        let x32 = l3 * k1;
-        let x33 = inputs.value(7, &[theta2, theta2_dot]);
+        let x7 = r + l0;
+        let x8 = x7 + l1;
+        let x9 = x7 * (k1 + k2);
+        let x10 = c1 + c2;
+        let x11 = x10 * r_dot;
+        let x12 = k1 * l3;
+        let x13 = x12 - l1 * k2;
+        let x14 = x7 * x10;
+        let x15 = c1 * l3 - l1 * c2;
+        let x16 = theta2 * k2;
+        let x17 = theta1_dot * theta1_dot;
+        let x18 = theta2_dot * theta2_dot;
+        let x19 = inputs.value(4, &[t]);
+        let x20 = inputs.value(6, &[t]);
+        let x21 = x19 + x20;
+        let x22 = inputs.value(3, &[t]);
+        let x23 = inputs.value(5, &[t]);
+        let x24 = x22 + x23;
+        let x25 = inputs.value(0, &[r, r_dot]);
+        let x26 = l2 * theta2_dot;
+        let x27 = theta1 * r_dot;
+        let x28 = l2 * theta2;
+        let x29 = inputs.value(7, &[theta2, theta2_dot]);
         mass[(0, 0)] = x0;
         mass[(0, 1)] = 0.0;
         mass[(1, 0)] = mass[(0, 1)];
         mass[(0, 2)] = m2 * l2 * x5;
         mass[(2, 0)] = mass[(0, 2)];
-        mass[(1, 1)] =
-            m2 * (r * (x7 + r + x8) + (l0 * (x7 + l0) + l1 * l1)) + (m1 * (r * x9 + l0 * l0) + I1);
-        mass[(1, 2)] = m2 * (l2 * (x6 * x11));
+        mass[(1, 1)] = m2 * (x8 * x8) + (I1 + m1 * (x7 * x7));
+        mass[(1, 2)] = m2 * (l2 * (x6 * x8));
         mass[(2, 1)] = mass[(1, 2)];
         mass[(2, 2)] = I2 + m2 * (l2 * l2);
         forcing[0] = theta1
-            * (theta1 * (x12 * k1 - (x13 + x15)) + ((x12 * c1 - x16) * theta1_dot - x18))
-            + (m2 * (theta1_dot * (theta1_dot * (l0 + (l1 + r))) + (l2 * x6 * x19 - x20))
-                + (m1 * (theta1_dot * (x10 * theta1_dot) - x20)
-                    + (x2 * x23 + (x1 * x26 - (x27 + r * k_comp + r_dot * c_comp)))));
-        forcing[1] = r
-            * (theta1_dot * (c1 * x28 - (c2 * x29 + 2.0 * x30))
-                + (theta1 * (k1 * x28 - (x15 + k2 * x29)) + x31))
-            + (l0
-                * (theta1_dot * (2.0 * (l3 * c1 - l1 * c2 - x30) - l0 * x14)
-                    + (x31 + theta1 * (2.0 * (x32 - l1 * k2) - x15 - l0 * (k1 + k2))))
-                + (l1
-                    * (x2 * x25
-                        - x1 * x22
-                        - k2 * (theta1 * l1 + l2 * theta2)
-                        - c2 * (l1 * theta1_dot + l2 * theta2_dot + theta1 * r_dot)
-                        - m2 * (2.0 * (r_dot * theta1_dot) + x2 * g + x19 * (l2 * x5)))
-                    + l3 * (theta1 * (c1 * r_dot - x32) - c1 * (l3 * theta1_dot))));
+            * (theta1 * (x13 - x11 - x9)
+                + ((x15 - x14) * theta1_dot - l2 * (x16 + c2 * theta2_dot)))
+            + (m2 * (x8 * x17 + l2 * x6 * x18 - x1 * g)
+                + (x1 * (x21 - m1 * g)
+                    + (x7 * (m1 * x17 - k_comp)
+                        + (x2 * x24 + (l0 * k_comp - x25 - r_dot * c_comp)))));
+        forcing[1] = x7
+            * (theta1_dot * ((x15 - x0 * r_dot) * 2.0 - x14)
+                + (theta1 * (x13 * 2.0 - x11 - x9)
+                    + (x2 * (x21 - x0 * g)
+                        - (l2 * (x16 + theta2_dot * (c2 + theta2_dot * (m2 * x5)))
+                            + x1 * x24))))
+            + (l1
+                * (x2 * x20 - x1 * x23 - k2 * (theta1 * l1 + x28)
+                    - c2 * (l1 * theta1_dot + x26 + x27)
+                    - m2 * (2.0 * (r_dot * theta1_dot) + x2 * g + x18 * (l2 * x5)))
+                + l3 * (theta1 * (c1 * r_dot - x12) - c1 * (l3 * theta1_dot)));
         forcing[2] = l2
-            * (theta1_dot * (m2 * (x5 * (x11 * theta1_dot) - 2.0 * (x6 * r_dot)) - x16)
-                + (x4 * (x25 - m2 * g) - x3 * x22 - x18 - theta1 * (x13 + c2 * r_dot)))
-            - (x33 + theta2 * k_tor + theta2_dot * c_tor);
+            * (m2 * (theta1_dot * (theta1_dot * (x5 * x8) - 2.0 * (x6 * r_dot)) - x4 * g)
+                + (x4 * x20 - x3 * x23 - k2 * (x28 + theta1 * x8)
+                    - c2 * (x27 + (x26 + x8 * theta1_dot))))
+            - (x29 + theta2 * k_tor + theta2_dot * c_tor);
     }
     fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
@@ -363,63 +362,67 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x1 = theta1.cos();
         let x2 = theta2.sin();
         let x3 = theta2.cos();
-        let x4 = l1 * l1;
-        let x5 = r + 2.0 * l0;
-        let x6 = r + l0;
-        let x7 = l1 + x6;
-        let x8 = l2 * l2;
-        let x9 = c1 + c2;
-        let x10 = x9 * r_dot;
-        let x11 = x7 * c2;
+        let x4 = r + l0;
+        let x5 = x4 + l1;
+        let x6 = c1 + c2;
+        let x7 = x6 * r_dot;
+        let x8 = theta1_dot * theta1_dot;
+        let x9 = inputs.value(4, &[t]);
+        let x10 = inputs.value(6, &[t]);
+        let x11 = x9 + x10;
         let x12 = inputs.value(3, &[t]);
         let x13 = inputs.value(5, &[t]);
-        let x14 = inputs.value(4, &[t]);
-        let x15 = inputs.value(6, &[t]);
-        let x16 = inputs.value(0, &[r, r_dot]);
-        let x17 = r_dot * c_comp;
+        let x14 = x12 + x13;
+        let x15 = inputs.value(0, &[r, r_dot]);
+        let x16 = r_dot * c_comp;
+        let x17 = l1 * theta1_dot;
         let x18 = l2 * theta2_dot;
-        let x19 = inputs.value(7, &[theta2, theta2_dot]);
-        let x20 = l0 + r * 0.5;
-        let x21 = l1 + x20;
+        let x19 = theta1 * r_dot;
+        let x20 = l3 * theta1_dot;
+        let x21 = inputs.value(7, &[theta2, theta2_dot]);
         let x22 = r_dot * r_dot;
-        let x23 = x20 - l3;
-        let x24 = l3 * l3;
-        let x25 = l1 * c2 - l3 * c1;
-        let x26 = c1 * x24 + x4 * c2;
-        let x27 = theta1 * (r_dot * (x11 + c1 * (x6 - l3))) + l2 * (x11 * theta2_dot);
-        let x28 = c2 * x18;
-        let x29 = theta2_dot * (theta2_dot * (c_tor + x8 * c2));
+        let x23 = theta1 * theta1;
+        let x24 = l1 * c2 - c1 * l3;
+        let x25 = theta1 * x7;
+        let x26 = c2 * x18;
+        let x27 = x25 + x26;
+        let x28 = theta2_dot * (theta2_dot * (c_tor + l2 * l2 * c2));
+        let x29 = 2.0 * x19;
         ::lagrangian_model::Energies {
-            kinetic: theta1_dot
-                * (theta1_dot
-                    * (m2 * (r * x21 + (l0 * (l1 + l0 * 0.5) + x4 * 0.5))
-                        + (m1 * (r * x20 + l0 * l0 * 0.5) + I1 * 0.5))
-                    + m2 * (l2 * ((x1 * x3 + x0 * x2) * (x7 * theta2_dot))))
-                + (m2
-                    * (l2 * (theta2_dot * ((x0 * x3 - x1 * x2) * r_dot + x18 * 0.5)) + 0.5 * x22)
-                    + 0.5 * (m1 * x22 + I2 * (theta2_dot * theta2_dot))),
-            potential: theta1
+            kinetic: m2
+                * (l2
+                    * (theta2_dot
+                        * ((x0 * x3 - x1 * x2) * r_dot
+                            + (x1 * x3 + x0 * x2) * x5 * theta1_dot + x18 * 0.5))
+                    + 0.5 * (x22 + x5 * x5 * x8))
+                + 0.5
+                    * (m1 * (x22 + x4 * x4 * x8)
+                        + (I1 * x8 + I2 * (theta2_dot * theta2_dot))),
+            potential: x4
                 * (theta1
-                    * (r * (k1 * x23 + k2 * x21)
-                        + (l0 * (l0 * ((k1 + k2) * 0.5) + (l1 * k2 - l3 * k1))
-                            + 0.5 * (k1 * x24 + x4 * k2)))
-                    + l2 * (k2 * (theta2 * x7)))
-                + (g * (x0 * (m2 * x7 + m1 * x6) + m2 * l2 * x2)
-                    + 0.5 * (theta2 * (theta2 * (k_tor + x8 * k2)) + k_comp * (r * r))),
+                    * (theta1 * (x4 * ((k1 + k2) * 0.5) + (l1 * k2 - k1 * l3))
+                        + theta2 * (l2 * k2))
+                    + (x0 * ((m1 + m2) * g) + k_comp * (x4 * 0.5 - l0)))
+                + (l2
+                    * (k2 * (theta2 * (theta1 * l1 + l2 * theta2 * 0.5)) + x2 * (m2 * g))
+                    + (l1 * (g * (m2 * x0) + 0.5 * (k2 * (l1 * x23)))
+                        + 0.5
+                            * (k_comp * (l0 * l0) + k1 * x23 * (l3 * l3)
+                                + k_tor * (theta2 * theta2)))),
             dissipation: theta1_dot
-                * (theta1_dot
-                    * (r * (c1 * x23 + c2 * x21) + (l0 * (l0 * (x9 * 0.5) + x25) + 0.5 * x26))
-                    + x27)
-                + (r_dot * (theta1 * (theta1 * (x10 * 0.5) + x28) + x17 * 0.5) + 0.5 * x29),
+                * (x4 * (theta1_dot * (x4 * (x6 * 0.5) + x24) + x27)
+                    + (l1 * (c2 * (x19 + (x18 + x17 * 0.5)))
+                        + l3 * (c1 * (x20 * 0.5 - x19))))
+                + (r_dot * (theta1 * (x26 + theta1 * (x7 * 0.5)) + x16 * 0.5)
+                    + 0.5 * x28),
             damping_power: theta1_dot
-                * (theta1_dot
-                    * (r * (c2 * (l1 * 2.0 + x5) + c1 * (x5 - 2.0 * l3))
-                        + (x26 + l0 * (l0 * x9 + 2.0 * x25)))
-                    + 2.0 * x27)
-                + (x29 + r_dot * (x17 + theta1 * (theta1 * x10 + 2.0 * x28))),
-            external_power: theta1_dot * (x1 * (x7 * x15 + x6 * x14) - x0 * (x7 * x13 + x6 * x12))
-                + (r_dot * (x1 * (x12 + x13) + (x0 * (x14 + x15) - x16))
-                    + theta2_dot * (l2 * (x3 * x15 - x2 * x13) - x19)),
+                * (x4 * (theta1_dot * (x4 * x6 + 2.0 * x24) + 2.0 * x27)
+                    + (l1 * (c2 * (x17 + 2.0 * x18 + x29)) + l3 * (c1 * (x20 - x29))))
+                + (x28 + r_dot * (x16 + theta1 * (x25 + 2.0 * x26))),
+            external_power: theta1_dot
+                * (x4 * (x1 * x11 - x0 * x14) + l1 * (x1 * x10 - x0 * x13))
+                + (r_dot * (x1 * x14 + (x0 * x11 - x15))
+                    + theta2_dot * (l2 * (x3 * x10 - x2 * x13) - x21)),
         }
     }
     fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
@@ -462,94 +465,90 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x4 = theta2.cos();
         let x5 = x1 * x4 - x2 * x3;
         let x6 = x2 * x4 + x1 * x3;
-        let x7 = 2.0 * l0;
-        let x8 = r + l0;
-        let x9 = l1 + x8;
-        let x10 = l3 - r - l0;
-        let x11 = x9 * k2;
-        let x12 = c1 + c2;
-        let x13 = x12 * r_dot;
-        let x14 = x10 * c1;
-        let x15 = x9 * c2;
-        let x16 = x14 - x15;
-        let x17 = theta2_dot * theta2_dot;
-        let x18 = inputs.value(3, &[t]);
-        let x19 = inputs.value(5, &[t]);
-        let x20 = x18 + x19;
-        let x21 = x2 * x20;
-        let x22 = inputs.value(4, &[t]);
-        let x23 = inputs.value(6, &[t]);
-        let x24 = x22 + x23;
-        let x25 = 2.0 * l3 - r - x7;
-        let x26 = l1 * 2.0 + (r + x7);
-        let x27 = x0 * r_dot;
+        let x7 = r + l0;
+        let x8 = x7 + l1;
+        let x9 = k1 + k2;
+        let x10 = x7 * x9;
+        let x11 = c1 + c2;
+        let x12 = x11 * r_dot;
+        let x13 = k1 * l3;
+        let x14 = l1 * k2;
+        let x15 = x13 - x14;
+        let x16 = x7 * x11;
+        let x17 = l1 * c2;
+        let x18 = c1 * l3 - x17;
+        let x19 = l2 * x6;
+        let x20 = theta2_dot * theta2_dot;
+        let x21 = inputs.value(4, &[t]);
+        let x22 = inputs.value(6, &[t]);
+        let x23 = x21 + x22;
+        let x24 = inputs.value(3, &[t]);
+        let x25 = inputs.value(5, &[t]);
+        let x26 = x24 + x25;
+        let x27 = x18 - x0 * r_dot;
         let x28 = x0 * g;
-        let x29 = m2 * x5;
-        let x30 = x2 * (x24 - x28)
-            - (l2 * (theta2 * k2 + theta2_dot * (c2 + theta2_dot * x29)) + x1 * x20);
-        let x31 = l1 * c2;
-        let x32 = k1 + k2;
-        let x33 = l3 * k1;
-        let x34 = l1 * k2;
-        let x35 = x9 * theta1_dot;
-        let x36 = c2 * r_dot;
-        let x37 = x9 * theta2_dot;
-        let x38 = m1 * x8;
-        let x39 = theta1 * x12;
-        let x40 = inputs.value(1, &[r, r_dot]);
-        let x41 = theta1 * k2;
-        let x42 = x1 * (x28 - x24);
-        let x43 = m2 * l2 * x6;
-        let x44 = x17 * x43;
-        let x45 = theta1_dot * (x6 * x35 + 2.0 * (x5 * r_dot));
-        let x46 = inputs.value(8, &[theta2, theta2_dot]);
-        let x47 = inputs.value(2, &[r, r_dot]);
-        let x48 = theta1 * x16;
-        let x49 = 2.0 * (theta1_dot * (m2 * x9 + x38));
-        let x50 = m2 * x6;
-        let x51 = theta1 * c2;
-        let x52 = inputs.value(9, &[theta2, theta2_dot]);
-        let x53 = x43 * theta2_ddot;
-        let x54 = m2 * (l2 * (x5 * (x9 * theta2_ddot)));
-        let x55 = x5 * (x9 * theta1_ddot);
-        let x56 = x6 * r_ddot;
-        out.forcing_q[(0, 0)] =
-            theta1_dot * (x0 * theta1_dot - x39) - (theta1 * (theta1 * x32) + (k_comp + x40));
-        out.forcing_q[(0, 1)] =
-            theta1 * (2.0 * (x10 * k1 - (x11 + x13))) + (x16 * theta1_dot + x30);
-        out.forcing_q[(0, 2)] = l2 * (x17 * x29 - x41);
-        out.forcing_q[(1, 0)] = theta1_dot * (2.0 * (x14 - (x15 + x27)))
-            + (x30 + theta1 * (k1 * (2.0 * x10) - (x13 + k2 * (2.0 * x9))));
-        out.forcing_q[(1, 1)] = r * (x42 + (k1 * x25 - (k2 * x26 + (x21 + (x13 + x44)))))
-            + (l0 * (x42 + (2.0 * x33 - 2.0 * x34 - x44 - x13 - x21 - l0 * x32))
-                + (l1 * (m2 * (x1 * g - l2 * x6 * x17) - (x36 + (x34 + x2 * x19 + x1 * x23)))
-                    + l3 * (c1 * r_dot - x33)));
-        out.forcing_q[(1, 2)] = l2 * (m2 * (x6 * (theta2_dot * x37)) - x11);
-        out.forcing_q[(2, 0)] = l2 * (theta1_dot * (theta1_dot * x29 - c2) - x41);
-        out.forcing_q[(2, 1)] = l2 * (m2 * x45 - (x11 + x36));
-        out.forcing_q[(2, 2)] =
-            l2 * (m2 * (x3 * g - x45) - (x4 * x19 + x3 * x23 + l2 * k2)) - (k_tor + x46);
-        out.forcing_qd[(0, 0)] = -(theta1 * x39 + (c_comp + x47));
-        out.forcing_qd[(0, 1)] = x48 + x49;
-        out.forcing_qd[(0, 2)] = l2 * (2.0 * (theta2_dot * x50) - x51);
-        out.forcing_qd[(1, 0)] = x48 - x49;
-        out.forcing_qd[(1, 1)] = r * (c1 * x25 - (c2 * x26 + 2.0 * x27))
-            + (l0 * (2.0 * (l3 * c1 - x31 - x27) - l0 * x12)
-                - (c1 * (l3 * l3) + l1 * (x31 + 2.0 * (m2 * r_dot))));
-        out.forcing_qd[(1, 2)] = -(l2 * (x15 + m2 * (2.0 * (x5 * x37))));
-        out.forcing_qd[(2, 0)] = -(l2 * (x51 + 2.0 * (theta1_dot * x50)));
-        out.forcing_qd[(2, 1)] = l2 * (m2 * (2.0 * (x5 * x35 - x6 * r_dot)) - x15);
-        out.forcing_qd[(2, 2)] = -(l2 * l2 * c2 + (c_tor + x52));
+        let x29 = x2 * (x23 - x28);
+        let x30 = m2 * x5;
+        let x31 = theta2_dot * x30;
+        let x32 = l2 * (theta2 * k2 + theta2_dot * (c2 + x31)) + x1 * x26;
+        let x33 = x5 * x8;
+        let x34 = theta1 * x11;
+        let x35 = inputs.value(1, &[r, r_dot]);
+        let x36 = theta1 * k2;
+        let x37 = m2 * l2 * x6;
+        let x38 = c2 * r_dot;
+        let x39 = m2 * x6;
+        let x40 = theta1_dot * (x6 * x8 * theta1_dot + 2.0 * (x5 * r_dot));
+        let x41 = inputs.value(8, &[theta2, theta2_dot]);
+        let x42 = inputs.value(2, &[r, r_dot]);
+        let x43 = theta1_dot * (x0 * 2.0);
+        let x44 = 2.0 * (m2 * theta1_dot);
+        let x45 = theta1 * c2;
+        let x46 = c1 * (theta1 * l3);
+        let x47 = inputs.value(9, &[theta2, theta2_dot]);
+        let x48 = x37 * theta2_ddot;
+        let x49 = m2 * (l2 * (x5 * (x8 * theta2_ddot)));
+        let x50 = x6 * r_ddot;
+        let x51 = x33 * theta1_ddot;
+        out.forcing_q[(0, 0)] = theta1_dot * (x0 * theta1_dot - x34)
+            - (theta1 * (theta1 * x9) + (k_comp + x35));
+        out.forcing_q[(0, 1)] = theta1 * ((x15 - x12 - x10) * 2.0)
+            + (x29 + ((x18 - x16) * theta1_dot - x32));
+        out.forcing_q[(0, 2)] = l2 * (x20 * x30 - x36);
+        out.forcing_q[(1, 0)] = theta1_dot * (2.0 * (x27 - x16))
+            + (x29 - x32 + theta1 * (x15 * 2.0 - x12 - x7 * (x9 * 2.0)));
+        out.forcing_q[(1, 1)] = x7
+            * (x1 * (x28 - x23)
+                + (x13 * 2.0 - x14 * 2.0 - x20 * x37 - x12 - x2 * x26 - x10))
+            + (l1 * (m2 * (x1 * g - x19 * x20) - (x14 + x2 * x25 + x1 * x22 + x38))
+                + l3 * (c1 * r_dot - x13));
+        out.forcing_q[(1, 2)] = l2 * (x8 * (x20 * x39 - k2));
+        out.forcing_q[(2, 0)] = l2 * (theta1_dot * (theta1_dot * x30 - c2) - x36);
+        out.forcing_q[(2, 1)] = l2 * (m2 * x40 - (x38 + x8 * k2));
+        out.forcing_q[(2, 2)] = l2
+            * (m2 * (x3 * g - x40) - (l2 * k2 + (x4 * x25 + x3 * x22))) - (k_tor + x41);
+        out.forcing_qd[(0, 0)] = -(theta1 * x34 + (c_comp + x42));
+        out.forcing_qd[(0, 1)] = x7 * (x43 - x34) + (l1 * (x44 - x45) + x46);
+        out.forcing_qd[(0, 2)] = l2 * (2.0 * (theta2_dot * x39) - x45);
+        out.forcing_qd[(1, 0)] = x46 - l1 * (x44 + x45) - x7 * (x34 + x43);
+        out.forcing_qd[(1, 1)] = x7 * (x27 * 2.0 - x16)
+            - (l1 * (x17 + 2.0 * (m2 * r_dot)) + c1 * (l3 * l3));
+        out.forcing_qd[(1, 2)] = -(l2 * (x8 * (c2 + 2.0 * x31)));
+        out.forcing_qd[(2, 0)] = -(l2 * (x45 + 2.0 * (theta1_dot * x39)));
+        out.forcing_qd[(2, 1)] = l2
+            * (m2 * (2.0 * (theta1_dot * x33 - x6 * r_dot)) - x8 * c2);
+        out.forcing_qd[(2, 2)] = -(l2 * l2 * c2 + (c_tor + x47));
         out.mass_times_acceleration_q[(0, 0)] = 0.0;
-        out.mass_times_acceleration_q[(0, 1)] = x53;
-        out.mass_times_acceleration_q[(0, 2)] = -x53;
-        out.mass_times_acceleration_q[(1, 0)] =
-            x53 + 2.0 * (x38 + m2 * (l0 + (l1 + r))) * theta1_ddot;
-        out.mass_times_acceleration_q[(1, 1)] = -x54;
-        out.mass_times_acceleration_q[(1, 2)] = x54;
-        out.mass_times_acceleration_q[(2, 0)] = x43 * theta1_ddot;
-        out.mass_times_acceleration_q[(2, 1)] = m2 * (l2 * (x56 - x55));
-        out.mass_times_acceleration_q[(2, 2)] = m2 * (l2 * (x55 - x56));
+        out.mass_times_acceleration_q[(0, 1)] = x48;
+        out.mass_times_acceleration_q[(0, 2)] = -x48;
+        out.mass_times_acceleration_q[(1, 0)] = m2
+            * (x19 * theta2_ddot + 2.0 * (x8 * theta1_ddot))
+            + 2.0 * (theta1_ddot * (m1 * x7));
+        out.mass_times_acceleration_q[(1, 1)] = -x49;
+        out.mass_times_acceleration_q[(1, 2)] = x49;
+        out.mass_times_acceleration_q[(2, 0)] = x37 * theta1_ddot;
+        out.mass_times_acceleration_q[(2, 1)] = m2 * (l2 * (x50 - x51));
+        out.mass_times_acceleration_q[(2, 2)] = m2 * (l2 * (x51 - x50));
         ::core::result::Result::Ok(())
     }
     fn input_arguments(

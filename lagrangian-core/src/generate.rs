@@ -78,7 +78,7 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
             });
         }
         modules.push_str(&format!(
-            "/// Generated from `{relative}`.\npub mod {stem};\n"
+            "/// Generated from `{relative}`.\n#[rustfmt::skip] // formatted by prettyplease\npub mod {stem};\n"
         ));
     }
     files.push(GeneratedFile {
