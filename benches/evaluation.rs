@@ -14,6 +14,7 @@ use std::time::Instant;
 
 mod models {
     lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
+    lagrangian::lagrangian!(file = "benches/specs/pendulum_chain_20.lpm");
 }
 use models::YarisDoublePendulum as Yaris;
 
@@ -194,4 +195,46 @@ fn main() {
     );
     println!();
     println!("compiled M and f alone: {dynamics_ns:.1} ns; energies: {energies_ns:.1} ns");
+    println!();
+    chain_20();
+}
+
+/// A 20-link pendulum chain (PyDy's Cython right-hand side: about 50 µs).
+fn chain_20() {
+    use lagrangian::NoInputs;
+    use lagrangian::nalgebra::SVector;
+    let compiled = models::PendulumChain20::default();
+    let source = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/benches/specs/pendulum_chain_20.lpm"
+    ))
+    .unwrap();
+    let interpreted = Interpreted::<20>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let states: Vec<(SVector<f64, 20>, SVector<f64, 20>)> = (0..16)
+        .map(|k| {
+            let x = k as f64 / 16.0;
+            (
+                SVector::from_fn(|i, _| 0.3 * ((i as f64) * 0.7 + x).sin()),
+                SVector::from_fn(|i, _| 0.5 * ((i as f64) * 1.3 - x).cos()),
+            )
+        })
+        .collect();
+    for (q, v) in &states {
+        let a = compiled.accelerations(0.0, q, v, &NoInputs).unwrap();
+        let b = interpreted.accelerations(0.0, q, v, &NoInputs).unwrap();
+        assert_eq!(a, b, "compiled and interpreted agree bit for bit");
+    }
+    let pick = |i: usize| &states[i % states.len()];
+    let compiled_ns = median_ns(20_000, |i| {
+        let (q, v) = pick(i);
+        compiled.accelerations(0.0, black_box(q), black_box(v), &NoInputs).unwrap()[0]
+    });
+    let interpreted_ns = median_ns(5_000, |i| {
+        let (q, v) = pick(i);
+        interpreted.accelerations(0.0, black_box(q), black_box(v), &NoInputs).unwrap()[0]
+    });
+    println!("| 20-link pendulum chain | q̈ = M⁻¹f (µs) | ratio to compiled |");
+    println!("|---|---|---|");
+    println!("| compiled (lagrangian!) | {:.2} | 1.00 |", compiled_ns / 1e3);
+    println!("| interpreted (spec file) | {:.2} | {:.2} |", interpreted_ns / 1e3, interpreted_ns / compiled_ns);
 }
