@@ -1,0 +1,224 @@
+//! Binding a model's input functions to the scenario's crash components.
+
+use super::ModelNames;
+use super::file::{ComponentSection, Ports};
+use super::resolve::{index_of, outside};
+use crate::crash::crush::{CrushElement, Unloading};
+use crate::crash::curve::{Characteristic, Curve};
+use crate::crash::table::Table;
+use crate::crash::weld::Weld;
+use crate::crash::{Binding, BoundInputs, Component, Element, Port};
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::Path;
+
+pub(super) fn bind_components(
+    sections: &BTreeMap<String, ComponentSection>,
+    base: &Path,
+    names: &ModelNames,
+    constants: BTreeMap<String, f64>,
+) -> Result<BoundInputs, String> {
+    let mut components = Vec::new();
+    let mut bindings: Vec<Option<Binding>> = vec![None; names.inputs.len()];
+    let mut bind = |input: &str, component: usize, port: Port, owner: &str| -> Result<(), String> {
+        let k = index_of(&format!("components.{owner}: input"), input, &names.inputs)?;
+        if bindings[k].is_some() {
+            return Err(format!(
+                "components.{owner}: input `{input}` is already supplied by another component"
+            ));
+        }
+        bindings[k] = Some(Binding { component, port });
+        Ok(())
+    };
+    let mut value_inputs = Vec::new();
+    for (name, section) in sections {
+        let c = components.len();
+        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
+        let element = match section {
+            ComponentSection::Crush {
+                inputs,
+                compression,
+                stiffness_breakpoints,
+                stiffness_values,
+                damping_breakpoints,
+                damping_values,
+                unloading,
+                unloading_stiffness,
+                contact_only,
+                outside: policy,
+            } => {
+                let policy = outside(&format!("components.{name}"), policy)?;
+                let stiffness =
+                    Characteristic::new(stiffness_breakpoints, stiffness_values, policy)
+                        .map_err(|e| at("stiffness table", &e))?;
+                let damping = Characteristic::new(damping_breakpoints, damping_values, policy)
+                    .map_err(|e| at("damping table", &e))?;
+                let unloading = match (unloading.as_str(), unloading_stiffness) {
+                    ("elastic", _) => Unloading::Elastic,
+                    ("plastic", Some(k)) if *k > 0.0 && k.is_finite() => {
+                        Unloading::Plastic { stiffness: *k }
+                    }
+                    ("plastic", _) => {
+                        return Err(format!(
+                            "components.{name}: plastic unloading needs a positive unloading_stiffness [N/m]"
+                        ));
+                    }
+                    (other, _) => {
+                        return Err(format!(
+                            "components.{name}: unloading = `{other}`; use elastic or plastic"
+                        ));
+                    }
+                };
+                let sign = match compression.as_str() {
+                    "positive" => 1.0,
+                    "negative" => -1.0,
+                    other => {
+                        return Err(format!(
+                            "components.{name}: compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+                        ));
+                    }
+                };
+                bind_ports(inputs, c, name, &mut bind)?;
+                value_inputs.push((c, inputs.force.clone()));
+                Element::Crush(CrushElement::new(
+                    stiffness,
+                    damping,
+                    unloading,
+                    sign,
+                    *contact_only,
+                ))
+            }
+            ComponentSection::Weld {
+                inputs,
+                curve,
+                damping,
+                failure_moment,
+                failure_angle,
+                post_failure_curve,
+                post_failure_damping,
+                outside: policy,
+            } => {
+                let policy = outside(&format!("components.{name}"), policy)?;
+                let make = |points: &[[f64; 2]], what: &str| {
+                    Curve::new(
+                        points.iter().map(|p| p[0]).collect(),
+                        points.iter().map(|p| p[1]).collect(),
+                        policy,
+                    )
+                    .map_err(|e| at(what, &e))
+                };
+                let intact = make(curve, "curve")?;
+                let post = post_failure_curve
+                    .as_deref()
+                    .map(|p| make(p, "post_failure_curve"))
+                    .transpose()?;
+                bind_ports(inputs, c, name, &mut bind)?;
+                value_inputs.push((c, inputs.force.clone()));
+                Element::Weld(Weld::new(
+                    intact,
+                    *damping,
+                    *failure_moment,
+                    *failure_angle,
+                    post,
+                    *post_failure_damping,
+                ))
+            }
+            ComponentSection::Table {
+                file,
+                time_column,
+                columns,
+                outside: policy,
+            } => {
+                let policy = outside(&format!("components.{name}"), policy)?;
+                let table =
+                    Table::load(&base.join(file)).map_err(|e| format!("components.{name}: {e}"))?;
+                for (input, column) in columns {
+                    let curve = table
+                        .curve(time_column, column, policy)
+                        .map_err(|e| format!("components.{name}: {e}"))?;
+                    let k = components.len();
+                    bind(input, k, Port::Value, name)?;
+                    components.push(Component {
+                        name: format!("{name}.{input}"),
+                        element: Element::Curve(curve),
+                    });
+                }
+                continue;
+            }
+            ComponentSection::Constant { values } => {
+                for (input, value) in values {
+                    let k = components.len();
+                    bind(input, k, Port::Value, name)?;
+                    components.push(Component {
+                        name: format!("{name}.{input}"),
+                        element: Element::Constant(*value),
+                    });
+                }
+                continue;
+            }
+        };
+        components.push(Component {
+            name: name.clone(),
+            element,
+        });
+    }
+    // --set constants override whatever the file binds.
+    for (input, value) in constants {
+        let k = index_of("--set: input", &input, &names.inputs)?;
+        bindings[k] = Some(Binding {
+            component: components.len(),
+            port: Port::Value,
+        });
+        components.push(Component {
+            name: format!("--set {input}"),
+            element: Element::Constant(value),
+        });
+    }
+    // Components with events need the arguments of their one value input.
+    let mut event_arguments = vec![None; components.len()];
+    for (c, input) in value_inputs {
+        let k = index_of("input", &input, &names.inputs)?;
+        if bindings[k].map(|b| b.component) != Some(c) {
+            continue; // overridden by --set
+        }
+        let mut offset = 0;
+        let mut found = Vec::new();
+        for &(site, arity) in &names.input_sites {
+            if site == k {
+                found.push((offset, arity));
+            }
+            offset += arity;
+        }
+        match found.as_slice() {
+            [] => {}
+            [one] => event_arguments[c] = Some(*one),
+            _ => {
+                return Err(format!(
+                    "component `{}` keeps state (hysteresis, failure), but its input `{input}` is called at {} places with different arguments; give each call its own input function",
+                    components[c].name,
+                    found.len()
+                ));
+            }
+        }
+    }
+    Ok(BoundInputs::new(
+        components,
+        bindings,
+        event_arguments,
+        names.inputs.clone(),
+    ))
+}
+
+/// Records that input `name` reads `port` of component `index` (of `owner`).
+type Bind<'a> = dyn FnMut(&str, usize, Port, &str) -> Result<(), String> + 'a;
+
+fn bind_ports(ports: &Ports, component: usize, owner: &str, bind: &mut Bind) -> Result<(), String> {
+    bind(&ports.force, component, Port::Value, owner)?;
+    if let Some(s) = &ports.stiffness {
+        bind(s, component, Port::Stiffness, owner)?;
+    }
+    if let Some(d) = &ports.damping {
+        bind(d, component, Port::Damping, owner)?;
+    }
+    Ok(())
+}
