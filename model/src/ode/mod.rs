@@ -8,8 +8,9 @@
 //!
 //! Events are zero crossings of user functions `g_k(t, y)` with a direction;
 //! they are located on the dense output by the Illinois method to
-//! `|Δt| ≤ 1e-12`, and the problem decides what happens: stop, go on, or
-//! restart the step sequence after changing its mode or parameters.
+//! `|Δt| ≤ 1e-12`, and the problem decides what happens ([`EventAction`]):
+//! stop there, or restart the step sequence from the event after changing
+//! its mode, parameters or state.
 
 pub mod dopri5;
 mod events;
@@ -99,7 +100,8 @@ pub struct Stats {
 /// Why an integration stopped early.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverError {
-    /// The step size fell below `Options::min_step`.
+    /// The error test rejected steps until the step size fell below
+    /// `Options::min_step`.
     StepSizeUnderflow { t: f64, h: f64 },
     /// More than `Options::max_steps` steps were attempted.
     MaxSteps { t: f64, steps: usize },
@@ -107,8 +109,13 @@ pub enum SolverError {
     NonFinite { t: f64, what: String },
     /// The right-hand side could not be evaluated (e.g. singular mass matrix).
     Rhs { t: f64, message: String },
-    /// Newton's method did not converge even at the minimum step.
+    /// Newton's method did not converge, and the steps it was retried with
+    /// fell below `Options::min_step`.
     NewtonFailure { t: f64, h: f64 },
+    /// The Newton iteration matrix `I − d·h·J` of an implicit method was
+    /// singular or not finite, and the steps it was retried with fell below
+    /// `Options::min_step`.
+    SingularIterationMatrix { t: f64, h: f64 },
     /// An event's zero crossing could not be bracketed to the required accuracy.
     EventNotLocated { t: f64, event: usize },
     /// Invalid options.
@@ -132,6 +139,10 @@ impl fmt::Display for SolverError {
                     "Newton iterations diverge at t = {t:e} s even with h = {h:e} s"
                 )
             }
+            SolverError::SingularIterationMatrix { t, h } => write!(
+                f,
+                "the Newton iteration matrix I − d·h·J is singular or not finite at t = {t:e} s even with h = {h:e} s"
+            ),
             SolverError::EventNotLocated { t, event } => {
                 write!(f, "event {event} near t = {t:e} s could not be located")
             }

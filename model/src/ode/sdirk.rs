@@ -86,7 +86,7 @@ where
         let Some(lu) = Lu::new(newton_matrix) else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::SingularIterationMatrix { t, h })?;
             continue;
         };
         let newton = Newton {
@@ -104,7 +104,7 @@ where
         else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::NewtonFailure { t, h })?;
             continue;
         };
         let mut base3 = PhaseState::zeros();
@@ -113,7 +113,7 @@ where
         let Some((y3, k3)) = newton.solve(problem, t + h, &base3, guess, &mut stats)? else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::NewtonFailure { t, h })?;
             continue;
         };
         // Error estimate, filtered by the Newton matrix so that stiff
@@ -137,7 +137,7 @@ where
             } else {
                 0.2
             };
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::StepSizeUnderflow { t, h })?;
             continue;
         }
         stats.accepted_steps += 1;
@@ -192,9 +192,11 @@ where
     })
 }
 
-fn check_step(t: f64, h: f64, options: &Options) -> Result<(), SolverError> {
+/// `Err(failure)` when the shrunk step `h` is below the minimum; `failure`
+/// says why the step had to shrink.
+fn check_step(h: f64, options: &Options, failure: SolverError) -> Result<(), SolverError> {
     if h < options.min_step {
-        Err(SolverError::NewtonFailure { t, h })
+        Err(failure)
     } else {
         Ok(())
     }
