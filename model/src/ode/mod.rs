@@ -13,12 +13,15 @@
 //! its mode, parameters or state.
 
 pub mod dopri5;
+mod driver;
 mod events;
+mod hermite;
 pub mod rk4;
 pub mod sdirk;
 mod vector;
 
 pub use events::{Direction, EventAction};
+pub use hermite::{Hermite, hermite_weights};
 pub use vector::{OdeVector, PhaseState};
 
 use std::fmt;
@@ -152,6 +155,16 @@ impl fmt::Display for SolverError {
 }
 
 impl std::error::Error for SolverError {}
+
+/// How an integration ended.
+#[derive(Clone, Debug)]
+pub struct Outcome<Y> {
+    pub t: f64,
+    pub y: Y,
+    pub stats: Stats,
+    /// The event that stopped the integration, if one did.
+    pub stopped_by: Option<usize>,
+}
 
 /// An accepted step with its continuous extension, as observers see it.
 pub trait DenseStep<Y> {
