@@ -2,7 +2,7 @@
 
 use super::ModelNames;
 use super::file::{ComponentSection, Ports};
-use super::resolve::{index_of, outside};
+use super::resolve::{finite, index_of, non_negative, outside, positive};
 use crate::crash::crush::{CrushElement, Unloading};
 use crate::crash::curve::{Characteristic, Curve};
 use crate::crash::table::Table;
@@ -107,6 +107,15 @@ pub(super) fn bind_components(
                     )
                     .map_err(|e| at(what, &e))
                 };
+                let key = |entry: &str| format!("components.{name}.{entry}");
+                non_negative(&key("damping"), *damping)?;
+                non_negative(&key("post_failure_damping"), *post_failure_damping)?;
+                if let Some(m) = failure_moment {
+                    positive(&key("failure_moment"), *m)?;
+                }
+                if let Some(a) = failure_angle {
+                    positive(&key("failure_angle"), *a)?;
+                }
                 let intact = make(curve, "curve")?;
                 let post = post_failure_curve
                     .as_deref()
@@ -147,6 +156,7 @@ pub(super) fn bind_components(
             }
             ComponentSection::Constant { values } => {
                 for (input, value) in values {
+                    finite(&format!("components.{name}.values.{input}"), *value)?;
                     let k = components.len();
                     bind(input, k, Port::Value, name)?;
                     components.push(Component {
@@ -164,6 +174,7 @@ pub(super) fn bind_components(
     }
     // --set constants override whatever the file binds.
     for (input, value) in constants {
+        finite(&format!("--set {input}"), value)?;
         let k = index_of("--set: input", &input, &names.inputs)?;
         bindings[k] = Some(Binding {
             component: components.len(),

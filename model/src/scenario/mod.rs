@@ -26,6 +26,7 @@ use crate::crash::BoundInputs;
 use crate::ode::Options;
 use file::File;
 use overrides::apply_setting;
+pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -162,3 +163,6 @@ impl Scenario {
             })
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -31,6 +31,56 @@ pub(super) fn index_of(what: &str, name: &str, list: &[String]) -> Result<usize,
         .ok_or_else(|| unknown(what, name, list.iter().map(String::as_str)))
 }
 
+/// The most output samples a run may ask for (`t_end / output_interval`);
+/// each keeps the whole state, so more would exhaust memory.
+pub const MAX_SAMPLES: f64 = 1e6;
+
+/// `value` as written in a message: plainly in a readable range, else in
+/// scientific notation (`1e-300`, not three hundred zeros).
+pub(super) fn number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
+
+/// `value` if it is a finite number; else an error naming `key`.
+pub(super) fn finite(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {}: must be a finite number",
+            number(value)
+        ))
+    }
+}
+
+/// `value` if it is finite and positive; else an error naming `key`.
+pub(super) fn positive(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {value}: must be a positive, finite number"
+        ))
+    }
+}
+
+/// `value` if it is finite and not negative; else an error naming `key`.
+pub(super) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {}: must be a finite number ≥ 0",
+            number(value)
+        ))
+    }
+}
+
 pub(super) fn outside(what: &str, text: &str) -> Result<Outside, String> {
     Outside::parse(text)
         .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
@@ -49,14 +99,24 @@ pub(super) fn resolve(
             s.method
         )
     })?;
-    if s.t_end.is_nan() || s.t_end <= 0.0 || s.t_end.is_infinite() {
-        return Err(format!("simulation.t_end = {} must be positive", s.t_end));
-    }
-    if s.output_interval.is_nan() || s.output_interval <= 0.0 {
+    positive("simulation.t_end", s.t_end)?;
+    positive("simulation.output_interval", s.output_interval)?;
+    let samples = s.t_end / s.output_interval;
+    if samples > MAX_SAMPLES {
         return Err(format!(
-            "simulation.output_interval = {} must be positive",
-            s.output_interval
+            "simulation.output_interval = {}: gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
+            number(s.output_interval),
+            number(samples.round()),
+            number(s.t_end)
         ));
+    }
+    non_negative("simulation.rtol", s.rtol)?;
+    non_negative("simulation.atol", s.atol)?;
+    if let Some(h) = s.max_step {
+        positive("simulation.max_step", h)?;
+    }
+    if let Some(h) = s.step {
+        positive("simulation.step", h)?;
     }
     let fixed_step = match (method, s.step) {
         (Method::Rk4, None) => Some(1e-5),
@@ -66,6 +126,7 @@ pub(super) fn resolve(
     let options = Options {
         rtol: s.rtol,
         atol: s.atol,
+        // No limit unless one is given.
         max_step: s.max_step.unwrap_or(f64::INFINITY),
         max_steps: s.max_steps,
         fixed_step,
@@ -79,7 +140,7 @@ pub(super) fn resolve(
         .map(|(name, value)| {
             Ok((
                 index_of("parameters: parameter", name, &names.parameters)?,
-                *value,
+                finite(&format!("parameters.{name}"), *value)?,
             ))
         })
         .collect::<Result<_, String>>()?;
@@ -88,13 +149,23 @@ pub(super) fn resolve(
         .initial
         .coordinates
         .iter()
-        .map(|(n, v)| Ok((coordinate("initial.coordinates: coordinate", n)?, *v)))
+        .map(|(n, v)| {
+            Ok((
+                coordinate("initial.coordinates: coordinate", n)?,
+                finite(&format!("initial.coordinates.{n}"), *v)?,
+            ))
+        })
         .collect::<Result<_, String>>()?;
     let initial_velocities = file
         .initial
         .velocities
         .iter()
-        .map(|(n, v)| Ok((coordinate("initial.velocities: coordinate", n)?, *v)))
+        .map(|(n, v)| {
+            Ok((
+                coordinate("initial.velocities: coordinate", n)?,
+                finite(&format!("initial.velocities.{n}"), *v)?,
+            ))
+        })
         .collect::<Result<_, String>>()?;
     let equilibrium = file
         .initial

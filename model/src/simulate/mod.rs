@@ -4,13 +4,15 @@
 mod equilibrium;
 mod problem;
 mod summary;
+#[cfg(test)]
+mod tests;
 
 pub use equilibrium::static_equilibrium;
 pub use problem::{CrashProblem, EventRecord};
 pub use summary::Summary;
 
 use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
-use crate::scenario::{Method, Scenario};
+use crate::scenario::{MAX_SAMPLES, Method, Scenario};
 use crate::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 use std::fmt;
@@ -121,9 +123,19 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
     record(&mut problem, 0.0, &y0);
     next += 1;
     let t_end = scenario.t_end;
+    // Samples at k·interval, the last one moved onto t_end when it falls
+    // within half an interval of it. `last` (one or two beyond that) bounds
+    // the loop even for an interval the scenario check would not let through
+    // (∞ or NaN, when `k·interval` never passes t_end, or too small).
+    let bound = (t_end / interval + 1.0).ceil();
+    let last = if bound >= 0.0 {
+        bound.min(MAX_SAMPLES + 1.0) as usize
+    } else {
+        0 // NaN
+    };
     let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
         let mut y = PhaseState::zeros();
-        loop {
+        while next <= last {
             let t = (next as f64 * interval).min(t_end);
             if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
                 break;
