@@ -45,6 +45,27 @@ impl Element {
         }
     }
 
+    /// What the scenario calls this kind of component.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Element::Crush(_) => "crush",
+            Element::Weld(_) => "weld",
+            Element::Curve(_) => "table",
+            Element::Constant(_) => "constant",
+        }
+    }
+
+    /// How many arguments the input functions bound to this element must
+    /// have, and what they are; `None`: any number (a constant).
+    pub fn arguments(&self) -> Option<(usize, &'static str)> {
+        match self {
+            Element::Crush(_) => Some((2, "the crush coordinate and its rate")),
+            Element::Weld(_) => Some((2, "the angle and its rate")),
+            Element::Curve(_) => Some((1, "the time or abscissa of the table")),
+            Element::Constant(_) => None,
+        }
+    }
+
     pub fn event_name(&self, k: usize) -> &'static str {
         match self {
             Element::Crush(_) => crush::EVENTS[k],
@@ -53,6 +74,8 @@ impl Element {
         }
     }
 
+    /// The value of `port` at the input's arguments `args`, which hold as
+    /// many values as [`Element::arguments`] asks for.
     fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
         match (self, port) {
             (Element::Crush(c), Port::Value) => c.force(args),
@@ -66,10 +89,8 @@ impl Element {
                     Port::Damping => dc,
                 })
             }
-            (Element::Curve(c), Port::Value) => Ok(c.eval(args.first().copied().unwrap_or(0.0))?.0),
-            (Element::Curve(c), Port::Stiffness) => {
-                Ok(c.eval(args.first().copied().unwrap_or(0.0))?.1)
-            }
+            (Element::Curve(c), Port::Value) => Ok(c.eval(args[0])?.0),
+            (Element::Curve(c), Port::Stiffness) => Ok(c.eval(args[0])?.1),
             (Element::Curve(_), Port::Damping) => Ok(0.0),
             (Element::Constant(v), Port::Value) => Ok(*v),
             (Element::Constant(_), _) => Ok(0.0),
@@ -243,10 +264,23 @@ impl InputFunctions for BoundInputs {
             let name = self.input_names.get(input).map_or("?", String::as_str);
             return self.fail(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE"));
         };
-        match self.components[binding.component]
-            .element
-            .value(binding.port, args)
+        let component = &self.components[binding.component];
+        if let Some((needed, _)) = component.element.arguments()
+            && args.len() != needed
         {
+            // The scenario checks this where it knows the input's arguments;
+            // a compiled model does not tell them for inputs only its
+            // Jacobians call.
+            return self.fail(format!(
+                "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
+                self.input_names[input],
+                args.len(),
+                if args.len() == 1 { "" } else { "s" },
+                component.element.kind(),
+                component.name
+            ));
+        }
+        match component.element.value(binding.port, args) {
             Ok(v) => v,
             Err(e) => {
                 let message = format!(
@@ -257,5 +291,44 @@ impl InputFunctions for BoundInputs {
                 self.fail(message)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crash::crush::Unloading;
+    use crate::crash::curve::Characteristic;
+
+    #[test]
+    fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
+        // What a compiled model can bring past the scenario check: a crush
+        // element's stiffness port on an input of one argument.
+        let crush = CrushElement::new(
+            Characteristic::constant(1.0e6),
+            Characteristic::constant(1.0e3),
+            Unloading::Elastic,
+            1.0,
+            true,
+        );
+        let inputs = BoundInputs::new(
+            vec![Component {
+                name: "front_end".into(),
+                element: Element::Crush(crush),
+            }],
+            vec![Some(Binding {
+                component: 0,
+                port: Port::Stiffness,
+            })],
+            vec![None],
+            vec!["crush_stiffness".into()],
+        );
+        assert!(inputs.value(0, &[0.1]).is_nan());
+        assert_eq!(
+            inputs.take_failure().as_deref(),
+            Some(
+                "input `crush_stiffness` is called with 1 argument, but crush component `front_end` needs 2"
+            )
+        );
     }
 }

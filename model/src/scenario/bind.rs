@@ -19,16 +19,9 @@ pub(super) fn bind_components(
     constants: BTreeMap<String, f64>,
 ) -> Result<BoundInputs, String> {
     let mut components = Vec::new();
-    let mut bindings: Vec<Option<Binding>> = vec![None; names.inputs.len()];
-    let mut bind = |input: &str, component: usize, port: Port, owner: &str| -> Result<(), String> {
-        let k = index_of(&format!("components.{owner}: input"), input, &names.inputs)?;
-        if bindings[k].is_some() {
-            return Err(format!(
-                "components.{owner}: input `{input}` is already supplied by another component"
-            ));
-        }
-        bindings[k] = Some(Binding { component, port });
-        Ok(())
+    let mut binder = Binder {
+        names,
+        bindings: vec![None; names.inputs.len()],
     };
     let mut value_inputs = Vec::new();
     for (name, section) in sections {
@@ -78,15 +71,16 @@ pub(super) fn bind_components(
                         ));
                     }
                 };
-                bind_ports(inputs, c, name, &mut bind)?;
-                value_inputs.push((c, inputs.force.clone()));
-                Element::Crush(CrushElement::new(
+                let element = Element::Crush(CrushElement::new(
                     stiffness,
                     damping,
                     unloading,
                     sign,
                     *contact_only,
-                ))
+                ));
+                binder.bind_ports(inputs, ("force", &element), c, name)?;
+                value_inputs.push((c, inputs.force.clone()));
+                element
             }
             ComponentSection::Weld {
                 inputs,
@@ -121,16 +115,17 @@ pub(super) fn bind_components(
                     .as_deref()
                     .map(|p| make(p, "post_failure_curve"))
                     .transpose()?;
-                bind_ports(inputs, c, name, &mut bind)?;
-                value_inputs.push((c, inputs.force.clone()));
-                Element::Weld(Weld::new(
+                let element = Element::Weld(Weld::new(
                     intact,
                     *damping,
                     *failure_moment,
                     *failure_angle,
                     post,
                     *post_failure_damping,
-                ))
+                ));
+                binder.bind_ports(inputs, ("moment", &element), c, name)?;
+                value_inputs.push((c, inputs.force.clone()));
+                element
             }
             ComponentSection::Table {
                 file,
@@ -145,23 +140,24 @@ pub(super) fn bind_components(
                     let curve = table
                         .curve(time_column, column, policy)
                         .map_err(|e| format!("components.{name}: {e}"))?;
-                    let k = components.len();
-                    bind(input, k, Port::Value, name)?;
+                    let element = Element::Curve(curve);
+                    let key = format!("components.{name}.columns.{input}");
+                    binder.bind(&key, input, (components.len(), Port::Value), &element)?;
                     components.push(Component {
                         name: format!("{name}.{input}"),
-                        element: Element::Curve(curve),
+                        element,
                     });
                 }
                 continue;
             }
             ComponentSection::Constant { values } => {
                 for (input, value) in values {
-                    finite(&format!("components.{name}.values.{input}"), *value)?;
-                    let k = components.len();
-                    bind(input, k, Port::Value, name)?;
+                    let key = format!("components.{name}.values.{input}");
+                    let element = Element::Constant(finite(&key, *value)?);
+                    binder.bind(&key, input, (components.len(), Port::Value), &element)?;
                     components.push(Component {
                         name: format!("{name}.{input}"),
-                        element: Element::Constant(*value),
+                        element,
                     });
                 }
                 continue;
@@ -172,6 +168,7 @@ pub(super) fn bind_components(
             element,
         });
     }
+    let mut bindings = binder.bindings;
     // --set constants override whatever the file binds.
     for (input, value) in constants {
         finite(&format!("--set {input}"), value)?;
@@ -220,16 +217,68 @@ pub(super) fn bind_components(
     ))
 }
 
-/// Records that input `name` reads `port` of component `index` (of `owner`).
-type Bind<'a> = dyn FnMut(&str, usize, Port, &str) -> Result<(), String> + 'a;
+/// The model's inputs as they get bound, each to one port of a component.
+struct Binder<'a> {
+    names: &'a ModelNames,
+    bindings: Vec<Option<Binding>>,
+}
 
-fn bind_ports(ports: &Ports, component: usize, owner: &str, bind: &mut Bind) -> Result<(), String> {
-    bind(&ports.force, component, Port::Value, owner)?;
-    if let Some(s) = &ports.stiffness {
-        bind(s, component, Port::Stiffness, owner)?;
+impl Binder<'_> {
+    /// Binds the input named at scenario entry `key` to `port` of component
+    /// `index`, which is `element`; the input must take the number of
+    /// arguments the element reads.
+    fn bind(
+        &mut self,
+        key: &str,
+        input: &str,
+        (index, port): (usize, Port),
+        element: &Element,
+    ) -> Result<(), String> {
+        let names = self.names;
+        let k = index_of(&format!("{key}: input"), input, &names.inputs)?;
+        if self.bindings[k].is_some() {
+            return Err(format!(
+                "{key}: input `{input}` is already supplied by another component"
+            ));
+        }
+        if let (Some((needed, meaning)), Some(has)) = (element.arguments(), names.arity(k))
+            && needed != has
+        {
+            let plural = |n: usize| if n == 1 { "" } else { "s" };
+            return Err(format!(
+                "{key}: input {} has {has} argument{}, but a {} component needs an input of {needed} argument{} ({meaning})",
+                names.signature(k),
+                plural(has),
+                element.kind(),
+                plural(needed),
+            ));
+        }
+        self.bindings[k] = Some(Binding {
+            component: index,
+            port,
+        });
+        Ok(())
     }
-    if let Some(d) = &ports.damping {
-        bind(d, component, Port::Damping, owner)?;
+
+    /// Binds the value input (written as `inputs.{value}`) and, if given,
+    /// the stiffness and damping inputs of component `index` of `owner`.
+    fn bind_ports(
+        &mut self,
+        ports: &Ports,
+        (value, element): (&str, &Element),
+        index: usize,
+        owner: &str,
+    ) -> Result<(), String> {
+        let key =
+            |entry: &str, input: &str| format!("components.{owner}.inputs.{entry} = \"{input}\"");
+        let f = &ports.force;
+        self.bind(&key(value, f), f, (index, Port::Value), element)?;
+        if let Some(s) = &ports.stiffness {
+            self.bind(&key("stiffness", s), s, (index, Port::Stiffness), element)?;
+        }
+        if let Some(d) = &ports.damping {
+            self.bind(&key("damping", d), d, (index, Port::Damping), element)?;
+        }
+        Ok(())
     }
-    Ok(())
 }

@@ -24,6 +24,7 @@ mod resolve;
 
 use crate::crash::BoundInputs;
 use crate::ode::Options;
+use crate::{InterpretedModel, LagrangianSystem};
 use file::File;
 use overrides::apply_setting;
 pub use resolve::MAX_SAMPLES;
@@ -38,8 +39,60 @@ pub struct ModelNames {
     pub coordinates: Vec<String>,
     pub parameters: Vec<String>,
     pub inputs: Vec<String>,
+    /// The declared argument names of each input, where the model tells them
+    /// (specs do; compiled models do not, and the number of arguments is
+    /// then known from `input_sites` for the inputs the dynamics calls).
+    pub input_arguments: Vec<Option<Vec<String>>>,
     /// `(input, number of arguments)` per input call of the dynamics.
     pub input_sites: Vec<(usize, usize)>,
+}
+
+impl ModelNames {
+    /// The names of any model (compiled or interpreted).
+    pub fn of<const N: usize, S: LagrangianSystem<N>>(system: &S) -> ModelNames {
+        let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
+        ModelNames {
+            coordinates: own(system.coordinate_names()),
+            parameters: own(system.parameter_names()),
+            inputs: own(system.input_names()),
+            input_arguments: vec![None; system.input_names().len()],
+            input_sites: system.input_sites().to_vec(),
+        }
+    }
+
+    /// The names of a spec, with the declared arguments of every input.
+    pub fn of_interpreted(model: &InterpretedModel) -> ModelNames {
+        ModelNames {
+            coordinates: model.coordinates().to_vec(),
+            parameters: model.parameter_names().to_vec(),
+            inputs: model.input_names().to_vec(),
+            input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
+            input_sites: model.input_sites().to_vec(),
+        }
+    }
+
+    /// The number of arguments of input `k`, where known.
+    pub fn arity(&self, k: usize) -> Option<usize> {
+        match self.input_arguments.get(k) {
+            Some(Some(arguments)) => Some(arguments.len()),
+            _ => self
+                .input_sites
+                .iter()
+                .find(|(input, _)| *input == k)
+                .map(|&(_, arity)| arity),
+        }
+    }
+
+    /// Input `k` as declared, `name(a, b)`, or its name and number of arguments.
+    pub fn signature(&self, k: usize) -> String {
+        let name = &self.inputs[k];
+        match (self.input_arguments.get(k), self.arity(k)) {
+            (Some(Some(arguments)), _) => format!("`{name}({})`", arguments.join(", ")),
+            (_, Some(1)) => format!("`{name}` of 1 argument"),
+            (_, Some(n)) => format!("`{name}` of {n} arguments"),
+            (_, None) => format!("`{name}`"),
+        }
+    }
 }
 
 /// Integration method.

@@ -7,12 +7,7 @@ const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
 
 fn names() -> ModelNames {
     let model = InterpretedModel::from_source(SPRING).unwrap();
-    ModelNames {
-        coordinates: model.coordinates().to_vec(),
-        parameters: model.parameter_names().to_vec(),
-        inputs: model.input_names().to_vec(),
-        input_sites: model.input_sites().to_vec(),
-    }
+    ModelNames::of_interpreted(&model)
 }
 
 fn error(text: &str, settings: &[&str]) -> String {
@@ -86,4 +81,69 @@ fn non_finite_and_out_of_range_numbers_name_their_key() {
     );
     let e = error(&format!("{weld}damping = inf\n"), &[]);
     assert!(e.starts_with("components.w.damping = inf: must be"), "{e}");
+}
+
+const YARIS: &str = include_str!("../../../specs/yaris_double_pendulum.lpm");
+
+fn error_for(spec: &str, text: &str) -> String {
+    let names = ModelNames::of_interpreted(&InterpretedModel::from_source(spec).unwrap());
+    match Scenario::parse(text, None, &names, &[]) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const CRUSH: &str = "type = \"crush\"\ncompression = \"positive\"\nstiffness_breakpoints = [0.1]\nstiffness_values = [1.0, 2.0]\ndamping_breakpoints = [1.0]\ndamping_values = [1.0, 1.0]\n";
+
+#[test]
+fn components_need_inputs_of_as_many_arguments_as_they_read() {
+    // A crush element or weld reads (x, ẋ); push(t) has one argument.
+    let e = error(
+        &format!("[components.fe]\ninputs = {{ force = \"push\" }}\n{CRUSH}"),
+        &[],
+    );
+    assert_eq!(
+        e,
+        "components.fe.inputs.force = \"push\": input `push(t)` has 1 argument, but a crush component needs an input of 2 arguments (the crush coordinate and its rate)"
+    );
+    let e = error(
+        "[components.w]\ntype = \"weld\"\ninputs = { moment = \"push\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\nfailure_angle = 0.5\n",
+        &[],
+    );
+    assert!(
+        e.starts_with("components.w.inputs.moment = \"push\": input `push(t)` has 1 argument, but a weld component needs an input of 2 arguments"),
+        "{e}"
+    );
+    // The derivative ports too.
+    let e = error_for(
+        YARIS,
+        &format!(
+            "[components.fe]\ninputs = {{ force = \"crush\", stiffness = \"barrier_x1\" }}\n{CRUSH}"
+        ),
+    );
+    assert!(
+        e.starts_with("components.fe.inputs.stiffness = \"barrier_x1\": input `barrier_x1(t)` has 1 argument, but a crush component needs"),
+        "{e}"
+    );
+    // A table is a function of one argument; push() has none.
+    let no_arguments = SPRING
+        .replace("push(t [s]) [N]", "push() [N]")
+        .replace("push(t);", "push();");
+    let csv = std::env::temp_dir().join(format!("lpm-arity-{}.csv", std::process::id()));
+    std::fs::write(&csv, "t,F\n0,5\n1,100\n").unwrap();
+    let e = error_for(
+        &no_arguments,
+        &format!(
+            "[components.b]\ntype = \"table\"\nfile = {:?}\ncolumns = {{ push = \"F\" }}\n",
+            csv.display().to_string()
+        ),
+    );
+    std::fs::remove_file(&csv).ok();
+    assert_eq!(
+        e,
+        "components.b.columns.push: input `push()` has 0 arguments, but a table component needs an input of 1 argument (the time or abscissa of the table)"
+    );
+    // A constant takes any arguments.
+    let names = ModelNames::of_interpreted(&InterpretedModel::from_source(&no_arguments).unwrap());
+    Scenario::parse(PUSH, None, &names, &["push=2".to_string()]).unwrap();
 }

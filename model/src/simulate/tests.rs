@@ -8,12 +8,7 @@ const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
 
 fn spring() -> (Interpreted<1>, ModelNames) {
     let model = InterpretedModel::from_source(SPRING).unwrap();
-    let names = ModelNames {
-        coordinates: model.coordinates().to_vec(),
-        parameters: model.parameter_names().to_vec(),
-        inputs: model.input_names().to_vec(),
-        input_sites: model.input_sites().to_vec(),
-    };
+    let names = ModelNames::of_interpreted(&model);
     (Interpreted::new(model).unwrap(), names)
 }
 

@@ -64,12 +64,7 @@ fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
 pub fn run(options: SimulateOptions) -> Result<String, Failure> {
     let compiled = compile(&options.spec)?;
     let model = InterpretedModel::from_compiled(&compiled);
-    let names = ModelNames {
-        coordinates: model.coordinates().to_vec(),
-        parameters: model.parameter_names().to_vec(),
-        inputs: model.input_names().to_vec(),
-        input_sites: model.input_sites().to_vec(),
-    };
+    let names = ModelNames::of_interpreted(&model);
     let scenario_path = match &options.scenario {
         Some(p) => Some(p.clone()),
         None => find_scenario(&options.spec)?,
