@@ -110,6 +110,18 @@ pub(super) enum ComponentSection {
     },
 }
 
+impl ComponentSection {
+    /// The `type` of the component as written.
+    pub(super) fn kind(&self) -> &'static str {
+        match self {
+            ComponentSection::Crush { .. } => "crush",
+            ComponentSection::Weld { .. } => "weld",
+            ComponentSection::Table { .. } => "table",
+            ComponentSection::Constant { .. } => "constant",
+        }
+    }
+}
+
 /// The inputs a component supplies: its value and, optionally, derivatives.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -2,7 +2,7 @@
 //! entries, and resolving names to indices.
 
 use super::bind::bind_components;
-use super::file::File;
+use super::file::{ComponentSection, File};
 use super::{Method, ModelNames, Scenario};
 use crate::crash::curve::Outside;
 use crate::ode::Options;
@@ -189,14 +189,8 @@ pub(super) fn resolve(
         .iter()
         .map(|n| coordinate("metrics.pitch: coordinate", n))
         .collect::<Result<_, String>>()?;
-    if let Some(weld) = &file.metrics.weld
-        && !file.components.contains_key(weld)
-    {
-        return Err(unknown(
-            "metrics.weld: component",
-            weld,
-            file.components.keys().map(String::as_str),
-        ));
+    if let Some(weld) = &file.metrics.weld {
+        check_weld_metric(weld, &file.components)?;
     }
     let inputs = bind_components(&file.components, base, names, constants)?;
     Ok(Scenario {
@@ -216,4 +210,37 @@ pub(super) fn resolve(
         weld: file.metrics.weld.clone(),
         inputs,
     })
+}
+
+/// `metrics.weld` must name a weld component of the file.
+fn check_weld_metric(
+    weld: &str,
+    components: &BTreeMap<String, ComponentSection>,
+) -> Result<(), String> {
+    let welds: Vec<&str> = components
+        .iter()
+        .filter(|(_, c)| matches!(c, ComponentSection::Weld { .. }))
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let allowed = if welds.is_empty() {
+        "the scenario has none".to_string()
+    } else {
+        format!("weld components: {}", welds.join(", "))
+    };
+    match components.get(weld) {
+        Some(ComponentSection::Weld { .. }) => Ok(()),
+        Some(other) => Err(format!(
+            "metrics.weld = \"{weld}\": component `{weld}` is a {} component; metrics.weld names a weld component ({allowed})",
+            other.kind()
+        )),
+        None => {
+            let mut message =
+                format!("metrics.weld = \"{weld}\": the scenario has no component `{weld}`");
+            match closest(weld, welds.iter().copied()) {
+                Some(best) => message.push_str(&format!("; did you mean `{best}`?")),
+                None => message.push_str(&format!(" ({allowed})")),
+            }
+            Err(message)
+        }
+    }
 }

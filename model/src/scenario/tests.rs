@@ -147,3 +147,24 @@ fn components_need_inputs_of_as_many_arguments_as_they_read() {
     let names = ModelNames::of_interpreted(&InterpretedModel::from_source(&no_arguments).unwrap());
     Scenario::parse(PUSH, None, &names, &["push=2".to_string()]).unwrap();
 }
+
+#[test]
+fn the_weld_metric_names_a_weld_component() {
+    let weld = "[components.hinge]\ntype = \"weld\"\ninputs = { moment = \"weld\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\n";
+    let front = format!("[components.front_end]\ninputs = {{ force = \"crush\" }}\n{CRUSH}");
+    let e = error_for(
+        YARIS,
+        &format!("[metrics]\nweld = \"front_end\"\n{front}{weld}"),
+    );
+    assert_eq!(
+        e,
+        "metrics.weld = \"front_end\": component `front_end` is a crush component; metrics.weld names a weld component (weld components: hinge)"
+    );
+    let e = error_for(YARIS, &format!("[metrics]\nweld = \"front_end\"\n{front}"));
+    assert!(e.ends_with("(the scenario has none)"), "{e}");
+    let e = error_for(YARIS, &format!("[metrics]\nweld = \"hing\"\n{weld}"));
+    assert_eq!(
+        e,
+        "metrics.weld = \"hing\": the scenario has no component `hing`; did you mean `hinge`?"
+    );
+}
