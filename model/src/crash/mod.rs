@@ -159,6 +159,27 @@ impl BoundInputs {
         f64::NAN
     }
 
+    /// Puts every component in its initial state for a run that starts
+    /// with the model's input arguments `arguments` (crush elements in
+    /// contact or not, welds intact).
+    pub fn start(&mut self, arguments: &[f64]) -> Result<(), String> {
+        for c in 0..self.components.len() {
+            let args = self.event_arguments[c].map(|(start, len)| &arguments[start..start + len]);
+            let result = match (&mut self.components[c].element, args) {
+                (Element::Crush(e), Some(args)) => e.start(args),
+                // Not called by the dynamics: no events, so it stays as it is at rest.
+                (Element::Crush(e), None) => e.start(&[0.0, 0.0]),
+                (Element::Weld(w), _) => {
+                    w.reset();
+                    Ok(())
+                }
+                _ => Ok(()),
+            };
+            result.map_err(|e| self.out_of_range(c, e))?;
+        }
+        Ok(())
+    }
+
     /// `(component, local event)` of global event `k`.
     pub fn event(&self, k: usize) -> Option<(usize, usize)> {
         let mut k = k;

@@ -105,10 +105,14 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         v[i] = value;
     }
     let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    // The components' state (a crush element in contact or not) follows the
+    // initial state, for the equilibrium as for the run.
+    problem.start(0.0, &PhaseState::new(q, v))?;
     if !scenario.equilibrium.is_empty() {
         q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
     }
     let y0 = PhaseState::new(q, v);
+    problem.start(0.0, &y0)?;
     let mut samples = Vec::new();
     let mut sample_error = None;
     let interval = scenario.output_interval;
