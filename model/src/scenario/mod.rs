@@ -27,6 +27,7 @@ use crate::ode::Options;
 use crate::{InterpretedModel, LagrangianSystem};
 use file::File;
 use overrides::apply_setting;
+pub use overrides::{setting_number, split_setting};
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;

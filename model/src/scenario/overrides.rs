@@ -4,6 +4,21 @@ use super::ModelNames;
 use super::resolve::unknown;
 use std::collections::BTreeMap;
 
+/// `--set key=value` split at the first `=`, both sides trimmed.
+pub fn split_setting(setting: &str) -> Result<(&str, &str), String> {
+    let (key, value) = setting
+        .split_once('=')
+        .ok_or_else(|| format!("--set `{setting}` is not of the form key=value"))?;
+    Ok((key.trim(), value.trim()))
+}
+
+/// The value of `--set name=value` for a parameter or an input's constant.
+pub fn setting_number(name: &str, value: &str) -> Result<f64, String> {
+    value
+        .parse()
+        .map_err(|_| format!("--set {name}: `{value}` is not a number"))
+}
+
 /// Applies one `--set key=value` to the document.
 pub(super) fn apply_setting(
     document: &mut toml::Table,
@@ -11,14 +26,9 @@ pub(super) fn apply_setting(
     names: &ModelNames,
     constants: &mut BTreeMap<String, f64>,
 ) -> Result<(), String> {
-    let (key, value) = setting
-        .split_once('=')
-        .ok_or_else(|| format!("--set `{setting}` is not of the form key=value"))?;
-    let (key, value) = (key.trim(), value.trim());
+    let (key, value) = split_setting(setting)?;
     if !key.contains('.') {
-        let number: f64 = value
-            .parse()
-            .map_err(|_| format!("--set {key}: `{value}` is not a number"))?;
+        let number = setting_number(key, value)?;
         if names.parameters.iter().any(|p| p == key) {
             let parameters = document
                 .entry("parameters")

@@ -168,3 +168,21 @@ fn the_weld_metric_names_a_weld_component() {
         "metrics.weld = \"hing\": the scenario has no component `hing`; did you mean `hinge`?"
     );
 }
+
+#[test]
+fn settings_split_at_the_first_equals_sign() {
+    assert_eq!(split_setting(" k = 2 "), Ok(("k", "2")));
+    assert_eq!(
+        split_setting("components.c.file=\"a=b.csv\""),
+        Ok(("components.c.file", "\"a=b.csv\""))
+    );
+    assert_eq!(
+        split_setting("k"),
+        Err("--set `k` is not of the form key=value".to_string())
+    );
+    assert_eq!(setting_number("k", "2e3"), Ok(2e3));
+    assert_eq!(
+        setting_number("k", "two"),
+        Err("--set k: `two` is not a number".to_string())
+    );
+}
