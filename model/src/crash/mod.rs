@@ -267,6 +267,16 @@ impl BoundInputs {
         )
     }
 
+    /// The compression sign of the crush element whose force input `input`
+    /// is, or `None` when it is not one.
+    pub fn crush_force_sign(&self, input: usize) -> Option<f64> {
+        let binding = self.bindings.get(input).copied().flatten()?;
+        match &self.components[binding.component].element {
+            Element::Crush(c) if binding.port == Port::Value => Some(c.compression_sign),
+            _ => None,
+        }
+    }
+
     /// The time a weld component failed, if it did.
     pub fn weld_failure(&self, name: Option<&str>) -> Option<f64> {
         self.components

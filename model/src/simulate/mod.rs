@@ -48,6 +48,9 @@ pub struct SimulationResult {
     pub events: Vec<EventRecord>,
     pub summary: Summary,
     pub method: Method,
+    /// The gravitational acceleration `g` the summary's decelerations are
+    /// in: the model's `g` parameter, or standard gravity without one.
+    pub g: f64,
 }
 
 /// Why a run failed.
@@ -170,14 +173,8 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         .iter()
         .map(|&(input, _)| model.input_names()[input].to_string())
         .collect();
-    let summary = Summary::compute(
-        &samples,
-        scenario,
-        q.as_slice(),
-        &outcome.stats,
-        weld,
-        gravity(&model),
-    );
+    let g = gravity(&model);
+    let summary = Summary::compute(&samples, scenario, q.as_slice(), &outcome.stats, weld, g);
     Ok(SimulationResult {
         model: model.model_name().to_string(),
         coordinates: model
@@ -192,6 +189,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         events: problem.events,
         summary,
         method: scenario.method,
+        g,
     })
 }
 

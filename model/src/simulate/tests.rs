@@ -26,6 +26,8 @@ fn an_output_interval_past_the_scenario_check_still_ends() {
             result.samples.len()
         );
         assert_eq!(result.samples[0].t, 0.0);
+        // A model without a `g` parameter is measured in standard gravity.
+        assert_eq!(result.g, 9.80665);
     }
 }
 
