@@ -145,28 +145,20 @@ pub(super) fn resolve(
         })
         .collect::<Result<_, String>>()?;
     let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
-    let initial_coordinates = file
-        .initial
-        .coordinates
-        .iter()
-        .map(|(n, v)| {
-            Ok((
-                coordinate("initial.coordinates: coordinate", n)?,
-                finite(&format!("initial.coordinates.{n}"), *v)?,
-            ))
-        })
-        .collect::<Result<_, String>>()?;
-    let initial_velocities = file
-        .initial
-        .velocities
-        .iter()
-        .map(|(n, v)| {
-            Ok((
-                coordinate("initial.velocities: coordinate", n)?,
-                finite(&format!("initial.velocities.{n}"), *v)?,
-            ))
-        })
-        .collect::<Result<_, String>>()?;
+    // `initial.{section}`: values by coordinate name.
+    let initial = |section: &str, values: &BTreeMap<String, f64>| {
+        values
+            .iter()
+            .map(|(n, v)| {
+                Ok((
+                    coordinate(&format!("initial.{section}: coordinate"), n)?,
+                    finite(&format!("initial.{section}.{n}"), *v)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, String>>()
+    };
+    let initial_coordinates = initial("coordinates", &file.initial.coordinates)?;
+    let initial_velocities = initial("velocities", &file.initial.velocities)?;
     let equilibrium = file
         .initial
         .equilibrium

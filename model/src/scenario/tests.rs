@@ -5,17 +5,19 @@ use crate::InterpretedModel;
 
 const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
 
-fn names() -> ModelNames {
-    let model = InterpretedModel::from_source(SPRING).unwrap();
-    ModelNames::of_interpreted(&model)
-}
-
-fn error(text: &str, settings: &[&str]) -> String {
+/// The message with which `text` (and `settings`) is refused for `spec`.
+fn error_for(spec: &str, text: &str, settings: &[&str]) -> String {
+    let names = ModelNames::of_interpreted(&InterpretedModel::from_source(spec).unwrap());
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    match Scenario::parse(text, None, &names(), &settings) {
+    match Scenario::parse(text, None, &names, &settings) {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(e) => e.to_string(),
     }
+}
+
+/// The message with which `text` is refused for the spring–mass–damper.
+fn error(text: &str, settings: &[&str]) -> String {
+    error_for(SPRING, text, settings)
 }
 
 const PUSH: &str = "[components.c]\ntype = \"constant\"\nvalues = { push = 1.0 }\n";
@@ -85,14 +87,6 @@ fn non_finite_and_out_of_range_numbers_name_their_key() {
 
 const YARIS: &str = include_str!("../../../specs/yaris_double_pendulum.lpm");
 
-fn error_for(spec: &str, text: &str) -> String {
-    let names = ModelNames::of_interpreted(&InterpretedModel::from_source(spec).unwrap());
-    match Scenario::parse(text, None, &names, &[]) {
-        Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => e.to_string(),
-    }
-}
-
 const CRUSH: &str = "type = \"crush\"\ncompression = \"positive\"\nstiffness_breakpoints = [0.1]\nstiffness_values = [1.0, 2.0]\ndamping_breakpoints = [1.0]\ndamping_values = [1.0, 1.0]\n";
 
 #[test]
@@ -120,6 +114,7 @@ fn components_need_inputs_of_as_many_arguments_as_they_read() {
         &format!(
             "[components.fe]\ninputs = {{ force = \"crush\", stiffness = \"barrier_x1\" }}\n{CRUSH}"
         ),
+        &[],
     );
     assert!(
         e.starts_with("components.fe.inputs.stiffness = \"barrier_x1\": input `barrier_x1(t)` has 1 argument, but a crush component needs"),
@@ -137,6 +132,7 @@ fn components_need_inputs_of_as_many_arguments_as_they_read() {
             "[components.b]\ntype = \"table\"\nfile = {:?}\ncolumns = {{ push = \"F\" }}\n",
             csv.display().to_string()
         ),
+        &[],
     );
     std::fs::remove_file(&csv).ok();
     assert_eq!(
@@ -155,14 +151,19 @@ fn the_weld_metric_names_a_weld_component() {
     let e = error_for(
         YARIS,
         &format!("[metrics]\nweld = \"front_end\"\n{front}{weld}"),
+        &[],
     );
     assert_eq!(
         e,
         "metrics.weld = \"front_end\": component `front_end` is a crush component; metrics.weld names a weld component (weld components: hinge)"
     );
-    let e = error_for(YARIS, &format!("[metrics]\nweld = \"front_end\"\n{front}"));
+    let e = error_for(
+        YARIS,
+        &format!("[metrics]\nweld = \"front_end\"\n{front}"),
+        &[],
+    );
     assert!(e.ends_with("(the scenario has none)"), "{e}");
-    let e = error_for(YARIS, &format!("[metrics]\nweld = \"hing\"\n{weld}"));
+    let e = error_for(YARIS, &format!("[metrics]\nweld = \"hing\"\n{weld}"), &[]);
     assert_eq!(
         e,
         "metrics.weld = \"hing\": the scenario has no component `hing`; did you mean `hinge`?"
