@@ -64,7 +64,8 @@ pub struct Options {
     /// First step; chosen automatically (Hairer's algorithm) when `None`.
     pub initial_step: Option<f64>,
     pub max_step: f64,
-    /// A step below this is an error (step size underflow).
+    /// A step that has to shrink below this is an error, which says why it
+    /// shrank (error test, Newton divergence, singular iteration matrix).
     pub min_step: f64,
     /// Maximum number of attempted steps.
     pub max_steps: usize,
