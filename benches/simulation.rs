@@ -49,10 +49,7 @@ fn main() {
         for interval in ["1e-4", "1e-3"] {
             let settings = vec![
                 format!("simulation.rtol={rtol}"),
-                format!(
-                    "simulation.atol={}",
-                    rtol.replace("e-", "e-").parse::<f64>().unwrap() * 1e-2
-                ),
+                format!("simulation.atol={}", rtol.parse::<f64>().unwrap() * 1e-2),
                 format!("simulation.output_interval={interval}"),
             ];
             let scenario =
