@@ -14,16 +14,6 @@ mod models {
     lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
 }
 
-fn names<const N: usize>(m: &impl LagrangianSystem<N>) -> ModelNames {
-    let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
-    ModelNames {
-        coordinates: own(m.coordinate_names()),
-        parameters: own(m.parameter_names()),
-        inputs: own(m.input_names()),
-        input_sites: m.input_sites().to_vec(),
-    }
-}
-
 /// Median microseconds of `runs` simulations, with the run's step count.
 fn time<S: LagrangianSystem<3> + Clone>(
     model: &S,
@@ -62,7 +52,8 @@ fn main() {
                 format!("simulation.atol={}", rtol.parse::<f64>().unwrap() * 1e-2),
                 format!("simulation.output_interval={interval}"),
             ];
-            let scenario = Scenario::load(&scenario_path, &names(&compiled), &settings).unwrap();
+            let scenario =
+                Scenario::load(&scenario_path, &ModelNames::of(&compiled), &settings).unwrap();
             let samples = (0.15 / interval.parse::<f64>().unwrap()).round() as usize + 1;
             for (label, result) in [
                 ("compiled", time(&compiled, &scenario, 21)),

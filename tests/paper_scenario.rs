@@ -14,16 +14,6 @@ mod models {
 const SPEC: &str = "specs/yaris_double_pendulum.lpm";
 const SCENARIO: &str = "specs/scenarios/yaris_full_frontal.toml";
 
-fn names<const N: usize>(m: &impl LagrangianSystem<N>) -> ModelNames {
-    let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
-    ModelNames {
-        coordinates: own(m.coordinate_names()),
-        parameters: own(m.parameter_names()),
-        inputs: own(m.input_names()),
-        input_sites: m.input_sites().to_vec(),
-    }
-}
-
 fn interpreted() -> Interpreted<3> {
     let source = std::fs::read_to_string(SPEC).unwrap();
     Interpreted::new(InterpretedModel::from_source(&source).unwrap()).unwrap()
@@ -31,7 +21,7 @@ fn interpreted() -> Interpreted<3> {
 
 fn run<S: LagrangianSystem<3> + Clone>(model: &S, settings: &[&str]) -> SimulationResult {
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    let scenario = Scenario::load(Path::new(SCENARIO), &names(model), &settings).unwrap();
+    let scenario = Scenario::load(Path::new(SCENARIO), &ModelNames::of(model), &settings).unwrap();
     simulate(model, &scenario).unwrap()
 }
 
@@ -116,7 +106,7 @@ fn the_run_starts_in_static_equilibrium() {
     let model = interpreted();
     let r = run(&model, &["simulation.t_end=1e-4"]);
     let q = lagrangian::nalgebra::Vector3::from_column_slice(&r.initial_q);
-    let scenario = Scenario::load(Path::new(SCENARIO), &names(&model), &[]).unwrap();
+    let scenario = Scenario::load(Path::new(SCENARIO), &ModelNames::of(&model), &[]).unwrap();
     let mut model = model;
     let parameter_names: Vec<String> = model
         .parameter_names()

@@ -20,6 +20,7 @@ pub struct InterpretedModel {
     coordinates: Vec<String>,
     parameter_names: Vec<String>,
     input_names: Vec<String>,
+    input_arguments: Vec<Vec<String>>,
     coordinate_units: Vec<Option<String>>,
     input_units: Vec<Option<String>>,
     program: Arc<Program>,
@@ -48,6 +49,11 @@ impl InterpretedModel {
             coordinates: model.coordinates.iter().map(|c| c.name.clone()).collect(),
             parameter_names: model.parameters.iter().map(|p| p.name.clone()).collect(),
             input_names: model.inputs.iter().map(|i| i.name.clone()).collect(),
+            input_arguments: model
+                .inputs
+                .iter()
+                .map(|i| i.arguments.iter().map(|(name, _)| name.clone()).collect())
+                .collect(),
             coordinate_units: model
                 .coordinates
                 .iter()
@@ -91,6 +97,11 @@ impl InterpretedModel {
 
     pub fn input_names(&self) -> &[String] {
         &self.input_names
+    }
+
+    /// The declared argument names of each input function.
+    pub fn input_arguments(&self) -> &[Vec<String>] {
+        &self.input_arguments
     }
 
     /// Units of the coordinates as written in the spec.

@@ -481,3 +481,76 @@ fn tr_bdf2_has_order_two_and_handles_stiffness() {
         energy(&implicit.y)
     );
 }
+
+/// `ẍ = a(t, x, ẋ)` with a fixed Jacobian, for the implicit method's failures.
+struct Rough {
+    acceleration: fn(f64, f64, f64) -> f64,
+    jacobian: f64,
+}
+
+impl OdeProblem<PhaseState<1>> for Rough {
+    fn rhs(
+        &mut self,
+        t: f64,
+        y: &PhaseState<1>,
+        dy: &mut PhaseState<1>,
+    ) -> Result<(), SolverError> {
+        let a = (self.acceleration)(t, y.q[0], y.v[0]);
+        *dy = PhaseState {
+            q: y.v,
+            v: Vector1::new(a),
+            work: [0.0, 0.0],
+        };
+        Ok(())
+    }
+}
+
+impl AccelerationJacobians<1> for Rough {
+    fn acceleration_jacobians(
+        &mut self,
+        _t: f64,
+        _y: &PhaseState<1>,
+    ) -> Result<Option<AccelerationJacobian<1>>, SolverError> {
+        Ok(Some((
+            SMatrix::from_element(self.jacobian),
+            SMatrix::from_element(0.0),
+        )))
+    }
+}
+
+#[test]
+fn tr_bdf2_failures_say_why_the_step_shrank() {
+    let run = |acceleration: fn(f64, f64, f64) -> f64, jacobian: f64| {
+        let mut problem = Rough {
+            acceleration,
+            jacobian,
+        };
+        let y0 = PhaseState::new(Vector1::new(0.0), Vector1::new(1e-3));
+        let options = Options {
+            initial_step: Some(1e-3),
+            ..Options::default()
+        };
+        sdirk::integrate(&mut problem, 0.0, y0, 2.0, &options, &mut no_observer()).unwrap_err()
+    };
+    // A jump of the acceleration at t = 1: Newton converges at every step
+    // size, the error test fails at every one.
+    let err = run(|t, _, _| if t < 1.0 { 0.0 } else { 1e10 }, 0.0);
+    assert!(
+        matches!(err, SolverError::StepSizeUnderflow { t, .. } if (t - 1.0).abs() < 1e-6),
+        "{err:?}"
+    );
+    // Very stiff dry friction: the iterates swing between ±v, at every step size.
+    let err = run(|_, _, v| -1e12 * v.signum(), 0.0);
+    assert!(matches!(err, SolverError::NewtonFailure { .. }), "{err:?}");
+    assert!(
+        err.to_string().contains("Newton iterations diverge"),
+        "{err}"
+    );
+    // A Jacobian that is not finite: no iteration matrix at any step size.
+    let err = run(|_, x, _| -x, f64::INFINITY);
+    assert!(
+        matches!(err, SolverError::SingularIterationMatrix { t: 0.0, .. }),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("iteration matrix"), "{err}");
+}

@@ -9,8 +9,12 @@
 //!   back along that line on reloading and onto the loading curve beyond `δ_p`
 //!   (permanent set `δ_p − S_p/k_u`). Elastic unloading follows the loading
 //!   curve, which returns all the stored energy (the paper's model);
-//! * compression only: the barrier pushes but never pulls, so the force is 0
-//!   while `S + D < 0` (the car has separated).
+//! * compression only: the barrier pushes but never pulls. In contact the
+//!   force is `S + D` until that would pull (`S + D < 0`: the car separates);
+//!   separated it is 0 until the gap closes — the crush reaches the spring's
+//!   zero (0 on the loading curve, the permanent set after plastic
+//!   unloading) — while `S + D ≥ 0`. A run that starts with a gap (or moving
+//!   away) starts separated ([`CrushElement::start`]).
 //!
 //! Each change of regime is an event of the integration, so the force is
 //! smooth within a step.
@@ -75,10 +79,40 @@ impl CrushElement {
         }
     }
 
-    /// Back to the undeformed, loading state.
-    pub fn reset(&mut self) {
+    /// Back to the undeformed, loading state, in contact or not as the
+    /// state the run starts in, with input arguments `args`, says: in contact
+    /// when the gap is closed and the barrier would push (see
+    /// [`CrushElement::events`]).
+    pub fn start(&mut self, args: &[f64]) -> Result<(), OutOfRange> {
         self.phase = Phase::Loading;
         self.in_contact = true;
+        if self.contact_only {
+            let (delta, rate) = self.crush(args);
+            self.in_contact = self.closing(delta, rate)? >= 0.0;
+        }
+        Ok(())
+    }
+
+    /// Whether the element is in contact with the barrier.
+    pub fn in_contact(&self) -> bool {
+        self.in_contact
+    }
+
+    /// The crush at which the spring of the current phase is unloaded: 0 on
+    /// the loading curve, the permanent set after plastic unloading.
+    fn spring_zero(&self) -> f64 {
+        self.permanent_set().unwrap_or(0.0)
+    }
+
+    /// `S + D`: the compressive force the barrier would exert in contact.
+    fn total(&self, delta: f64, rate: f64) -> Result<f64, OutOfRange> {
+        Ok(self.spring(delta)?.0 + self.damping.force(rate)?.0)
+    }
+
+    /// `min(δ − δ₀, S + D)`, non-negative once the gap has closed (`δ₀` the
+    /// spring's zero) with the barrier pushing.
+    fn closing(&self, delta: f64, rate: f64) -> Result<f64, OutOfRange> {
+        Ok((delta - self.spring_zero()).min(self.total(delta, rate)?))
     }
 
     /// The crush `δ` and rate `δ̇` from the input's arguments `(x, v)`.
@@ -139,6 +173,12 @@ impl CrushElement {
 
     /// The event functions; one that does not apply in the current regime is
     /// held at a constant of the sign that cannot trigger it.
+    ///
+    /// 0. peak crush (plastic unloading, loading): `δ̇`, falling;
+    /// 1. reloading past the peak (unloading): `δ − δ_peak`, rising;
+    /// 2. separation (contact only, in contact): `S + D`, falling;
+    /// 3. contact (contact only, separated): `min(δ − δ₀, S + D)`, rising —
+    ///    the gap closes at the spring's zero `δ₀` with the barrier pushing.
     pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let (delta, rate) = self.crush(args);
         let plastic = matches!(self.unloading, Unloading::Plastic { .. });
@@ -150,18 +190,13 @@ impl CrushElement {
             Phase::Unloading { peak_crush, .. } => delta - peak_crush,
             Phase::Loading => -1.0,
         };
-        let total = if self.contact_only {
-            self.spring(delta)?.0 + self.damping.force(rate)?.0
-        } else {
-            0.0
-        };
         g[2] = if self.contact_only && self.in_contact {
-            total
+            self.total(delta, rate)?
         } else {
             1.0
         };
         g[3] = if self.contact_only && !self.in_contact {
-            total
+            self.closing(delta, rate)?
         } else {
             -1.0
         };
@@ -253,5 +288,29 @@ mod tests {
         assert!(g[2] < 0.0);
         e.on_event(2, &[-(set - 1e-4), 1.0]).unwrap();
         assert_eq!(e.force(&[-(set - 1e-4), 1.0]).unwrap(), 0.0);
+    }
+
+    #[test]
+    fn a_run_that_starts_with_a_gap_starts_separated_until_the_gap_closes() {
+        // compression_sign = −1: crush δ = −r; r = 0.05 is a gap of 5 cm.
+        let mut e = element(Unloading::Elastic);
+        e.start(&[0.05, -15.0]).unwrap();
+        assert!(!e.in_contact());
+        assert_eq!(e.force(&[0.05, -15.0]).unwrap(), 0.0);
+        // The contact function is the gap (δ − 0) until it closes, although
+        // the damper alone would push already (S + D > 0 at 1 mm).
+        let mut g = [0.0; 4];
+        e.events(&[0.001, -15.0], &mut g).unwrap();
+        assert_eq!((g[2], g[3]), (1.0, -0.001));
+        e.events(&[-0.001, -15.0], &mut g).unwrap();
+        assert!(g[3] > 0.0);
+        // Touching the barrier and closing in, or resting against it: in contact.
+        e.start(&[0.0, -15.0]).unwrap();
+        assert!(e.in_contact());
+        e.start(&[0.0, 0.0]).unwrap();
+        assert!(e.in_contact());
+        // Pressed in but moving away so fast that S + D < 0: separated.
+        e.start(&[-0.001, 100.0]).unwrap();
+        assert!(!e.in_contact());
     }
 }

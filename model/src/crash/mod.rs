@@ -45,6 +45,27 @@ impl Element {
         }
     }
 
+    /// What the scenario calls this kind of component.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Element::Crush(_) => "crush",
+            Element::Weld(_) => "weld",
+            Element::Curve(_) => "table",
+            Element::Constant(_) => "constant",
+        }
+    }
+
+    /// How many arguments the input functions bound to this element must
+    /// have, and what they are; `None`: any number (a constant).
+    pub fn arguments(&self) -> Option<(usize, &'static str)> {
+        match self {
+            Element::Crush(_) => Some((2, "the crush coordinate and its rate")),
+            Element::Weld(_) => Some((2, "the angle and its rate")),
+            Element::Curve(_) => Some((1, "the time or abscissa of the table")),
+            Element::Constant(_) => None,
+        }
+    }
+
     pub fn event_name(&self, k: usize) -> &'static str {
         match self {
             Element::Crush(_) => crush::EVENTS[k],
@@ -53,6 +74,8 @@ impl Element {
         }
     }
 
+    /// The value of `port` at the input's arguments `args`, which hold as
+    /// many values as [`Element::arguments`] asks for.
     fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
         match (self, port) {
             (Element::Crush(c), Port::Value) => c.force(args),
@@ -66,10 +89,8 @@ impl Element {
                     Port::Damping => dc,
                 })
             }
-            (Element::Curve(c), Port::Value) => Ok(c.eval(args.first().copied().unwrap_or(0.0))?.0),
-            (Element::Curve(c), Port::Stiffness) => {
-                Ok(c.eval(args.first().copied().unwrap_or(0.0))?.1)
-            }
+            (Element::Curve(c), Port::Value) => Ok(c.eval(args[0])?.0),
+            (Element::Curve(c), Port::Stiffness) => Ok(c.eval(args[0])?.1),
             (Element::Curve(_), Port::Damping) => Ok(0.0),
             (Element::Constant(v), Port::Value) => Ok(*v),
             (Element::Constant(_), _) => Ok(0.0),
@@ -136,6 +157,27 @@ impl BoundInputs {
             *slot = Some(message);
         }
         f64::NAN
+    }
+
+    /// Puts every component in its initial state for a run that starts
+    /// with the model's input arguments `arguments` (crush elements in
+    /// contact or not, welds intact).
+    pub fn start(&mut self, arguments: &[f64]) -> Result<(), String> {
+        for c in 0..self.components.len() {
+            let args = self.event_arguments[c].map(|(start, len)| &arguments[start..start + len]);
+            let result = match (&mut self.components[c].element, args) {
+                (Element::Crush(e), Some(args)) => e.start(args),
+                // Not called by the dynamics: no events, so it stays as it is at rest.
+                (Element::Crush(e), None) => e.start(&[0.0, 0.0]),
+                (Element::Weld(w), _) => {
+                    w.reset();
+                    Ok(())
+                }
+                _ => Ok(()),
+            };
+            result.map_err(|e| self.out_of_range(c, e))?;
+        }
+        Ok(())
     }
 
     /// `(component, local event)` of global event `k`.
@@ -225,6 +267,16 @@ impl BoundInputs {
         )
     }
 
+    /// The compression sign of the crush element whose force input `input`
+    /// is, or `None` when it is not one.
+    pub fn crush_force_sign(&self, input: usize) -> Option<f64> {
+        let binding = self.bindings.get(input).copied().flatten()?;
+        match &self.components[binding.component].element {
+            Element::Crush(c) if binding.port == Port::Value => Some(c.compression_sign),
+            _ => None,
+        }
+    }
+
     /// The time a weld component failed, if it did.
     pub fn weld_failure(&self, name: Option<&str>) -> Option<f64> {
         self.components
@@ -243,10 +295,23 @@ impl InputFunctions for BoundInputs {
             let name = self.input_names.get(input).map_or("?", String::as_str);
             return self.fail(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE"));
         };
-        match self.components[binding.component]
-            .element
-            .value(binding.port, args)
+        let component = &self.components[binding.component];
+        if let Some((needed, _)) = component.element.arguments()
+            && args.len() != needed
         {
+            // The scenario checks this where it knows the input's arguments;
+            // a compiled model does not tell them for inputs only its
+            // Jacobians call.
+            return self.fail(format!(
+                "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
+                self.input_names[input],
+                args.len(),
+                if args.len() == 1 { "" } else { "s" },
+                component.element.kind(),
+                component.name
+            ));
+        }
+        match component.element.value(binding.port, args) {
             Ok(v) => v,
             Err(e) => {
                 let message = format!(
@@ -257,5 +322,44 @@ impl InputFunctions for BoundInputs {
                 self.fail(message)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crash::crush::Unloading;
+    use crate::crash::curve::Characteristic;
+
+    #[test]
+    fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
+        // What a compiled model can bring past the scenario check: a crush
+        // element's stiffness port on an input of one argument.
+        let crush = CrushElement::new(
+            Characteristic::constant(1.0e6),
+            Characteristic::constant(1.0e3),
+            Unloading::Elastic,
+            1.0,
+            true,
+        );
+        let inputs = BoundInputs::new(
+            vec![Component {
+                name: "front_end".into(),
+                element: Element::Crush(crush),
+            }],
+            vec![Some(Binding {
+                component: 0,
+                port: Port::Stiffness,
+            })],
+            vec![None],
+            vec!["crush_stiffness".into()],
+        );
+        assert!(inputs.value(0, &[0.1]).is_nan());
+        assert_eq!(
+            inputs.take_failure().as_deref(),
+            Some(
+                "input `crush_stiffness` is called with 1 argument, but crush component `front_end` needs 2"
+            )
+        );
     }
 }

@@ -6,7 +6,7 @@
 //! are interpolated linearly; outside the time range the column's
 //! [`Outside`] policy applies.
 
-use super::curve::{Curve, Outside};
+use super::curve::{Curve, CurveError, Outside};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -19,7 +19,8 @@ pub enum TableError {
     },
     Malformed {
         file: PathBuf,
-        line: u64,
+        /// The line of the problem, when it has one.
+        line: Option<u64>,
         message: String,
     },
     NotNumeric {
@@ -54,9 +55,14 @@ impl fmt::Display for TableError {
             }
             TableError::Malformed {
                 file,
-                line,
+                line: Some(line),
                 message,
             } => write!(f, "{}:{line}: {message}", file.display()),
+            TableError::Malformed {
+                file,
+                line: None,
+                message,
+            } => write!(f, "{}: {message}", file.display()),
             TableError::NotNumeric {
                 file,
                 line,
@@ -141,7 +147,7 @@ impl Table {
             .from_reader(text.as_bytes());
         let malformed = |e: csv::Error, file: &PathBuf| TableError::Malformed {
             file: file.clone(),
-            line: e.position().map_or(0, |p| p.line()),
+            line: e.position().map(|p| p.line()),
             message: e.to_string(),
         };
         let headers: Vec<String> = reader
@@ -217,13 +223,23 @@ impl Table {
                 previous: times[i - 1],
             });
         }
-        Curve::new(times.clone(), self.columns[y].clone(), outside).map_err(|e| {
-            TableError::Malformed {
-                file: self.file.clone(),
-                line: 0,
-                message: e.to_string(),
-            }
-        })
+        Curve::new(times.clone(), self.columns[y].clone(), outside)
+            .map_err(|e| self.curve_error(&self.headers[y], e))
+    }
+
+    /// A curve's complaint about `column`, at the line of the row it names.
+    fn curve_error(&self, column: &str, e: CurveError) -> TableError {
+        let row = match e {
+            CurveError::NotFinite { index }
+            | CurveError::NotIncreasing { index, .. }
+            | CurveError::Negative { index, .. } => Some(index),
+            CurveError::TooFewPoints(_) | CurveError::LengthMismatch { .. } => None,
+        };
+        TableError::Malformed {
+            file: self.file.clone(),
+            line: row.and_then(|i| self.lines.get(i).copied()),
+            message: format!("column `{column}`: {e}"),
+        }
     }
 }
 
@@ -267,6 +283,18 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "forces.csv:5: time 0.1 does not increase (previous row has 0.2); sort the rows by time"
+        );
+        // What a curve finds wrong is reported at the row's line, not at line 0.
+        let t = table("t,F\n# comment\n0,1\n0.1,2\n").unwrap();
+        let e = t.curve_error("F", CurveError::NotFinite { index: 1 });
+        assert_eq!(
+            e.to_string(),
+            "forces.csv:4: column `F`: point 2 is not a finite number"
+        );
+        let e = t.curve_error("F", CurveError::TooFewPoints(1));
+        assert_eq!(
+            e.to_string(),
+            "forces.csv: column `F`: needs at least 2 points, has 1"
         );
         let e = table("t,Fx1\n0,1\n")
             .unwrap()

@@ -43,6 +43,7 @@ impl Weld {
         }
     }
 
+    /// Intact again, for the start of a run.
     pub fn reset(&mut self) {
         self.failed_at = None;
     }

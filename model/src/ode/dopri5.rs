@@ -8,7 +8,7 @@
 //! rejection). The first step follows Hairer's `hinit` (the same as SciPy's
 //! `select_initial_step`).
 
-use super::events::{EventAction, EventTracker};
+use super::driver::{Driver, Point, StepEnd, Truncate};
 use super::{DenseStep, OdeProblem, OdeVector, Options, SolverError, Stats, error_norm, evaluate};
 
 const C2: f64 = 1.0 / 5.0;
@@ -64,6 +64,12 @@ pub struct Dense<Y> {
     r: [Y; 5],
 }
 
+impl<Y> Truncate for Dense<Y> {
+    fn truncate(self, end: f64) -> Self {
+        Dense { t1: end, ..self }
+    }
+}
+
 impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
     fn t0(&self) -> f64 {
         self.t0
@@ -89,15 +95,8 @@ impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
     }
 }
 
-/// How an integration ended.
-#[derive(Clone, Debug)]
-pub struct Outcome<Y> {
-    pub t: f64,
-    pub y: Y,
-    pub stats: Stats,
-    /// The event that stopped the integration, if one did.
-    pub stopped_by: Option<usize>,
-}
+/// How an integration ended (the same for every method).
+pub use super::Outcome;
 
 /// Integrates from `(t0, y0)` to `t_end`, calling `observer` with the problem
 /// and every accepted step (truncated at events).
@@ -109,16 +108,12 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
     options: &Options,
     observer: &mut dyn FnMut(&mut P, &dyn DenseStep<Y>),
 ) -> Result<Outcome<Y>, SolverError> {
-    options.validate()?;
-    let mut stats = Stats::default();
     let (mut t, mut y) = (t0, y0);
     let mut k1 = y.clone();
-    evaluate(problem, t, &y, &mut k1, &mut stats)?;
-    let mut events = EventTracker::new(problem.event_count());
-    events.reset(problem, t, &y, &k1)?;
+    let mut driver = Driver::start(problem, t, &y, &mut k1, t_end, options)?;
     let mut h = match options.fixed_step.or(options.initial_step) {
         Some(h) => h,
-        None => initial_step(problem, t, &y, &k1, t_end - t, options, &mut stats)?,
+        None => initial_step(problem, t, &y, &k1, t_end - t, options, &mut driver.stats)?,
     }
     .min(options.max_step);
     let (mut k2, mut k3, mut k4, mut k5, mut k6, mut k7) = (
@@ -130,27 +125,17 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
         y.clone(),
     );
     let (mut stage, mut y1, mut err) = (y.clone(), y.clone(), y.clone());
-    let mut scratch = y.clone();
     let mut previous_error: f64 = 1e-4;
     let mut rejected_last = false;
-    let end_tolerance = 4.0 * f64::EPSILON * t_end.abs().max(1.0);
-    while t_end - t > end_tolerance {
-        if stats.accepted_steps + stats.rejected_steps >= options.max_steps {
-            return Err(SolverError::MaxSteps {
-                t,
-                steps: options.max_steps,
-            });
-        }
-        // Do not leave a sliver of a step before t_end.
-        if t + 1.01 * h >= t_end {
-            h = t_end - t;
-        }
+    while let Some(step) = driver.next_step(t, h)? {
+        h = step;
+        let stats = &mut driver.stats;
         stage.set_combination(&y, &[(h * A21, &k1)]);
-        evaluate(problem, t + C2 * h, &stage, &mut k2, &mut stats)?;
+        evaluate(problem, t + C2 * h, &stage, &mut k2, stats)?;
         stage.set_combination(&y, &[(h * A31, &k1), (h * A32, &k2)]);
-        evaluate(problem, t + C3 * h, &stage, &mut k3, &mut stats)?;
+        evaluate(problem, t + C3 * h, &stage, &mut k3, stats)?;
         stage.set_combination(&y, &[(h * A41, &k1), (h * A42, &k2), (h * A43, &k3)]);
-        evaluate(problem, t + C4 * h, &stage, &mut k4, &mut stats)?;
+        evaluate(problem, t + C4 * h, &stage, &mut k4, stats)?;
         stage.set_combination(
             &y,
             &[
@@ -160,7 +145,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
                 (h * A54, &k4),
             ],
         );
-        evaluate(problem, t + C5 * h, &stage, &mut k5, &mut stats)?;
+        evaluate(problem, t + C5 * h, &stage, &mut k5, stats)?;
         stage.set_combination(
             &y,
             &[
@@ -171,7 +156,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
                 (h * A65, &k5),
             ],
         );
-        evaluate(problem, t + h, &stage, &mut k6, &mut stats)?;
+        evaluate(problem, t + h, &stage, &mut k6, stats)?;
         y1.set_combination(
             &y,
             &[
@@ -182,7 +167,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
                 (h * A76, &k6),
             ],
         );
-        evaluate(problem, t + h, &y1, &mut k7, &mut stats)?;
+        evaluate(problem, t + h, &y1, &mut k7, stats)?;
         err.set_sum(&[
             (h * E1, &k1),
             (h * E3, &k3),
@@ -213,33 +198,19 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
         }
         stats.accepted_steps += 1;
         let dense = dense_output(t, h, &y, &y1, &k1, &k3, &k4, &k5, &k6, &k7);
-        if let Some((k, te)) = events.locate(problem, &dense, &y1, &mut scratch)? {
-            let truncated = Dense { t1: te, ..dense };
-            observer(problem, &truncated);
-            let mut ye = y.clone();
-            truncated.eval(te, &mut ye);
-            stats.events.push((k, te));
-            match problem.on_event(k, te, &mut ye) {
-                EventAction::Stop => {
-                    return Ok(Outcome {
-                        t: te,
-                        y: ye,
-                        stats,
-                        stopped_by: Some(k),
-                    });
-                }
-                EventAction::Restart => {
-                    t = te;
-                    y = ye;
-                    evaluate(problem, t, &y, &mut k1, &mut stats)?;
-                    events.reset(problem, t, &y, &k1)?;
-                    rejected_last = false;
-                    continue;
-                }
+        let point = Point {
+            t: &mut t,
+            y: &mut y,
+            f: &mut k1,
+        };
+        match driver.finish_step(problem, dense, &y1, point, observer)? {
+            StepEnd::Next => {}
+            StepEnd::Restarted => {
+                rejected_last = false;
+                continue;
             }
+            StepEnd::Stopped(k) => return Ok(driver.outcome(t, y, Some(k))),
         }
-        observer(problem, &dense);
-        events.advance();
         t += h;
         std::mem::swap(&mut y, &mut y1);
         std::mem::swap(&mut k1, &mut k7);
@@ -255,12 +226,7 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
         }
         rejected_last = false;
     }
-    Ok(Outcome {
-        t,
-        y,
-        stats,
-        stopped_by: None,
-    })
+    Ok(driver.outcome(t, y, None))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -310,16 +276,8 @@ pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
     options: &Options,
     stats: &mut Stats,
 ) -> Result<f64, SolverError> {
-    let scaled = |v: &Y| {
-        let n = v.len();
-        let sum: f64 = (0..n)
-            .map(|i| {
-                let s = options.atol + options.rtol * y.get(i).abs();
-                (v.get(i) / s).powi(2)
-            })
-            .sum();
-        (sum / n.max(1) as f64).sqrt()
-    };
+    // The error norm's weights with the scale of y alone.
+    let scaled = |v: &Y| error_norm(v, y, y, options);
     let (d0, d1) = (scaled(y), scaled(f0));
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
         1e-6

@@ -8,16 +8,20 @@
 //!
 //! Events are zero crossings of user functions `g_k(t, y)` with a direction;
 //! they are located on the dense output by the Illinois method to
-//! `|Δt| ≤ 1e-12`, and the problem decides what happens: stop, go on, or
-//! restart the step sequence after changing its mode or parameters.
+//! `|Δt| ≤ 1e-12`, and the problem decides what happens ([`EventAction`]):
+//! stop there, or restart the step sequence from the event after changing
+//! its mode, parameters or state.
 
 pub mod dopri5;
+mod driver;
 mod events;
+mod hermite;
 pub mod rk4;
 pub mod sdirk;
 mod vector;
 
 pub use events::{Direction, EventAction};
+pub use hermite::{Hermite, hermite_weights};
 pub use vector::{OdeVector, PhaseState};
 
 use std::fmt;
@@ -60,7 +64,8 @@ pub struct Options {
     /// First step; chosen automatically (Hairer's algorithm) when `None`.
     pub initial_step: Option<f64>,
     pub max_step: f64,
-    /// A step below this is an error (step size underflow).
+    /// A step that has to shrink below this is an error, which says why it
+    /// shrank (error test, Newton divergence, singular iteration matrix).
     pub min_step: f64,
     /// Maximum number of attempted steps.
     pub max_steps: usize,
@@ -99,7 +104,8 @@ pub struct Stats {
 /// Why an integration stopped early.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverError {
-    /// The step size fell below `Options::min_step`.
+    /// The error test rejected steps until the step size fell below
+    /// `Options::min_step`.
     StepSizeUnderflow { t: f64, h: f64 },
     /// More than `Options::max_steps` steps were attempted.
     MaxSteps { t: f64, steps: usize },
@@ -107,8 +113,13 @@ pub enum SolverError {
     NonFinite { t: f64, what: String },
     /// The right-hand side could not be evaluated (e.g. singular mass matrix).
     Rhs { t: f64, message: String },
-    /// Newton's method did not converge even at the minimum step.
+    /// Newton's method did not converge, and the steps it was retried with
+    /// fell below `Options::min_step`.
     NewtonFailure { t: f64, h: f64 },
+    /// The Newton iteration matrix `I − d·h·J` of an implicit method was
+    /// singular or not finite, and the steps it was retried with fell below
+    /// `Options::min_step`.
+    SingularIterationMatrix { t: f64, h: f64 },
     /// An event's zero crossing could not be bracketed to the required accuracy.
     EventNotLocated { t: f64, event: usize },
     /// Invalid options.
@@ -132,6 +143,10 @@ impl fmt::Display for SolverError {
                     "Newton iterations diverge at t = {t:e} s even with h = {h:e} s"
                 )
             }
+            SolverError::SingularIterationMatrix { t, h } => write!(
+                f,
+                "the Newton iteration matrix I − d·h·J is singular or not finite at t = {t:e} s even with h = {h:e} s"
+            ),
             SolverError::EventNotLocated { t, event } => {
                 write!(f, "event {event} near t = {t:e} s could not be located")
             }
@@ -141,6 +156,16 @@ impl fmt::Display for SolverError {
 }
 
 impl std::error::Error for SolverError {}
+
+/// How an integration ended.
+#[derive(Clone, Debug)]
+pub struct Outcome<Y> {
+    pub t: f64,
+    pub y: Y,
+    pub stats: Stats,
+    /// The event that stopped the integration, if one did.
+    pub stopped_by: Option<usize>,
+}
 
 /// An accepted step with its continuous extension, as observers see it.
 pub trait DenseStep<Y> {

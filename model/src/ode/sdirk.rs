@@ -12,11 +12,11 @@
 //! `A_q = ∂a/∂q`, `A_v = ∂a/∂v` from the model's derived Jacobians (or
 //! finite differences); `w` follows each stage explicitly.
 
-use super::dopri5::Outcome;
-use super::events::{EventAction, EventTracker};
-use super::rk4::Hermite;
+use super::driver::{Driver, Point, StepEnd};
+use super::hermite::Hermite;
 use super::{
-    DenseStep, OdeProblem, OdeVector, Options, PhaseState, SolverError, Stats, error_norm, evaluate,
+    DenseStep, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats, error_norm,
+    evaluate,
 };
 use crate::linalg::Lu;
 use nalgebra::{SMatrix, SVector};
@@ -56,37 +56,26 @@ pub fn integrate<const N: usize, P>(
 where
     P: OdeProblem<PhaseState<N>> + AccelerationJacobians<N>,
 {
-    options.validate()?;
-    let mut stats = Stats::default();
     let (mut t, mut y) = (t0, y0);
     let mut k1 = PhaseState::zeros();
-    evaluate(problem, t, &y, &mut k1, &mut stats)?;
-    let mut events = EventTracker::new(problem.event_count());
-    events.reset(problem, t, &y, &k1)?;
+    let mut driver = Driver::start(problem, t, &y, &mut k1, t_end, options)?;
     let mut h = match options.fixed_step.or(options.initial_step) {
         Some(h) => h,
-        None => super::dopri5::initial_step(problem, t, &y, &k1, t_end - t, options, &mut stats)?,
+        None => {
+            super::dopri5::initial_step(problem, t, &y, &k1, t_end - t, options, &mut driver.stats)?
+        }
     }
     .min(options.max_step);
-    let mut scratch = y;
-    let end_tolerance = 4.0 * f64::EPSILON * t_end.abs().max(1.0);
-    while t_end - t > end_tolerance {
-        if stats.accepted_steps + stats.rejected_steps >= options.max_steps {
-            return Err(SolverError::MaxSteps {
-                t,
-                steps: options.max_steps,
-            });
-        }
-        if t + 1.01 * h >= t_end {
-            h = t_end - t;
-        }
-        let (a_q, a_v) = jacobians(problem, t, &y, &k1, &mut stats)?;
+    while let Some(step) = driver.next_step(t, h)? {
+        h = step;
+        let stats = &mut driver.stats;
+        let (a_q, a_v) = jacobians(problem, t, &y, &k1, stats)?;
         let dh = D * h;
         let newton_matrix = SMatrix::<f64, N, N>::identity() - a_v * dh - a_q * (dh * dh);
         let Some(lu) = Lu::new(newton_matrix) else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::SingularIterationMatrix { t, h })?;
             continue;
         };
         let newton = Newton {
@@ -100,20 +89,19 @@ where
         base2.set_combination(&y, &[(dh, &k1)]);
         let mut guess = PhaseState::zeros();
         guess.set_combination(&y, &[(GAMMA * h, &k1)]);
-        let Some((y2, k2)) = newton.solve(problem, t + GAMMA * h, &base2, guess, &mut stats)?
-        else {
+        let Some((y2, k2)) = newton.solve(problem, t + GAMMA * h, &base2, guess, stats)? else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::NewtonFailure { t, h })?;
             continue;
         };
         let mut base3 = PhaseState::zeros();
         base3.set_combination(&y, &[(W * h, &k1), (W * h, &k2)]);
         guess.set_combination(&y2, &[((1.0 - GAMMA) * h, &k2)]);
-        let Some((y3, k3)) = newton.solve(problem, t + h, &base3, guess, &mut stats)? else {
+        let Some((y3, k3)) = newton.solve(problem, t + h, &base3, guess, stats)? else {
             h *= 0.25;
             stats.rejected_steps += 1;
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::NewtonFailure { t, h })?;
             continue;
         };
         // Error estimate, filtered by the Newton matrix so that stiff
@@ -137,7 +125,7 @@ where
             } else {
                 0.2
             };
-            check_step(t, h, options)?;
+            check_step(h, options, SolverError::StepSizeUnderflow { t, h })?;
             continue;
         }
         stats.accepted_steps += 1;
@@ -150,32 +138,16 @@ where
             y1: y3,
             f1: k3,
         };
-        if let Some((k, te)) = events.locate(problem, &dense, &y3, &mut scratch)? {
-            let truncated = Hermite { end: te, ..dense };
-            observer(problem, &truncated);
-            let mut ye = y;
-            truncated.eval(te, &mut ye);
-            stats.events.push((k, te));
-            match problem.on_event(k, te, &mut ye) {
-                EventAction::Stop => {
-                    return Ok(Outcome {
-                        t: te,
-                        y: ye,
-                        stats,
-                        stopped_by: Some(k),
-                    });
-                }
-                EventAction::Restart => {
-                    t = te;
-                    y = ye;
-                    evaluate(problem, t, &y, &mut k1, &mut stats)?;
-                    events.reset(problem, t, &y, &k1)?;
-                    continue;
-                }
-            }
+        let point = Point {
+            t: &mut t,
+            y: &mut y,
+            f: &mut k1,
+        };
+        match driver.finish_step(problem, dense, &y3, point, observer)? {
+            StepEnd::Next => {}
+            StepEnd::Restarted => continue,
+            StepEnd::Stopped(k) => return Ok(driver.outcome(t, y, Some(k))),
         }
-        observer(problem, &dense);
-        events.advance();
         t += h;
         y = y3;
         k1 = k3;
@@ -184,17 +156,14 @@ where
                 .min(options.max_step);
         }
     }
-    Ok(Outcome {
-        t,
-        y,
-        stats,
-        stopped_by: None,
-    })
+    Ok(driver.outcome(t, y, None))
 }
 
-fn check_step(t: f64, h: f64, options: &Options) -> Result<(), SolverError> {
+/// `Err(failure)` when the shrunk step `h` is below the minimum; `failure`
+/// says why the step had to shrink.
+fn check_step(h: f64, options: &Options, failure: SolverError) -> Result<(), SolverError> {
     if h < options.min_step {
-        Err(SolverError::NewtonFailure { t, h })
+        Err(failure)
     } else {
         Ok(())
     }

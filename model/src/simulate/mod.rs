@@ -4,13 +4,15 @@
 mod equilibrium;
 mod problem;
 mod summary;
+#[cfg(test)]
+mod tests;
 
 pub use equilibrium::static_equilibrium;
 pub use problem::{CrashProblem, EventRecord};
 pub use summary::Summary;
 
 use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
-use crate::scenario::{Method, Scenario};
+use crate::scenario::{MAX_SAMPLES, Method, Scenario};
 use crate::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 use std::fmt;
@@ -46,6 +48,9 @@ pub struct SimulationResult {
     pub events: Vec<EventRecord>,
     pub summary: Summary,
     pub method: Method,
+    /// The gravitational acceleration `g` the summary's decelerations are
+    /// in: the model's `g` parameter, or standard gravity without one.
+    pub g: f64,
 }
 
 /// Why a run failed.
@@ -103,10 +108,14 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         v[i] = value;
     }
     let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    // The components' state (a crush element in contact or not) follows the
+    // initial state, for the equilibrium as for the run.
+    problem.start(0.0, &PhaseState::new(q, v))?;
     if !scenario.equilibrium.is_empty() {
         q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
     }
     let y0 = PhaseState::new(q, v);
+    problem.start(0.0, &y0)?;
     let mut samples = Vec::new();
     let mut sample_error = None;
     let interval = scenario.output_interval;
@@ -121,9 +130,19 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
     record(&mut problem, 0.0, &y0);
     next += 1;
     let t_end = scenario.t_end;
+    // Samples at k·interval, the last one moved onto t_end when it falls
+    // within half an interval of it. `last` (one or two beyond that) bounds
+    // the loop even for an interval the scenario check would not let through
+    // (∞ or NaN, when `k·interval` never passes t_end, or too small).
+    let bound = (t_end / interval + 1.0).ceil();
+    let last = if bound >= 0.0 {
+        bound.min(MAX_SAMPLES + 1.0) as usize
+    } else {
+        0 // NaN
+    };
     let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
         let mut y = PhaseState::zeros();
-        loop {
+        while next <= last {
             let t = (next as f64 * interval).min(t_end);
             if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
                 break;
@@ -154,14 +173,8 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         .iter()
         .map(|&(input, _)| model.input_names()[input].to_string())
         .collect();
-    let summary = Summary::compute(
-        &samples,
-        scenario,
-        q.as_slice(),
-        &outcome.stats,
-        weld,
-        gravity(&model),
-    );
+    let g = gravity(&model);
+    let summary = Summary::compute(&samples, scenario, q.as_slice(), &outcome.stats, weld, g);
     Ok(SimulationResult {
         model: model.model_name().to_string(),
         coordinates: model
@@ -176,6 +189,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         events: problem.events,
         summary,
         method: scenario.method,
+        g,
     })
 }
 

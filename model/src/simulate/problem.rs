@@ -36,6 +36,15 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         }
     }
 
+    /// Puts the crash components in the state a run from `(t, y)` starts in.
+    pub fn start(&mut self, t: f64, y: &PhaseState<N>) -> Result<(), SolverError> {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        self.inputs
+            .start(&self.arguments)
+            .map_err(|message| SolverError::Rhs { t, message })
+    }
+
     fn input_failure(&self, t: f64) -> Result<(), SolverError> {
         match self.inputs.take_failure() {
             Some(message) => Err(SolverError::Rhs { t, message }),

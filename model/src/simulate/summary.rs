@@ -6,7 +6,7 @@
 //! static equilibrium the run started from.
 
 use super::Sample;
-use crate::ode::Stats;
+use crate::ode::{Stats, hermite_weights};
 use crate::scenario::Scenario;
 use serde::Serialize;
 
@@ -121,11 +121,8 @@ fn refine_peak(samples: &[Sample], crush: &[f64], rate: &[f64], i: usize) -> (f6
             let h = samples[b].t - samples[a].t;
             let s = rate[a] / (rate[a] - rate[b]);
             // Hermite on [a, b] evaluated at the linear estimate of the rate's zero.
-            let (s2, s3) = (s * s, s * s * s);
-            let c = (2.0 * s3 - 3.0 * s2 + 1.0) * crush[a]
-                + h * (s3 - 2.0 * s2 + s) * rate[a]
-                + (-2.0 * s3 + 3.0 * s2) * crush[b]
-                + h * (s3 - s2) * rate[b];
+            let [w0, w1, w2, w3] = hermite_weights(s, h);
+            let c = w0 * crush[a] + w1 * rate[a] + w2 * crush[b] + w3 * rate[b];
             return (samples[a].t + s * h, c.max(crush[i]));
         }
     }

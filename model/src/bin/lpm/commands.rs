@@ -4,6 +4,7 @@ use crate::DeriveFormat;
 use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
 use lagrangian_core::{Compiled, ConstantInputs};
 use lagrangian_model::InterpretedModel;
+use lagrangian_model::scenario::{setting_number, split_setting};
 use std::path::Path;
 
 /// A message for stderr and the exit status that goes with it.
@@ -74,15 +75,9 @@ pub fn eval(path: &Path, state: &[f64], time: f64, settings: &[String]) -> Resul
     }
     let mut inputs = vec![None; model.input_names().len()];
     for setting in settings {
-        let (name, value) = setting.split_once('=').ok_or_else(|| {
-            Failure::usage(format!(
-                "error: --set `{setting}` is not of the form name=value"
-            ))
-        })?;
-        let value: f64 = value.trim().parse().map_err(|_| {
-            Failure::usage(format!("error: --set {name}: `{value}` is not a number"))
-        })?;
-        let name = name.trim();
+        let (name, value) = split_setting(setting)
+            .and_then(|(name, value)| Ok((name, setting_number(name, value)?)))
+            .map_err(|e| Failure::usage(format!("error: {e}")))?;
         if let Some(k) = model.input_names().iter().position(|i| i == name) {
             inputs[k] = Some(value);
         } else if let Err(e) = model.set_parameter(name, value) {

@@ -1,7 +1,6 @@
 //! `lpm simulate`: run a spec file under a scenario and write the results.
 
 use crate::commands::{Failure, compile};
-use lagrangian_model::crash::{Element, Port};
 use lagrangian_model::plot::{PlotSetup, figure_svg};
 use lagrangian_model::report::{
     Units, summary_json, text_summary, trajectory_csv, write_atomically,
@@ -64,12 +63,7 @@ fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
 pub fn run(options: SimulateOptions) -> Result<String, Failure> {
     let compiled = compile(&options.spec)?;
     let model = InterpretedModel::from_compiled(&compiled);
-    let names = ModelNames {
-        coordinates: model.coordinates().to_vec(),
-        parameters: model.parameter_names().to_vec(),
-        inputs: model.input_names().to_vec(),
-        input_sites: model.input_sites().to_vec(),
-    };
+    let names = ModelNames::of_interpreted(&model);
     let scenario_path = match &options.scenario {
         Some(p) => Some(p.clone()),
         None => find_scenario(&options.spec)?,
@@ -160,39 +154,21 @@ fn write_outputs(
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
     };
-    let g = model
-        .parameter_names()
+    // The crush force column (the input bound to a crush element's force)
+    // and the element's compression sign.
+    let crush_force = result
+        .input_columns
         .iter()
-        .position(|p| p == "g")
-        .map_or(9.80665, |i| model.parameters()[i]);
-    // The crush force column: the input bound to a crush element's force.
-    let crush_force = result.input_columns.iter().position(|name| {
-        let k = model.input_names().iter().position(|n| n == name);
-        k.and_then(|k| scenario.inputs.bindings[k])
-            .is_some_and(|b| {
-                b.port == Port::Value
-                    && matches!(
-                        scenario.inputs.components[b.component].element,
-                        Element::Crush(_)
-                    )
-            })
-    });
-    let crush_sign = crush_force.and_then(|column| {
-        let k = model
-            .input_names()
-            .iter()
-            .position(|n| *n == result.input_columns[column])?;
-        let binding = scenario.inputs.bindings[k]?;
-        match &scenario.inputs.components[binding.component].element {
-            Element::Crush(c) => Some(c.compression_sign),
-            _ => None,
-        }
-    });
+        .enumerate()
+        .find_map(|(column, name)| {
+            let k = model.input_names().iter().position(|n| n == name)?;
+            Some((column, scenario.inputs.crush_force_sign(k)?))
+        });
     let setup = PlotSetup {
         crush: scenario.crush,
         pitch: scenario.pitch.clone(),
-        crush_force: crush_force.zip(crush_sign),
-        g,
+        crush_force,
+        g: result.g,
         title: format!("{} — {}", result.model, scenario_name),
     };
     let svg = figure_svg(result, &setup)

@@ -1,0 +1,56 @@
+//! Cubic Hermite interpolation: the dense output of RK4 and TR-BDF2, and the
+//! refinement of sampled extrema.
+
+use super::{DenseStep, OdeVector, driver::Truncate};
+
+/// The weights of `(y0, f0, y1, f1)` in the cubic Hermite interpolant on a
+/// step of size `h`, at `s = (t − t0)/h`:
+/// `y(t) = w0·y0 + w1·f0 + w2·y1 + w3·f1` (`f` the derivatives).
+#[inline]
+pub fn hermite_weights(s: f64, h: f64) -> [f64; 4] {
+    let (s2, s3) = (s * s, s * s * s);
+    [
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        h * (s3 - 2.0 * s2 + s),
+        -2.0 * s3 + 3.0 * s2,
+        h * (s3 - s2),
+    ]
+}
+
+/// Cubic Hermite interpolation between `(y0, f0)` at `t0` and `(y1, f1)` at
+/// `t0 + h`, reported as covering `[t0, end]` (`end < t0 + h` at an event).
+pub struct Hermite<Y> {
+    pub t0: f64,
+    pub h: f64,
+    pub end: f64,
+    pub y0: Y,
+    pub f0: Y,
+    pub y1: Y,
+    pub f1: Y,
+}
+
+impl<Y: OdeVector> DenseStep<Y> for Hermite<Y> {
+    fn t0(&self) -> f64 {
+        self.t0
+    }
+
+    fn t1(&self) -> f64 {
+        self.end
+    }
+
+    fn eval(&self, t: f64, out: &mut Y) {
+        let [w0, w1, w2, w3] = hermite_weights((t - self.t0) / self.h, self.h);
+        out.set_sum(&[
+            (w0, &self.y0),
+            (w1, &self.f0),
+            (w2, &self.y1),
+            (w3, &self.f1),
+        ]);
+    }
+}
+
+impl<Y> Truncate for Hermite<Y> {
+    fn truncate(self, end: f64) -> Self {
+        Hermite { end, ..self }
+    }
+}

@@ -1,0 +1,222 @@
+//! Scenario files: what to simulate with a model — parameters, initial
+//! state, crash components for its input functions, solver settings.
+//!
+//! ```toml
+//! spec = "../yaris_double_pendulum.lpm"   # the spec this scenario is for
+//! [simulation]   t_end = 0.15, method = "dopri5", rtol = 1e-8, atol = 1e-10
+//! [initial]      coordinates = { r = 0.0 }, velocities = { r = -15.56 }, equilibrium = ["theta1"]
+//! [parameters]   k_tor = 0.0
+//! [metrics]      crush = "-r", pitch = ["theta1", "theta2"], weld = "weld"
+//! [components.front_end]  type = "crush", inputs = { force = "crush", … }, …
+//! [components.barrier]    type = "table", file = "../data/forces.csv", columns = { barrier_x1 = "Fx1" }
+//! ```
+//!
+//! Every name is checked against the spec, with a suggestion for typos.
+//!
+//! By phase: [`file`] is the file format, [`overrides`] applies `--set`
+//! settings to the document, [`resolve`] checks values and names, and
+//! [`bind`] binds the model's inputs to crash components.
+
+mod bind;
+mod file;
+mod overrides;
+mod resolve;
+
+use crate::crash::BoundInputs;
+use crate::ode::Options;
+use crate::{InterpretedModel, LagrangianSystem};
+use file::File;
+use overrides::apply_setting;
+pub use overrides::{setting_number, split_setting};
+pub use resolve::MAX_SAMPLES;
+use resolve::resolve;
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The names a scenario is resolved against.
+#[derive(Clone, Debug)]
+pub struct ModelNames {
+    pub coordinates: Vec<String>,
+    pub parameters: Vec<String>,
+    pub inputs: Vec<String>,
+    /// The declared argument names of each input, where the model tells them
+    /// (specs do; compiled models do not, and the number of arguments is
+    /// then known from `input_sites` for the inputs the dynamics calls).
+    pub input_arguments: Vec<Option<Vec<String>>>,
+    /// `(input, number of arguments)` per input call of the dynamics.
+    pub input_sites: Vec<(usize, usize)>,
+}
+
+impl ModelNames {
+    /// The names of any model (compiled or interpreted).
+    pub fn of<const N: usize, S: LagrangianSystem<N>>(system: &S) -> ModelNames {
+        let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
+        ModelNames {
+            coordinates: own(system.coordinate_names()),
+            parameters: own(system.parameter_names()),
+            inputs: own(system.input_names()),
+            input_arguments: vec![None; system.input_names().len()],
+            input_sites: system.input_sites().to_vec(),
+        }
+    }
+
+    /// The names of a spec, with the declared arguments of every input.
+    pub fn of_interpreted(model: &InterpretedModel) -> ModelNames {
+        ModelNames {
+            coordinates: model.coordinates().to_vec(),
+            parameters: model.parameter_names().to_vec(),
+            inputs: model.input_names().to_vec(),
+            input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
+            input_sites: model.input_sites().to_vec(),
+        }
+    }
+
+    /// The number of arguments of input `k`, where known.
+    pub fn arity(&self, k: usize) -> Option<usize> {
+        match self.input_arguments.get(k) {
+            Some(Some(arguments)) => Some(arguments.len()),
+            _ => self
+                .input_sites
+                .iter()
+                .find(|(input, _)| *input == k)
+                .map(|&(_, arity)| arity),
+        }
+    }
+
+    /// Input `k` as declared, `name(a, b)`, or its name and number of arguments.
+    pub fn signature(&self, k: usize) -> String {
+        let name = &self.inputs[k];
+        match (self.input_arguments.get(k), self.arity(k)) {
+            (Some(Some(arguments)), _) => format!("`{name}({})`", arguments.join(", ")),
+            (_, Some(1)) => format!("`{name}` of 1 argument"),
+            (_, Some(n)) => format!("`{name}` of {n} arguments"),
+            (_, None) => format!("`{name}`"),
+        }
+    }
+}
+
+/// Integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Dopri5,
+    Rk4,
+    Implicit,
+}
+
+impl Method {
+    pub fn parse(text: &str) -> Option<Method> {
+        match text {
+            "dopri5" => Some(Method::Dopri5),
+            "rk4" => Some(Method::Rk4),
+            "implicit" | "tr-bdf2" => Some(Method::Implicit),
+            _ => None,
+        }
+    }
+}
+
+/// A scenario that does not fit its spec, or a file that cannot be read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenarioError {
+    pub file: Option<PathBuf>,
+    pub message: String,
+}
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.file {
+            Some(file) => write!(f, "{}: {}", file.display(), self.message),
+            None => write!(f, "{}", self.message),
+        }
+    }
+}
+
+impl std::error::Error for ScenarioError {}
+
+/// A scenario resolved against a model.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    pub file: Option<PathBuf>,
+    /// The spec the file names, resolved relative to the file.
+    pub spec: Option<PathBuf>,
+    pub description: String,
+    pub t_end: f64,
+    pub method: Method,
+    pub options: Options,
+    pub output_interval: f64,
+    /// Parameter overrides by index.
+    pub parameters: Vec<(usize, f64)>,
+    pub initial_coordinates: Vec<(usize, f64)>,
+    pub initial_velocities: Vec<(usize, f64)>,
+    /// Coordinates solved for static equilibrium before the run.
+    pub equilibrium: Vec<usize>,
+    /// The crush coordinate and the sign that makes compression positive.
+    pub crush: Option<(usize, f64)>,
+    pub pitch: Vec<usize>,
+    pub weld: Option<String>,
+    pub inputs: BoundInputs,
+}
+
+impl Scenario {
+    /// Reads and resolves a scenario file, applying `settings` (`key=value`,
+    /// see [`Scenario::parse`]) first.
+    pub fn load(
+        path: &Path,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
+            file: Some(path.to_path_buf()),
+            message: format!("cannot read: {e}"),
+        })?;
+        Scenario::parse(&text, Some(path), names, settings)
+    }
+
+    /// A scenario with nothing but defaults (no file).
+    pub fn defaults(names: &ModelNames, settings: &[String]) -> Result<Scenario, ScenarioError> {
+        Scenario::parse("", None, names, settings)
+    }
+
+    /// Resolves scenario `text` (from `file`, which relative paths start from).
+    ///
+    /// `settings` override it: `name=value` sets a spec parameter, or gives
+    /// an input function a constant value; a dotted key such as
+    /// `simulation.t_end=0.2` or `components.front_end.unloading=elastic`
+    /// sets that entry of the file (the value is read as TOML).
+    pub fn parse(
+        text: &str,
+        file: Option<&Path>,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let error = |message: String| ScenarioError {
+            file: file.map(Path::to_path_buf),
+            message,
+        };
+        let mut document: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| error(e.to_string()))?;
+        let mut constants = BTreeMap::new();
+        for setting in settings {
+            apply_setting(&mut document, setting, names, &mut constants).map_err(|m| {
+                ScenarioError {
+                    file: None,
+                    message: m,
+                }
+            })?;
+        }
+        let parsed: File = document
+            .try_into()
+            .map_err(|e: toml::de::Error| error(e.to_string()))?;
+        let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
+        resolve(parsed, base, names, constants)
+            .map_err(error)
+            .map(|mut s| {
+                s.file = file.map(Path::to_path_buf);
+                s
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests;
