@@ -15,16 +15,6 @@ mod models {
     lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
 }
 
-fn names<const N: usize>(m: &impl LagrangianSystem<N>) -> ModelNames {
-    let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
-    ModelNames {
-        coordinates: own(m.coordinate_names()),
-        parameters: own(m.parameter_names()),
-        inputs: own(m.input_names()),
-        input_sites: m.input_sites().to_vec(),
-    }
-}
-
 /// Runs per second over `runs` runs on `threads` threads, and the failures.
 fn throughput<S: LagrangianSystem<3> + Clone + Send>(
     model: &S,
@@ -57,7 +47,7 @@ fn main() {
     let base = BaseScenario {
         text: std::fs::read_to_string(&scenario).unwrap(),
         file: Some(scenario),
-        names: names(&compiled),
+        names: ModelNames::of(&compiled),
         settings: Vec::new(),
     };
     let grid: Vec<String> = [

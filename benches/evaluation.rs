@@ -209,7 +209,8 @@ fn chain_20() {
         "/benches/specs/pendulum_chain_20.lpm"
     ))
     .unwrap();
-    let interpreted = Interpreted::<20>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let interpreted =
+        Interpreted::<20>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
     let states: Vec<(SVector<f64, 20>, SVector<f64, 20>)> = (0..16)
         .map(|k| {
             let x = k as f64 / 16.0;
@@ -227,14 +228,25 @@ fn chain_20() {
     let pick = |i: usize| &states[i % states.len()];
     let compiled_ns = median_ns(20_000, |i| {
         let (q, v) = pick(i);
-        compiled.accelerations(0.0, black_box(q), black_box(v), &NoInputs).unwrap()[0]
+        compiled
+            .accelerations(0.0, black_box(q), black_box(v), &NoInputs)
+            .unwrap()[0]
     });
     let interpreted_ns = median_ns(5_000, |i| {
         let (q, v) = pick(i);
-        interpreted.accelerations(0.0, black_box(q), black_box(v), &NoInputs).unwrap()[0]
+        interpreted
+            .accelerations(0.0, black_box(q), black_box(v), &NoInputs)
+            .unwrap()[0]
     });
     println!("| 20-link pendulum chain | q̈ = M⁻¹f (µs) | ratio to compiled |");
     println!("|---|---|---|");
-    println!("| compiled (lagrangian!) | {:.2} | 1.00 |", compiled_ns / 1e3);
-    println!("| interpreted (spec file) | {:.2} | {:.2} |", interpreted_ns / 1e3, interpreted_ns / compiled_ns);
+    println!(
+        "| compiled (lagrangian!) | {:.2} | 1.00 |",
+        compiled_ns / 1e3
+    );
+    println!(
+        "| interpreted (spec file) | {:.2} | {:.2} |",
+        interpreted_ns / 1e3,
+        interpreted_ns / compiled_ns
+    );
 }

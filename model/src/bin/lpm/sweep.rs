@@ -86,12 +86,7 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
     let base = BaseScenario {
         text,
         file: Some(options.scenario.clone()),
-        names: ModelNames {
-            coordinates: model.coordinates().to_vec(),
-            parameters: model.parameter_names().to_vec(),
-            inputs: model.input_names().to_vec(),
-            input_sites: model.input_sites().to_vec(),
-        },
+        names: ModelNames::of_interpreted(&model),
         settings: options.settings.clone(),
     };
     let settings = Settings::new(&plan, &base, model.parameters()).map_err(usage)?;
