@@ -9,7 +9,7 @@ mod tests;
 
 pub use equilibrium::static_equilibrium;
 pub use problem::{CrashProblem, EventRecord};
-pub use summary::Summary;
+pub use summary::{Metrics, SampleView, Summary};
 
 use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
 use crate::scenario::{MAX_SAMPLES, Method, Scenario};
@@ -88,6 +88,57 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     scenario: &Scenario,
 ) -> Result<SimulationResult, SimulationError> {
+    let (model, run) = run(system, scenario, true)?;
+    let input_columns = model
+        .input_sites()
+        .iter()
+        .map(|&(input, _)| model.input_names()[input].to_string())
+        .collect();
+    Ok(SimulationResult {
+        model: model.model_name().to_string(),
+        coordinates: model
+            .coordinate_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        input_columns,
+        initial_q: run.initial_q,
+        samples: run.samples,
+        stats: run.stats,
+        events: run.events,
+        summary: run.summary,
+        method: scenario.method,
+        g: run.g,
+    })
+}
+
+/// The summary of a run only — what a sweep records: the same numbers as
+/// `simulate(…).summary`, without keeping the samples or evaluating the
+/// inputs at them.
+pub fn simulate_summary<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<Summary, SimulationError> {
+    run(system, scenario, false).map(|(_, run)| run.summary)
+}
+
+/// What a run produced.
+struct Run {
+    initial_q: Vec<f64>,
+    samples: Vec<Sample>,
+    stats: Stats,
+    events: Vec<EventRecord>,
+    summary: Summary,
+    g: f64,
+}
+
+/// Runs the scenario, keeping the samples if `keep`; returns the model with
+/// the scenario's parameters.
+fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+    keep: bool,
+) -> Result<(S, Run), SimulationError> {
     let mut model = system.clone();
     let parameter_names: Vec<String> = model
         .parameter_names()
@@ -116,17 +167,25 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
     }
     let y0 = PhaseState::new(q, v);
     problem.start(0.0, &y0)?;
+    let g = gravity(&model);
+    let mut metrics = Metrics::new(scenario, q.as_slice(), g);
     let mut samples = Vec::new();
     let mut sample_error = None;
     let interval = scenario.output_interval;
     let mut next = 0usize;
-    let mut record =
-        |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(problem, t, y) {
-            Ok(s) => samples.push(s),
-            Err(e) => {
-                sample_error.get_or_insert(e);
+    let mut record = |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(
+        problem, t, y, keep,
+    ) {
+        Ok((view, inputs)) => {
+            metrics.push(view.as_view());
+            if keep {
+                samples.push(view.into_sample(inputs));
             }
-        };
+        }
+        Err(e) => {
+            sample_error.get_or_insert(e);
+        }
+    };
     record(&mut problem, 0.0, &y0);
     next += 1;
     let t_end = scenario.t_end;
@@ -168,29 +227,16 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         return Err(e.into());
     }
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
-    let input_columns = model
-        .input_sites()
-        .iter()
-        .map(|&(input, _)| model.input_names()[input].to_string())
-        .collect();
-    let g = gravity(&model);
-    let summary = Summary::compute(&samples, scenario, q.as_slice(), &outcome.stats, weld, g);
-    Ok(SimulationResult {
-        model: model.model_name().to_string(),
-        coordinates: model
-            .coordinate_names()
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
-        input_columns,
+    let summary = metrics.finish(&outcome.stats, weld);
+    let run = Run {
         initial_q: q.as_slice().to_vec(),
         samples,
         stats: outcome.stats,
         events: problem.events,
         summary,
-        method: scenario.method,
         g,
-    })
+    };
+    Ok((model, run))
 }
 
 /// The model's `g` parameter if it has one, else standard gravity.
@@ -202,23 +248,64 @@ fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
         .map_or(9.80665, |i| model.parameters()[i])
 }
 
+/// The state, accelerations and energies at one output time.
+struct SampleValues<const N: usize> {
+    t: f64,
+    y: PhaseState<N>,
+    a: SVector<f64, N>,
+    kinetic: f64,
+    potential: f64,
+}
+
+impl<const N: usize> SampleValues<N> {
+    fn as_view(&self) -> SampleView<'_> {
+        SampleView {
+            t: self.t,
+            q: self.y.q.as_slice(),
+            v: self.y.v.as_slice(),
+            a: self.a.as_slice(),
+            kinetic: self.kinetic,
+            potential: self.potential,
+            dissipated: self.y.work[0],
+            external_work: self.y.work[1],
+        }
+    }
+
+    fn into_sample(self, inputs: Vec<f64>) -> Sample {
+        Sample {
+            t: self.t,
+            q: self.y.q.as_slice().to_vec(),
+            v: self.y.v.as_slice().to_vec(),
+            a: self.a.as_slice().to_vec(),
+            kinetic: self.kinetic,
+            potential: self.potential,
+            dissipated: self.y.work[0],
+            external_work: self.y.work[1],
+            inputs,
+        }
+    }
+}
+
+/// Evaluates a sample, with the input values when `inputs` is set.
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
-) -> Result<Sample, SolverError> {
+    inputs: bool,
+) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let a = problem.accelerations(t, &y.q, &y.v)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
-    let inputs = problem.input_values(t, &y.q, &y.v);
-    Ok(Sample {
+    let values = if inputs {
+        problem.input_values(t, &y.q, &y.v)
+    } else {
+        Vec::new()
+    };
+    let sample = SampleValues {
         t,
-        q: y.q.as_slice().to_vec(),
-        v: y.v.as_slice().to_vec(),
-        a: a.as_slice().to_vec(),
+        y: y.clone(),
+        a,
         kinetic: energies.kinetic,
         potential: energies.potential,
-        dissipated: y.work[0],
-        external_work: y.work[1],
-        inputs,
-    })
+    };
+    Ok((sample, values))
 }

@@ -32,109 +32,190 @@ pub struct Summary {
     pub energy_balance_error_rel: f64,
 }
 
-impl Summary {
-    pub fn compute(
-        samples: &[Sample],
-        scenario: &Scenario,
-        initial_q: &[f64],
-        stats: &Stats,
-        weld_failure: Option<f64>,
-        g: f64,
-    ) -> Summary {
+/// One output sample as the metrics see it.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleView<'a> {
+    pub t: f64,
+    pub q: &'a [f64],
+    pub v: &'a [f64],
+    pub a: &'a [f64],
+    pub kinetic: f64,
+    pub potential: f64,
+    pub dissipated: f64,
+    pub external_work: f64,
+}
+
+impl<'a> From<&'a Sample> for SampleView<'a> {
+    fn from(s: &'a Sample) -> Self {
+        SampleView {
+            t: s.t,
+            q: &s.q,
+            v: &s.v,
+            a: &s.a,
+            kinetic: s.kinetic,
+            potential: s.potential,
+            dissipated: s.dissipated,
+            external_work: s.external_work,
+        }
+    }
+}
+
+/// Time, crush and crush rate of one sample.
+#[derive(Clone, Copy, Debug)]
+struct CrushPoint {
+    t: f64,
+    crush: f64,
+    rate: f64,
+}
+
+/// The metrics of a run, accumulated sample by sample, so that a run need
+/// not keep its samples (a sweep does not).
+#[derive(Clone, Debug)]
+pub struct Metrics {
+    crush: Option<(usize, f64)>,
+    pitch: Vec<(usize, f64)>,
+    g: f64,
+    samples: usize,
+    /// `(T + V)(0)` and the scale of the energy balance.
+    energy: Option<(f64, f64)>,
+    energy_error: f64,
+    previous: Option<CrushPoint>,
+    /// The largest crush so far (the first of equals), its neighbours, and
+    /// the value it was compared by (−∞ until a sample has a number).
+    peak: Option<(CrushPoint, Option<CrushPoint>, Option<CrushPoint>)>,
+    peak_value: f64,
+    peak_index: usize,
+    first_zero: Option<f64>,
+    deceleration: f64,
+    /// Largest speed away from the barrier since the peak.
+    rebound: f64,
+    pitch_extremes: Vec<f64>,
+}
+
+impl Metrics {
+    /// Metrics of `scenario`'s crush and pitch coordinates; pitch is measured
+    /// from `initial_q`, deceleration in units of `g`.
+    pub fn new(scenario: &Scenario, initial_q: &[f64], g: f64) -> Metrics {
+        let pitch: Vec<(usize, f64)> = scenario
+            .pitch
+            .iter()
+            .take(2)
+            .map(|&k| (k, initial_q[k]))
+            .collect();
+        Metrics {
+            crush: scenario.crush,
+            pitch_extremes: vec![0.0; pitch.len()],
+            pitch,
+            g,
+            samples: 0,
+            energy: None,
+            energy_error: 0.0,
+            previous: None,
+            peak: None,
+            peak_value: f64::NEG_INFINITY,
+            peak_index: 0,
+            first_zero: None,
+            deceleration: f64::NEG_INFINITY,
+            rebound: 0.0,
+        }
+    }
+
+    /// Takes the next sample (in time order).
+    pub fn push(&mut self, s: SampleView) {
+        let (e0, scale) = *self.energy.get_or_insert_with(|| {
+            (
+                s.kinetic + s.potential,
+                (s.kinetic + s.potential.abs()).max(f64::MIN_POSITIVE),
+            )
+        });
+        let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
+        self.energy_error = self.energy_error.max(balance);
+        for ((k, q0), extreme) in self.pitch.iter().zip(&mut self.pitch_extremes) {
+            let d = s.q[*k] - q0;
+            if d.abs() > extreme.abs() {
+                *extreme = d;
+            }
+        }
+        if let Some((k, sign)) = self.crush {
+            let point = CrushPoint {
+                t: s.t,
+                crush: sign * s.q[k],
+                rate: sign * s.v[k],
+            };
+            let index = self.samples;
+            if let Some((_, _, after)) = &mut self.peak
+                && index == self.peak_index + 1
+            {
+                *after = Some(point);
+            }
+            if index == 0 || point.crush > self.peak_value {
+                self.peak = Some((point, self.previous, None));
+                self.peak_index = index;
+                self.rebound = 0.0;
+            }
+            if point.crush > self.peak_value {
+                self.peak_value = point.crush;
+            }
+            self.rebound = self.rebound.max(-point.rate);
+            if self.first_zero.is_none()
+                && let Some(p) = self.previous
+                && p.rate > 0.0
+                && point.rate <= 0.0
+            {
+                let f = p.rate / (p.rate - point.rate);
+                self.first_zero = Some(p.t + f * (point.t - p.t));
+            }
+            self.deceleration = self.deceleration.max(-sign * s.a[k] / self.g);
+            self.previous = Some(point);
+        }
+        self.samples += 1;
+    }
+
+    /// The summary, with the run's statistics and the weld's failure time.
+    pub fn finish(&self, stats: &Stats, weld_failure: Option<f64>) -> Summary {
         let mut summary = Summary {
             max_crush_m: None,
             time_of_max_crush_s: None,
             time_to_zero_velocity_s: None,
-            max_theta1_deg: None,
-            max_theta2_deg: None,
+            max_theta1_deg: self.pitch_extremes.first().map(|d| d.to_degrees()),
+            max_theta2_deg: self.pitch_extremes.get(1).map(|d| d.to_degrees()),
             peak_deceleration_g: None,
             rebound_velocity_mps: None,
             weld_failure_time_s: weld_failure,
             steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
             rhs_evaluations: stats.rhs_evaluations,
-            energy_balance_error_rel: energy_balance(samples),
+            energy_balance_error_rel: self.energy_error,
         };
-        if let Some((k, sign)) = scenario.crush
-            && !samples.is_empty()
-        {
-            let crush: Vec<f64> = samples.iter().map(|s| sign * s.q[k]).collect();
-            let rate: Vec<f64> = samples.iter().map(|s| sign * s.v[k]).collect();
-            let (i_max, _) =
-                crush
-                    .iter()
-                    .enumerate()
-                    .fold((0, f64::NEG_INFINITY), |best, (i, &c)| {
-                        if c > best.1 { (i, c) } else { best }
-                    });
-            // The peak lies where the rate crosses zero next to the largest sample.
-            let (t_peak, c_peak) = refine_peak(samples, &crush, &rate, i_max);
-            summary.max_crush_m = Some(c_peak);
-            summary.time_of_max_crush_s = Some(t_peak);
-            summary.time_to_zero_velocity_s = first_zero(samples, &rate);
-            let deceleration = samples
-                .iter()
-                .map(|s| -sign * s.a[k] / g)
-                .fold(f64::NEG_INFINITY, f64::max);
-            summary.peak_deceleration_g = Some(deceleration);
-            let rebound = rate[i_max..].iter().map(|r| -r).fold(0.0, f64::max);
-            summary.rebound_velocity_mps = Some(rebound);
+        if let Some((peak, before, after)) = self.peak {
+            let (t, c) = refine_peak(peak, before, after);
+            summary.max_crush_m = Some(c);
+            summary.time_of_max_crush_s = Some(t);
+            summary.time_to_zero_velocity_s = self.first_zero;
+            summary.peak_deceleration_g = Some(self.deceleration);
+            summary.rebound_velocity_mps = Some(self.rebound);
         }
-        let pitch = |n: usize| {
-            scenario.pitch.get(n).map(|&k| {
-                let deviation = |s: &Sample| s.q[k] - initial_q[k];
-                let extreme = samples
-                    .iter()
-                    .map(deviation)
-                    .fold(0.0f64, |m, d| if d.abs() > m.abs() { d } else { m });
-                extreme.to_degrees()
-            })
-        };
-        summary.max_theta1_deg = pitch(0);
-        summary.max_theta2_deg = pitch(1);
         summary
     }
 }
 
-/// The worst relative mismatch of the energy balance over the samples.
-fn energy_balance(samples: &[Sample]) -> f64 {
-    let Some(first) = samples.first() else {
-        return 0.0;
-    };
-    let e0 = first.kinetic + first.potential;
-    let scale = (first.kinetic + first.potential.abs()).max(f64::MIN_POSITIVE);
-    samples
-        .iter()
-        .map(|s| (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale)
-        .fold(0.0, f64::max)
-}
-
-/// `(t, c)` of the crush maximum: the zero of the crush rate between the
-/// samples around the largest one, by cubic Hermite interpolation of the crush.
-fn refine_peak(samples: &[Sample], crush: &[f64], rate: &[f64], i: usize) -> (f64, f64) {
-    let candidates = [
-        i.checked_sub(1).map(|j| (j, i)),
-        (i + 1 < samples.len()).then_some((i, i + 1)),
-    ];
+/// `(t, c)` of the crush maximum: the zero of the crush rate next to the
+/// largest sample, by cubic Hermite interpolation of the crush.
+fn refine_peak(
+    peak: CrushPoint,
+    before: Option<CrushPoint>,
+    after: Option<CrushPoint>,
+) -> (f64, f64) {
+    let candidates = [before.map(|b| (b, peak)), after.map(|a| (peak, a))];
     for (a, b) in candidates.into_iter().flatten() {
-        if rate[a] >= 0.0 && rate[b] <= 0.0 && rate[a] != rate[b] {
-            let h = samples[b].t - samples[a].t;
-            let s = rate[a] / (rate[a] - rate[b]);
+        if a.rate >= 0.0 && b.rate <= 0.0 && a.rate != b.rate {
+            let h = b.t - a.t;
+            let s = a.rate / (a.rate - b.rate);
             // Hermite on [a, b] evaluated at the linear estimate of the rate's zero.
             let [w0, w1, w2, w3] = hermite_weights(s, h);
-            let c = w0 * crush[a] + w1 * rate[a] + w2 * crush[b] + w3 * rate[b];
-            return (samples[a].t + s * h, c.max(crush[i]));
+            let c = w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate;
+            return (a.t + s * h, c.max(peak.crush));
         }
     }
-    (samples[i].t, crush[i])
-}
-
-/// The first time the rate, positive at first, reaches zero (linear between samples).
-fn first_zero(samples: &[Sample], rate: &[f64]) -> Option<f64> {
-    (1..samples.len()).find_map(|i| {
-        (rate[i - 1] > 0.0 && rate[i] <= 0.0).then(|| {
-            let s = rate[i - 1] / (rate[i - 1] - rate[i]);
-            samples[i - 1].t + s * (samples[i].t - samples[i - 1].t)
-        })
-    })
+    (peak.t, peak.crush)
 }

@@ -70,3 +70,36 @@ fn a_car_that_starts_short_of_the_barrier_is_not_pulled_across_the_gap() {
     );
     assert!((event.t - contact).abs() < 2e-6, "{} vs {contact}", event.t);
 }
+
+#[test]
+fn a_summary_only_run_reports_what_the_full_run_reports() {
+    let model = InterpretedModel::from_source(YARIS).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    let system = Interpreted::<3>::new(model).unwrap();
+    for method in ["dopri5", "implicit"] {
+        let settings = [format!("simulation.method=\"{method}\"")];
+        let scenario =
+            Scenario::load(std::path::Path::new(FULL_FRONTAL), &names, &settings).unwrap();
+        let full = simulate(&system, &scenario).unwrap();
+        let summary = simulate_summary(&system, &scenario).unwrap();
+        assert_eq!(summary, full.summary, "{method}");
+        // The online accumulator agrees with the samples it saw: the peak
+        // crush is the largest sampled crush, refined (never smaller).
+        let sampled = full
+            .samples
+            .iter()
+            .map(|s| -s.q[0])
+            .fold(f64::MIN, f64::max);
+        let refined = summary.max_crush_m.unwrap();
+        assert!(
+            refined >= sampled && refined - sampled < 1e-6,
+            "{refined} vs {sampled}"
+        );
+        let decel = full
+            .samples
+            .iter()
+            .map(|s| s.a[0] / full.g)
+            .fold(f64::MIN, f64::max);
+        assert_eq!(summary.peak_deceleration_g, Some(decel));
+    }
+}

@@ -4,7 +4,7 @@
 use super::plan::{Assignment, Axis, Plan};
 use crate::LagrangianSystem;
 use crate::scenario::{ModelNames, Scenario};
-use crate::simulate::{Summary, simulate};
+use crate::simulate::{Summary, simulate_summary};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::path::PathBuf;
@@ -210,9 +210,7 @@ where
             .map_init(copy, |model, run| {
                 let values = plan.point(run);
                 let outcome = run_scenario(base, settings, &values).and_then(|scenario| {
-                    simulate(model, &scenario)
-                        .map(|result| result.summary)
-                        .map_err(|e| e.to_string())
+                    simulate_summary(model, &scenario).map_err(|e| e.to_string())
                 });
                 progress();
                 Row {
