@@ -60,6 +60,22 @@ fn assert_close(what: &str, a: &[f64], b: &[f64], worst: &mut u64) {
     }
 }
 
+/// `M`, `f` and the powers from `mass_matrix_forcing_and_powers`.
+fn one_pass<const N: usize, M: LagrangianSystem<N>>(
+    model: &M,
+    t: f64,
+    q: &SVector<f64, N>,
+    qd: &SVector<f64, N>,
+) -> (
+    lagrangian::nalgebra::SMatrix<f64, N, N>,
+    SVector<f64, N>,
+    [f64; 2],
+) {
+    let (mut mass, mut forcing) = (lagrangian::nalgebra::SMatrix::zeros(), SVector::zeros());
+    let powers = model.mass_matrix_forcing_and_powers(t, q, qd, &inputs, &mut mass, &mut forcing);
+    (mass, forcing, powers)
+}
+
 fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 {
     let source = std::fs::read_to_string(spec).unwrap();
     let mut interpreted =
@@ -108,6 +124,17 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 
             ]
         };
         assert_close("energies", &pack(ec), &pack(ei), &mut worst);
+        // The one-pass routine gives the same M, f and powers as the two
+        // separate routines, compiled and interpreted.
+        let separate = [pack(ec)[3], pack(ec)[4]];
+        for (what, combined) in [
+            ("compiled one-pass", one_pass(&compiled, t, &q, &qd)),
+            ("interpreted one-pass", one_pass(&interpreted, t, &q, &qd)),
+        ] {
+            assert_close(what, combined.0.as_slice(), mc.as_slice(), &mut worst);
+            assert_close(what, combined.1.as_slice(), fc.as_slice(), &mut worst);
+            assert_close(what, &combined.2, &separate, &mut worst);
+        }
         // The input-argument routine reproduces the arguments the inputs receive.
         assert_eq!(compiled.input_sites(), interpreted.input_sites());
         let total: usize = compiled.input_sites().iter().map(|s| s.1).sum();

@@ -158,6 +158,39 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
             external_power: 0.0,
         }
     }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+    ) -> [f64; 2] {
+        let m1 = self.m1;
+        let m2 = self.m2;
+        let l1 = self.l1;
+        let l2 = self.l2;
+        let g = self.g;
+        let theta1 = q[0];
+        let theta2 = q[1];
+        let theta1_dot = qd[0];
+        let theta2_dot = qd[1];
+        let x0 = theta1.sin();
+        let x1 = theta1.cos();
+        let x2 = theta2.sin();
+        let x3 = theta2.cos();
+        let x4 = x0 * x3 - x1 * x2;
+        mass[(0, 0)] = l1 * ((m1 + m2) * l1);
+        mass[(0, 1)] = m2 * l1 * l2 * (x1 * x3 + x0 * x2);
+        mass[(1, 0)] = mass[(0, 1)];
+        mass[(1, 1)] = m2 * (l2 * l2);
+        forcing[0] = -(l1
+            * (m2 * (x0 * g + x4 * (l2 * (theta2_dot * theta2_dot))) + x0 * (m1 * g)));
+        forcing[1] = m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x2 * g));
+        [0.0, 0.0]
+    }
     fn input_arguments(
         &self,
         t: f64,

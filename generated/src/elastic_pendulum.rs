@@ -193,22 +193,68 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let x0 = r + l0;
         let x1 = x0 - ls;
         let x2 = theta_dot * theta_dot;
-        let x3 = r_dot * r_dot;
-        let x4 = theta * theta;
-        let x5 = ks * x4;
-        let x6 = x1 * theta_dot;
-        let x7 = r_dot * theta;
-        let x8 = x3 * x4;
-        let x9 = c * x3;
+        let x3 = x1 * theta_dot;
+        let x4 = r_dot * theta;
+        let x5 = theta * theta;
+        let x6 = r_dot * r_dot;
+        let x7 = x5 * x6;
+        let x8 = c * x6;
+        let x9 = ks * x5;
         ::lagrangian_model::Energies {
-            kinetic: (m * (x3 + x0 * x0 * x2) + I_ * x2) * 0.5,
+            kinetic: (m * (x6 + x0 * x0 * x2) + I_ * x2) * 0.5,
             potential: x0
-                * (x0 * (0.5 * (k + x5)) + (theta.sin() * (m * g) - l0 * k - ls * x5))
-                + 0.5 * (k * (l0 * l0) + x5 * (ls * ls)),
-            dissipation: cs * (theta_dot * (x1 * (0.5 * x6 + x7)) + 0.5 * x8) + 0.5 * x9,
-            damping_power: x9 + cs * (x8 + theta_dot * (x1 * (x6 + 2.0 * x7))),
+                * (x0 * (0.5 * (k + x9)) + (theta.sin() * (m * g) - l0 * k - ls * x9))
+                + 0.5 * (k * (l0 * l0) + x9 * (ls * ls)),
+            dissipation: cs * (theta_dot * (x1 * (x4 + x3 * 0.5)) + x7 * 0.5) + x8 * 0.5,
+            damping_power: cs * (theta_dot * (x1 * (x3 + 2.0 * x4)) + x7) + x8,
             external_power: 0.0,
         }
+    }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+    ) -> [f64; 2] {
+        let m = self.m;
+        let I_ = self.I;
+        let l0 = self.l0;
+        let ls = self.ls;
+        let k = self.k;
+        let c = self.c;
+        let ks = self.ks;
+        let cs = self.cs;
+        let g = self.g;
+        let r = q[0];
+        let theta = q[1];
+        let r_dot = qd[0];
+        let theta_dot = qd[1];
+        let x0 = r + l0;
+        let x1 = x0 - ls;
+        let x2 = r_dot * cs;
+        let x3 = ls * 2.0 - x0;
+        let x4 = r_dot * r_dot;
+        mass[(0, 0)] = m;
+        mass[(0, 1)] = 0.0;
+        mass[(1, 0)] = mass[(0, 1)];
+        mass[(1, 1)] = I_ + m * (x0 * x0);
+        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * theta.sin())
+            - (r * k + r_dot * c)
+            - theta * ((ks * x1 + x2) * theta + x1 * (cs * theta_dot));
+        forcing[1] = x0
+            * (theta_dot * (cs * x3 - 2.0 * (m * r_dot))
+                + (theta * (ks * x3 - x2) - m * g * theta.cos()))
+            + ls * (theta * (x2 - ks * ls) - cs * (ls * theta_dot));
+        [
+            cs
+                * (theta_dot * (x1 * (x1 * theta_dot + 2.0 * (r_dot * theta)))
+                    + theta * theta * x4) + c * x4,
+            0.0,
+        ]
     }
     fn input_arguments(
         &self,

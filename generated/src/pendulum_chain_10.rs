@@ -744,6 +744,331 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
             external_power: 0.0,
         }
     }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 10, 10>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 10>,
+    ) -> [f64; 2] {
+        let m1 = self.m1;
+        let l1 = self.l1;
+        let m2 = self.m2;
+        let l2 = self.l2;
+        let m3 = self.m3;
+        let l3 = self.l3;
+        let m4 = self.m4;
+        let l4 = self.l4;
+        let m5 = self.m5;
+        let l5 = self.l5;
+        let m6 = self.m6;
+        let l6 = self.l6;
+        let m7 = self.m7;
+        let l7 = self.l7;
+        let m8 = self.m8;
+        let l8 = self.l8;
+        let m9 = self.m9;
+        let l9 = self.l9;
+        let m10 = self.m10;
+        let l10 = self.l10;
+        let g = self.g;
+        let theta1 = q[0];
+        let theta2 = q[1];
+        let theta3 = q[2];
+        let theta4 = q[3];
+        let theta5 = q[4];
+        let theta6 = q[5];
+        let theta7 = q[6];
+        let theta8 = q[7];
+        let theta9 = q[8];
+        let theta10 = q[9];
+        let theta1_dot = qd[0];
+        let theta2_dot = qd[1];
+        let theta3_dot = qd[2];
+        let theta4_dot = qd[3];
+        let theta5_dot = qd[4];
+        let theta6_dot = qd[5];
+        let theta7_dot = qd[6];
+        let theta8_dot = qd[7];
+        let theta9_dot = qd[8];
+        let theta10_dot = qd[9];
+        let x0 = m10 + (m9 + (m8 + (m7 + (m6 + (m5 + (m4 + (m2 + m3)))))));
+        let x1 = theta1.sin();
+        let x2 = theta1.cos();
+        let x3 = theta2.sin();
+        let x4 = theta2.cos();
+        let x5 = x1 * x4 - x2 * x3;
+        let x6 = m10 + (m9 + (m8 + (m7 + (m6 + (m5 + (m3 + m4))))));
+        let x7 = theta3.sin();
+        let x8 = theta3.cos();
+        let x9 = x1 * x8 - x2 * x7;
+        let x10 = m10 + (m9 + (m8 + (m7 + (m6 + (m4 + m5)))));
+        let x11 = theta4.sin();
+        let x12 = theta4.cos();
+        let x13 = x1 * x12 - x2 * x11;
+        let x14 = m10 + (m9 + (m8 + (m7 + (m5 + m6))));
+        let x15 = theta5.sin();
+        let x16 = theta5.cos();
+        let x17 = x1 * x16 - x2 * x15;
+        let x18 = m10 + (m9 + (m8 + (m6 + m7)));
+        let x19 = theta6.sin();
+        let x20 = theta6.cos();
+        let x21 = x1 * x20 - x2 * x19;
+        let x22 = m10 + (m9 + (m7 + m8));
+        let x23 = theta7.sin();
+        let x24 = theta7.cos();
+        let x25 = x1 * x24 - x2 * x23;
+        let x26 = m10 + (m8 + m9);
+        let x27 = theta8.sin();
+        let x28 = theta8.cos();
+        let x29 = x1 * x28 - x2 * x27;
+        let x30 = m9 + m10;
+        let x31 = theta9.sin();
+        let x32 = theta9.cos();
+        let x33 = x1 * x32 - x2 * x31;
+        let x34 = theta10.sin();
+        let x35 = theta10.cos();
+        let x36 = x1 * x35 - x2 * x34;
+        let x37 = x3 * x8 - x4 * x7;
+        let x38 = x3 * x12 - x4 * x11;
+        let x39 = x3 * x16 - x4 * x15;
+        let x40 = x3 * x20 - x4 * x19;
+        let x41 = x3 * x24 - x4 * x23;
+        let x42 = x3 * x28 - x4 * x27;
+        let x43 = x3 * x32 - x4 * x31;
+        let x44 = x3 * x35 - x4 * x34;
+        let x45 = x7 * x12 - x8 * x11;
+        let x46 = x7 * x16 - x8 * x15;
+        let x47 = x7 * x20 - x8 * x19;
+        let x48 = x7 * x24 - x8 * x23;
+        let x49 = x7 * x28 - x8 * x27;
+        let x50 = x7 * x32 - x8 * x31;
+        let x51 = x7 * x35 - x8 * x34;
+        let x52 = x11 * x16 - x12 * x15;
+        let x53 = x11 * x20 - x12 * x19;
+        let x54 = x11 * x24 - x12 * x23;
+        let x55 = x11 * x28 - x12 * x27;
+        let x56 = x11 * x32 - x12 * x31;
+        let x57 = x11 * x35 - x12 * x34;
+        let x58 = x15 * x20 - x16 * x19;
+        let x59 = x15 * x24 - x16 * x23;
+        let x60 = x15 * x28 - x16 * x27;
+        let x61 = x15 * x32 - x16 * x31;
+        let x62 = x15 * x35 - x16 * x34;
+        let x63 = x19 * x24 - x20 * x23;
+        let x64 = x19 * x28 - x20 * x27;
+        let x65 = x19 * x32 - x20 * x31;
+        let x66 = x19 * x35 - x20 * x34;
+        let x67 = x23 * x28 - x24 * x27;
+        let x68 = x23 * x32 - x24 * x31;
+        let x69 = x23 * x35 - x24 * x34;
+        let x70 = x27 * x32 - x28 * x31;
+        let x71 = x27 * x35 - x28 * x34;
+        let x72 = x31 * x35 - x32 * x34;
+        let x73 = l2 * (theta2_dot * theta2_dot);
+        let x74 = x1 * g + x5 * x73;
+        let x75 = l3 * (theta3_dot * theta3_dot);
+        let x76 = x74 + x9 * x75;
+        let x77 = l4 * (theta4_dot * theta4_dot);
+        let x78 = x76 + x13 * x77;
+        let x79 = l5 * (theta5_dot * theta5_dot);
+        let x80 = x78 + x17 * x79;
+        let x81 = l6 * (theta6_dot * theta6_dot);
+        let x82 = x80 + x21 * x81;
+        let x83 = l7 * (theta7_dot * theta7_dot);
+        let x84 = x82 + x25 * x83;
+        let x85 = l8 * (theta8_dot * theta8_dot);
+        let x86 = x84 + x29 * x85;
+        let x87 = l9 * (theta9_dot * theta9_dot);
+        let x88 = x86 + x33 * x87;
+        let x89 = l10 * (theta10_dot * theta10_dot);
+        let x90 = theta1_dot * theta1_dot;
+        let x91 = l1 * x5 * x90 - x3 * g;
+        let x92 = x91 - x37 * x75;
+        let x93 = x92 - x38 * x77;
+        let x94 = x93 - x39 * x79;
+        let x95 = x94 - x40 * x81;
+        let x96 = x95 - x41 * x83;
+        let x97 = x96 - x42 * x85;
+        let x98 = x97 - x43 * x87;
+        let x99 = x90 * (l1 * x9) + x37 * x73 - x7 * g;
+        let x100 = x99 - x45 * x77;
+        let x101 = x100 - x46 * x79;
+        let x102 = x101 - x47 * x81;
+        let x103 = x102 - x48 * x83;
+        let x104 = x103 - x49 * x85;
+        let x105 = x104 - x50 * x87;
+        let x106 = x90 * (l1 * x13) + x38 * x73 + x45 * x75 - x11 * g;
+        let x107 = x106 - x52 * x79;
+        let x108 = x107 - x53 * x81;
+        let x109 = x108 - x54 * x83;
+        let x110 = x109 - x55 * x85;
+        let x111 = x110 - x56 * x87;
+        let x112 = x90 * (l1 * x17) + x39 * x73 + x46 * x75 + x52 * x77 - x15 * g;
+        let x113 = x112 - x58 * x81;
+        let x114 = x113 - x59 * x83;
+        let x115 = x114 - x60 * x85;
+        let x116 = x115 - x61 * x87;
+        let x117 = x90 * (l1 * x21) + x40 * x73 + x47 * x75 + x53 * x77 + x58 * x79
+            - x19 * g;
+        let x118 = x117 - x63 * x83;
+        let x119 = x118 - x64 * x85;
+        let x120 = x119 - x65 * x87;
+        let x121 = x90 * (l1 * x25) + x41 * x73 + x48 * x75 + x54 * x77 + x59 * x79
+            + x63 * x81 - x23 * g;
+        let x122 = x121 - x67 * x85;
+        let x123 = x122 - x68 * x87;
+        let x124 = x90 * (l1 * x29) + x42 * x73 + x49 * x75 + x55 * x77 + x60 * x79
+            + x64 * x81 + x67 * x83 - x27 * g;
+        let x125 = x124 - x70 * x87;
+        let x126 = x90 * (l1 * x33) + x43 * x73 + x50 * x75 + x56 * x77 + x61 * x79
+            + x65 * x81 + x68 * x83 + x70 * x85 - x31 * g;
+        mass[(0, 0)] = l1 * ((m1 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9 + m10) * l1);
+        mass[(0, 1)] = l1 * (x0 * (x2 * x4 + x1 * x3) * l2);
+        mass[(1, 0)] = mass[(0, 1)];
+        mass[(0, 2)] = l1 * (x6 * (x2 * x8 + x1 * x7) * l3);
+        mass[(2, 0)] = mass[(0, 2)];
+        mass[(0, 3)] = l1 * (x10 * (x2 * x12 + x1 * x11) * l4);
+        mass[(3, 0)] = mass[(0, 3)];
+        mass[(0, 4)] = l1 * (x14 * (x2 * x16 + x1 * x15) * l5);
+        mass[(4, 0)] = mass[(0, 4)];
+        mass[(0, 5)] = l1 * (x18 * (x2 * x20 + x1 * x19) * l6);
+        mass[(5, 0)] = mass[(0, 5)];
+        mass[(0, 6)] = l1 * (x22 * (x2 * x24 + x1 * x23) * l7);
+        mass[(6, 0)] = mass[(0, 6)];
+        mass[(0, 7)] = l1 * (x26 * (x2 * x28 + x1 * x27) * l8);
+        mass[(7, 0)] = mass[(0, 7)];
+        mass[(0, 8)] = l1 * (x30 * (x2 * x32 + x1 * x31) * l9);
+        mass[(8, 0)] = mass[(0, 8)];
+        mass[(0, 9)] = m10 * l1 * l10 * (x2 * x35 + x1 * x34);
+        mass[(9, 0)] = mass[(0, 9)];
+        mass[(1, 1)] = l2 * (x0 * l2);
+        mass[(1, 2)] = l2 * (l3 * (x6 * (x4 * x8 + x3 * x7)));
+        mass[(2, 1)] = mass[(1, 2)];
+        mass[(1, 3)] = l2 * (l4 * (x10 * (x4 * x12 + x3 * x11)));
+        mass[(3, 1)] = mass[(1, 3)];
+        mass[(1, 4)] = l2 * (l5 * (x14 * (x4 * x16 + x3 * x15)));
+        mass[(4, 1)] = mass[(1, 4)];
+        mass[(1, 5)] = l2 * (l6 * (x18 * (x4 * x20 + x3 * x19)));
+        mass[(5, 1)] = mass[(1, 5)];
+        mass[(1, 6)] = l2 * (l7 * (x22 * (x4 * x24 + x3 * x23)));
+        mass[(6, 1)] = mass[(1, 6)];
+        mass[(1, 7)] = l2 * (l8 * (x26 * (x4 * x28 + x3 * x27)));
+        mass[(7, 1)] = mass[(1, 7)];
+        mass[(1, 8)] = l2 * (l9 * (x30 * (x4 * x32 + x3 * x31)));
+        mass[(8, 1)] = mass[(1, 8)];
+        mass[(1, 9)] = l10 * (m10 * l2) * (x4 * x35 + x3 * x34);
+        mass[(9, 1)] = mass[(1, 9)];
+        mass[(2, 2)] = l3 * (x6 * l3);
+        mass[(2, 3)] = l3 * (l4 * (x10 * (x8 * x12 + x7 * x11)));
+        mass[(3, 2)] = mass[(2, 3)];
+        mass[(2, 4)] = l3 * (l5 * (x14 * (x8 * x16 + x7 * x15)));
+        mass[(4, 2)] = mass[(2, 4)];
+        mass[(2, 5)] = l3 * (l6 * (x18 * (x8 * x20 + x7 * x19)));
+        mass[(5, 2)] = mass[(2, 5)];
+        mass[(2, 6)] = l3 * (l7 * (x22 * (x8 * x24 + x7 * x23)));
+        mass[(6, 2)] = mass[(2, 6)];
+        mass[(2, 7)] = l3 * (l8 * (x26 * (x8 * x28 + x7 * x27)));
+        mass[(7, 2)] = mass[(2, 7)];
+        mass[(2, 8)] = l3 * (l9 * (x30 * (x8 * x32 + x7 * x31)));
+        mass[(8, 2)] = mass[(2, 8)];
+        mass[(2, 9)] = l10 * (m10 * l3) * (x8 * x35 + x7 * x34);
+        mass[(9, 2)] = mass[(2, 9)];
+        mass[(3, 3)] = l4 * (x10 * l4);
+        mass[(3, 4)] = l4 * (l5 * (x14 * (x12 * x16 + x11 * x15)));
+        mass[(4, 3)] = mass[(3, 4)];
+        mass[(3, 5)] = l4 * (l6 * (x18 * (x12 * x20 + x11 * x19)));
+        mass[(5, 3)] = mass[(3, 5)];
+        mass[(3, 6)] = l4 * (l7 * (x22 * (x12 * x24 + x11 * x23)));
+        mass[(6, 3)] = mass[(3, 6)];
+        mass[(3, 7)] = l4 * (l8 * (x26 * (x12 * x28 + x11 * x27)));
+        mass[(7, 3)] = mass[(3, 7)];
+        mass[(3, 8)] = l4 * (l9 * (x30 * (x12 * x32 + x11 * x31)));
+        mass[(8, 3)] = mass[(3, 8)];
+        mass[(3, 9)] = l10 * (m10 * l4) * (x12 * x35 + x11 * x34);
+        mass[(9, 3)] = mass[(3, 9)];
+        mass[(4, 4)] = l5 * (x14 * l5);
+        mass[(4, 5)] = l5 * (l6 * (x18 * (x16 * x20 + x15 * x19)));
+        mass[(5, 4)] = mass[(4, 5)];
+        mass[(4, 6)] = l5 * (l7 * (x22 * (x16 * x24 + x15 * x23)));
+        mass[(6, 4)] = mass[(4, 6)];
+        mass[(4, 7)] = l5 * (l8 * (x26 * (x16 * x28 + x15 * x27)));
+        mass[(7, 4)] = mass[(4, 7)];
+        mass[(4, 8)] = l5 * (l9 * (x30 * (x16 * x32 + x15 * x31)));
+        mass[(8, 4)] = mass[(4, 8)];
+        mass[(4, 9)] = l10 * (m10 * l5) * (x16 * x35 + x15 * x34);
+        mass[(9, 4)] = mass[(4, 9)];
+        mass[(5, 5)] = l6 * (x18 * l6);
+        mass[(5, 6)] = l6 * (l7 * (x22 * (x20 * x24 + x19 * x23)));
+        mass[(6, 5)] = mass[(5, 6)];
+        mass[(5, 7)] = l6 * (l8 * (x26 * (x20 * x28 + x19 * x27)));
+        mass[(7, 5)] = mass[(5, 7)];
+        mass[(5, 8)] = l6 * (l9 * (x30 * (x20 * x32 + x19 * x31)));
+        mass[(8, 5)] = mass[(5, 8)];
+        mass[(5, 9)] = l10 * (m10 * l6) * (x20 * x35 + x19 * x34);
+        mass[(9, 5)] = mass[(5, 9)];
+        mass[(6, 6)] = l7 * (x22 * l7);
+        mass[(6, 7)] = l7 * (l8 * (x26 * (x24 * x28 + x23 * x27)));
+        mass[(7, 6)] = mass[(6, 7)];
+        mass[(6, 8)] = l7 * (l9 * (x30 * (x24 * x32 + x23 * x31)));
+        mass[(8, 6)] = mass[(6, 8)];
+        mass[(6, 9)] = l10 * (m10 * l7) * (x24 * x35 + x23 * x34);
+        mass[(9, 6)] = mass[(6, 9)];
+        mass[(7, 7)] = l8 * (x26 * l8);
+        mass[(7, 8)] = l8 * (l9 * (x30 * (x28 * x32 + x27 * x31)));
+        mass[(8, 7)] = mass[(7, 8)];
+        mass[(7, 9)] = l10 * (m10 * l8) * (x28 * x35 + x27 * x34);
+        mass[(9, 7)] = mass[(7, 9)];
+        mass[(8, 8)] = l9 * (x30 * l9);
+        mass[(8, 9)] = l10 * (m10 * l9) * (x32 * x35 + x31 * x34);
+        mass[(9, 8)] = mass[(8, 9)];
+        mass[(9, 9)] = m10 * (l10 * l10);
+        forcing[0] = -(l1
+            * (m10 * (x88 + x36 * x89)
+                + (m9 * x88
+                    + (m8 * x86
+                        + (m7 * x84
+                            + (m6 * x82
+                                + (m5 * x80
+                                    + (m4 * x78
+                                        + (m3 * x76 + (m2 * x74 + x1 * (m1 * g)))))))))));
+        forcing[1] = l2
+            * (m10 * (x98 - x44 * x89)
+                + (m9 * x98
+                    + (m8 * x97
+                        + (m7 * x96
+                            + (m6 * x95
+                                + (m5 * x94 + (m4 * x93 + (m3 * x92 + m2 * x91))))))));
+        forcing[2] = l3
+            * (m10 * (x105 - x51 * x89)
+                + (m9 * x105
+                    + (m8 * x104
+                        + (m7 * x103
+                            + (m6 * x102 + (m5 * x101 + (m4 * x100 + m3 * x99)))))));
+        forcing[3] = l4
+            * (m10 * (x111 - x57 * x89)
+                + (m9 * x111
+                    + (m8 * x110
+                        + (m7 * x109 + (m6 * x108 + (m5 * x107 + m4 * x106))))));
+        forcing[4] = l5
+            * (m10 * (x116 - x62 * x89)
+                + (m9 * x116 + (m8 * x115 + (m7 * x114 + (m6 * x113 + m5 * x112)))));
+        forcing[5] = l6
+            * (m10 * (x120 - x66 * x89)
+                + (m9 * x120 + (m8 * x119 + (m7 * x118 + m6 * x117))));
+        forcing[6] = l7
+            * (m10 * (x123 - x69 * x89) + (m9 * x123 + (m8 * x122 + m7 * x121)));
+        forcing[7] = l8 * (m10 * (x125 - x71 * x89) + (m9 * x125 + m8 * x124));
+        forcing[8] = l9 * (m10 * (x126 - x72 * x89) + m9 * x126);
+        forcing[9] = m10
+            * (l10
+                * (x90 * (l1 * x36) + x44 * x73 + x51 * x75 + x57 * x77 + x62 * x79
+                    + x66 * x81 + x69 * x83 + x71 * x85 + x72 * x87 - x34 * g));
+        [0.0, 0.0]
+    }
     fn input_arguments(
         &self,
         t: f64,

@@ -129,6 +129,25 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
             external_power: 0.0,
         }
     }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+    ) -> [f64; 2] {
+        let m = self.m;
+        let l = self.l;
+        let I_ = self.I;
+        let g = self.g;
+        let theta = q[0];
+        mass[(0, 0)] = I_ + m * (l * l);
+        forcing[0] = -(m * l * g * theta.sin());
+        [0.0, 0.0]
+    }
     fn input_arguments(
         &self,
         t: f64,

@@ -120,10 +120,30 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         ::lagrangian_model::Energies {
             kinetic: m * x1 * 0.5,
             potential: 0.5 * (k * (x * x)),
-            dissipation: 0.5 * x2,
+            dissipation: x2 * 0.5,
             damping_power: x2,
             external_power: x0 * x_dot,
         }
+    }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+    ) -> [f64; 2] {
+        let m = self.m;
+        let k = self.k;
+        let c = self.c;
+        let x = q[0];
+        let x_dot = qd[0];
+        let x0 = inputs.value(0, &[t]);
+        mass[(0, 0)] = m;
+        forcing[0] = x0 - x * k - x_dot * c;
+        [c * (x_dot * x_dot), x0 * x_dot]
     }
     fn input_arguments(
         &self,

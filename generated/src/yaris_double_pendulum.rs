@@ -380,23 +380,23 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x19 = theta1 * r_dot;
         let x20 = l3 * theta1_dot;
         let x21 = inputs.value(7, &[theta2, theta2_dot]);
-        let x22 = r_dot * r_dot;
-        let x23 = theta1 * theta1;
-        let x24 = l1 * c2 - c1 * l3;
-        let x25 = theta1 * x7;
-        let x26 = c2 * x18;
-        let x27 = x25 + x26;
-        let x28 = theta2_dot * (theta2_dot * (c_tor + l2 * l2 * c2));
-        let x29 = 2.0 * x19;
+        let x22 = l1 * c2 - c1 * l3;
+        let x23 = theta1 * x7;
+        let x24 = c2 * x18;
+        let x25 = x23 + x24;
+        let x26 = 2.0 * x19;
+        let x27 = theta2_dot * (theta2_dot * (c_tor + l2 * l2 * c2));
+        let x28 = r_dot * r_dot;
+        let x29 = theta1 * theta1;
         ::lagrangian_model::Energies {
             kinetic: m2
                 * (l2
                     * (theta2_dot
                         * ((x0 * x3 - x1 * x2) * r_dot
                             + (x1 * x3 + x0 * x2) * x5 * theta1_dot + x18 * 0.5))
-                    + 0.5 * (x22 + x5 * x5 * x8))
+                    + 0.5 * (x28 + x5 * x5 * x8))
                 + 0.5
-                    * (m1 * (x22 + x4 * x4 * x8)
+                    * (m1 * (x28 + x4 * x4 * x8)
                         + (I1 * x8 + I2 * (theta2_dot * theta2_dot))),
             potential: x4
                 * (theta1
@@ -405,25 +405,141 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
                     + (x0 * ((m1 + m2) * g) + k_comp * (x4 * 0.5 - l0)))
                 + (l2
                     * (k2 * (theta2 * (theta1 * l1 + l2 * theta2 * 0.5)) + x2 * (m2 * g))
-                    + (l1 * (g * (m2 * x0) + 0.5 * (k2 * (l1 * x23)))
+                    + (l1 * (g * (m2 * x0) + 0.5 * (k2 * (l1 * x29)))
                         + 0.5
-                            * (k_comp * (l0 * l0) + k1 * x23 * (l3 * l3)
+                            * (k_comp * (l0 * l0) + k1 * x29 * (l3 * l3)
                                 + k_tor * (theta2 * theta2)))),
             dissipation: theta1_dot
-                * (x4 * (theta1_dot * (x4 * (x6 * 0.5) + x24) + x27)
+                * (x4 * (x25 + theta1_dot * (x22 + x4 * (x6 * 0.5)))
                     + (l1 * (c2 * (x19 + (x18 + x17 * 0.5)))
                         + l3 * (c1 * (x20 * 0.5 - x19))))
-                + (r_dot * (theta1 * (x26 + theta1 * (x7 * 0.5)) + x16 * 0.5)
-                    + 0.5 * x28),
+                + (r_dot * (theta1 * (x24 + theta1 * (x7 * 0.5)) + x16 * 0.5)
+                    + x27 * 0.5),
             damping_power: theta1_dot
-                * (x4 * (theta1_dot * (x4 * x6 + 2.0 * x24) + 2.0 * x27)
-                    + (l1 * (c2 * (x17 + 2.0 * x18 + x29)) + l3 * (c1 * (x20 - x29))))
-                + (x28 + r_dot * (x16 + theta1 * (x25 + 2.0 * x26))),
+                * (x4 * (theta1_dot * (x4 * x6 + 2.0 * x22) + 2.0 * x25)
+                    + (l1 * (c2 * (x17 + 2.0 * x18 + x26)) + l3 * (c1 * (x20 - x26))))
+                + (r_dot * (x16 + theta1 * (x23 + 2.0 * x24)) + x27),
             external_power: theta1_dot
                 * (x4 * (x1 * x11 - x0 * x14) + l1 * (x1 * x10 - x0 * x13))
                 + (r_dot * (x1 * x14 + (x0 * x11 - x15))
                     + theta2_dot * (l2 * (x3 * x10 - x2 * x13) - x21)),
         }
+    }
+    #[inline]
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        inputs: &I,
+        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+    ) -> [f64; 2] {
+        let m1 = self.m1;
+        let m2 = self.m2;
+        let l0 = self.l0;
+        let l1 = self.l1;
+        let l2 = self.l2;
+        let l3 = self.l3;
+        let I1 = self.I1;
+        let I2 = self.I2;
+        let k1 = self.k1;
+        let k2 = self.k2;
+        let c1 = self.c1;
+        let c2 = self.c2;
+        let k_comp = self.k_comp;
+        let c_comp = self.c_comp;
+        let k_tor = self.k_tor;
+        let c_tor = self.c_tor;
+        let g = self.g;
+        let r = q[0];
+        let theta1 = q[1];
+        let theta2 = q[2];
+        let r_dot = qd[0];
+        let theta1_dot = qd[1];
+        let theta2_dot = qd[2];
+        let x0 = m1 + m2;
+        let x1 = theta1.sin();
+        let x2 = theta1.cos();
+        let x3 = theta2.sin();
+        let x4 = theta2.cos();
+        let x5 = x1 * x4 - x2 * x3;
+        let x6 = x2 * x4 + x1 * x3;
+        let x7 = r + l0;
+        let x8 = x7 + l1;
+        let x9 = l2 * l2;
+        let x10 = x7 * (k1 + k2);
+        let x11 = c1 + c2;
+        let x12 = x11 * r_dot;
+        let x13 = k1 * l3;
+        let x14 = x13 - l1 * k2;
+        let x15 = x7 * x11;
+        let x16 = c1 * l3;
+        let x17 = l1 * c2;
+        let x18 = x16 - x17;
+        let x19 = theta2 * k2;
+        let x20 = theta1_dot * theta1_dot;
+        let x21 = theta2_dot * theta2_dot;
+        let x22 = inputs.value(4, &[t]);
+        let x23 = inputs.value(6, &[t]);
+        let x24 = x22 + x23;
+        let x25 = inputs.value(3, &[t]);
+        let x26 = inputs.value(5, &[t]);
+        let x27 = x25 + x26;
+        let x28 = x2 * x27;
+        let x29 = inputs.value(0, &[r, r_dot]);
+        let x30 = r_dot * c_comp;
+        let x31 = x1 * x27;
+        let x32 = l1 * theta1_dot;
+        let x33 = l2 * theta2_dot;
+        let x34 = theta1 * r_dot;
+        let x35 = l2 * theta2;
+        let x36 = x2 * x23 - x1 * x26;
+        let x37 = l3 * theta1_dot;
+        let x38 = x4 * x23 - x3 * x26;
+        let x39 = inputs.value(7, &[theta2, theta2_dot]);
+        let x40 = theta1 * x12;
+        let x41 = c2 * x33;
+        let x42 = 2.0 * x34;
+        mass[(0, 0)] = x0;
+        mass[(0, 1)] = 0.0;
+        mass[(1, 0)] = mass[(0, 1)];
+        mass[(0, 2)] = m2 * l2 * x5;
+        mass[(2, 0)] = mass[(0, 2)];
+        mass[(1, 1)] = m2 * (x8 * x8) + (I1 + m1 * (x7 * x7));
+        mass[(1, 2)] = m2 * (l2 * (x6 * x8));
+        mass[(2, 1)] = mass[(1, 2)];
+        mass[(2, 2)] = I2 + m2 * x9;
+        forcing[0] = theta1
+            * (theta1 * (x14 - x12 - x10)
+                + ((x18 - x15) * theta1_dot - l2 * (x19 + c2 * theta2_dot)))
+            + (m2 * (x8 * x20 + l2 * x6 * x21 - x1 * g)
+                + (x1 * (x24 - m1 * g)
+                    + (x7 * (m1 * x20 - k_comp) + (x28 + (l0 * k_comp - x29 - x30)))));
+        forcing[1] = x7
+            * (theta1_dot * ((x18 - x0 * r_dot) * 2.0 - x15)
+                + (theta1 * (x14 * 2.0 - x12 - x10)
+                    + (x2 * (x24 - x0 * g)
+                        - (l2 * (x19 + theta2_dot * (c2 + theta2_dot * (m2 * x5)))
+                            + x31))))
+            + (l1
+                * (x36 - k2 * (theta1 * l1 + x35) - c2 * (x32 + x33 + x34)
+                    - m2 * (2.0 * (r_dot * theta1_dot) + x2 * g + x21 * (l2 * x5)))
+                + l3 * (theta1 * (c1 * r_dot - x13) - c1 * x37));
+        forcing[2] = l2
+            * (m2 * (theta1_dot * (theta1_dot * (x5 * x8) - 2.0 * (x6 * r_dot)) - x4 * g)
+                + (x38 - k2 * (x35 + theta1 * x8)
+                    - c2 * (x34 + (x33 + x8 * theta1_dot))))
+            - (x39 + theta2 * k_tor + theta2_dot * c_tor);
+        [
+            theta1_dot
+                * (x7 * (theta1_dot * (x15 + 2.0 * (x17 - x16)) + 2.0 * (x40 + x41))
+                    + (l1 * (c2 * (x32 + 2.0 * x33 + x42)) + l3 * (c1 * (x37 - x42))))
+                + (r_dot * (x30 + theta1 * (x40 + 2.0 * x41))
+                    + theta2_dot * (theta2_dot * (c_tor + x9 * c2))),
+            theta1_dot * (x7 * (x2 * x24 - x31) + l1 * x36)
+                + (r_dot * (x28 + (x1 * x24 - x29)) + theta2_dot * (l2 * x38 - x39)),
+        ]
     }
     fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,

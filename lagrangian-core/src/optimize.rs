@@ -92,6 +92,14 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
     for &f in &derivation.forcing {
         dynamics.push(b.output(f));
     }
+    let dynamics_and_powers = dynamics
+        .iter()
+        .copied()
+        .chain([
+            b.output(derivation.damping_power),
+            b.output(derivation.external_power),
+        ])
+        .collect();
     let energies = [
         derivation.kinetic,
         derivation.potential,
@@ -105,6 +113,7 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
     let mut outputs = vec![
         (RoutineKind::Dynamics, dynamics),
         (RoutineKind::Energies, energies),
+        (RoutineKind::DynamicsAndPowers, dynamics_and_powers),
     ];
     if let Some(j) = &derivation.jacobians {
         let regs = j

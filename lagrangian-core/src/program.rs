@@ -151,6 +151,11 @@ pub enum RoutineKind {
     /// The arguments of every input-function call of the dynamics routine,
     /// concatenated in the order of [`Program::input_sites`].
     InputArguments,
+    /// The outputs of [`RoutineKind::Dynamics`], then `Σ ∂D/∂q̇·q̇` and
+    /// `Σ Q·q̇`: one pass for an integrator that also integrates the
+    /// dissipated energy and the work of the forces, sharing the operations
+    /// and input calls the two groups have in common.
+    DynamicsAndPowers,
 }
 
 /// A group of outputs and the operations needed to compute them, in order.

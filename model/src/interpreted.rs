@@ -322,22 +322,29 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         mass: &mut SMatrix<f64, N, N>,
         forcing: &mut SVector<f64, N>,
     ) {
-        let mut row_major = [[0.0; N]; N];
-        let flat = row_major.as_flattened_mut();
         // The dimension is N by construction, so this cannot fail.
-        let _ = self.0.evaluate_dynamics(
-            t,
-            q.as_slice(),
-            qd.as_slice(),
-            inputs,
-            flat,
-            forcing.as_mut_slice(),
-        );
-        for i in 0..N {
-            for j in 0..N {
-                mass[(i, j)] = row_major[i][j];
-            }
-        }
+        let state = (t, q.as_slice(), qd.as_slice(), &[][..]);
+        let _ = self.0.run(RoutineKind::Dynamics, state, inputs, |out| {
+            unpack_dynamics(out, mass, forcing);
+        });
+    }
+
+    fn mass_matrix_forcing_and_powers<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        mass: &mut SMatrix<f64, N, N>,
+        forcing: &mut SVector<f64, N>,
+    ) -> [f64; 2] {
+        let state = (t, q.as_slice(), qd.as_slice(), &[][..]);
+        self.0
+            .run(RoutineKind::DynamicsAndPowers, state, inputs, |out| {
+                let powers = unpack_dynamics(out, mass, forcing);
+                [powers[0], powers[1]]
+            })
+            .unwrap_or([f64::NAN; 2])
     }
 
     fn energies<I: InputFunctions + ?Sized>(
@@ -381,4 +388,23 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         }
         Ok(())
     }
+}
+
+/// Writes the dynamics outputs (upper triangle of `M`, row-major, then `f`)
+/// and returns what follows them.
+fn unpack_dynamics<'a, const N: usize>(
+    out: &'a [f64],
+    mass: &mut SMatrix<f64, N, N>,
+    forcing: &mut SVector<f64, N>,
+) -> &'a [f64] {
+    let mut k = 0;
+    for i in 0..N {
+        for j in i..N {
+            mass[(i, j)] = out[k];
+            mass[(j, i)] = out[k];
+            k += 1;
+        }
+    }
+    forcing.copy_from_slice(&out[k..k + N]);
+    &out[k + N..]
 }

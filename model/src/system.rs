@@ -137,6 +137,25 @@ pub trait LagrangianSystem<const N: usize> {
         inputs: &I,
     ) -> Energies;
 
+    /// Writes `M` and `f` as [`LagrangianSystem::mass_matrix_and_forcing`]
+    /// does and returns the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` of
+    /// [`LagrangianSystem::energies`], in one pass where the model shares
+    /// their operations and input calls (the generated code does).
+    #[allow(clippy::too_many_arguments)]
+    fn mass_matrix_forcing_and_powers<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        mass: &mut SMatrix<f64, N, N>,
+        forcing: &mut SVector<f64, N>,
+    ) -> [f64; 2] {
+        self.mass_matrix_and_forcing(t, q, qd, inputs, mass, forcing);
+        let energies = self.energies(t, q, qd, inputs);
+        [energies.damping_power, energies.external_power]
+    }
+
     /// The input-function calls of the dynamics: `(input index, number of
     /// arguments)` per distinct call, ordered by input index.
     fn input_sites(&self) -> &[(usize, usize)];

@@ -137,6 +137,7 @@ pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
 
     let dynamics = routine_method(compiled, &names, RoutineKind::Dynamics, rt);
     let energies = routine_method(compiled, &names, RoutineKind::Energies, rt);
+    let dynamics_and_powers = routine_method(compiled, &names, RoutineKind::DynamicsAndPowers, rt);
     let jacobians = routine_method(compiled, &names, RoutineKind::Jacobians, rt);
     let arguments = routine_method(compiled, &names, RoutineKind::InputArguments, rt);
     let sites = compiled.program.input_sites.iter().map(|&(input, arity)| {
@@ -211,6 +212,7 @@ pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
 
             #dynamics
             #energies
+            #dynamics_and_powers
             #jacobians
             #arguments
         }
@@ -234,24 +236,7 @@ fn routine_method(
     let (statements, outputs) = routine_body(compiled, names, routine);
     match kind {
         RoutineKind::Dynamics => {
-            let mut writes = Vec::new();
-            let mut k = 0;
-            for i in 0..n {
-                for j in i..n {
-                    let value = &outputs[k];
-                    let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
-                    writes.push(quote! { mass[(#li, #lj)] = #value; });
-                    if i != j {
-                        writes.push(quote! { mass[(#lj, #li)] = mass[(#li, #lj)]; });
-                    }
-                    k += 1;
-                }
-            }
-            for i in 0..n {
-                let value = &outputs[k + i];
-                let li = Literal::usize_unsuffixed(i);
-                writes.push(quote! { forcing[#li] = #value; });
-            }
+            let writes = dynamics_writes(n, &outputs);
             quote! {
                 #[inline]
                 fn mass_matrix_and_forcing<I: #rt::InputFunctions + ?Sized>(
@@ -260,6 +245,22 @@ fn routine_method(
                 ) {
                     #(#statements)*
                     #(#writes)*
+                }
+            }
+        }
+        RoutineKind::DynamicsAndPowers => {
+            let writes = dynamics_writes(n, &outputs);
+            let (damping_power, external_power) =
+                (&outputs[outputs.len() - 2], &outputs[outputs.len() - 1]);
+            quote! {
+                #[inline]
+                fn mass_matrix_forcing_and_powers<I: #rt::InputFunctions + ?Sized>(
+                    &self, t: f64, q: &#vector, qd: &#vector, inputs: &I,
+                    mass: &mut #matrix, forcing: &mut #vector,
+                ) -> [f64; 2] {
+                    #(#statements)*
+                    #(#writes)*
+                    [#damping_power, #external_power]
                 }
             }
         }
@@ -325,6 +326,30 @@ fn routine_method(
             }
         }
     }
+}
+
+/// Writes of the dynamics outputs: the upper triangle of `M` (mirrored),
+/// then `f`.
+fn dynamics_writes(n: usize, outputs: &[TokenStream]) -> Vec<TokenStream> {
+    let mut writes = Vec::new();
+    let mut k = 0;
+    for i in 0..n {
+        for j in i..n {
+            let value = &outputs[k];
+            let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
+            writes.push(quote! { mass[(#li, #lj)] = #value; });
+            if i != j {
+                writes.push(quote! { mass[(#lj, #li)] = mass[(#li, #lj)]; });
+            }
+            k += 1;
+        }
+    }
+    for i in 0..n {
+        let value = &outputs[k + i];
+        let li = Literal::usize_unsuffixed(i);
+        writes.push(quote! { forcing[#li] = #value; });
+    }
+    writes
 }
 
 /// `let` statements of a routine and the expressions of its outputs.

@@ -3,7 +3,7 @@
 use crate::crash::BoundInputs;
 use crate::ode::sdirk::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, OdeProblem, PhaseState, SolverError};
-use crate::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
+use crate::{InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix};
 use nalgebra::{SMatrix, SVector};
 
 /// One event handled during a run.
@@ -52,7 +52,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         }
     }
 
-    /// `q̈` at a state, by Cholesky (LU fallback) solution of `M q̈ = f`.
+    /// `q̈` at a state, by `L D Lᵀ` (LU fallback) solution of `M q̈ = f`.
     pub fn accelerations(
         &self,
         t: f64,
@@ -61,18 +61,38 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     ) -> Result<SVector<f64, N>, SolverError> {
         let result = self.system.accelerations(t, q, v, &self.inputs);
         self.input_failure(t)?;
-        result.map_err(|e| match e {
-            ModelError::SingularMassMatrix { t, q } => SolverError::Rhs {
+        result.map_err(|e| model_failure(t, e))
+    }
+
+    /// `q̈` and the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` at a state, in one pass
+    /// of the model.
+    fn accelerations_and_powers(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<(SVector<f64, N>, [f64; 2]), SolverError> {
+        let mut mass = SMatrix::zeros();
+        let mut forcing = SVector::zeros();
+        let powers = self.system.mass_matrix_forcing_and_powers(
+            t,
+            q,
+            v,
+            &self.inputs,
+            &mut mass,
+            &mut forcing,
+        );
+        self.input_failure(t)?;
+        let a = solve_mass_matrix(mass, &forcing).ok_or_else(|| {
+            model_failure(
                 t,
-                message: format!(
-                    "the mass matrix is singular or not positive definite at q = {q:?}"
-                ),
-            },
-            other => SolverError::Rhs {
-                t,
-                message: other.to_string(),
-            },
-        })
+                ModelError::SingularMassMatrix {
+                    t,
+                    q: q.iter().copied().collect(),
+                },
+            )
+        })?;
+        Ok((a, powers))
     }
 
     /// The value of every input the dynamics calls, in input-site order.
@@ -98,14 +118,8 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         y: &PhaseState<N>,
         dy: &mut PhaseState<N>,
     ) -> Result<(), SolverError> {
-        let a = self.accelerations(t, &y.q, &y.v)?;
-        let energies = self.system.energies(t, &y.q, &y.v, &self.inputs);
-        self.input_failure(t)?;
-        *dy = PhaseState {
-            q: y.v,
-            v: a,
-            work: [energies.damping_power, energies.external_power],
-        };
+        let (a, work) = self.accelerations_and_powers(t, &y.q, &y.v)?;
+        *dy = PhaseState { q: y.v, v: a, work };
         Ok(())
     }
 
@@ -185,5 +199,19 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
         let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
         let a_v = solve(j.forcing_qd).ok_or_else(singular)?;
         Ok(Some((a_q, a_v)))
+    }
+}
+
+/// A model failure at `t` as the solver reports it.
+fn model_failure(t: f64, e: ModelError) -> SolverError {
+    match e {
+        ModelError::SingularMassMatrix { t, q } => SolverError::Rhs {
+            t,
+            message: format!("the mass matrix is singular or not positive definite at q = {q:?}"),
+        },
+        other => SolverError::Rhs {
+            t,
+            message: other.to_string(),
+        },
     }
 }
