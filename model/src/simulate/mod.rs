@@ -302,7 +302,7 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     };
     let sample = SampleValues {
         t,
-        y: y.clone(),
+        y: *y,
         a,
         kinetic: energies.kinetic,
         potential: energies.potential,
