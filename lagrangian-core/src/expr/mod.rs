@@ -110,6 +110,21 @@ pub enum Node {
     Input(u32, Box<[ExprId]>),
 }
 
+impl Node {
+    /// Calls `visit` with every direct operand of the node: the terms of a
+    /// sum, the bases of a product, a function's argument, an input call's
+    /// arguments (numbers and symbols have none). Exponents and coefficients
+    /// are not nodes and are not visited.
+    pub fn for_each_child(&self, mut visit: impl FnMut(ExprId)) {
+        match self {
+            Node::Num(_) | Node::Sym(_) => {}
+            Node::Add(items) | Node::Mul(items) => items.iter().for_each(|&(t, _)| visit(t)),
+            Node::Func(_, u) => visit(*u),
+            Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
+        }
+    }
+}
+
 /// A run-time input function: its name, arity and declared partial derivatives.
 #[derive(Clone, Debug)]
 pub struct InputFunction {
@@ -302,17 +317,12 @@ impl Store {
             if !seen.insert(x) || !self.may_depend_on(x, s) {
                 continue;
             }
-            match self.node(x) {
-                Node::Num(_) => {}
-                Node::Sym(t) => {
-                    if *t == s {
-                        return true;
-                    }
-                }
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            if let Node::Sym(t) = self.node(x)
+                && *t == s
+            {
+                return true;
             }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         false
     }
@@ -326,13 +336,10 @@ impl Store {
             if !seen.insert(x) {
                 continue;
             }
-            match self.node(x) {
-                Node::Num(_) => {}
-                Node::Sym(t) => found.push(*t),
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            if let Node::Sym(t) = self.node(x) {
+                found.push(*t);
             }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         found.sort();
         found.dedup();
@@ -347,12 +354,7 @@ impl Store {
             if !seen.insert(x) {
                 continue;
             }
-            match self.node(x) {
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
-                _ => {}
-            }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         seen.len()
     }
@@ -361,15 +363,11 @@ impl Store {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
-        let mask = match &node {
-            Node::Num(_) => 0,
+        let mut mask = match &node {
             Node::Sym(s) => symbol_bit(*s),
-            Node::Add(items) | Node::Mul(items) => {
-                items.iter().fold(0, |m, (t, _)| m | self.masks[t.index()])
-            }
-            Node::Func(_, u) => self.masks[u.index()],
-            Node::Input(_, args) => args.iter().fold(0, |m, a| m | self.masks[a.index()]),
+            _ => 0,
         };
+        node.for_each_child(|c| mask |= self.masks[c.index()]);
         let id = ExprId(self.nodes.len() as u32);
         self.nodes.push(node.clone());
         self.masks.push(mask);

@@ -152,3 +152,32 @@ fn overflow_is_recorded_not_silent() {
     let _ = s.scale(e, Rational::integer(1000));
     assert_eq!(s.take_errors(), vec![EngineError::Overflow]);
 }
+
+#[test]
+fn dependency_queries_see_through_every_node_kind() {
+    let (mut s, v) = setup();
+    let (x, y, a) = (v[0], v[1], v[2]);
+    let (xs, ys, as_, bs) = (
+        s.as_symbol(x).unwrap(),
+        s.as_symbol(y).unwrap(),
+        s.as_symbol(a).unwrap(),
+        s.as_symbol(v[3]).unwrap(),
+    );
+    let input = s.declare_input("f", &["u".to_string()]);
+    // f(x) · sin(y)^(1/2) + a: an input call, a function, a product and a sum.
+    let call = s.input_call(input, vec![x]);
+    let sin = s.sin(y);
+    let root = s.sqrt(sin);
+    let product = s.mul(call, root);
+    let e = s.add(product, a);
+    for sym in [xs, ys, as_] {
+        assert!(s.depends_on(e, sym));
+    }
+    assert!(!s.depends_on(e, bs));
+    assert_eq!(s.free_symbols(e), vec![xs, ys, as_]);
+    // e, the product f(x)·sin(y)^(1/2), f(x), x, sin(y), y, a.
+    assert_eq!(s.dag_size(&[e]), 7);
+    let mut children = Vec::new();
+    s.node(e).for_each_child(|c| children.push(c));
+    assert_eq!(children.len(), 2);
+}
