@@ -181,3 +181,17 @@ fn dependency_queries_see_through_every_node_kind() {
     s.node(e).for_each_child(|c| children.push(c));
     assert_eq!(children.len(), 2);
 }
+
+#[test]
+fn high_powers_of_a_sine_stay_small() {
+    let (mut s, v) = setup();
+    let sin = s.sin(v[0]);
+    // sin⁴⁰ x = Σ_k c_k cos(2k x), k = 0…20: 21 terms. Without merging like
+    // terms between multiplications the expansion held 2⁴⁰ products.
+    let p = s.pow(sin, Rational::integer(40));
+    assert!(s.terms(p).len() <= 21, "{} terms", s.terms(p).len());
+    assert!(s.take_errors().is_empty());
+    let x = 0.7f64;
+    let mut ev = Evaluator::new(&s, vec![x, 0.0, 0.0, 0.0], &NoInputs);
+    assert!((ev.eval(p) - x.sin().powi(40)).abs() < 1e-15);
+}
