@@ -181,8 +181,19 @@ impl Rational {
         if !digits.chars().all(|c| c.is_ascii_digit()) {
             return None;
         }
-        let mantissa_value: i128 = digits.trim_start_matches('0').parse().unwrap_or(0);
-        let scale = exponent.checked_sub(i32::try_from(frac_part.len()).ok()?)?;
+        // Trailing zeros move into the exponent, so `1.000…0` with any number
+        // of zeros is 1; only significant digits must fit the numerator.
+        let significant = digits.trim_end_matches('0');
+        let trailing = i32::try_from(digits.len() - significant.len()).ok()?;
+        let significant = significant.trim_start_matches('0');
+        if significant.is_empty() {
+            return Some(Rational::ZERO);
+        }
+        // Too many significant digits for an i128 is not zero: it is `None`.
+        let mantissa_value: i128 = significant.parse().ok()?;
+        let scale = exponent
+            .checked_add(trailing)?
+            .checked_sub(i32::try_from(frac_part.len()).ok()?)?;
         let ten = Rational::integer(10);
         Rational::new(mantissa_value, 1)?.checked_mul(ten.checked_powi(i64::from(scale))?)
     }
@@ -290,6 +301,24 @@ mod tests {
         assert_eq!(Rational::parse_decimal("30_000"), Some(r(30000, 1)));
         assert_eq!(Rational::parse_decimal("1e80"), None);
         assert_eq!(Rational::parse_decimal("abc"), None);
+        assert_eq!(Rational::parse_decimal("0.000"), Some(Rational::ZERO));
+        assert_eq!(Rational::parse_decimal("000120"), Some(r(120, 1)));
+    }
+
+    #[test]
+    fn literals_beyond_i128_are_rejected_not_zero() {
+        // 10^42 and 43 significant digits do not fit a 128-bit numerator.
+        let big = format!("1{}.0", "0".repeat(42));
+        assert_eq!(Rational::parse_decimal(&big), None);
+        let precise = format!("0.{}1", "0".repeat(42));
+        assert_eq!(Rational::parse_decimal(&precise), None);
+        let long = "1234567890".repeat(5);
+        assert_eq!(Rational::parse_decimal(&long), None);
+        // Trailing zeros are not significant.
+        let one = format!("1.{}", "0".repeat(60));
+        assert_eq!(Rational::parse_decimal(&one), Some(Rational::ONE));
+        let exact = format!("1{}e-40", "0".repeat(40));
+        assert_eq!(Rational::parse_decimal(&exact), Some(Rational::ONE));
     }
 
     #[test]

@@ -373,6 +373,39 @@ fn unsupported(expr: &impl quote::ToTokens, what: &str) -> Diagnostic {
 
 /// An integer or decimal literal as an exact rational.
 pub(super) fn literal(lit: &Lit) -> Result<Rational, Diagnostic> {
+    let digits = literal_digits(lit)?;
+    Rational::parse_decimal(&digits).ok_or_else(|| {
+        Diagnostic::new(
+            lit.span(),
+            format!("the literal `{digits}` is too large, or has too many significant digits, for an exact rational of 128-bit integers"),
+        )
+        .with_help("coefficients in expressions are exact fractions; declare a parameter for this value (a parameter's default may be any f64, e.g. `k = 1e42`)")
+    })
+}
+
+/// A parameter default written as a number or a negated number, as an f64:
+/// defaults need not be exact, so `1e42` is fine. `None` for any other expression.
+pub(super) fn literal_default(expr: &Expr) -> Option<Result<f64, Diagnostic>> {
+    let (lit, negative) = match expr {
+        Expr::Lit(l) => (&l.lit, false),
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
+            Expr::Lit(l) => (&l.lit, true),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    let value = literal_digits(lit).and_then(|digits| {
+        digits
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| Diagnostic::new(lit.span(), format!("`{digits}` is not a finite f64")))
+    });
+    Some(value.map(|v| if negative { -v } else { v }))
+}
+
+/// The decimal digits of a numeric literal, whose suffix must be none or `f64`.
+fn literal_digits(lit: &Lit) -> Result<String, Diagnostic> {
     let (digits, suffix) = match lit {
         Lit::Int(i) => (i.base10_digits().to_string(), i.suffix().to_string()),
         Lit::Float(f) => (f.base10_digits().to_string(), f.suffix().to_string()),
@@ -389,12 +422,7 @@ pub(super) fn literal(lit: &Lit) -> Result<Rational, Diagnostic> {
                 .with_help("units go in brackets after a declaration, e.g. `m1 [kg] = 539.0`"),
         );
     }
-    Rational::parse_decimal(&digits).ok_or_else(|| {
-        Diagnostic::new(
-            lit.span(),
-            format!("`{digits}` cannot be represented as an exact fraction of 128-bit integers"),
-        )
-    })
+    Ok(digits)
 }
 
 /// Explains an engine error that happened while building `what` at `span`.

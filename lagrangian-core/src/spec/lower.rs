@@ -1,11 +1,12 @@
 //! Name resolution and validation: [`SpecAst`] → [`Model`].
 
 use super::ast::*;
-use super::expression::{Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal};
+use super::expression::{
+    Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal_default,
+};
 use super::{Coordinate, ForceStatement, Input, Model, Parameter, RESERVED_NAMES, Statement};
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, Evaluator, ExprId, NoInputs, Store, SymbolKind};
-use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
 
@@ -422,8 +423,8 @@ fn constant_value(
         )
         .with_help(format!("write `{} = value`", p.decl.name)));
     };
-    if let syn::Expr::Lit(lit) = value {
-        return literal(&lit.lit).map(Rational::to_f64);
+    if let Some(value) = literal_default(value) {
+        return value;
     }
     let mut scope = Scope {
         names: FxHashMap::default(),
