@@ -6,11 +6,12 @@
 //! dimension, and checks involving it are skipped, so specs without units
 //! are not checked at all.
 
+use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange};
 use crate::rational::Rational;
 use crate::units::Dimension;
 use rustc_hash::FxHashMap;
-use syn::{BinOp, Expr, Lit, UnOp};
+use syn::{BinOp, Expr, UnOp};
 
 /// The declared dimensions of an input function.
 #[derive(Clone, Debug)]
@@ -24,6 +25,8 @@ pub(super) struct InputDimensions {
 pub(super) struct DimensionScope {
     pub names: FxHashMap<String, Option<Dimension>>,
     pub inputs: FxHashMap<String, InputDimensions>,
+    /// Values of the constant `let`s, for exponents (as the lowering sees them).
+    pub constants: Constants,
 }
 
 /// A dimension that is not the required one.
@@ -97,12 +100,23 @@ impl DimensionScope {
         })
     }
 
+    /// The dimension of a call of `name` with `args` (a method's receiver
+    /// first). A call with the wrong number of arguments has an unknown
+    /// dimension: the lowering reports it, at the call.
     fn call(
         &self,
         name: &str,
         args: &[&Expr],
         span: SpanRange,
     ) -> Result<Option<Dimension>, Diagnostic> {
+        let arity = match name {
+            "sin" | "cos" | "tan" | "exp" | "ln" | "sqrt" | "dot" | "ddot" => Some(1),
+            "pow" => Some(2),
+            _ => None,
+        };
+        if arity.is_some_and(|n| n != args.len()) {
+            return Ok(None);
+        }
         match name {
             "sin" | "cos" | "tan" | "exp" | "ln" => {
                 if let Some(d) = self.infer(args[0])?
@@ -120,7 +134,10 @@ impl DimensionScope {
             "sqrt" => Ok(self.infer(args[0])?.map(|d| d.pow(Rational::HALF))),
             "pow" => {
                 let base = self.infer(args[0])?;
-                Ok(base.zip(constant(args[1])).map(|(d, e)| d.pow(e)))
+                // An exponent that is not constant, or not representable, is
+                // reported by the lowering; here its dimension is unknown.
+                let exponent = constant::evaluate(args[1], &self.constants).ok().flatten();
+                Ok(base.zip(exponent).map(|(d, e)| d.pow(e)))
             }
             "dot" => Ok(self.infer(args[0])?.map(|d| d / Dimension::TIME)),
             "ddot" => Ok(self
@@ -214,21 +231,4 @@ pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimens
 fn product(a: Option<Dimension>, b: Option<Dimension>, divide: bool) -> Option<Dimension> {
     let (a, b) = (a?, b?);
     Some(if divide { a / b } else { a * b })
-}
-
-/// A constant exponent written as `n`, `-n`, `p/q` or `-(p/q)`.
-fn constant(expr: &Expr) -> Option<Rational> {
-    match expr {
-        Expr::Lit(l) => match &l.lit {
-            Lit::Int(i) => Rational::parse_decimal(i.base10_digits()),
-            Lit::Float(f) => Rational::parse_decimal(f.base10_digits()),
-            _ => None,
-        },
-        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => constant(&u.expr)?.checked_neg(),
-        Expr::Paren(p) => constant(&p.expr),
-        Expr::Binary(b) if matches!(b.op, BinOp::Div(_)) => {
-            constant(&b.left)?.checked_div(constant(&b.right)?)
-        }
-        _ => None,
-    }
 }

@@ -1,5 +1,6 @@
 //! Translating `syn` expressions into canonical symbolic expressions.
 
+use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{CoordinateSymbols, EngineError, ExprId, Store, SymbolId};
 use crate::rational::Rational;
@@ -25,6 +26,8 @@ pub(super) struct Scope {
     pub coordinates: Vec<CoordinateSymbols>,
     pub time: SymbolId,
     pub velocities: Vec<SymbolId>,
+    /// Values of the constant `let`s, for exponents.
+    pub constants: Constants,
 }
 
 /// The result of lowering one expression.
@@ -315,15 +318,18 @@ impl<'a> ExpressionLowering<'a> {
     }
 
     /// Exponents must be exact constants, so that derivatives stay exact.
+    /// They are evaluated by [`constant::evaluate`], as the dimension checker does.
     fn constant_exponent(&mut self, expr: &Expr) -> Result<Rational, Diagnostic> {
-        let value = self.expr(expr)?;
-        self.store.as_num(value).ok_or_else(|| {
-            Diagnostic::new(
-                SpanRange::of(expr),
-                "the exponent must be a constant number",
-            )
-            .with_help("write exp(y * ln(x)) for a variable exponent")
-        })
+        if let Some(value) = constant::evaluate(expr, &self.scope.constants)? {
+            return Ok(value);
+        }
+        // Not a constant: report an unknown name in it first, if any.
+        self.expr(expr)?;
+        Err(Diagnostic::new(
+            SpanRange::of(expr),
+            "the exponent must be a constant number",
+        )
+        .with_help("write exp(y * ln(x)) for a variable exponent"))
     }
 
     /// `dot(e)`: the total time derivative of a function of coordinates and time.

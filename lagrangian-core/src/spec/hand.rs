@@ -136,6 +136,7 @@ pub(super) fn lower(
         coordinates: cx.scope.coordinates.clone(),
         time: cx.scope.time,
         velocities: cx.scope.velocities.clone(),
+        constants: cx.scope.constants.clone(),
     };
     let mut symbols = Vec::new();
     for (name, expr) in &section.symbols {
@@ -154,6 +155,10 @@ pub(super) fn lower(
             Ok(l) => {
                 let dimension = cx.dimensions.infer(expr).ok().flatten();
                 cx.dimensions.names.insert(name.to_string(), dimension);
+                if let Ok(Some(c)) = super::constant::evaluate(expr, &scope.constants) {
+                    scope.constants.insert(name.to_string(), c);
+                    cx.dimensions.constants.insert(name.to_string(), c);
+                }
                 scope.names.insert(
                     name.to_string(),
                     (Binding::Definition(l.value, l.input_calls), name.span()),

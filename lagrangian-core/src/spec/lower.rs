@@ -73,6 +73,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         coordinates: Vec::new(),
         time: store.symbol("t", SymbolKind::Time).0,
         velocities: Vec::new(),
+        constants: Default::default(),
     };
     let declare =
         |scope: &mut Scope, ident: &syn::Ident, binding: Binding, problems: &mut Problems| {
@@ -223,9 +224,16 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     // `let` definitions, in order; each may use the ones before it.
     let mut definitions = Vec::new();
     for item in &statements {
-        if let Item::Let { name, value } = item {
-            let lowered = ExpressionLowering::new(&mut store, &scope, &input_names).lower(value);
+        if let Item::Let {
+            name,
+            value: syntax,
+        } = item
+        {
+            let lowered = ExpressionLowering::new(&mut store, &scope, &input_names).lower(syntax);
             if let Some(Lowered { value, input_calls }) = problems.take(lowered) {
+                if let Ok(Some(c)) = super::constant::evaluate(syntax, &scope.constants) {
+                    scope.constants.insert(name.to_string(), c);
+                }
                 declare(
                     &mut scope,
                     name,
@@ -431,6 +439,7 @@ fn constant_value(
         coordinates: Vec::new(),
         time,
         velocities: Vec::new(),
+        constants: Default::default(),
     };
     scope
         .names
@@ -484,6 +493,7 @@ fn lower_input_derivatives(
             coordinates: Vec::new(),
             time: scope.time,
             velocities: Vec::new(),
+            constants: Default::default(),
         };
         let formal = store.inputs()[index].arguments.clone();
         for (arg, symbol) in decl.arguments.iter().zip(&formal) {

@@ -1,6 +1,7 @@
 //! Model specifications: the spec language, its parser and the resolved [`Model`].
 
 mod ast;
+mod constant;
 mod dimensions;
 mod expression;
 mod hand;

@@ -71,6 +71,7 @@ pub(super) fn check(
         let mut local = DimensionScope {
             names: scope.names.clone(),
             inputs: scope.inputs.clone(),
+            constants: scope.constants.clone(),
         };
         for (arg, d) in input.arguments.iter().zip(&dims.arguments) {
             local.names.insert(arg.name.to_string(), *d);
@@ -105,6 +106,9 @@ pub(super) fn check(
         if let Item::Let { name, value } = item {
             let d = take(scope.infer(value));
             scope.names.insert(name.to_string(), d);
+            if let Ok(Some(c)) = super::constant::evaluate(value, &scope.constants) {
+                scope.constants.insert(name.to_string(), c);
+            }
         }
     }
     for item in statements {
