@@ -45,3 +45,43 @@ potential = 0.5 * k * pow(x, 2) + c * x;
     };
     assert!(text.contains("`1e999` is not a finite f64"), "{text}");
 }
+
+#[test]
+fn a_power_of_a_sum_with_a_huge_expansion_is_refused_at_the_call() {
+    let text = error_of("potential = k * pow(x + m + 1, 100);");
+    assert!(
+        text.contains(
+            "this power raises a sum of 3 terms to the power 100, whose expansion would have more than 4096 terms"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:17"), "{text}");
+    // pow(x + 1, 100000) ran for ever.
+    let text = error_of("potential = k * pow(x + 1, 100000);");
+    assert!(
+        text.contains("this power has the exponent 100000, beyond the supported range"),
+        "{text}"
+    );
+    // Beyond i64 the exponent was read as 0: pow(x + 1, …) was 1.
+    let text = error_of("potential = k * pow(x + 1, 100000000000000000000000);");
+    assert!(
+        text.contains(
+            "this power has the exponent 100000000000000000000000, beyond the supported range"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_exponent_beyond_the_supported_range_is_refused() {
+    // 4294967298 = 2³² + 2 was truncated to u32 in the emitted program.
+    let text = error_of("potential = k * pow(x, 4294967298);");
+    assert!(
+        text.contains("this power has the exponent 4294967298, beyond the supported range"),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:17"), "{text}");
+    assert!(text.contains("at most 1024"), "{text}");
+    let text = error_of("potential = k * pow(pow(x, 1000), 1000);");
+    assert!(text.contains("the exponent 1000000"), "{text}");
+}

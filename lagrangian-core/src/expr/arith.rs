@@ -1,6 +1,6 @@
 //! Sums, products and powers in expanded canonical form.
 
-use super::{EngineError, ExprId, Func, Node, Store};
+use super::{EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, Node, Store};
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
@@ -216,6 +216,10 @@ impl Store {
             }
         }
         merged.retain(|(_, e)| !e.is_zero());
+        if !merged.iter().all(|&(_, e)| self.exponent_in_range(e)) {
+            // Reported; not linearized (a sine to a huge power would never finish).
+            return self.raw_monomial(merged);
+        }
 
         let mut coefficient = Rational::ONE;
         let mut kept = Vec::with_capacity(merged.len());
@@ -284,6 +288,9 @@ impl Store {
         if e.is_one() {
             return a;
         }
+        if !self.exponent_in_range(e) {
+            return self.intern_power(a, e);
+        }
         match self.node(a).clone() {
             Node::Num(c) => self.pow_number(c, e),
             Node::Add(items) => {
@@ -294,8 +301,15 @@ impl Store {
                         let te = self.pow(t, e);
                         return self.mul(ce, te);
                     }
-                } else if e.is_integer() && !e.is_negative() {
-                    return self.pow_expand(a, e.to_i64().unwrap_or(0));
+                } else if let Some(n) = e.to_i64().filter(|n| *n > 0) {
+                    let terms = expanded_terms(items.len(), n);
+                    if terms <= MAX_EXPANDED_TERMS {
+                        return self.pow_expand(a, n);
+                    }
+                    self.record(EngineError::ExpansionTooLarge {
+                        exponent: e,
+                        sum_terms: items.len(),
+                    });
                 }
                 self.intern_power(a, e)
             }
@@ -333,6 +347,15 @@ impl Store {
         self.scale(atom, whole_value)
     }
 
+    /// Is `e` within [`MAX_EXPONENT`]? Records [`EngineError::ExponentTooLarge`] if not.
+    fn exponent_in_range(&mut self, e: Rational) -> bool {
+        let ok = e.numer().unsigned_abs() <= MAX_EXPONENT as u128 && e.denom() <= MAX_EXPONENT;
+        if !ok {
+            self.record(EngineError::ExponentTooLarge(e));
+        }
+        ok
+    }
+
     fn intern_power(&mut self, base: ExprId, e: Rational) -> ExprId {
         self.raw_monomial(vec![(base, e)])
     }
@@ -358,6 +381,21 @@ impl Store {
     pub fn sqrt(&mut self, a: ExprId) -> ExprId {
         self.pow(a, Rational::HALF)
     }
+}
+
+/// The number of monomials of `(a_1 + … + a_k)^n` when none cancel,
+/// `C(n + k − 1, k − 1)`, or `MAX_EXPANDED_TERMS + 1` when it is larger.
+fn expanded_terms(k: usize, n: i64) -> usize {
+    let n = n.unsigned_abs() as u128;
+    let mut count: u128 = 1;
+    for i in 1..k as u128 {
+        // C(n + i, i) = C(n + i − 1, i − 1) · (n + i) / i, exact at each step.
+        count = count.saturating_mul(n.saturating_add(i)) / i;
+        if count > MAX_EXPANDED_TERMS as u128 {
+            return MAX_EXPANDED_TERMS + 1;
+        }
+    }
+    count as usize
 }
 
 /// Accumulates `(term, coefficient)` pairs of a large sum.

@@ -145,7 +145,24 @@ pub enum EngineError {
     /// An input function had to be differentiated with respect to an argument
     /// whose derivative was not declared.
     MissingDerivative { input: usize, argument: usize },
+    /// An exponent beyond [`MAX_EXPONENT`] (numerator or denominator).
+    ExponentTooLarge(Rational),
+    /// A power of a sum whose expansion would exceed [`MAX_EXPANDED_TERMS`].
+    ExpansionTooLarge {
+        exponent: Rational,
+        sum_terms: usize,
+    },
 }
+
+/// The largest magnitude of an exponent's numerator and denominator: larger
+/// exponents are reported ([`EngineError::ExponentTooLarge`]), so a sine
+/// power's linearization and the emitted `powi` stay small and exact.
+pub const MAX_EXPONENT: i128 = 1024;
+
+/// The most terms the expansion of a power of a sum may have: `(Σ_k a_k)^n`
+/// with `k` terms has `C(n + k − 1, k − 1)` monomials before any cancel
+/// ([`EngineError::ExpansionTooLarge`] beyond).
+pub const MAX_EXPANDED_TERMS: usize = 4096;
 
 /// Owner of all nodes, symbols and input functions of one model.
 pub struct Store {

@@ -195,3 +195,60 @@ fn high_powers_of_a_sine_stay_small() {
     let mut ev = Evaluator::new(&s, vec![x, 0.0, 0.0, 0.0], &NoInputs);
     assert!((ev.eval(p) - x.sin().powi(40)).abs() < 1e-15);
 }
+
+#[test]
+fn powers_of_sums_expand_within_a_limit() {
+    let (mut s, v) = setup();
+    let sum = s.add(v[0], Store::ONE);
+    let p = s.pow(sum, Rational::integer(64));
+    assert_eq!(s.terms(p).len(), 65);
+    assert!(s.take_errors().is_empty());
+    // (x + y + 1)^100 has C(102, 2) = 5151 terms: refused before expanding.
+    let xy1 = s.sum(&[v[0], v[1], Store::ONE]);
+    let _ = s.pow(xy1, Rational::integer(100));
+    assert_eq!(
+        s.take_errors(),
+        vec![EngineError::ExpansionTooLarge {
+            exponent: Rational::integer(100),
+            sum_terms: 3
+        }]
+    );
+    // (x + 1)^100000 ran for ever; its exponent is now out of range.
+    let _ = s.pow(sum, Rational::integer(100_000));
+    assert_eq!(
+        s.take_errors(),
+        vec![EngineError::ExponentTooLarge(Rational::integer(100_000))]
+    );
+    // An exponent beyond i64 was read as 0, and the power became 1.
+    let beyond_i64 = Rational::new(i128::from(i64::MAX) * 4, 1).unwrap();
+    let p = s.pow(sum, beyond_i64);
+    assert_ne!(p, Store::ONE);
+    assert_eq!(
+        s.take_errors(),
+        vec![EngineError::ExponentTooLarge(beyond_i64)]
+    );
+}
+
+#[test]
+fn exponents_beyond_the_limit_are_reported() {
+    let (mut s, v) = setup();
+    let x = v[0];
+    let big = Rational::integer(4_294_967_298);
+    let _ = s.pow(x, big);
+    assert_eq!(s.take_errors(), vec![EngineError::ExponentTooLarge(big)]);
+    // Each power is allowed, their product is not.
+    let p = s.pow(x, Rational::integer(1000));
+    let _ = s.pow(p, Rational::integer(1000));
+    assert_eq!(
+        s.take_errors(),
+        vec![EngineError::ExponentTooLarge(Rational::integer(1_000_000))]
+    );
+    let sin = s.sin(x);
+    let _ = s.pow(sin, Rational::integer(5000));
+    assert_eq!(
+        s.take_errors(),
+        vec![EngineError::ExponentTooLarge(Rational::integer(5000))]
+    );
+    let _ = s.pow(x, Rational::new(1, 4096).unwrap());
+    assert_eq!(s.take_errors().len(), 1);
+}

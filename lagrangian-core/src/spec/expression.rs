@@ -2,7 +2,9 @@
 
 use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
-use crate::expr::{CoordinateSymbols, EngineError, ExprId, Store, SymbolId};
+use crate::expr::{
+    CoordinateSymbols, EngineError, ExprId, MAX_EXPANDED_TERMS, MAX_EXPONENT, Store, SymbolId,
+};
 use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
@@ -314,7 +316,9 @@ impl<'a> ExpressionLowering<'a> {
         if base == Store::ZERO && exponent.is_negative() {
             return Err(Diagnostic::new(span, "zero raised to a negative power"));
         }
-        Ok(self.store.pow(base, exponent))
+        let value = self.store.pow(base, exponent);
+        self.check_engine(span, "this power")?;
+        Ok(value)
     }
 
     /// Exponents must be exact constants, so that derivatives stay exact.
@@ -445,6 +449,25 @@ pub(crate) fn engine_diagnostic(
             format!("exact coefficients in {what} exceed 128-bit fractions"),
         ),
         EngineError::DivisionByZero => Diagnostic::new(span, format!("division by zero in {what}")),
+        EngineError::ExponentTooLarge(e) => Diagnostic::new(
+            span,
+            format!("{what} has the exponent {e}, beyond the supported range"),
+        )
+        .with_help(format!(
+            "exponents are exact fractions p/q with |p| and q at most {MAX_EXPONENT}"
+        )),
+        EngineError::ExpansionTooLarge {
+            exponent,
+            sum_terms,
+        } => Diagnostic::new(
+            span,
+            format!(
+                "{what} raises a sum of {sum_terms} terms to the power {exponent}, whose expansion would have more than {MAX_EXPANDED_TERMS} terms"
+            ),
+        )
+        .with_help(
+            "powers of sums are expanded into monomials; lower the exponent, or make the sum a parameter",
+        ),
         EngineError::MissingDerivative { input, argument } => {
             let info = &store.inputs()[input];
             let arg = store.symbol_info(info.arguments[argument]).name.clone();
