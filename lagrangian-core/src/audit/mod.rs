@@ -136,8 +136,8 @@ pub fn audit(compiled: &mut Compiled) -> Option<AuditReport> {
         (Part::GeneralizedForce, &hand.forces, &derived_forces),
     ] {
         for equation in list.iter() {
-            let expected =
-                model.coordinate_dimensions[equation.coordinate].map(|q| Dimension::ENERGY / q);
+            let expected = model.coordinate_dimensions[equation.coordinate]
+                .and_then(|q| Dimension::ENERGY.checked_div(q));
             let derived = derived[equation.coordinate];
             audits.push(audit_one(
                 model,

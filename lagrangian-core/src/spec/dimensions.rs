@@ -68,8 +68,20 @@ impl DimensionScope {
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.infer(&u.expr)?,
             Expr::Binary(b) => match b.op {
                 BinOp::Add(_) | BinOp::Sub(_) => self.sum(expr)?,
-                BinOp::Mul(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, false),
-                BinOp::Div(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, true),
+                BinOp::Mul(_) | BinOp::Div(_) => {
+                    let (lhs, rhs) = (self.infer(&b.left)?, self.infer(&b.right)?);
+                    let divide = matches!(b.op, BinOp::Div(_));
+                    let Some((lhs, rhs)) = lhs.zip(rhs) else {
+                        return Ok(None);
+                    };
+                    exact(SpanRange::of(expr), || {
+                        if divide {
+                            lhs.checked_div(rhs)
+                        } else {
+                            lhs.checked_mul(rhs)
+                        }
+                    })?
+                }
                 _ => None,
             },
             Expr::Path(p) => p
@@ -131,18 +143,29 @@ impl DimensionScope {
                 }
                 Ok(Some(Dimension::NONE))
             }
-            "sqrt" => Ok(self.infer(args[0])?.map(|d| d.pow(Rational::HALF))),
+            "sqrt" => match self.infer(args[0])? {
+                Some(d) => exact(span, || d.checked_pow(Rational::HALF)),
+                None => Ok(None),
+            },
             "pow" => {
                 let base = self.infer(args[0])?;
                 // An exponent that is not constant, or not representable, is
                 // reported by the lowering; here its dimension is unknown.
                 let exponent = constant::evaluate(args[1], &self.constants).ok().flatten();
-                Ok(base.zip(exponent).map(|(d, e)| d.pow(e)))
+                match base.zip(exponent) {
+                    Some((d, e)) => exact(span, || d.checked_pow(e)),
+                    None => Ok(None),
+                }
             }
-            "dot" => Ok(self.infer(args[0])?.map(|d| d / Dimension::TIME)),
-            "ddot" => Ok(self
-                .infer(args[0])?
-                .map(|d| d / Dimension::TIME.pow(Rational::integer(2)))),
+            "dot" | "ddot" => match self.infer(args[0])? {
+                Some(d) => {
+                    let per = if name == "dot" { 1 } else { 2 };
+                    exact(span, || {
+                        d.checked_div(Dimension::TIME.checked_pow(Rational::integer(per))?)
+                    })
+                }
+                None => Ok(None),
+            },
             _ => {
                 let Some(input) = self.inputs.get(name) else {
                     return Ok(None);
@@ -159,7 +182,6 @@ impl DimensionScope {
                         ));
                     }
                 }
-                let _ = span;
                 Ok(input.value)
             }
         }
@@ -228,7 +250,15 @@ pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimens
     best.map(|(d, _)| d)
 }
 
-fn product(a: Option<Dimension>, b: Option<Dimension>, divide: bool) -> Option<Dimension> {
-    let (a, b) = (a?, b?);
-    Some(if divide { a / b } else { a * b })
+/// A dimension computed by `op`; an exponent overflow is an error at `span`.
+fn exact(
+    span: SpanRange,
+    op: impl FnOnce() -> Option<Dimension>,
+) -> Result<Option<Dimension>, Diagnostic> {
+    op().map(Some).ok_or_else(|| {
+        Diagnostic::new(
+            span,
+            "the dimension of this expression has exponents beyond exact 128-bit fractions",
+        )
+    })
 }
