@@ -85,3 +85,29 @@ fn an_exponent_beyond_the_supported_range_is_refused() {
     let text = error_of("potential = k * pow(pow(x, 1000), 1000);");
     assert!(text.contains("the exponent 1000000"), "{text}");
 }
+
+#[test]
+fn constants_outside_a_function_domain_are_reported_at_compile_time() {
+    // These compiled and failed only at run time ("M or f is not finite").
+    let text = error_of("potential = k * x * sqrt(-1);");
+    assert!(
+        text.contains(
+            "`sqrt` of the constant -1: the square root of a negative number is not real"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:21"), "{text}");
+    let text = error_of("potential = k * x * ln(1 - 1);");
+    assert!(
+        text.contains("`ln` of the constant 0: the logarithm is defined for positive numbers only"),
+        "{text}"
+    );
+    let text = error_of("potential = k * x * (-2.0).powf(0.5);");
+    assert!(
+        text.contains("the negative constant -2 to the power 1/2 is not a real number"),
+        "{text}"
+    );
+    // Exact roots of negative constants are fine, and so is 0⁰ = 1.
+    let source = format!("{HEADER}potential = k * x * pow(-8, 1/3) * pow(0, 0);");
+    Compiled::from_source(&source).unwrap();
+}

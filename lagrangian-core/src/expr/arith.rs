@@ -277,12 +277,10 @@ impl Store {
 
     // ----- powers -----
 
-    /// `a ^ e` for a rational exponent.
+    /// `a ^ e` for a rational exponent. `a⁰ = 1` for every `a`, 0 included,
+    /// as `f64::powi(0.0, 0)` computes it.
     pub fn pow(&mut self, a: ExprId, e: Rational) -> ExprId {
         if e.is_zero() {
-            if a == Store::ZERO {
-                self.record(EngineError::DivisionByZero);
-            }
             return Store::ONE;
         }
         if e.is_one() {

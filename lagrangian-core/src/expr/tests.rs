@@ -252,3 +252,11 @@ fn exponents_beyond_the_limit_are_reported() {
     let _ = s.pow(x, Rational::new(1, 4096).unwrap());
     assert_eq!(s.take_errors().len(), 1);
 }
+
+#[test]
+fn zero_to_the_zero_is_one_as_for_f64() {
+    let (mut s, _) = setup();
+    assert_eq!(s.pow(Store::ZERO, Rational::ZERO), Store::ONE);
+    assert!(s.take_errors().is_empty(), "0⁰ was a 'division by zero'");
+    assert_eq!(0.0f64.powi(0), 1.0);
+}

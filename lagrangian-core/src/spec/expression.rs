@@ -252,6 +252,9 @@ impl<'a> ExpressionLowering<'a> {
             return self.power(base, exponent, span);
         }
         let x = self.expr(args[0])?;
+        if let Some(c) = self.store.as_num(x) {
+            check_constant_argument(name, c, span)?;
+        }
         Ok(match name {
             "sin" => self.store.sin(x),
             "cos" => self.store.cos(x),
@@ -318,6 +321,17 @@ impl<'a> ExpressionLowering<'a> {
         }
         let value = self.store.pow(base, exponent);
         self.check_engine(span, "this power")?;
+        if let Some(c) = self.store.as_num(base)
+            && c.is_negative()
+            && !exponent.is_integer()
+            && self.store.as_num(value).is_none()
+        {
+            return Err(Diagnostic::new(
+                span,
+                format!("the negative constant {c} to the power {exponent} is not a real number"),
+            )
+            .with_help("the emitted code computes it with powf, which gives NaN"));
+        }
         Ok(value)
     }
 
@@ -357,6 +371,22 @@ impl<'a> ExpressionLowering<'a> {
         self.check_engine(span, "`dot`")?;
         Ok(d)
     }
+}
+
+/// `sqrt` and `ln` of a constant outside their domain would only show at
+/// run time, as a non-finite M or f: report them at the call.
+fn check_constant_argument(name: &str, c: Rational, span: SpanRange) -> Result<(), Diagnostic> {
+    let problem = match name {
+        "sqrt" if c.is_negative() => "the square root of a negative number is not real",
+        "ln" if c.is_negative() || c.is_zero() => {
+            "the logarithm is defined for positive numbers only"
+        }
+        _ => return Ok(()),
+    };
+    Err(Diagnostic::new(
+        span,
+        format!("`{name}` of the constant {c}: {problem}"),
+    ))
 }
 
 fn check_arity(
