@@ -11,9 +11,28 @@
 //! input-function calls) or, with a negative or fractional exponent, a sum.
 //! Products of sums are distributed as soon as they are built, and products of
 //! sines and cosines are linearized (`cos a · cos b = ½cos(a−b) + ½cos(a+b)`),
-//! so every monomial carries at most one sine or cosine to a positive power.
-//! That form is canonical for the trigonometric polynomials of mechanics: the
-//! cross terms of a kinetic energy cancel exactly and `sin² + cos²` folds to 1.
+//! so a monomial without negative trigonometric powers carries at most one
+//! sine or cosine, to the first power. Negative integer powers of `sin u` and
+//! `cos u` stay atoms; within their monomial the sines and cosines of
+//! integer multiples of `u` are rewritten in `sin u`, `cos u` and merged with
+//! them, leaving `sin⁻ᵏu` (times at most `cos u`) or `cos⁻ᵏu` (times at most
+//! `sin u`); and a sum that is the linearized `c · sinᵏu · cosˡu` raised to a
+//! negative power becomes those atoms (module `laurent`).
+//!
+//! The form is *canonical* — equal expressions are the same node — for
+//! polynomials in the sines and cosines of rational combinations of the
+//! symbols, whatever else multiplies them: the cross terms of a kinetic
+//! energy cancel exactly and `sin² + cos²` folds to 1. It stays canonical
+//! with negative powers of `sin u` and `cos u` for one argument `u` per
+//! monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
+//! is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`. It is **not** canonical,
+//! and equal expressions may be different nodes, when a negative power sits
+//! next to a sine or cosine of an unrelated argument (`sin(θ₁ − θ₂) / sin θ₁`),
+//! for negative powers of both `sin u` and `sin 2u`, for sums under
+//! fractional powers or divided by a sum that is not a sine–cosine monomial
+//! (`1 / (1 + cos θ)`), for `exp`/`ln` identities, and for `π` inside an
+//! argument (a symbol here: `sin(θ + π)` is not `−sin θ`). The audit
+//! compares numerically where the symbolic comparison is inconclusive.
 //!
 //! Nodes are interned, so structurally equal expressions share one [`ExprId`]
 //! and comparing expressions is comparing integers.
@@ -22,6 +41,7 @@ mod arith;
 mod calculus;
 mod display;
 mod eval;
+mod laurent;
 mod trig;
 
 pub use calculus::CoordinateSymbols;

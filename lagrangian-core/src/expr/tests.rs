@@ -260,3 +260,98 @@ fn zero_to_the_zero_is_one_as_for_f64() {
     assert!(s.take_errors().is_empty(), "0⁰ was a 'division by zero'");
     assert_eq!(0.0f64.powi(0), 1.0);
 }
+
+#[test]
+fn negative_trig_powers_cancel_with_positive_ones() {
+    let (mut s, v) = setup();
+    let x = v[0];
+    let (sin, cos) = (s.sin(x), s.cos(x));
+    // sin²x / sin x: sin²x arrives as ½ − ½cos 2x; it was ½(sin⁻¹x − sin⁻¹x·cos 2x).
+    let sin2 = s.pow(sin, Rational::integer(2));
+    assert_eq!(s.div(sin2, sin), sin);
+    // tan x · cos²x − sin x cos x = 0.
+    let tan = s.tan(x);
+    let cos2 = s.pow(cos, Rational::integer(2));
+    let lhs = s.mul(tan, cos2);
+    let sc = s.mul(sin, cos);
+    assert_eq!(s.sub(lhs, sc), Store::ZERO);
+    // cos²x / sin x = 1/sin x − sin x, however it is built.
+    let a = s.div(cos2, sin);
+    let inv = s.pow(sin, Rational::MINUS_ONE);
+    let b = s.sub(inv, sin);
+    assert_eq!(a, b);
+    // cos 3x / cos x = 4cos²x − 3 = 2cos 2x − 1, and (1/sin x)·sin 3x = 3 − 4sin²x.
+    let three_x = s.scale(x, Rational::integer(3));
+    let cos3 = s.cos(three_x);
+    let q = s.div(cos3, cos);
+    let two_x = s.scale(x, Rational::integer(2));
+    let cos2x = s.cos(two_x);
+    let expected = s.scale(cos2x, Rational::integer(2));
+    let expected = s.sub(expected, Store::ONE);
+    assert_eq!(q, expected);
+    // x / sin²x and x / (sin x cos x)³: the linearized denominators are
+    // recognized, so the quotient has sin⁻²x, not (½ − ½cos 2x)⁻¹.
+    let q = s.div(x, sin2);
+    let inv2 = s.pow(sin, Rational::integer(-2));
+    assert_eq!(q, s.mul(x, inv2));
+    assert_eq!(s.mul(q, sin2), x);
+    // (sin x cos x)³ = ⅛ sin³2x, linearized as 3/32 sin 2x − 1/32 sin 6x.
+    let sc3 = s.pow(sc, Rational::integer(3));
+    let q = s.div(Store::ONE, sc3);
+    let two_x = s.scale(x, Rational::integer(2));
+    let sin2x = s.sin(two_x);
+    let sin2x_3 = s.pow(sin2x, Rational::integer(-3));
+    assert_eq!(q, s.scale(sin2x_3, Rational::integer(8)));
+    let one_plus_cos = s.add(Store::ONE, cos);
+    let q = s.div(x, one_plus_cos);
+    assert_eq!(
+        s.factors(s.terms(q)[0].0).len(),
+        2,
+        "x · (1 + cos x)⁻¹ stays"
+    );
+    // sin x / cos x + cos x / sin x = 1/(sin x cos x).
+    let t = s.div(sin, cos);
+    let ct = s.div(cos, sin);
+    let sum = s.add(t, ct);
+    let inv_s = s.pow(sin, Rational::MINUS_ONE);
+    let inv_c = s.pow(cos, Rational::MINUS_ONE);
+    assert_eq!(sum, s.mul(inv_s, inv_c));
+    assert!(s.take_errors().is_empty());
+}
+
+#[test]
+fn negative_trig_powers_keep_their_value() {
+    let (mut s, v) = setup();
+    let (x, y) = (v[0], v[1]);
+    let (sx, cx) = (s.sin(x), s.cos(x));
+    let xy = s.sub(x, y);
+    let sxy = s.sin(xy);
+    // (sin³x + cos 3x · sin(x − y)) / (sin x · cos²x) · (cos x + sin 2x)²
+    let three_x = s.scale(x, Rational::integer(3));
+    let cos3 = s.cos(three_x);
+    let s3 = s.pow(sx, Rational::integer(3));
+    let mixed = s.mul(cos3, sxy);
+    let num = s.add(s3, mixed);
+    let c2 = s.pow(cx, Rational::integer(2));
+    let den = s.mul(sx, c2);
+    let q = s.div(num, den);
+    let two_x = s.scale(x, Rational::integer(2));
+    let s2x = s.sin(two_x);
+    let f = s.add(cx, s2x);
+    let f2 = s.pow(f, Rational::integer(2));
+    let e = s.mul(q, f2);
+    assert!(s.take_errors().is_empty());
+    for (a, b) in [(0.3, -1.1), (1.2, 0.4), (-2.5, 2.0)] {
+        let mut ev = Evaluator::new(&s, vec![a, b, 0.0, 0.0], &NoInputs);
+        let f = a.cos() + (2.0 * a).sin();
+        let expected = (a.sin().powi(3) + (3.0 * a).cos() * (a - b).sin())
+            / (a.sin() * a.cos().powi(2))
+            * f
+            * f;
+        let got = ev.eval(e);
+        assert!(
+            (got - expected).abs() < 1e-12 * expected.abs().max(1.0),
+            "{got} vs {expected}"
+        );
+    }
+}
