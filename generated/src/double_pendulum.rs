@@ -82,7 +82,10 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -119,8 +122,8 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         mass[(0, 1)] = m2 * l1 * l2 * (x1 * x3 + x0 * x2);
         mass[(1, 0)] = mass[(0, 1)];
         mass[(1, 1)] = m2 * (l2 * l2);
-        forcing[0] =
-            -(l1 * (m2 * (x0 * g + x4 * (l2 * (theta2_dot * theta2_dot))) + x0 * (m1 * g)));
+        forcing[0] = -(l1
+            * (m2 * (x0 * g + x4 * (l2 * (theta2_dot * theta2_dot))) + x0 * (m1 * g)));
         forcing[1] = m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x2 * g));
     }
     fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
@@ -161,6 +164,5 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         out: &mut [f64],
-    ) {
-    }
+    ) {}
 }

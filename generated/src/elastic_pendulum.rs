@@ -62,8 +62,17 @@ impl ElasticPendulum {
     /// Names of the generalized coordinates, in order.
     pub const COORDINATES: [&'static str; 2] = ["r", "theta"];
     /// Names of the parameters (the fields), in order.
-    pub const PARAMETERS: &'static [&'static str] =
-        &["m", "I", "l0", "ls", "k", "c", "ks", "cs", "g"];
+    pub const PARAMETERS: &'static [&'static str] = &[
+        "m",
+        "I",
+        "l0",
+        "ls",
+        "k",
+        "c",
+        "ks",
+        "cs",
+        "g",
+    ];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[];
 }
@@ -110,7 +119,10 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -155,7 +167,8 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         mass[(1, 0)] = mass[(0, 1)];
         mass[(1, 1)] = m * (r * (r + x0) + l0 * l0) + I_;
         forcing[0] = theta * ((x1 * ks - x2) * theta + x1 * cs * theta_dot)
-            + (m * (theta_dot * (theta_dot * (r + l0)) - g * theta.sin()) - (r * k + r_dot * c));
+            + (m * (theta_dot * (theta_dot * (r + l0)) - g * theta.sin())
+                - (r * k + r_dot * c));
         forcing[1] = r * (theta_dot * (cs * x4 - x5) + (theta * (ks * x4 - x2) - x6))
             + (l0 * (theta_dot * (cs * x7 - x5) + (theta * (ks * x7 - x2) - x6))
                 + ls * (theta * (x2 - ls * ks) - cs * (ls * theta_dot)));
@@ -196,10 +209,12 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
                 + (r * (x0 * (m * g) + r * k * 0.5) + x0 * (g * (m * l0))),
             dissipation: cs * (theta_dot * (theta_dot * x5 + x6) + 0.5 * x7) + 0.5 * x8,
             damping_power: x8
-                + cs * (x7
-                    + theta_dot
-                        * (theta_dot * (r * (r + l0 * 2.0 - x1) + (x4 + l0 * (l0 - x1)))
-                            + 2.0 * x6)),
+                + cs
+                    * (x7
+                        + theta_dot
+                            * (theta_dot
+                                * (r * (r + l0 * 2.0 - x1) + (x4 + l0 * (l0 - x1)))
+                                + 2.0 * x6)),
             external_power: 0.0,
         }
     }
@@ -209,6 +224,5 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         out: &mut [f64],
-    ) {
-    }
+    ) {}
 }

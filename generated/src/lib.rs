@@ -7,14 +7,20 @@
 //! `generated/<spec>/`.
 
 /// Generated from `specs/double_pendulum.lpm`.
+#[rustfmt::skip]
 pub mod double_pendulum;
 /// Generated from `specs/elastic_pendulum.lpm`.
+#[rustfmt::skip]
 pub mod elastic_pendulum;
 /// Generated from `specs/pendulum_chain_10.lpm`.
+#[rustfmt::skip]
 pub mod pendulum_chain_10;
 /// Generated from `specs/simple_pendulum.lpm`.
+#[rustfmt::skip]
 pub mod simple_pendulum;
 /// Generated from `specs/spring_mass_damper.lpm`.
+#[rustfmt::skip]
 pub mod spring_mass_damper;
 /// Generated from `specs/yaris_double_pendulum.lpm`.
+#[rustfmt::skip]
 pub mod yaris_double_pendulum;

@@ -105,13 +105,40 @@ impl ::core::default::Default for PendulumChain10 {
 impl PendulumChain10 {
     /// Names of the generalized coordinates, in order.
     pub const COORDINATES: [&'static str; 10] = [
-        "theta1", "theta2", "theta3", "theta4", "theta5", "theta6", "theta7", "theta8", "theta9",
+        "theta1",
+        "theta2",
+        "theta3",
+        "theta4",
+        "theta5",
+        "theta6",
+        "theta7",
+        "theta8",
+        "theta9",
         "theta10",
     ];
     /// Names of the parameters (the fields), in order.
     pub const PARAMETERS: &'static [&'static str] = &[
-        "m1", "l1", "m2", "l2", "m3", "l3", "m4", "l4", "m5", "l5", "m6", "l6", "m7", "l7", "m8",
-        "l8", "m9", "l9", "m10", "l10", "g",
+        "m1",
+        "l1",
+        "m2",
+        "l2",
+        "m3",
+        "l3",
+        "m4",
+        "l4",
+        "m5",
+        "l5",
+        "m6",
+        "l6",
+        "m7",
+        "l7",
+        "m8",
+        "l8",
+        "m9",
+        "l9",
+        "m10",
+        "l10",
+        "g",
     ];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[];
@@ -139,9 +166,9 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
     }
     fn parameters(&self) -> ::std::vec::Vec<f64> {
         ::std::vec![
-            self.m1, self.l1, self.m2, self.l2, self.m3, self.l3, self.m4, self.l4, self.m5,
-            self.l5, self.m6, self.l6, self.m7, self.l7, self.m8, self.l8, self.m9, self.l9,
-            self.m10, self.l10, self.g
+            self.m1, self.l1, self.m2, self.l2, self.m3, self.l3, self.m4, self.l4, self
+            .m5, self.l5, self.m6, self.l6, self.m7, self.l7, self.m8, self.l8, self.m9,
+            self.l9, self.m10, self.l10, self.g
         ]
     }
     fn set_parameter(
@@ -173,7 +200,10 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -350,32 +380,20 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         let x114 = x113 - x59 * x83;
         let x115 = x114 - x60 * x85;
         let x116 = x115 - x61 * x87;
-        let x117 = x90 * (l1 * x21) + x40 * x73 + x47 * x75 + x53 * x77 + x58 * x79 - x19 * g;
+        let x117 = x90 * (l1 * x21) + x40 * x73 + x47 * x75 + x53 * x77 + x58 * x79
+            - x19 * g;
         let x118 = x117 - x63 * x83;
         let x119 = x118 - x64 * x85;
         let x120 = x119 - x65 * x87;
-        let x121 =
-            x90 * (l1 * x25) + x41 * x73 + x48 * x75 + x54 * x77 + x59 * x79 + x63 * x81 - x23 * g;
+        let x121 = x90 * (l1 * x25) + x41 * x73 + x48 * x75 + x54 * x77 + x59 * x79
+            + x63 * x81 - x23 * g;
         let x122 = x121 - x67 * x85;
         let x123 = x122 - x68 * x87;
-        let x124 = x90 * (l1 * x29)
-            + x42 * x73
-            + x49 * x75
-            + x55 * x77
-            + x60 * x79
-            + x64 * x81
-            + x67 * x83
-            - x27 * g;
+        let x124 = x90 * (l1 * x29) + x42 * x73 + x49 * x75 + x55 * x77 + x60 * x79
+            + x64 * x81 + x67 * x83 - x27 * g;
         let x125 = x124 - x70 * x87;
-        let x126 = x90 * (l1 * x33)
-            + x43 * x73
-            + x50 * x75
-            + x56 * x77
-            + x61 * x79
-            + x65 * x81
-            + x68 * x83
-            + x70 * x85
-            - x31 * g;
+        let x126 = x90 * (l1 * x33) + x43 * x73 + x50 * x75 + x56 * x77 + x61 * x79
+            + x65 * x81 + x68 * x83 + x70 * x85 - x31 * g;
         mass[(0, 0)] = l1 * ((m1 + m2 + m3 + m4 + m5 + m6 + m7 + m8 + m9 + m10) * l1);
         mass[(0, 1)] = l1 * (x0 * (x2 * x4 + x1 * x3) * l2);
         mass[(1, 0)] = mass[(0, 1)];
@@ -483,41 +501,40 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                         + (m7 * x84
                             + (m6 * x82
                                 + (m5 * x80
-                                    + (m4 * x78 + (m3 * x76 + (m2 * x74 + x1 * (m1 * g)))))))))));
+                                    + (m4 * x78
+                                        + (m3 * x76 + (m2 * x74 + x1 * (m1 * g)))))))))));
         forcing[1] = l2
             * (m10 * (x98 - x44 * x89)
                 + (m9 * x98
                     + (m8 * x97
                         + (m7 * x96
-                            + (m6 * x95 + (m5 * x94 + (m4 * x93 + (m3 * x92 + m2 * x91))))))));
+                            + (m6 * x95
+                                + (m5 * x94 + (m4 * x93 + (m3 * x92 + m2 * x91))))))));
         forcing[2] = l3
             * (m10 * (x105 - x51 * x89)
                 + (m9 * x105
                     + (m8 * x104
-                        + (m7 * x103 + (m6 * x102 + (m5 * x101 + (m4 * x100 + m3 * x99)))))));
+                        + (m7 * x103
+                            + (m6 * x102 + (m5 * x101 + (m4 * x100 + m3 * x99)))))));
         forcing[3] = l4
             * (m10 * (x111 - x57 * x89)
-                + (m9 * x111 + (m8 * x110 + (m7 * x109 + (m6 * x108 + (m5 * x107 + m4 * x106))))));
+                + (m9 * x111
+                    + (m8 * x110
+                        + (m7 * x109 + (m6 * x108 + (m5 * x107 + m4 * x106))))));
         forcing[4] = l5
             * (m10 * (x116 - x62 * x89)
                 + (m9 * x116 + (m8 * x115 + (m7 * x114 + (m6 * x113 + m5 * x112)))));
-        forcing[5] =
-            l6 * (m10 * (x120 - x66 * x89) + (m9 * x120 + (m8 * x119 + (m7 * x118 + m6 * x117))));
-        forcing[6] = l7 * (m10 * (x123 - x69 * x89) + (m9 * x123 + (m8 * x122 + m7 * x121)));
+        forcing[5] = l6
+            * (m10 * (x120 - x66 * x89)
+                + (m9 * x120 + (m8 * x119 + (m7 * x118 + m6 * x117))));
+        forcing[6] = l7
+            * (m10 * (x123 - x69 * x89) + (m9 * x123 + (m8 * x122 + m7 * x121)));
         forcing[7] = l8 * (m10 * (x125 - x71 * x89) + (m9 * x125 + m8 * x124));
         forcing[8] = l9 * (m10 * (x126 - x72 * x89) + m9 * x126);
         forcing[9] = m10
             * (l10
-                * (x90 * (l1 * x36)
-                    + x44 * x73
-                    + x51 * x75
-                    + x57 * x77
-                    + x62 * x79
-                    + x66 * x81
-                    + x69 * x83
-                    + x71 * x85
-                    + x72 * x87
-                    - x34 * g));
+                * (x90 * (l1 * x36) + x44 * x73 + x51 * x75 + x57 * x77 + x62 * x79
+                    + x66 * x81 + x69 * x83 + x71 * x85 + x72 * x87 - x34 * g));
     }
     fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
@@ -642,47 +659,34 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                                     + (m7 * x26
                                         + (m6 * x25
                                             + (m5 * x24
-                                                + (m4 * x23
-                                                    + (m3 * x22 + theta2_dot * (x5 * x29)))))))))))
+                                                + (m4 * x23 + (m3 * x22 + theta2_dot * (x5 * x29)))))))))))
                 + (m10
-                    * (l2 * (theta2_dot * (x36 + theta10_dot * (l10 * (x4 * x21 + x3 * x20))))
+                    * (l2
+                        * (theta2_dot
+                            * (x36 + theta10_dot * (l10 * (x4 * x21 + x3 * x20))))
                         + (l3
-                            * (theta3_dot * (x42 + theta10_dot * (l10 * (x7 * x21 + x6 * x20))))
+                            * (theta3_dot
+                                * (x42 + theta10_dot * (l10 * (x7 * x21 + x6 * x20))))
                             + (l4
                                 * (theta4_dot
                                     * (x47 + theta10_dot * (l10 * (x9 * x21 + x8 * x20))))
                                 + (l5
                                     * (theta5_dot
-                                        * (x51
-                                            + theta10_dot * (l10 * (x11 * x21 + x10 * x20))))
+                                        * (x51 + theta10_dot * (l10 * (x11 * x21 + x10 * x20))))
                                     + (l6
                                         * (theta6_dot
-                                            * (x54
-                                                + theta10_dot
-                                                    * (l10 * (x13 * x21 + x12 * x20))))
+                                            * (x54 + theta10_dot * (l10 * (x13 * x21 + x12 * x20))))
                                         + (l7
                                             * (theta7_dot
-                                                * (x56
-                                                    + theta10_dot
-                                                        * (l10 * (x15 * x21 + x14 * x20))))
+                                                * (x56 + theta10_dot * (l10 * (x15 * x21 + x14 * x20))))
                                             + (l8
                                                 * (theta8_dot
-                                                    * (x57
-                                                        + theta10_dot
-                                                            * (l10
-                                                                * (x17 * x21
-                                                                    + x16 * x20))))
+                                                    * (x57 + theta10_dot * (l10 * (x17 * x21 + x16 * x20))))
                                                 + (l9
                                                     * (theta9_dot
                                                         * (0.5 * (l9 * theta9_dot)
-                                                            + theta10_dot
-                                                                * (l10
-                                                                    * (x19 * x21
-                                                                        + x18 * x20))))
-                                                    + 0.5
-                                                        * (l10
-                                                            * l10
-                                                            * (theta10_dot * theta10_dot))))))))))
+                                                            + theta10_dot * (l10 * (x19 * x21 + x18 * x20))))
+                                                    + 0.5 * (l10 * l10 * (theta10_dot * theta10_dot))))))))))
                     + (m9
                         * (l2 * (theta2_dot * x36)
                             + (l3 * (theta3_dot * x42)
@@ -691,10 +695,7 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                                         + (l6 * (theta6_dot * x54)
                                             + (l7 * (theta7_dot * x56)
                                                 + (l8 * (theta8_dot * x57)
-                                                    + 0.5
-                                                        * (theta9_dot
-                                                            * theta9_dot
-                                                            * (l9 * l9)))))))))
+                                                    + 0.5 * (theta9_dot * theta9_dot * (l9 * l9)))))))))
                         + (m8
                             * (l2 * (theta2_dot * x35)
                                 + (l3 * (theta3_dot * x41)
@@ -702,54 +703,34 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                                         + (l5 * (theta5_dot * x50)
                                             + (l6 * (theta6_dot * x53)
                                                 + (l7 * (theta7_dot * x55)
-                                                    + 0.5
-                                                        * (theta8_dot
-                                                            * theta8_dot
-                                                            * (l8 * l8))))))))
+                                                    + 0.5 * (theta8_dot * theta8_dot * (l8 * l8))))))))
                             + (m7
                                 * (l2 * (theta2_dot * x34)
                                     + (l3 * (theta3_dot * x40)
                                         + (l4 * (theta4_dot * x45)
                                             + (l5 * (theta5_dot * x49)
                                                 + (l6 * (theta6_dot * x52)
-                                                    + 0.5
-                                                        * (theta7_dot
-                                                            * theta7_dot
-                                                            * (l7 * l7)))))))
+                                                    + 0.5 * (theta7_dot * theta7_dot * (l7 * l7)))))))
                                 + (m6
                                     * (l2 * (theta2_dot * x33)
                                         + (l3 * (theta3_dot * x39)
                                             + (l4 * (theta4_dot * x44)
                                                 + (l5 * (theta5_dot * x48)
-                                                    + 0.5
-                                                        * (theta6_dot
-                                                            * theta6_dot
-                                                            * (l6 * l6))))))
+                                                    + 0.5 * (theta6_dot * theta6_dot * (l6 * l6))))))
                                     + (m5
                                         * (l2 * (theta2_dot * x32)
                                             + (l3 * (theta3_dot * x38)
                                                 + (l4 * (theta4_dot * x43)
-                                                    + 0.5
-                                                        * (theta5_dot
-                                                            * theta5_dot
-                                                            * (l5 * l5)))))
+                                                    + 0.5 * (theta5_dot * theta5_dot * (l5 * l5)))))
                                         + (m4
                                             * (l2 * (theta2_dot * x31)
                                                 + (l3 * (theta3_dot * x37)
-                                                    + 0.5
-                                                        * (theta4_dot
-                                                            * theta4_dot
-                                                            * (l4 * l4))))
+                                                    + 0.5 * (theta4_dot * theta4_dot * (l4 * l4))))
                                             + (m3
                                                 * (l2 * (theta2_dot * x30)
-                                                    + 0.5
-                                                        * (theta3_dot
-                                                            * theta3_dot
-                                                            * (l3 * l3)))
+                                                    + 0.5 * (theta3_dot * theta3_dot * (l3 * l3)))
                                                 + 0.5
-                                                    * (theta2_dot
-                                                        * theta2_dot
-                                                        * (m2 * (l2 * l2))))))))))),
+                                                    * (theta2_dot * theta2_dot * (m2 * (l2 * l2))))))))))),
             potential: -(g
                 * (l1 * (x0 * x2)
                     + (m10 * (x64 + l10 * x21)
@@ -769,6 +750,5 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
         out: &mut [f64],
-    ) {
-    }
+    ) {}
 }

@@ -78,7 +78,10 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -132,6 +135,5 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         out: &mut [f64],
-    ) {
-    }
+    ) {}
 }

@@ -21,11 +21,7 @@ pub struct SpringMassDamper {
 #[automatically_derived]
 impl ::core::default::Default for SpringMassDamper {
     fn default() -> Self {
-        Self {
-            m: 1.0,
-            k: 100.0,
-            c: 0.5,
-        }
+        Self { m: 1.0, k: 100.0, c: 0.5 }
     }
 }
 #[allow(non_camel_case_types)]
@@ -75,7 +71,10 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
             "c" => self.c = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }

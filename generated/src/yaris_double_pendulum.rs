@@ -103,8 +103,23 @@ impl YarisDoublePendulum {
     pub const COORDINATES: [&'static str; 3] = ["r", "theta1", "theta2"];
     /// Names of the parameters (the fields), in order.
     pub const PARAMETERS: &'static [&'static str] = &[
-        "m1", "m2", "l0", "l1", "l2", "l3", "I1", "I2", "k1", "k2", "c1", "c2", "k_comp", "c_comp",
-        "k_tor", "c_tor", "g",
+        "m1",
+        "m2",
+        "l0",
+        "l1",
+        "l2",
+        "l3",
+        "I1",
+        "I2",
+        "k1",
+        "k2",
+        "c1",
+        "c2",
+        "k_comp",
+        "c_comp",
+        "k_tor",
+        "c_tor",
+        "g",
     ];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[
@@ -175,23 +190,9 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
     }
     fn parameters(&self) -> ::std::vec::Vec<f64> {
         ::std::vec![
-            self.m1,
-            self.m2,
-            self.l0,
-            self.l1,
-            self.l2,
-            self.l3,
-            self.I1,
-            self.I2,
-            self.k1,
-            self.k2,
-            self.c1,
-            self.c2,
-            self.k_comp,
-            self.c_comp,
-            self.k_tor,
-            self.c_tor,
-            self.g
+            self.m1, self.m2, self.l0, self.l1, self.l2, self.l3, self.I1, self.I2, self
+            .k1, self.k2, self.c1, self.c2, self.k_comp, self.c_comp, self.k_tor, self
+            .c_tor, self.g
         ]
     }
     fn set_parameter(
@@ -219,7 +220,10 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(name, Self::PARAMETERS),
+                    ::lagrangian_model::ModelError::unknown_parameter(
+                        name,
+                        Self::PARAMETERS,
+                    ),
                 );
             }
         }
@@ -301,8 +305,8 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         mass[(1, 0)] = mass[(0, 1)];
         mass[(0, 2)] = m2 * l2 * x5;
         mass[(2, 0)] = mass[(0, 2)];
-        mass[(1, 1)] =
-            m2 * (r * (x7 + r + x8) + (l0 * (x7 + l0) + l1 * l1)) + (m1 * (r * x9 + l0 * l0) + I1);
+        mass[(1, 1)] = m2 * (r * (x7 + r + x8) + (l0 * (x7 + l0) + l1 * l1))
+            + (m1 * (r * x9 + l0 * l0) + I1);
         mass[(1, 2)] = m2 * (l2 * (x6 * x11));
         mass[(2, 1)] = mass[(1, 2)];
         mass[(2, 2)] = I2 + m2 * (l2 * l2);
@@ -318,9 +322,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
                 * (theta1_dot * (2.0 * (l3 * c1 - l1 * c2 - x30) - l0 * x14)
                     + (x31 + theta1 * (2.0 * (x32 - l1 * k2) - x15 - l0 * (k1 + k2))))
                 + (l1
-                    * (x2 * x25
-                        - x1 * x22
-                        - k2 * (theta1 * l1 + l2 * theta2)
+                    * (x2 * x25 - x1 * x22 - k2 * (theta1 * l1 + l2 * theta2)
                         - c2 * (l1 * theta1_dot + l2 * theta2_dot + theta1 * r_dot)
                         - m2 * (2.0 * (r_dot * theta1_dot) + x2 * g + x19 * (l2 * x5)))
                     + l3 * (theta1 * (c1 * r_dot - x32) - c1 * (l3 * theta1_dot))));
@@ -396,28 +398,29 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
                         + (m1 * (r * x20 + l0 * l0 * 0.5) + I1 * 0.5))
                     + m2 * (l2 * ((x1 * x3 + x0 * x2) * (x7 * theta2_dot))))
                 + (m2
-                    * (l2 * (theta2_dot * ((x0 * x3 - x1 * x2) * r_dot + x18 * 0.5)) + 0.5 * x22)
+                    * (l2 * (theta2_dot * ((x0 * x3 - x1 * x2) * r_dot + x18 * 0.5))
+                        + 0.5 * x22)
                     + 0.5 * (m1 * x22 + I2 * (theta2_dot * theta2_dot))),
             potential: theta1
                 * (theta1
                     * (r * (k1 * x23 + k2 * x21)
                         + (l0 * (l0 * ((k1 + k2) * 0.5) + (l1 * k2 - l3 * k1))
-                            + 0.5 * (k1 * x24 + x4 * k2)))
-                    + l2 * (k2 * (theta2 * x7)))
+                            + 0.5 * (k1 * x24 + x4 * k2))) + l2 * (k2 * (theta2 * x7)))
                 + (g * (x0 * (m2 * x7 + m1 * x6) + m2 * l2 * x2)
                     + 0.5 * (theta2 * (theta2 * (k_tor + x8 * k2)) + k_comp * (r * r))),
             dissipation: theta1_dot
                 * (theta1_dot
-                    * (r * (c1 * x23 + c2 * x21) + (l0 * (l0 * (x9 * 0.5) + x25) + 0.5 * x26))
-                    + x27)
-                + (r_dot * (theta1 * (theta1 * (x10 * 0.5) + x28) + x17 * 0.5) + 0.5 * x29),
+                    * (r * (c1 * x23 + c2 * x21)
+                        + (l0 * (l0 * (x9 * 0.5) + x25) + 0.5 * x26)) + x27)
+                + (r_dot * (theta1 * (theta1 * (x10 * 0.5) + x28) + x17 * 0.5)
+                    + 0.5 * x29),
             damping_power: theta1_dot
                 * (theta1_dot
                     * (r * (c2 * (l1 * 2.0 + x5) + c1 * (x5 - 2.0 * l3))
-                        + (x26 + l0 * (l0 * x9 + 2.0 * x25)))
-                    + 2.0 * x27)
+                        + (x26 + l0 * (l0 * x9 + 2.0 * x25))) + 2.0 * x27)
                 + (x29 + r_dot * (x17 + theta1 * (theta1 * x10 + 2.0 * x28))),
-            external_power: theta1_dot * (x1 * (x7 * x15 + x6 * x14) - x0 * (x7 * x13 + x6 * x12))
+            external_power: theta1_dot
+                * (x1 * (x7 * x15 + x6 * x14) - x0 * (x7 * x13 + x6 * x12))
                 + (r_dot * (x1 * (x12 + x13) + (x0 * (x14 + x15) - x16))
                     + theta2_dot * (l2 * (x3 * x15 - x2 * x13) - x19)),
         }
@@ -513,22 +516,24 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x54 = m2 * (l2 * (x5 * (x9 * theta2_ddot)));
         let x55 = x5 * (x9 * theta1_ddot);
         let x56 = x6 * r_ddot;
-        out.forcing_q[(0, 0)] =
-            theta1_dot * (x0 * theta1_dot - x39) - (theta1 * (theta1 * x32) + (k_comp + x40));
-        out.forcing_q[(0, 1)] =
-            theta1 * (2.0 * (x10 * k1 - (x11 + x13))) + (x16 * theta1_dot + x30);
+        out.forcing_q[(0, 0)] = theta1_dot * (x0 * theta1_dot - x39)
+            - (theta1 * (theta1 * x32) + (k_comp + x40));
+        out.forcing_q[(0, 1)] = theta1 * (2.0 * (x10 * k1 - (x11 + x13)))
+            + (x16 * theta1_dot + x30);
         out.forcing_q[(0, 2)] = l2 * (x17 * x29 - x41);
         out.forcing_q[(1, 0)] = theta1_dot * (2.0 * (x14 - (x15 + x27)))
             + (x30 + theta1 * (k1 * (2.0 * x10) - (x13 + k2 * (2.0 * x9))));
         out.forcing_q[(1, 1)] = r * (x42 + (k1 * x25 - (k2 * x26 + (x21 + (x13 + x44)))))
             + (l0 * (x42 + (2.0 * x33 - 2.0 * x34 - x44 - x13 - x21 - l0 * x32))
-                + (l1 * (m2 * (x1 * g - l2 * x6 * x17) - (x36 + (x34 + x2 * x19 + x1 * x23)))
+                + (l1
+                    * (m2 * (x1 * g - l2 * x6 * x17)
+                        - (x36 + (x34 + x2 * x19 + x1 * x23)))
                     + l3 * (c1 * r_dot - x33)));
         out.forcing_q[(1, 2)] = l2 * (m2 * (x6 * (theta2_dot * x37)) - x11);
         out.forcing_q[(2, 0)] = l2 * (theta1_dot * (theta1_dot * x29 - c2) - x41);
         out.forcing_q[(2, 1)] = l2 * (m2 * x45 - (x11 + x36));
-        out.forcing_q[(2, 2)] =
-            l2 * (m2 * (x3 * g - x45) - (x4 * x19 + x3 * x23 + l2 * k2)) - (k_tor + x46);
+        out.forcing_q[(2, 2)] = l2
+            * (m2 * (x3 * g - x45) - (x4 * x19 + x3 * x23 + l2 * k2)) - (k_tor + x46);
         out.forcing_qd[(0, 0)] = -(theta1 * x39 + (c_comp + x47));
         out.forcing_qd[(0, 1)] = x48 + x49;
         out.forcing_qd[(0, 2)] = l2 * (2.0 * (theta2_dot * x50) - x51);
@@ -543,8 +548,8 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         out.mass_times_acceleration_q[(0, 0)] = 0.0;
         out.mass_times_acceleration_q[(0, 1)] = x53;
         out.mass_times_acceleration_q[(0, 2)] = -x53;
-        out.mass_times_acceleration_q[(1, 0)] =
-            x53 + 2.0 * (x38 + m2 * (l0 + (l1 + r))) * theta1_ddot;
+        out.mass_times_acceleration_q[(1, 0)] = x53
+            + 2.0 * (x38 + m2 * (l0 + (l1 + r))) * theta1_ddot;
         out.mass_times_acceleration_q[(1, 1)] = -x54;
         out.mass_times_acceleration_q[(1, 2)] = x54;
         out.mass_times_acceleration_q[(2, 0)] = x43 * theta1_ddot;

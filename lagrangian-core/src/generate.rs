@@ -77,8 +77,10 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
                 contents: audit::markdown(&report, relative),
             });
         }
+        // `cargo fmt` would reformat the prettyplease output and make the
+        // committed file stale; the attribute keeps rustfmt out of it.
         modules.push_str(&format!(
-            "/// Generated from `{relative}`.\npub mod {stem};\n"
+            "/// Generated from `{relative}`.\n#[rustfmt::skip]\npub mod {stem};\n"
         ));
     }
     files.push(GeneratedFile {
