@@ -111,3 +111,60 @@ fn constants_outside_a_function_domain_are_reported_at_compile_time() {
     let source = format!("{HEADER}potential = k * x * pow(-8, 1/3) * pow(0, 0);");
     Compiled::from_source(&source).unwrap();
 }
+
+/// A spec whose potential is `k * x * (…)` with `inner` in the brackets.
+fn with_potential_factor(inner: &str) -> String {
+    format!("{HEADER}potential = k * x * ({inner});\n")
+}
+
+#[test]
+fn a_sum_of_twenty_thousand_terms_compiles() {
+    // Lowering recursed once per term and overflowed the stack (an abort).
+    let source = with_potential_factor(&vec!["x"; 20_000].join(" + "));
+    let compiled = Compiled::from_source(&source).unwrap();
+    let v = compiled.derivation.potential;
+    assert_eq!(compiled.model.store.to_text(v), "20000*x^2*k");
+}
+
+#[test]
+fn the_longest_accepted_spec_still_compiles() {
+    // Just below MAX_TOKENS: the deepest recursion the limit allows.
+    let terms = lagrangian_core::depth::MAX_TOKENS / 2 - 100;
+    let source = with_potential_factor(&vec!["x"; terms].join(" + "));
+    Compiled::from_source(&source).unwrap();
+    let source = with_potential_factor(&vec!["x"; terms + 200].join(" + "));
+    let text = match Compiled::from_source(&source) {
+        Ok(_) => panic!("more than MAX_TOKENS"),
+        Err(e) => e.render("spring.lpm", &source),
+    };
+    assert!(text.contains("the spec is too long"), "{text}");
+}
+
+#[test]
+fn deep_nesting_and_long_operator_runs_are_located_errors_not_aborts() {
+    let deep = format!("{}x{}", "(".repeat(1000), ")".repeat(1000));
+    let text = error_of(&format!("potential = k * x * {deep};"));
+    assert!(
+        text.contains("brackets nested more than 256 deep"),
+        "{text}"
+    );
+    // The 257th bracket: column 21 + 256.
+    assert!(text.contains("spring.lpm:5:277"), "{text}");
+    let signs = format!("{}x", "-".repeat(20_000));
+    let text = error_of(&format!("potential = k * x * {signs};"));
+    assert!(text.contains("more than 256 operators in a row"), "{text}");
+}
+
+#[test]
+fn deep_input_in_the_macro_is_a_compile_error() {
+    let deep: proc_macro2::TokenStream = format!(
+        "model Deep; coordinates {{ x }} parameters {{ m = 1.0 }} kinetic = m * pow(dot(x), 2) * {}1{};",
+        "(".repeat(1000),
+        ")".repeat(1000)
+    )
+    .parse()
+    .unwrap();
+    let out = lagrangian_core::expand::expand(deep).to_string();
+    assert!(out.contains("compile_error"), "{out}");
+    assert!(out.contains("brackets nested more than 256 deep"), "{out}");
+}

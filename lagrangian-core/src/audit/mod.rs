@@ -103,6 +103,10 @@ impl AuditReport {
 
 /// Audits the hand-derived equations of a compiled spec (`None` without them).
 pub fn audit(compiled: &mut Compiled) -> Option<AuditReport> {
+    crate::depth::with_large_stack(|| audit_deep(compiled))
+}
+
+fn audit_deep(compiled: &mut Compiled) -> Option<AuditReport> {
     let hand = compiled.model.hand_derived.clone()?;
     let n = compiled.derivation.dimension;
     let d = compiled.derivation.clone();

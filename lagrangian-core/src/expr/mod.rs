@@ -174,6 +174,9 @@ pub enum EngineError {
     },
 }
 
+/// Errors kept by [`Store::record`] until taken.
+const MAX_RECORDED_ERRORS: usize = 8;
+
 /// The largest magnitude of an exponent's numerator and denominator: larger
 /// exponents are reported ([`EngineError::ExponentTooLarge`]), so a sine
 /// power's linearization and the emitted `powi` stay small and exact.
@@ -302,8 +305,12 @@ impl Store {
         std::mem::take(&mut self.errors)
     }
 
+    /// Records an error, unless it is already recorded. Callers report the
+    /// first; a few are kept, not one per operation, so that a long
+    /// expression that keeps failing stays linear (a 100 000-factor product
+    /// records an exponent error at every factor).
     pub(crate) fn record(&mut self, error: EngineError) {
-        if !self.errors.contains(&error) {
+        if self.errors.len() < MAX_RECORDED_ERRORS && !self.errors.contains(&error) {
             self.errors.push(error);
         }
     }

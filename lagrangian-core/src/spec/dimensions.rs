@@ -68,20 +68,7 @@ impl DimensionScope {
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.infer(&u.expr)?,
             Expr::Binary(b) => match b.op {
                 BinOp::Add(_) | BinOp::Sub(_) => self.sum(expr)?,
-                BinOp::Mul(_) | BinOp::Div(_) => {
-                    let (lhs, rhs) = (self.infer(&b.left)?, self.infer(&b.right)?);
-                    let divide = matches!(b.op, BinOp::Div(_));
-                    let Some((lhs, rhs)) = lhs.zip(rhs) else {
-                        return Ok(None);
-                    };
-                    exact(SpanRange::of(expr), || {
-                        if divide {
-                            lhs.checked_div(rhs)
-                        } else {
-                            lhs.checked_mul(rhs)
-                        }
-                    })?
-                }
+                BinOp::Mul(_) | BinOp::Div(_) => self.product(b)?,
                 _ => None,
             },
             Expr::Path(p) => p
@@ -144,7 +131,7 @@ impl DimensionScope {
                 Ok(Some(Dimension::NONE))
             }
             "sqrt" => match self.infer(args[0])? {
-                Some(d) => exact(span, || d.checked_pow(Rational::HALF)),
+                Some(d) => exact(d.checked_pow(Rational::HALF), || span),
                 None => Ok(None),
             },
             "pow" => {
@@ -153,16 +140,15 @@ impl DimensionScope {
                 // reported by the lowering; here its dimension is unknown.
                 let exponent = constant::evaluate(args[1], &self.constants).ok().flatten();
                 match base.zip(exponent) {
-                    Some((d, e)) => exact(span, || d.checked_pow(e)),
+                    Some((d, e)) => exact(d.checked_pow(e), || span),
                     None => Ok(None),
                 }
             }
             "dot" | "ddot" => match self.infer(args[0])? {
                 Some(d) => {
                     let per = if name == "dot" { 1 } else { 2 };
-                    exact(span, || {
-                        d.checked_div(Dimension::TIME.checked_pow(Rational::integer(per))?)
-                    })
+                    let per_time = Dimension::TIME.checked_pow(Rational::integer(per));
+                    exact(per_time.and_then(|t| d.checked_div(t)), || span)
                 }
                 None => Ok(None),
             },
@@ -185,6 +171,37 @@ impl DimensionScope {
                 Ok(input.value)
             }
         }
+    }
+
+    /// The dimension of `a * b / c …`, walking the left spine of the
+    /// (left-deep, as long as the product) tree with a loop.
+    fn product(&self, b: &syn::ExprBinary) -> Result<Option<Dimension>, Diagnostic> {
+        let (mut spine, mut deepest) = (Vec::new(), b);
+        loop {
+            spine.push(deepest);
+            match &*deepest.left {
+                Expr::Binary(inner) if matches!(inner.op, BinOp::Mul(_) | BinOp::Div(_)) => {
+                    deepest = inner
+                }
+                _ => break,
+            }
+        }
+        let mut value = self.infer(&deepest.left)?;
+        for node in spine.into_iter().rev() {
+            let rhs = self.infer(&node.right)?;
+            value = match value.zip(rhs) {
+                None => None,
+                Some((l, r)) => {
+                    let d = if matches!(node.op, BinOp::Div(_)) {
+                        l.checked_div(r)
+                    } else {
+                        l.checked_mul(r)
+                    };
+                    exact(d, || SpanRange::of(node))?
+                }
+            };
+        }
+        Ok(value)
     }
 
     /// A sum's terms must agree; the ones that differ from most are reported.
@@ -216,19 +233,19 @@ impl DimensionScope {
     }
 }
 
-/// The terms of a sum `a + b − c …` (the sign does not matter here).
+/// The terms of a sum `a + b − c …` (the sign does not matter here), in
+/// order. Iterative: a long sum is a tree as deep as it is long.
 pub(super) fn addends<'a>(expr: &'a Expr, out: &mut Vec<&'a Expr>) {
-    match expr {
-        Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
-            addends(&b.left, out);
-            addends(&b.right, out);
-        }
-        Expr::Paren(p) if matches!(&*p.expr, Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_))) =>
-        {
+    let mut stack = vec![expr];
+    while let Some(e) = stack.pop() {
+        match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
+                stack.push(&b.right);
+                stack.push(&b.left);
+            }
             // A parenthesized sum is one term of the outer sum.
-            out.push(expr);
+            _ => out.push(e),
         }
-        _ => out.push(expr),
     }
 }
 
@@ -250,15 +267,16 @@ pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimens
     best.map(|(d, _)| d)
 }
 
-/// A dimension computed by `op`; an exponent overflow is an error at `span`.
+/// A computed dimension; `None`, an exponent overflow, is an error at `span`.
 fn exact(
-    span: SpanRange,
-    op: impl FnOnce() -> Option<Dimension>,
+    d: Option<Dimension>,
+    span: impl FnOnce() -> SpanRange,
 ) -> Result<Option<Dimension>, Diagnostic> {
-    op().map(Some).ok_or_else(|| {
-        Diagnostic::new(
-            span,
+    match d {
+        Some(d) => Ok(Some(d)),
+        None => Err(Diagnostic::new(
+            span(),
             "the dimension of this expression has exponents beyond exact 128-bit fractions",
-        )
-    })
+        )),
+    }
 }

@@ -78,7 +78,17 @@ impl<'a> ExpressionLowering<'a> {
 
     pub fn lower(mut self, expr: &Expr) -> Result<Lowered, Diagnostic> {
         let value = self.expr(expr)?;
-        self.check_engine(SpanRange::of(expr), "this expression")?;
+        if let Some(error) = self.store.take_errors().into_iter().next() {
+            let span = SpanRange::of(expr);
+            let what = "this expression";
+            return Err(engine_diagnostic(
+                self.store,
+                self.input_names,
+                error,
+                span,
+                what,
+            ));
+        }
         Ok(Lowered {
             value,
             input_calls: self.input_calls,
@@ -153,8 +163,31 @@ impl<'a> ExpressionLowering<'a> {
             )
             .with_help("write the power as `pow(x, 2)` or `x.powi(2)`"));
         }
-        let lhs = self.expr(&b.left)?;
-        let rhs = self.expr(&b.right)?;
+        // `a + b − c …` (and `a * b / c …`) is a left-deep tree as deep as it
+        // is long: its left spine is walked with a loop, not recursion.
+        let (mut spine, mut deepest) = (Vec::new(), b);
+        loop {
+            spine.push(deepest);
+            match &*deepest.left {
+                Expr::Binary(inner) if is_arithmetic(inner.op) => deepest = inner,
+                _ => break,
+            }
+        }
+        let mut value = self.expr(&deepest.left)?;
+        for node in spine.into_iter().rev() {
+            let rhs = self.expr(&node.right)?;
+            value = self.apply(node, value, rhs)?;
+        }
+        Ok(value)
+    }
+
+    /// `lhs op rhs` for the operator of `b`.
+    fn apply(
+        &mut self,
+        b: &syn::ExprBinary,
+        lhs: ExprId,
+        rhs: ExprId,
+    ) -> Result<ExprId, Diagnostic> {
         match b.op {
             BinOp::Add(_) => Ok(self.store.add(lhs, rhs)),
             BinOp::Sub(_) => Ok(self.store.sub(lhs, rhs)),
@@ -387,6 +420,14 @@ fn check_constant_argument(name: &str, c: Rational, span: SpanRange) -> Result<(
         span,
         format!("`{name}` of the constant {c}: {problem}"),
     ))
+}
+
+/// `+ - * /`, the operators a left spine may chain.
+pub(super) fn is_arithmetic(op: BinOp) -> bool {
+    matches!(
+        op,
+        BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_)
+    )
 }
 
 fn check_arity(
