@@ -83,11 +83,12 @@ fn parse_invocation(input: ParseStream) -> syn::Result<Invocation> {
 }
 
 /// Expands the macro input into the model's code, or into `compile_error!`s.
+/// Runs on a large stack (see [`crate::depth`]), still on the compiler's thread.
 pub fn expand(input: TokenStream) -> TokenStream {
-    match try_expand(input) {
+    crate::depth::with_large_stack(|| match try_expand(input) {
         Ok(tokens) => tokens,
         Err(error) => error.to_compile_error(),
-    }
+    })
 }
 
 fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {

@@ -6,6 +6,7 @@
 //! ([`emit`]) or direct evaluation ([`program::Program::run`]).
 
 pub mod audit;
+pub mod depth;
 pub mod derive;
 pub mod diagnostic;
 pub mod emit;
@@ -35,14 +36,16 @@ pub struct Compiled {
 }
 
 impl Compiled {
-    /// Derives and optimizes `model`.
+    /// Derives and optimizes `model` (on a large stack, see [`depth`]).
     pub fn new(mut model: Model) -> Result<Compiled, SpecErrors> {
-        let derivation = derive::derive(&mut model)?;
-        let program = optimize::build_program(&mut model.store, &derivation);
-        Ok(Compiled {
-            model,
-            derivation,
-            program,
+        depth::with_large_stack(|| {
+            let derivation = derive::derive(&mut model)?;
+            let program = optimize::build_program(&mut model.store, &derivation);
+            Ok(Compiled {
+                model,
+                derivation,
+                program,
+            })
         })
     }
 

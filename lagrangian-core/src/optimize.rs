@@ -52,8 +52,8 @@ struct Var {
 #[derive(Clone, Debug)]
 struct Term {
     coefficient: Rational,
-    /// Sorted by variable rank.
-    vars: Vec<(u32, u32)>,
+    /// `(variable rank, degree)`, sorted by variable rank.
+    vars: Vec<(u32, u128)>,
 }
 
 struct Builder<'a> {
@@ -345,12 +345,12 @@ impl Builder<'_> {
         terms
             .into_iter()
             .map(|(t, coefficient)| {
-                let mut vars: Vec<(u32, u32)> = self
+                let mut vars: Vec<(u32, u128)> = self
                     .store
                     .factors(t)
                     .into_iter()
                     .map(|(base, exp)| {
-                        let degree = exp.numer().unsigned_abs() as u32;
+                        let degree = exp.numer().unsigned_abs();
                         let sign = if exp.is_negative() { -1 } else { 1 };
                         let unit = Rational::new(sign, exp.denom()).unwrap_or(Rational::ONE);
                         (self.var(Var { base, unit }), degree)
@@ -403,8 +403,15 @@ impl Builder<'_> {
     }
 
     /// `var^degree` with multiplications for small degrees.
-    fn power(&mut self, var: u32, degree: u32) -> Signed {
+    fn power(&mut self, var: u32, degree: u128) -> Signed {
         let v = self.var_reg(var);
+        self.raise(v, degree)
+    }
+
+    /// `v^degree`: multiplications up to the cube, then `powi`. The store
+    /// keeps exponents within [`crate::expr::MAX_EXPONENT`]; a degree beyond
+    /// `i32` would still be exact, as `(v^⌊d/2⌋)² · v^(d mod 2)`.
+    fn raise(&mut self, v: Signed, degree: u128) -> Signed {
         match degree {
             1 => v,
             2 => self.mul(v, v),
@@ -412,10 +419,21 @@ impl Builder<'_> {
                 let sq = self.mul(v, v);
                 self.mul(sq, v)
             }
-            _ => {
-                let r = self.op(Op::Powi(v.reg, degree.min(i32::MAX as u32) as i32));
-                Signed::plus(r).flip(v.negative && degree % 2 == 1)
-            }
+            _ => match i32::try_from(degree) {
+                Ok(n) => {
+                    let r = self.op(Op::Powi(v.reg, n));
+                    Signed::plus(r).flip(v.negative && n % 2 == 1)
+                }
+                Err(_) => {
+                    let half = self.raise(v, degree / 2);
+                    let square = self.mul(half, half);
+                    if degree % 2 == 1 {
+                        self.mul(square, v)
+                    } else {
+                        square
+                    }
+                }
+            },
         }
     }
 

@@ -1,9 +1,11 @@
 //! Exact rational numbers for the coefficients of symbolic expressions.
 //!
 //! Coefficients in Lagrangian mechanics stay small (½, 2, ¼ …), so a pair of
-//! `i128` is plenty. Every operation is checked: an overflow yields `None`, and
-//! the expression store turns that into a reported error instead of a wrong
-//! coefficient.
+//! `i128` is plenty. Construction and every arithmetic operation are checked:
+//! an overflow yields `None`, and the expression store turns that into a
+//! reported error instead of a wrong coefficient. Only the conversion
+//! [`Rational::to_f64`] rounds, and the ordering of values too large to
+//! cross-multiply falls back to comparing those rounded values.
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -15,9 +17,9 @@ pub struct Rational {
     den: i128,
 }
 
-fn gcd(mut a: i128, mut b: i128) -> i128 {
-    a = a.abs();
-    b = b.abs();
+/// `gcd(|a|, |b|)`, in `u128` so that `|i128::MIN|` does not overflow.
+fn gcd(a: i128, b: i128) -> u128 {
+    let (mut a, mut b) = (a.unsigned_abs(), b.unsigned_abs());
     while b != 0 {
         let r = a % b;
         a = b;
@@ -43,8 +45,15 @@ impl Rational {
         if den == 0 {
             return None;
         }
-        let g = gcd(num, den);
-        let (mut n, mut d) = (num / g.max(1), den / g.max(1));
+        let Ok(g) = i128::try_from(gcd(num, den)) else {
+            // gcd = 2¹²⁷: den = i128::MIN and num ∈ {0, i128::MIN}.
+            return Some(if num == 0 {
+                Rational::ZERO
+            } else {
+                Rational::ONE
+            });
+        };
+        let (mut n, mut d) = (num / g, den / g);
         if d < 0 {
             n = n.checked_neg()?;
             d = d.checked_neg()?;
@@ -101,7 +110,8 @@ impl Rational {
         if self.den == o.den {
             return Rational::new(self.num.checked_add(o.num)?, self.den);
         }
-        let g = gcd(self.den, o.den);
+        // Denominators are positive, so their gcd fits.
+        let g = gcd(self.den, o.den) as i128;
         let lhs = self.num.checked_mul(o.den / g)?;
         let rhs = o.num.checked_mul(self.den / g)?;
         Rational::new(lhs.checked_add(rhs)?, self.den.checked_mul(o.den / g)?)
@@ -112,8 +122,9 @@ impl Rational {
     }
 
     pub fn checked_mul(self, o: Rational) -> Option<Rational> {
-        let g1 = gcd(self.num, o.den).max(1);
-        let g2 = gcd(o.num, self.den).max(1);
+        // At most the positive denominator, so it fits; 1 when a numerator is 0.
+        let g1 = (gcd(self.num, o.den) as i128).max(1);
+        let g2 = (gcd(o.num, self.den) as i128).max(1);
         let n = (self.num / g1).checked_mul(o.num / g2)?;
         let d = (self.den / g2).checked_mul(o.den / g1)?;
         Rational::new(n, d)
@@ -181,8 +192,19 @@ impl Rational {
         if !digits.chars().all(|c| c.is_ascii_digit()) {
             return None;
         }
-        let mantissa_value: i128 = digits.trim_start_matches('0').parse().unwrap_or(0);
-        let scale = exponent.checked_sub(i32::try_from(frac_part.len()).ok()?)?;
+        // Trailing zeros move into the exponent, so `1.000…0` with any number
+        // of zeros is 1; only significant digits must fit the numerator.
+        let significant = digits.trim_end_matches('0');
+        let trailing = i32::try_from(digits.len() - significant.len()).ok()?;
+        let significant = significant.trim_start_matches('0');
+        if significant.is_empty() {
+            return Some(Rational::ZERO);
+        }
+        // Too many significant digits for an i128 is not zero: it is `None`.
+        let mantissa_value: i128 = significant.parse().ok()?;
+        let scale = exponent
+            .checked_add(trailing)?
+            .checked_sub(i32::try_from(frac_part.len()).ok()?)?;
         let ten = Rational::integer(10);
         Rational::new(mantissa_value, 1)?.checked_mul(ten.checked_powi(i64::from(scale))?)
     }
@@ -273,6 +295,19 @@ mod tests {
     }
 
     #[test]
+    fn the_most_negative_i128_is_handled_without_overflow() {
+        // |i128::MIN| overflowed in gcd: a panic in debug builds.
+        let half_min = r(-(1 << 126), 1);
+        assert_eq!(half_min.checked_add(half_min), Rational::new(i128::MIN, 1));
+        assert_eq!(r(i128::MIN, 2), r(-(1 << 126), 1));
+        assert_eq!(r(i128::MIN, i128::MIN), Rational::ONE);
+        assert_eq!(r(0, i128::MIN), Rational::ZERO);
+        assert_eq!(Rational::new(1, i128::MIN), None);
+        assert_eq!(r(i128::MIN, 1).checked_neg(), None);
+        assert_eq!(r(i128::MIN, 1).checked_mul(r(1, 2)), Some(half_min));
+    }
+
+    #[test]
     fn exact_fractional_powers() {
         assert_eq!(r(9, 4).exact_pow(r(1, 2)), Some(r(3, 2)));
         assert_eq!(r(8, 27).exact_pow(r(-2, 3)), Some(r(9, 4)));
@@ -290,6 +325,24 @@ mod tests {
         assert_eq!(Rational::parse_decimal("30_000"), Some(r(30000, 1)));
         assert_eq!(Rational::parse_decimal("1e80"), None);
         assert_eq!(Rational::parse_decimal("abc"), None);
+        assert_eq!(Rational::parse_decimal("0.000"), Some(Rational::ZERO));
+        assert_eq!(Rational::parse_decimal("000120"), Some(r(120, 1)));
+    }
+
+    #[test]
+    fn literals_beyond_i128_are_rejected_not_zero() {
+        // 10^42 and 43 significant digits do not fit a 128-bit numerator.
+        let big = format!("1{}.0", "0".repeat(42));
+        assert_eq!(Rational::parse_decimal(&big), None);
+        let precise = format!("0.{}1", "0".repeat(42));
+        assert_eq!(Rational::parse_decimal(&precise), None);
+        let long = "1234567890".repeat(5);
+        assert_eq!(Rational::parse_decimal(&long), None);
+        // Trailing zeros are not significant.
+        let one = format!("1.{}", "0".repeat(60));
+        assert_eq!(Rational::parse_decimal(&one), Some(Rational::ONE));
+        let exact = format!("1{}e-40", "0".repeat(40));
+        assert_eq!(Rational::parse_decimal(&exact), Some(Rational::ONE));
     }
 
     #[test]

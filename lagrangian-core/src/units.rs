@@ -33,25 +33,33 @@ impl Dimension {
     pub const ENERGY: Dimension = dim(1, 2, -2);
     pub const POWER: Dimension = dim(1, 2, -3);
 
-    fn combine(self, o: Dimension, sign: Rational) -> Dimension {
-        let add = |a: Rational, b: Rational| {
-            a.checked_add(b.checked_mul(sign).unwrap_or_default())
-                .unwrap_or_default()
-        };
-        Dimension {
-            mass: add(self.mass, o.mass),
-            length: add(self.length, o.length),
-            time: add(self.time, o.time),
-        }
+    /// `self · o^sign`; `None` when an exponent leaves exact 128-bit fractions.
+    fn combine(self, o: Dimension, sign: Rational) -> Option<Dimension> {
+        let add = |a: Rational, b: Rational| a.checked_add(b.checked_mul(sign)?);
+        Some(Dimension {
+            mass: add(self.mass, o.mass)?,
+            length: add(self.length, o.length)?,
+            time: add(self.time, o.time)?,
+        })
     }
 
-    pub fn pow(self, e: Rational) -> Dimension {
-        let p = |a: Rational| a.checked_mul(e).unwrap_or_default();
-        Dimension {
-            mass: p(self.mass),
-            length: p(self.length),
-            time: p(self.time),
-        }
+    /// `self · o`; `None` on exponent overflow.
+    pub fn checked_mul(self, o: Dimension) -> Option<Dimension> {
+        self.combine(o, Rational::ONE)
+    }
+
+    /// `self / o`; `None` on exponent overflow.
+    pub fn checked_div(self, o: Dimension) -> Option<Dimension> {
+        self.combine(o, Rational::MINUS_ONE)
+    }
+
+    /// `self^e`; `None` on exponent overflow.
+    pub fn checked_pow(self, e: Rational) -> Option<Dimension> {
+        Some(Dimension {
+            mass: self.mass.checked_mul(e)?,
+            length: self.length.checked_mul(e)?,
+            time: self.time.checked_mul(e)?,
+        })
     }
 
     pub fn is_none(self) -> bool {
@@ -129,7 +137,12 @@ impl Parser {
         {
             self.next();
             let rhs = self.power()?;
-            d = if op == "*" { d * rhs } else { d / rhs };
+            d = if op == "*" {
+                d.checked_mul(rhs)
+            } else {
+                d.checked_div(rhs)
+            }
+            .ok_or_else(overflow)?;
         }
         Ok(d)
     }
@@ -155,11 +168,9 @@ impl Parser {
                 ));
             }
         };
-        Ok(base.pow(Rational::integer(if negative {
-            -exponent
-        } else {
-            exponent
-        })))
+        let exponent = if negative { -exponent } else { exponent };
+        base.checked_pow(Rational::integer(exponent))
+            .ok_or_else(overflow)
     }
 
     fn atom(&mut self) -> Result<Dimension, String> {
@@ -178,8 +189,8 @@ impl Parser {
             Some("N") => Ok(Dimension::FORCE),
             Some("J") => Ok(Dimension::ENERGY),
             Some("W") => Ok(Dimension::POWER),
-            Some("Pa") => Ok(Dimension::FORCE / Dimension::LENGTH.pow(Rational::integer(2))),
-            Some("Hz") => Ok(Dimension::NONE / Dimension::TIME),
+            Some("Pa") => Ok(dim(1, -1, -2)),
+            Some("Hz") => Ok(dim(0, 0, -1)),
             Some(other) => Err(format!(
                 "unknown unit `{other}`; use kg, m, s, N, J, W, Pa, Hz or rad (values are SI)"
             )),
@@ -188,18 +199,8 @@ impl Parser {
     }
 }
 
-impl std::ops::Mul for Dimension {
-    type Output = Dimension;
-    fn mul(self, o: Dimension) -> Dimension {
-        self.combine(o, Rational::ONE)
-    }
-}
-
-impl std::ops::Div for Dimension {
-    type Output = Dimension;
-    fn div(self, o: Dimension) -> Dimension {
-        self.combine(o, Rational::MINUS_ONE)
-    }
+fn overflow() -> String {
+    "unit exponents beyond exact 128-bit fractions".to_string()
 }
 
 impl fmt::Display for Dimension {
@@ -257,6 +258,29 @@ mod tests {
                 .contains("unknown unit `km`")
         );
         assert!(Dimension::parse("m^x").is_err());
+    }
+
+    #[test]
+    fn exponent_overflow_is_an_error_not_zero() {
+        // ((m^i64::MAX)^i64::MAX)^4 ≈ m^(2^128) overflowed to m^0 = 1.
+        let huge = format!("((m^{0})^{0})^4", i64::MAX);
+        assert!(
+            Dimension::parse(&huge)
+                .unwrap_err()
+                .contains("beyond exact")
+        );
+        let big = Dimension::LENGTH
+            .checked_pow(Rational::new(i128::MAX, 1).unwrap())
+            .unwrap();
+        assert_eq!(big.checked_mul(big), None);
+        assert_eq!(
+            Dimension::LENGTH.checked_pow(Rational::integer(2)),
+            Some(dim(0, 2, 0))
+        );
+        assert_eq!(
+            Dimension::ENERGY.checked_div(Dimension::FORCE),
+            Some(Dimension::LENGTH)
+        );
     }
 
     #[test]

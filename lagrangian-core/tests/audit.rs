@@ -369,3 +369,44 @@ fn hand_sections_are_checked() {
         "{outside}"
     );
 }
+
+#[test]
+fn an_equal_hand_derivation_in_a_non_canonical_form_agrees_numerically() {
+    // (1 + cos b)/(1 + cos b) and (2 + cos a)/(2 + cos a) times a sum do not
+    // simplify in the canonical form; the hand equations are still right.
+    let report = audit_of(
+        "a = (m1 + m2) * pow(l1, 2) * ddot(a) + m2 * l1 * l2 * ddot(b) * cos(a - b)
+             + m2 * l1 * l2 * pow(dot(b), 2) * sin(a - b) * (1 + cos(b)) / (1 + cos(b))
+             + (m1 + m2) * g * l1 * sin(a);
+         b = m2 * pow(l2, 2) * ddot(b) + m2 * l1 * l2 * ddot(a) * cos(a - b)
+             - m2 * l1 * l2 * pow(dot(a), 2) * sin(a - b) * (2 + cos(a)) / (2 + cos(a))
+             + m2 * g * l2 * sin(b);",
+    );
+    assert!(!report.disagrees());
+    for a in &report.audits {
+        assert_eq!(a.verdict, Verdict::Numerical, "{}", a.coordinate);
+        assert!(a.max_residual < 1e-14);
+    }
+    let a = report.audit(Part::Equation, "a").unwrap();
+    let g = a.groups.iter().find(|g| g.motion == "dot(b)^2").unwrap();
+    assert_eq!(g.verdict, GroupVerdict::NumericalMatch);
+    let text = lagrangian_core::audit::markdown(&report, "p.lpm");
+    assert!(
+        text.contains("**agrees**, established numerically"),
+        "{text}"
+    );
+    assert!(text.contains("match (numerically)"), "{text}");
+}
+
+#[test]
+fn a_small_numerical_difference_is_not_agreement() {
+    // 1.000001 · g: relatively 1e-6, far above round-off.
+    let report = audit_of(
+        "a = (m1 + m2) * pow(l1, 2) * ddot(a) + m2 * l1 * l2 * ddot(b) * cos(a - b)
+             + m2 * l1 * l2 * pow(dot(b), 2) * sin(a - b) + (m1 + m2) * 1.000001 * g * l1 * sin(a);",
+    );
+    assert_eq!(
+        report.audit(Part::Equation, "a").unwrap().verdict,
+        Verdict::Disagrees
+    );
+}

@@ -94,3 +94,37 @@ fn specs_without_units_are_not_checked() {
     let source = "model A; coordinates { x } parameters { m = 1.0, k = 2.0 } kinetic = 0.5 * m * pow(dot(x), 2); potential = k * x + m;";
     Compiled::from_source(source).unwrap();
 }
+
+#[test]
+fn exponents_are_evaluated_as_the_lowering_evaluates_them() {
+    // `1 + 1` is the exponent 2 for the dimension checker too, so l² is not
+    // an energy; before, only a plain literal was understood and this passed.
+    let text = error_of("potential = m * g * pow(l, 1 + 1);");
+    assert!(
+        text.contains("the potential energy has dimension kg·m^3·s^-2"),
+        "{text}"
+    );
+    let text = error_of("let two = 2; potential = m * g * pow(l, two);");
+    assert!(
+        text.contains("the potential energy has dimension"),
+        "{text}"
+    );
+    // The same spelling with a consistent dimension compiles.
+    let source = format!("{HEADER}let one = 3 - 2; potential = m * g * pow(l, 2 * one - (1 / 1));");
+    Compiled::from_source(&source).unwrap();
+}
+
+#[test]
+fn wrong_arities_are_reported_not_a_panic_of_the_checker() {
+    for call in [
+        "sin()",
+        "sqrt()",
+        "dot()",
+        "pow(theta)",
+        "theta.powi()",
+        "ln(x, x)",
+    ] {
+        let text = error_of(&format!("potential = m * g * l * {call};"));
+        assert!(text.contains("argument(s) but"), "{call}: {text}");
+    }
+}

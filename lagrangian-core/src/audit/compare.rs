@@ -11,6 +11,9 @@ use rustc_hash::FxHashMap;
 pub enum GroupVerdict {
     /// Identical.
     Match,
+    /// Equal, but established numerically: the difference does not simplify
+    /// to 0 in the canonical form, yet vanishes to round-off at random states.
+    NumericalMatch,
     /// Identical after the small-angle approximation.
     SmallAngle,
     /// Both sides have terms here, and they differ.
@@ -157,6 +160,8 @@ pub fn groups(store: &mut Store, derived: ExprId, hand: ExprId, order: u32) -> V
             let (sd, sh) = (small_angle(store, cd, order), small_angle(store, ch, order));
             let verdict = if cd == ch {
                 GroupVerdict::Match
+            } else if vanishes_numerically(store, cd, ch) {
+                GroupVerdict::NumericalMatch
             } else if sd == sh {
                 GroupVerdict::SmallAngle
             } else if ch == Store::ZERO {
@@ -167,7 +172,9 @@ pub fn groups(store: &mut Store, derived: ExprId, hand: ExprId, order: u32) -> V
                 GroupVerdict::Differs
             };
             let findings = match verdict {
-                GroupVerdict::Match | GroupVerdict::SmallAngle => Vec::new(),
+                GroupVerdict::Match | GroupVerdict::NumericalMatch | GroupVerdict::SmallAngle => {
+                    Vec::new()
+                }
                 _ => term_findings(store, sd, sh),
             };
             GroupAudit {
@@ -273,6 +280,66 @@ pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
                 .collect()
         })
         .collect()
+}
+
+/// Random states for testing an identity: coordinates within ±3 (large
+/// angles too), velocities ±2, accelerations ±10, time in [0, 10] and every
+/// parameter in [0.5, 2] (an identity holds for all values, and defaults of
+/// 0 would hide the terms they multiply).
+fn identity_states(store: &Store, count: usize) -> Vec<Vec<f64>> {
+    let mut seed = 0x1de7_u64;
+    let mut uniform = move |a: f64, b: f64| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    (0..count)
+        .map(|_| {
+            store
+                .symbols()
+                .iter()
+                .map(|s| match s.kind {
+                    SymbolKind::Coordinate(_) => uniform(-3.0, 3.0),
+                    SymbolKind::Velocity(_) => uniform(-2.0, 2.0),
+                    SymbolKind::Acceleration(_) => uniform(-10.0, 10.0),
+                    SymbolKind::Parameter(_) => uniform(0.5, 2.0),
+                    SymbolKind::Time => uniform(0.0, 10.0),
+                    SymbolKind::Pi => std::f64::consts::PI,
+                    SymbolKind::InputArgument { .. } => 0.0,
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Relative size of round-off below which a difference counts as zero.
+const ROUND_OFF: f64 = 1e-10;
+
+/// Is `a = b` although the canonical forms differ (the form is not canonical
+/// everywhere, see [`crate::expr`])? True when `|a − b|` stays within
+/// round-off of `Σ|terms of a| + Σ|terms of b|` at 16 random states, of
+/// which at least 8 are regular (states where either side is not finite, at
+/// a singularity, are skipped).
+pub fn vanishes_numerically(store: &Store, a: ExprId, b: ExprId) -> bool {
+    let terms: Vec<(ExprId, Rational)> = store.terms(a).into_iter().chain(store.terms(b)).collect();
+    let mut regular = 0;
+    for state in identity_states(store, 16) {
+        let mut ev = Evaluator::new(store, state, &inputs);
+        let (va, vb) = (ev.eval(a), ev.eval(b));
+        let scale: f64 = terms
+            .iter()
+            .map(|&(t, c)| (c.to_f64() * ev.eval(t)).abs())
+            .sum();
+        if !(va.is_finite() && vb.is_finite() && scale.is_finite()) {
+            continue;
+        }
+        if (va - vb).abs() > ROUND_OFF * scale {
+            return false;
+        }
+        regular += 1;
+    }
+    regular >= 8
 }
 
 /// Input values for the residuals: smooth functions of the arguments.

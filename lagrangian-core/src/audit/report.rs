@@ -7,6 +7,7 @@ use std::fmt::Write;
 fn verdict_text(v: Verdict, order: u32) -> String {
     match v {
         Verdict::Exact => "**agrees** exactly".to_string(),
+        Verdict::Numerical => "**agrees**, established numerically".to_string(),
         Verdict::SmallAngle => {
             format!("**agrees** under the small-angle approximation (order {order})")
         }
@@ -17,6 +18,7 @@ fn verdict_text(v: Verdict, order: u32) -> String {
 fn group_text(v: GroupVerdict) -> &'static str {
     match v {
         GroupVerdict::Match => "match",
+        GroupVerdict::NumericalMatch => "match (numerically)",
         GroupVerdict::SmallAngle => "match (small angles)",
         GroupVerdict::Differs => "**differ**",
         GroupVerdict::MissingByHand => "**missing by hand**",
@@ -104,7 +106,7 @@ pub fn markdown(report: &AuditReport, spec: &str) -> String {
             "| {} | {} | {} / {} / {} | {} | {:.1e} |",
             title(a),
             verdict_text(a.verdict, report.small_angle_order),
-            count(&[GroupVerdict::Match]),
+            count(&[GroupVerdict::Match, GroupVerdict::NumericalMatch]),
             count(&[GroupVerdict::SmallAngle]),
             count(&[
                 GroupVerdict::Differs,
@@ -124,6 +126,12 @@ pub fn markdown(report: &AuditReport, spec: &str) -> String {
             a.max_residual,
             a.median_residual
         );
+        if a.verdict == Verdict::Numerical {
+            let _ = writeln!(
+                out,
+                "The difference of the two sides does not simplify to 0 symbolically (the canonical form is not canonical for every expression), but it vanishes to round-off, relative to the size of the terms, at random states with large angles and random parameters.\n"
+            );
+        }
         if !a.dimension_findings.is_empty() {
             let _ = writeln!(out, "Terms written with the wrong dimension:\n");
             for f in &a.dimension_findings {

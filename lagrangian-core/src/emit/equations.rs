@@ -7,6 +7,10 @@ use std::fmt::Write;
 
 /// Renders M, f, T, V, D (and the generalized forces) of a compiled model.
 pub fn render_equations(compiled: &mut Compiled, notation: Notation) -> String {
+    crate::depth::with_large_stack(|| render_equations_deep(compiled, notation))
+}
+
+fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String {
     let model = &compiled.model;
     let names: Vec<String> = model.coordinates.iter().map(|c| c.name.clone()).collect();
     let n = names.len();

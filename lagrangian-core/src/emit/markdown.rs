@@ -50,6 +50,10 @@ fn doc(lines: &[String]) -> String {
 
 /// The derived equations of a compiled model as a Markdown document.
 pub fn render_markdown(compiled: &mut Compiled, source: &str) -> String {
+    crate::depth::with_large_stack(|| render_markdown_deep(compiled, source))
+}
+
+fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let model = &compiled.model;
     let d = compiled.derivation.clone();
     let mut out = String::new();

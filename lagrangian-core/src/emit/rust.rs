@@ -77,6 +77,10 @@ impl Code {
 
 /// The whole generated model: struct, `Default`, constants and trait impl.
 pub fn emit_model(compiled: &Compiled, options: &RustOptions) -> TokenStream {
+    crate::depth::with_large_stack(|| emit_model_deep(compiled, options))
+}
+
+fn emit_model_deep(compiled: &Compiled, options: &RustOptions) -> TokenStream {
     let model = &compiled.model;
     let names = Names::new(model);
     let rt = &options.runtime;

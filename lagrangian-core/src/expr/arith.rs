@@ -1,6 +1,6 @@
 //! Sums, products and powers in expanded canonical form.
 
-use super::{EngineError, ExprId, Func, Node, Store};
+use super::{EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, Node, Store};
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
@@ -216,6 +216,10 @@ impl Store {
             }
         }
         merged.retain(|(_, e)| !e.is_zero());
+        if !merged.iter().all(|&(_, e)| self.exponent_in_range(e)) {
+            // Reported; not linearized (a sine to a huge power would never finish).
+            return self.raw_monomial(merged);
+        }
 
         let mut coefficient = Rational::ONE;
         let mut kept = Vec::with_capacity(merged.len());
@@ -246,11 +250,51 @@ impl Store {
                 _ => kept.push((base, exp)),
             }
         }
+        self.finish_product(coefficient, kept, trig, pending, &[])
+    }
+
+    /// `coefficient · Π kept · Π trig · Π pending`, where `kept` holds
+    /// factors that stay as they are, `trig` non-negative powers of sines
+    /// and cosines to linearize, and `pending` expressions to multiply in.
+    ///
+    /// A negative power of `sin u` or `cos u` in `kept` is first combined with
+    /// the sines and cosines of multiples of `u` (see
+    /// [`Store::negative_trig_group`]); `done` lists the arguments already
+    /// combined in this product.
+    pub(super) fn finish_product(
+        &mut self,
+        coefficient: Rational,
+        mut kept: Vec<(ExprId, Rational)>,
+        mut trig: Vec<(Func, ExprId, u32)>,
+        mut pending: Vec<ExprId>,
+        done: &[ExprId],
+    ) -> ExprId {
+        if let Some((u, laurent)) = self.negative_trig_group(&mut kept, &mut trig, done) {
+            let done: Vec<ExprId> = done.iter().copied().chain([u]).collect();
+            let (sin, cos) = (self.func_node(Func::Sin, u), self.func_node(Func::Cos, u));
+            let mut acc = TermAccumulator::default();
+            for ((i, j), c) in laurent {
+                let (mut kept, mut trig) = (kept.clone(), trig.clone());
+                if i >= 0 && j >= 0 {
+                    // Within the u32 range: the exponents are at most MAX_EXPONENT.
+                    trig.extend([(Func::Sin, u, i as u32), (Func::Cos, u, j as u32)]);
+                    trig.retain(|t| t.2 > 0);
+                } else {
+                    // Kept as it is, including a first power of the other function.
+                    self.insert_factor(&mut kept, sin, Rational::integer(i));
+                    self.insert_factor(&mut kept, cos, Rational::integer(j));
+                }
+                let c = self.rmul(coefficient, c);
+                let part = self.finish_product(c, kept, trig, pending.clone(), &done);
+                acc.add_expr(self, part, Rational::ONE);
+            }
+            return acc.finish(self);
+        }
         let trig_count: u32 = trig.iter().map(|t| t.2).sum();
         if trig_count == 1 {
             let (f, arg, _) = trig[0];
-            kept.push((self.func_node(f, arg), Rational::ONE));
-            kept.sort_by_key(|(b, _)| *b);
+            let atom = self.func_node(f, arg);
+            self.insert_factor(&mut kept, atom, Rational::ONE);
         } else if trig_count > 1 {
             pending.push(self.trig_product(&trig));
         }
@@ -260,6 +304,24 @@ impl Store {
             result = self.mul(result, p);
         }
         result
+    }
+
+    /// Multiplies `base^e` into a sorted factor list with distinct bases.
+    fn insert_factor(&mut self, factors: &mut Vec<(ExprId, Rational)>, base: ExprId, e: Rational) {
+        if e.is_zero() {
+            return;
+        }
+        match factors.binary_search_by_key(&base, |(b, _)| *b) {
+            Ok(k) => {
+                let total = self.radd(factors[k].1, e);
+                if total.is_zero() {
+                    factors.remove(k);
+                } else {
+                    factors[k].1 = total;
+                }
+            }
+            Err(k) => factors.insert(k, (base, e)),
+        }
     }
 
     /// Interns an already-normalized factor list (sorted, merged, nonzero exponents).
@@ -273,16 +335,17 @@ impl Store {
 
     // ----- powers -----
 
-    /// `a ^ e` for a rational exponent.
+    /// `a ^ e` for a rational exponent. `a⁰ = 1` for every `a`, 0 included,
+    /// as `f64::powi(0.0, 0)` computes it.
     pub fn pow(&mut self, a: ExprId, e: Rational) -> ExprId {
         if e.is_zero() {
-            if a == Store::ZERO {
-                self.record(EngineError::DivisionByZero);
-            }
             return Store::ONE;
         }
         if e.is_one() {
             return a;
+        }
+        if !self.exponent_in_range(e) {
+            return self.intern_power(a, e);
         }
         match self.node(a).clone() {
             Node::Num(c) => self.pow_number(c, e),
@@ -294,8 +357,28 @@ impl Store {
                         let te = self.pow(t, e);
                         return self.mul(ce, te);
                     }
-                } else if e.is_integer() && !e.is_negative() {
-                    return self.pow_expand(a, e.to_i64().unwrap_or(0));
+                } else if let Some(n) = e.to_i64().filter(|n| *n > 0) {
+                    let terms = expanded_terms(items.len(), n);
+                    if terms <= MAX_EXPANDED_TERMS {
+                        return self.pow_expand(a, n);
+                    }
+                    self.record(EngineError::ExpansionTooLarge {
+                        exponent: e,
+                        sum_terms: items.len(),
+                    });
+                } else if let Some(n) = e.to_i64().filter(|n| *n < 0)
+                    && let Some((c, u, k, l)) = self.as_trig_monomial(a)
+                {
+                    // (c · sin^k u · cos^l u)^n with the powers as atoms.
+                    let ce = self.pow_number(c, e);
+                    let (sin, cos) = (self.func_node(Func::Sin, u), self.func_node(Func::Cos, u));
+                    let factors = vec![
+                        (sin, Rational::integer(k * n)),
+                        (cos, Rational::integer(l * n)),
+                    ];
+                    let factors = factors.into_iter().filter(|f| !f.1.is_zero()).collect();
+                    let power = self.product_of_factors(factors);
+                    return self.mul(ce, power);
                 }
                 self.intern_power(a, e)
             }
@@ -333,6 +416,15 @@ impl Store {
         self.scale(atom, whole_value)
     }
 
+    /// Is `e` within [`MAX_EXPONENT`]? Records [`EngineError::ExponentTooLarge`] if not.
+    fn exponent_in_range(&mut self, e: Rational) -> bool {
+        let ok = e.numer().unsigned_abs() <= MAX_EXPONENT as u128 && e.denom() <= MAX_EXPONENT;
+        if !ok {
+            self.record(EngineError::ExponentTooLarge(e));
+        }
+        ok
+    }
+
     fn intern_power(&mut self, base: ExprId, e: Rational) -> ExprId {
         self.raw_monomial(vec![(base, e)])
     }
@@ -358,6 +450,21 @@ impl Store {
     pub fn sqrt(&mut self, a: ExprId) -> ExprId {
         self.pow(a, Rational::HALF)
     }
+}
+
+/// The number of monomials of `(a_1 + … + a_k)^n` when none cancel,
+/// `C(n + k − 1, k − 1)`, or `MAX_EXPANDED_TERMS + 1` when it is larger.
+fn expanded_terms(k: usize, n: i64) -> usize {
+    let n = n.unsigned_abs() as u128;
+    let mut count: u128 = 1;
+    for i in 1..k as u128 {
+        // C(n + i, i) = C(n + i − 1, i − 1) · (n + i) / i, exact at each step.
+        count = count.saturating_mul(n.saturating_add(i)) / i;
+        if count > MAX_EXPANDED_TERMS as u128 {
+            return MAX_EXPANDED_TERMS + 1;
+        }
+    }
+    count as usize
 }
 
 /// Accumulates `(term, coefficient)` pairs of a large sum.

@@ -11,9 +11,28 @@
 //! input-function calls) or, with a negative or fractional exponent, a sum.
 //! Products of sums are distributed as soon as they are built, and products of
 //! sines and cosines are linearized (`cos a · cos b = ½cos(a−b) + ½cos(a+b)`),
-//! so every monomial carries at most one sine or cosine to a positive power.
-//! That form is canonical for the trigonometric polynomials of mechanics: the
-//! cross terms of a kinetic energy cancel exactly and `sin² + cos²` folds to 1.
+//! so a monomial without negative trigonometric powers carries at most one
+//! sine or cosine, to the first power. Negative integer powers of `sin u` and
+//! `cos u` stay atoms; within their monomial the sines and cosines of
+//! integer multiples of `u` are rewritten in `sin u`, `cos u` and merged with
+//! them, leaving `sin⁻ᵏu` (times at most `cos u`) or `cos⁻ᵏu` (times at most
+//! `sin u`); and a sum that is the linearized `c · sinᵏu · cosˡu` raised to a
+//! negative power becomes those atoms (module `laurent`).
+//!
+//! The form is *canonical* — equal expressions are the same node — for
+//! polynomials in the sines and cosines of rational combinations of the
+//! symbols, whatever else multiplies them: the cross terms of a kinetic
+//! energy cancel exactly and `sin² + cos²` folds to 1. It stays canonical
+//! with negative powers of `sin u` and `cos u` for one argument `u` per
+//! monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
+//! is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`. It is **not** canonical,
+//! and equal expressions may be different nodes, when a negative power sits
+//! next to a sine or cosine of an unrelated argument (`sin(θ₁ − θ₂) / sin θ₁`),
+//! for negative powers of both `sin u` and `sin 2u`, for sums under
+//! fractional powers or divided by a sum that is not a sine–cosine monomial
+//! (`1 / (1 + cos θ)`), for `exp`/`ln` identities, and for `π` inside an
+//! argument (a symbol here: `sin(θ + π)` is not `−sin θ`). The audit
+//! compares numerically where the symbolic comparison is inconclusive.
 //!
 //! Nodes are interned, so structurally equal expressions share one [`ExprId`]
 //! and comparing expressions is comparing integers.
@@ -22,6 +41,7 @@ mod arith;
 mod calculus;
 mod display;
 mod eval;
+mod laurent;
 mod trig;
 
 pub use calculus::CoordinateSymbols;
@@ -110,6 +130,21 @@ pub enum Node {
     Input(u32, Box<[ExprId]>),
 }
 
+impl Node {
+    /// Calls `visit` with every direct operand of the node: the terms of a
+    /// sum, the bases of a product, a function's argument, an input call's
+    /// arguments (numbers and symbols have none). Exponents and coefficients
+    /// are not nodes and are not visited.
+    pub fn for_each_child(&self, mut visit: impl FnMut(ExprId)) {
+        match self {
+            Node::Num(_) | Node::Sym(_) => {}
+            Node::Add(items) | Node::Mul(items) => items.iter().for_each(|&(t, _)| visit(t)),
+            Node::Func(_, u) => visit(*u),
+            Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
+        }
+    }
+}
+
 /// A run-time input function: its name, arity and declared partial derivatives.
 #[derive(Clone, Debug)]
 pub struct InputFunction {
@@ -130,7 +165,27 @@ pub enum EngineError {
     /// An input function had to be differentiated with respect to an argument
     /// whose derivative was not declared.
     MissingDerivative { input: usize, argument: usize },
+    /// An exponent beyond [`MAX_EXPONENT`] (numerator or denominator).
+    ExponentTooLarge(Rational),
+    /// A power of a sum whose expansion would exceed [`MAX_EXPANDED_TERMS`].
+    ExpansionTooLarge {
+        exponent: Rational,
+        sum_terms: usize,
+    },
 }
+
+/// Errors kept by [`Store::record`] until taken.
+const MAX_RECORDED_ERRORS: usize = 8;
+
+/// The largest magnitude of an exponent's numerator and denominator: larger
+/// exponents are reported ([`EngineError::ExponentTooLarge`]), so a sine
+/// power's linearization and the emitted `powi` stay small and exact.
+pub const MAX_EXPONENT: i128 = 1024;
+
+/// The most terms the expansion of a power of a sum may have: `(Σ_k a_k)^n`
+/// with `k` terms has `C(n + k − 1, k − 1)` monomials before any cancel
+/// ([`EngineError::ExpansionTooLarge`] beyond).
+pub const MAX_EXPANDED_TERMS: usize = 4096;
 
 /// Owner of all nodes, symbols and input functions of one model.
 pub struct Store {
@@ -250,8 +305,12 @@ impl Store {
         std::mem::take(&mut self.errors)
     }
 
+    /// Records an error, unless it is already recorded. Callers report the
+    /// first; a few are kept, not one per operation, so that a long
+    /// expression that keeps failing stays linear (a 100 000-factor product
+    /// records an exponent error at every factor).
     pub(crate) fn record(&mut self, error: EngineError) {
-        if !self.errors.contains(&error) {
+        if self.errors.len() < MAX_RECORDED_ERRORS && !self.errors.contains(&error) {
             self.errors.push(error);
         }
     }
@@ -302,17 +361,12 @@ impl Store {
             if !seen.insert(x) || !self.may_depend_on(x, s) {
                 continue;
             }
-            match self.node(x) {
-                Node::Num(_) => {}
-                Node::Sym(t) => {
-                    if *t == s {
-                        return true;
-                    }
-                }
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            if let Node::Sym(t) = self.node(x)
+                && *t == s
+            {
+                return true;
             }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         false
     }
@@ -326,13 +380,10 @@ impl Store {
             if !seen.insert(x) {
                 continue;
             }
-            match self.node(x) {
-                Node::Num(_) => {}
-                Node::Sym(t) => found.push(*t),
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
+            if let Node::Sym(t) = self.node(x) {
+                found.push(*t);
             }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         found.sort();
         found.dedup();
@@ -347,12 +398,7 @@ impl Store {
             if !seen.insert(x) {
                 continue;
             }
-            match self.node(x) {
-                Node::Add(items) | Node::Mul(items) => stack.extend(items.iter().map(|(t, _)| *t)),
-                Node::Func(_, u) => stack.push(*u),
-                Node::Input(_, args) => stack.extend(args.iter().copied()),
-                _ => {}
-            }
+            self.node(x).for_each_child(|c| stack.push(c));
         }
         seen.len()
     }
@@ -361,15 +407,11 @@ impl Store {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
-        let mask = match &node {
-            Node::Num(_) => 0,
+        let mut mask = match &node {
             Node::Sym(s) => symbol_bit(*s),
-            Node::Add(items) | Node::Mul(items) => {
-                items.iter().fold(0, |m, (t, _)| m | self.masks[t.index()])
-            }
-            Node::Func(_, u) => self.masks[u.index()],
-            Node::Input(_, args) => args.iter().fold(0, |m, a| m | self.masks[a.index()]),
+            _ => 0,
         };
+        node.for_each_child(|c| mask |= self.masks[c.index()]);
         let id = ExprId(self.nodes.len() as u32);
         self.nodes.push(node.clone());
         self.masks.push(mask);

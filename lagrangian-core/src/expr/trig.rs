@@ -8,6 +8,7 @@
 use super::arith::TermAccumulator;
 use super::{ExprId, Func, Node, Store};
 use crate::rational::Rational;
+use rustc_hash::FxHashMap;
 
 impl Store {
     /// `sin u`.
@@ -100,6 +101,10 @@ impl Store {
     }
 
     /// `Π f_k(u_k)^n_k` for sines and cosines, linearized into a sum.
+    ///
+    /// Like terms are merged after every multiplication, so `sinⁿ u` costs
+    /// O(n²) work and never holds more than `n + 1` terms, instead of the
+    /// `2ⁿ` products of the unmerged expansion.
     pub(crate) fn trig_product(&mut self, factors: &[(Func, ExprId, u32)]) -> ExprId {
         // The running product as Σ c · atom, atom ∈ {1, sin v, cos v}.
         let mut terms: Vec<(Rational, ExprId)> = vec![(Rational::ONE, Store::ONE)];
@@ -109,7 +114,7 @@ impl Store {
                 for &(c, atom) in &terms {
                     self.multiply_trig_atom(c, atom, f, b, &mut next);
                 }
-                terms = next;
+                terms = self.merge_like_terms(next);
             }
         }
         let mut acc = TermAccumulator::default();
@@ -117,6 +122,23 @@ impl Store {
             acc.add(self, atom, c);
         }
         acc.finish(self)
+    }
+
+    /// Adds up the coefficients of equal atoms (first occurrence order), dropping zeros.
+    fn merge_like_terms(&mut self, terms: Vec<(Rational, ExprId)>) -> Vec<(Rational, ExprId)> {
+        let mut position: FxHashMap<ExprId, usize> = FxHashMap::default();
+        let mut merged: Vec<(Rational, ExprId)> = Vec::with_capacity(terms.len());
+        for (c, atom) in terms {
+            match position.get(&atom) {
+                Some(&i) => merged[i].0 = self.radd(merged[i].0, c),
+                None => {
+                    position.insert(atom, merged.len());
+                    merged.push((c, atom));
+                }
+            }
+        }
+        merged.retain(|(c, _)| !c.is_zero());
+        merged
     }
 
     /// Appends `c · atom · f(b)` as linearized terms to `out`.

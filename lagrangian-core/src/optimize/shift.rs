@@ -19,7 +19,7 @@ use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
 /// Shifts of higher degree than this are not tried (binomials grow quickly).
-const MAX_DEGREE: u32 = 6;
+const MAX_DEGREE: u128 = 6;
 
 /// `x = a − sign·c`, as variable indices of the builder.
 #[derive(Clone, Copy, Debug)]
@@ -112,8 +112,8 @@ impl Builder<'_> {
 /// degree is too high or a coefficient overflows.
 fn apply(terms: &[Term], shift: Shift, a: u32) -> Option<Vec<Term>> {
     let mut collected: Vec<Term> = Vec::with_capacity(terms.len());
-    let mut index: FxHashMap<Vec<(u32, u32)>, usize> = FxHashMap::default();
-    let mut push = |vars: Vec<(u32, u32)>, coefficient: Rational| -> Option<()> {
+    let mut index: FxHashMap<Vec<(u32, u128)>, usize> = FxHashMap::default();
+    let mut push = |vars: Vec<(u32, u128)>, coefficient: Rational| -> Option<()> {
         match index.get(&vars) {
             Some(&k) => {
                 collected[k].coefficient = collected[k].coefficient.checked_add(coefficient)?;
@@ -155,7 +155,7 @@ fn apply(terms: &[Term], shift: Shift, a: u32) -> Option<Vec<Term>> {
 }
 
 /// Multiplies the monomial `vars` (sorted by variable) by `v^degree`.
-fn multiply(vars: &mut Vec<(u32, u32)>, v: u32, degree: u32) {
+fn multiply(vars: &mut Vec<(u32, u128)>, v: u32, degree: u128) {
     if degree == 0 {
         return;
     }
@@ -169,14 +169,14 @@ fn multiply(vars: &mut Vec<(u32, u32)>, v: u32, degree: u32) {
 mod tests {
     use super::*;
 
-    fn term(coefficient: i128, vars: &[(u32, u32)]) -> Term {
+    fn term(coefficient: i128, vars: &[(u32, u128)]) -> Term {
         Term {
             coefficient: Rational::new(coefficient, 1).unwrap(),
             vars: vars.to_vec(),
         }
     }
 
-    fn show(terms: &[Term]) -> Vec<(i128, Vec<(u32, u32)>)> {
+    fn show(terms: &[Term]) -> Vec<(i128, Vec<(u32, u128)>)> {
         terms
             .iter()
             .map(|t| (t.coefficient.numer(), t.vars.clone()))

@@ -6,11 +6,12 @@
 //! dimension, and checks involving it are skipped, so specs without units
 //! are not checked at all.
 
+use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange};
 use crate::rational::Rational;
 use crate::units::Dimension;
 use rustc_hash::FxHashMap;
-use syn::{BinOp, Expr, Lit, UnOp};
+use syn::{BinOp, Expr, UnOp};
 
 /// The declared dimensions of an input function.
 #[derive(Clone, Debug)]
@@ -24,6 +25,8 @@ pub(super) struct InputDimensions {
 pub(super) struct DimensionScope {
     pub names: FxHashMap<String, Option<Dimension>>,
     pub inputs: FxHashMap<String, InputDimensions>,
+    /// Values of the constant `let`s, for exponents (as the lowering sees them).
+    pub constants: Constants,
 }
 
 /// A dimension that is not the required one.
@@ -65,8 +68,7 @@ impl DimensionScope {
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.infer(&u.expr)?,
             Expr::Binary(b) => match b.op {
                 BinOp::Add(_) | BinOp::Sub(_) => self.sum(expr)?,
-                BinOp::Mul(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, false),
-                BinOp::Div(_) => product(self.infer(&b.left)?, self.infer(&b.right)?, true),
+                BinOp::Mul(_) | BinOp::Div(_) => self.product(b)?,
                 _ => None,
             },
             Expr::Path(p) => p
@@ -97,12 +99,23 @@ impl DimensionScope {
         })
     }
 
+    /// The dimension of a call of `name` with `args` (a method's receiver
+    /// first). A call with the wrong number of arguments has an unknown
+    /// dimension: the lowering reports it, at the call.
     fn call(
         &self,
         name: &str,
         args: &[&Expr],
         span: SpanRange,
     ) -> Result<Option<Dimension>, Diagnostic> {
+        let arity = match name {
+            "sin" | "cos" | "tan" | "exp" | "ln" | "sqrt" | "dot" | "ddot" => Some(1),
+            "pow" => Some(2),
+            _ => None,
+        };
+        if arity.is_some_and(|n| n != args.len()) {
+            return Ok(None);
+        }
         match name {
             "sin" | "cos" | "tan" | "exp" | "ln" => {
                 if let Some(d) = self.infer(args[0])?
@@ -117,15 +130,28 @@ impl DimensionScope {
                 }
                 Ok(Some(Dimension::NONE))
             }
-            "sqrt" => Ok(self.infer(args[0])?.map(|d| d.pow(Rational::HALF))),
+            "sqrt" => match self.infer(args[0])? {
+                Some(d) => exact(d.checked_pow(Rational::HALF), || span),
+                None => Ok(None),
+            },
             "pow" => {
                 let base = self.infer(args[0])?;
-                Ok(base.zip(constant(args[1])).map(|(d, e)| d.pow(e)))
+                // An exponent that is not constant, or not representable, is
+                // reported by the lowering; here its dimension is unknown.
+                let exponent = constant::evaluate(args[1], &self.constants).ok().flatten();
+                match base.zip(exponent) {
+                    Some((d, e)) => exact(d.checked_pow(e), || span),
+                    None => Ok(None),
+                }
             }
-            "dot" => Ok(self.infer(args[0])?.map(|d| d / Dimension::TIME)),
-            "ddot" => Ok(self
-                .infer(args[0])?
-                .map(|d| d / Dimension::TIME.pow(Rational::integer(2)))),
+            "dot" | "ddot" => match self.infer(args[0])? {
+                Some(d) => {
+                    let per = if name == "dot" { 1 } else { 2 };
+                    let per_time = Dimension::TIME.checked_pow(Rational::integer(per));
+                    exact(per_time.and_then(|t| d.checked_div(t)), || span)
+                }
+                None => Ok(None),
+            },
             _ => {
                 let Some(input) = self.inputs.get(name) else {
                     return Ok(None);
@@ -142,10 +168,40 @@ impl DimensionScope {
                         ));
                     }
                 }
-                let _ = span;
                 Ok(input.value)
             }
         }
+    }
+
+    /// The dimension of `a * b / c …`, walking the left spine of the
+    /// (left-deep, as long as the product) tree with a loop.
+    fn product(&self, b: &syn::ExprBinary) -> Result<Option<Dimension>, Diagnostic> {
+        let (mut spine, mut deepest) = (Vec::new(), b);
+        loop {
+            spine.push(deepest);
+            match &*deepest.left {
+                Expr::Binary(inner) if matches!(inner.op, BinOp::Mul(_) | BinOp::Div(_)) => {
+                    deepest = inner
+                }
+                _ => break,
+            }
+        }
+        let mut value = self.infer(&deepest.left)?;
+        for node in spine.into_iter().rev() {
+            let rhs = self.infer(&node.right)?;
+            value = match value.zip(rhs) {
+                None => None,
+                Some((l, r)) => {
+                    let d = if matches!(node.op, BinOp::Div(_)) {
+                        l.checked_div(r)
+                    } else {
+                        l.checked_mul(r)
+                    };
+                    exact(d, || SpanRange::of(node))?
+                }
+            };
+        }
+        Ok(value)
     }
 
     /// A sum's terms must agree; the ones that differ from most are reported.
@@ -177,19 +233,19 @@ impl DimensionScope {
     }
 }
 
-/// The terms of a sum `a + b − c …` (the sign does not matter here).
+/// The terms of a sum `a + b − c …` (the sign does not matter here), in
+/// order. Iterative: a long sum is a tree as deep as it is long.
 pub(super) fn addends<'a>(expr: &'a Expr, out: &mut Vec<&'a Expr>) {
-    match expr {
-        Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
-            addends(&b.left, out);
-            addends(&b.right, out);
-        }
-        Expr::Paren(p) if matches!(&*p.expr, Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_))) =>
-        {
+    let mut stack = vec![expr];
+    while let Some(e) = stack.pop() {
+        match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
+                stack.push(&b.right);
+                stack.push(&b.left);
+            }
             // A parenthesized sum is one term of the outer sum.
-            out.push(expr);
+            _ => out.push(e),
         }
-        _ => out.push(expr),
     }
 }
 
@@ -211,24 +267,16 @@ pub(super) fn majority(values: impl Iterator<Item = Dimension>) -> Option<Dimens
     best.map(|(d, _)| d)
 }
 
-fn product(a: Option<Dimension>, b: Option<Dimension>, divide: bool) -> Option<Dimension> {
-    let (a, b) = (a?, b?);
-    Some(if divide { a / b } else { a * b })
-}
-
-/// A constant exponent written as `n`, `-n`, `p/q` or `-(p/q)`.
-fn constant(expr: &Expr) -> Option<Rational> {
-    match expr {
-        Expr::Lit(l) => match &l.lit {
-            Lit::Int(i) => Rational::parse_decimal(i.base10_digits()),
-            Lit::Float(f) => Rational::parse_decimal(f.base10_digits()),
-            _ => None,
-        },
-        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => constant(&u.expr)?.checked_neg(),
-        Expr::Paren(p) => constant(&p.expr),
-        Expr::Binary(b) if matches!(b.op, BinOp::Div(_)) => {
-            constant(&b.left)?.checked_div(constant(&b.right)?)
-        }
-        _ => None,
+/// A computed dimension; `None`, an exponent overflow, is an error at `span`.
+fn exact(
+    d: Option<Dimension>,
+    span: impl FnOnce() -> SpanRange,
+) -> Result<Option<Dimension>, Diagnostic> {
+    match d {
+        Some(d) => Ok(Some(d)),
+        None => Err(Diagnostic::new(
+            span(),
+            "the dimension of this expression has exponents beyond exact 128-bit fractions",
+        )),
     }
 }

@@ -1,7 +1,10 @@
 //! Translating `syn` expressions into canonical symbolic expressions.
 
+use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
-use crate::expr::{CoordinateSymbols, EngineError, ExprId, Store, SymbolId};
+use crate::expr::{
+    CoordinateSymbols, EngineError, ExprId, MAX_EXPANDED_TERMS, MAX_EXPONENT, Store, SymbolId,
+};
 use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
@@ -25,6 +28,8 @@ pub(super) struct Scope {
     pub coordinates: Vec<CoordinateSymbols>,
     pub time: SymbolId,
     pub velocities: Vec<SymbolId>,
+    /// Values of the constant `let`s, for exponents.
+    pub constants: Constants,
 }
 
 /// The result of lowering one expression.
@@ -73,7 +78,17 @@ impl<'a> ExpressionLowering<'a> {
 
     pub fn lower(mut self, expr: &Expr) -> Result<Lowered, Diagnostic> {
         let value = self.expr(expr)?;
-        self.check_engine(SpanRange::of(expr), "this expression")?;
+        if let Some(error) = self.store.take_errors().into_iter().next() {
+            let span = SpanRange::of(expr);
+            let what = "this expression";
+            return Err(engine_diagnostic(
+                self.store,
+                self.input_names,
+                error,
+                span,
+                what,
+            ));
+        }
         Ok(Lowered {
             value,
             input_calls: self.input_calls,
@@ -148,8 +163,31 @@ impl<'a> ExpressionLowering<'a> {
             )
             .with_help("write the power as `pow(x, 2)` or `x.powi(2)`"));
         }
-        let lhs = self.expr(&b.left)?;
-        let rhs = self.expr(&b.right)?;
+        // `a + b − c …` (and `a * b / c …`) is a left-deep tree as deep as it
+        // is long: its left spine is walked with a loop, not recursion.
+        let (mut spine, mut deepest) = (Vec::new(), b);
+        loop {
+            spine.push(deepest);
+            match &*deepest.left {
+                Expr::Binary(inner) if is_arithmetic(inner.op) => deepest = inner,
+                _ => break,
+            }
+        }
+        let mut value = self.expr(&deepest.left)?;
+        for node in spine.into_iter().rev() {
+            let rhs = self.expr(&node.right)?;
+            value = self.apply(node, value, rhs)?;
+        }
+        Ok(value)
+    }
+
+    /// `lhs op rhs` for the operator of `b`.
+    fn apply(
+        &mut self,
+        b: &syn::ExprBinary,
+        lhs: ExprId,
+        rhs: ExprId,
+    ) -> Result<ExprId, Diagnostic> {
         match b.op {
             BinOp::Add(_) => Ok(self.store.add(lhs, rhs)),
             BinOp::Sub(_) => Ok(self.store.sub(lhs, rhs)),
@@ -247,6 +285,9 @@ impl<'a> ExpressionLowering<'a> {
             return self.power(base, exponent, span);
         }
         let x = self.expr(args[0])?;
+        if let Some(c) = self.store.as_num(x) {
+            check_constant_argument(name, c, span)?;
+        }
         Ok(match name {
             "sin" => self.store.sin(x),
             "cos" => self.store.cos(x),
@@ -311,19 +352,35 @@ impl<'a> ExpressionLowering<'a> {
         if base == Store::ZERO && exponent.is_negative() {
             return Err(Diagnostic::new(span, "zero raised to a negative power"));
         }
-        Ok(self.store.pow(base, exponent))
+        let value = self.store.pow(base, exponent);
+        self.check_engine(span, "this power")?;
+        if let Some(c) = self.store.as_num(base)
+            && c.is_negative()
+            && !exponent.is_integer()
+            && self.store.as_num(value).is_none()
+        {
+            return Err(Diagnostic::new(
+                span,
+                format!("the negative constant {c} to the power {exponent} is not a real number"),
+            )
+            .with_help("the emitted code computes it with powf, which gives NaN"));
+        }
+        Ok(value)
     }
 
     /// Exponents must be exact constants, so that derivatives stay exact.
+    /// They are evaluated by [`constant::evaluate`], as the dimension checker does.
     fn constant_exponent(&mut self, expr: &Expr) -> Result<Rational, Diagnostic> {
-        let value = self.expr(expr)?;
-        self.store.as_num(value).ok_or_else(|| {
-            Diagnostic::new(
-                SpanRange::of(expr),
-                "the exponent must be a constant number",
-            )
-            .with_help("write exp(y * ln(x)) for a variable exponent")
-        })
+        if let Some(value) = constant::evaluate(expr, &self.scope.constants)? {
+            return Ok(value);
+        }
+        // Not a constant: report an unknown name in it first, if any.
+        self.expr(expr)?;
+        Err(Diagnostic::new(
+            SpanRange::of(expr),
+            "the exponent must be a constant number",
+        )
+        .with_help("write exp(y * ln(x)) for a variable exponent"))
     }
 
     /// `dot(e)`: the total time derivative of a function of coordinates and time.
@@ -347,6 +404,30 @@ impl<'a> ExpressionLowering<'a> {
         self.check_engine(span, "`dot`")?;
         Ok(d)
     }
+}
+
+/// `sqrt` and `ln` of a constant outside their domain would only show at
+/// run time, as a non-finite M or f: report them at the call.
+fn check_constant_argument(name: &str, c: Rational, span: SpanRange) -> Result<(), Diagnostic> {
+    let problem = match name {
+        "sqrt" if c.is_negative() => "the square root of a negative number is not real",
+        "ln" if c.is_negative() || c.is_zero() => {
+            "the logarithm is defined for positive numbers only"
+        }
+        _ => return Ok(()),
+    };
+    Err(Diagnostic::new(
+        span,
+        format!("`{name}` of the constant {c}: {problem}"),
+    ))
+}
+
+/// `+ - * /`, the operators a left spine may chain.
+pub(super) fn is_arithmetic(op: BinOp) -> bool {
+    matches!(
+        op,
+        BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_)
+    )
 }
 
 fn check_arity(
@@ -373,6 +454,39 @@ fn unsupported(expr: &impl quote::ToTokens, what: &str) -> Diagnostic {
 
 /// An integer or decimal literal as an exact rational.
 pub(super) fn literal(lit: &Lit) -> Result<Rational, Diagnostic> {
+    let digits = literal_digits(lit)?;
+    Rational::parse_decimal(&digits).ok_or_else(|| {
+        Diagnostic::new(
+            lit.span(),
+            format!("the literal `{digits}` is too large, or has too many significant digits, for an exact rational of 128-bit integers"),
+        )
+        .with_help("coefficients in expressions are exact fractions; declare a parameter for this value (a parameter's default may be any f64, e.g. `k = 1e42`)")
+    })
+}
+
+/// A parameter default written as a number or a negated number, as an f64:
+/// defaults need not be exact, so `1e42` is fine. `None` for any other expression.
+pub(super) fn literal_default(expr: &Expr) -> Option<Result<f64, Diagnostic>> {
+    let (lit, negative) = match expr {
+        Expr::Lit(l) => (&l.lit, false),
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match &*u.expr {
+            Expr::Lit(l) => (&l.lit, true),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    let value = literal_digits(lit).and_then(|digits| {
+        digits
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| Diagnostic::new(lit.span(), format!("`{digits}` is not a finite f64")))
+    });
+    Some(value.map(|v| if negative { -v } else { v }))
+}
+
+/// The decimal digits of a numeric literal, whose suffix must be none or `f64`.
+fn literal_digits(lit: &Lit) -> Result<String, Diagnostic> {
     let (digits, suffix) = match lit {
         Lit::Int(i) => (i.base10_digits().to_string(), i.suffix().to_string()),
         Lit::Float(f) => (f.base10_digits().to_string(), f.suffix().to_string()),
@@ -389,12 +503,7 @@ pub(super) fn literal(lit: &Lit) -> Result<Rational, Diagnostic> {
                 .with_help("units go in brackets after a declaration, e.g. `m1 [kg] = 539.0`"),
         );
     }
-    Rational::parse_decimal(&digits).ok_or_else(|| {
-        Diagnostic::new(
-            lit.span(),
-            format!("`{digits}` cannot be represented as an exact fraction of 128-bit integers"),
-        )
-    })
+    Ok(digits)
 }
 
 /// Explains an engine error that happened while building `what` at `span`.
@@ -411,6 +520,25 @@ pub(crate) fn engine_diagnostic(
             format!("exact coefficients in {what} exceed 128-bit fractions"),
         ),
         EngineError::DivisionByZero => Diagnostic::new(span, format!("division by zero in {what}")),
+        EngineError::ExponentTooLarge(e) => Diagnostic::new(
+            span,
+            format!("{what} has the exponent {e}, beyond the supported range"),
+        )
+        .with_help(format!(
+            "exponents are exact fractions p/q with |p| and q at most {MAX_EXPONENT}"
+        )),
+        EngineError::ExpansionTooLarge {
+            exponent,
+            sum_terms,
+        } => Diagnostic::new(
+            span,
+            format!(
+                "{what} raises a sum of {sum_terms} terms to the power {exponent}, whose expansion would have more than {MAX_EXPANDED_TERMS} terms"
+            ),
+        )
+        .with_help(
+            "powers of sums are expanded into monomials; lower the exponent, or make the sum a parameter",
+        ),
         EngineError::MissingDerivative { input, argument } => {
             let info = &store.inputs()[input];
             let arg = store.symbol_info(info.arguments[argument]).name.clone();

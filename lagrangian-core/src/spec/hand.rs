@@ -74,20 +74,23 @@ pub struct HandDerived {
 }
 
 /// The terms of a sum with their signs: `a − (b + c)` is `+a`, `−(b + c)`.
+/// Iterative: a long sum is a tree as deep as it is long.
 fn signed_terms<'a>(expr: &'a Expr, negated: bool, out: &mut Vec<(&'a Expr, bool)>) {
-    match expr {
-        Expr::Binary(b) if matches!(b.op, BinOp::Add(_)) => {
-            signed_terms(&b.left, negated, out);
-            signed_terms(&b.right, negated, out);
+    let mut stack = vec![(expr, negated)];
+    while let Some((e, negated)) = stack.pop() {
+        match e {
+            Expr::Binary(b) if matches!(b.op, BinOp::Add(_) | BinOp::Sub(_)) => {
+                let right_negated = negated != matches!(b.op, BinOp::Sub(_));
+                stack.push((&b.right, right_negated));
+                stack.push((&b.left, negated));
+            }
+            Expr::Unary(u)
+                if matches!(u.op, UnOp::Neg(_)) && matches!(&*u.expr, Expr::Binary(_)) =>
+            {
+                stack.push((&u.expr, !negated));
+            }
+            _ => out.push((e, negated)),
         }
-        Expr::Binary(b) if matches!(b.op, BinOp::Sub(_)) => {
-            signed_terms(&b.left, negated, out);
-            signed_terms(&b.right, !negated, out);
-        }
-        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) && matches!(&*u.expr, Expr::Binary(_)) => {
-            signed_terms(&u.expr, !negated, out);
-        }
-        _ => out.push((expr, negated)),
     }
 }
 
@@ -136,6 +139,7 @@ pub(super) fn lower(
         coordinates: cx.scope.coordinates.clone(),
         time: cx.scope.time,
         velocities: cx.scope.velocities.clone(),
+        constants: cx.scope.constants.clone(),
     };
     let mut symbols = Vec::new();
     for (name, expr) in &section.symbols {
@@ -154,6 +158,10 @@ pub(super) fn lower(
             Ok(l) => {
                 let dimension = cx.dimensions.infer(expr).ok().flatten();
                 cx.dimensions.names.insert(name.to_string(), dimension);
+                if let Ok(Some(c)) = super::constant::evaluate(expr, &scope.constants) {
+                    scope.constants.insert(name.to_string(), c);
+                    cx.dimensions.constants.insert(name.to_string(), c);
+                }
                 scope.names.insert(
                     name.to_string(),
                     (Binding::Definition(l.value, l.input_calls), name.span()),

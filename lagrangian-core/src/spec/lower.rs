@@ -1,11 +1,12 @@
 //! Name resolution and validation: [`SpecAst`] → [`Model`].
 
 use super::ast::*;
-use super::expression::{Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal};
+use super::expression::{
+    Binding, ExpressionLowering, Lowered, Scope, engine_diagnostic, literal_default,
+};
 use super::{Coordinate, ForceStatement, Input, Model, Parameter, RESERVED_NAMES, Statement};
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, Evaluator, ExprId, NoInputs, Store, SymbolKind};
-use crate::rational::Rational;
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
 
@@ -72,6 +73,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         coordinates: Vec::new(),
         time: store.symbol("t", SymbolKind::Time).0,
         velocities: Vec::new(),
+        constants: Default::default(),
     };
     let declare =
         |scope: &mut Scope, ident: &syn::Ident, binding: Binding, problems: &mut Problems| {
@@ -222,9 +224,16 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     // `let` definitions, in order; each may use the ones before it.
     let mut definitions = Vec::new();
     for item in &statements {
-        if let Item::Let { name, value } = item {
-            let lowered = ExpressionLowering::new(&mut store, &scope, &input_names).lower(value);
+        if let Item::Let {
+            name,
+            value: syntax,
+        } = item
+        {
+            let lowered = ExpressionLowering::new(&mut store, &scope, &input_names).lower(syntax);
             if let Some(Lowered { value, input_calls }) = problems.take(lowered) {
+                if let Ok(Some(c)) = super::constant::evaluate(syntax, &scope.constants) {
+                    scope.constants.insert(name.to_string(), c);
+                }
                 declare(
                     &mut scope,
                     name,
@@ -422,14 +431,15 @@ fn constant_value(
         )
         .with_help(format!("write `{} = value`", p.decl.name)));
     };
-    if let syn::Expr::Lit(lit) = value {
-        return literal(&lit.lit).map(Rational::to_f64);
+    if let Some(value) = literal_default(value) {
+        return value;
     }
     let mut scope = Scope {
         names: FxHashMap::default(),
         coordinates: Vec::new(),
         time,
         velocities: Vec::new(),
+        constants: Default::default(),
     };
     scope
         .names
@@ -483,6 +493,7 @@ fn lower_input_derivatives(
             coordinates: Vec::new(),
             time: scope.time,
             velocities: Vec::new(),
+            constants: Default::default(),
         };
         let formal = store.inputs()[index].arguments.clone();
         for (arg, symbol) in decl.arguments.iter().zip(&formal) {

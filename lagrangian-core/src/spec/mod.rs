@@ -1,6 +1,7 @@
 //! Model specifications: the spec language, its parser and the resolved [`Model`].
 
 mod ast;
+mod constant;
 mod dimensions;
 mod expression;
 mod hand;
@@ -95,15 +96,22 @@ pub struct Model {
 
 impl Model {
     /// Parses and resolves a spec given as tokens (the macro's inline form).
+    ///
+    /// Input too deep or too long is an error, and the work runs on a large
+    /// stack (see [`crate::depth`]), so no input overflows the stack.
     pub fn from_tokens(tokens: TokenStream) -> Result<Model, SpecErrors> {
-        let ast: ast::SpecAst = syn::parse2(tokens)?;
-        lower::lower(ast)
+        let count = crate::depth::check_tokens(&tokens)?;
+        crate::depth::with_stack_for_tokens(count, || {
+            let ast: ast::SpecAst = syn::parse2(tokens)?;
+            lower::lower(ast)
+        })
     }
 
-    /// Parses and resolves a spec given as text (a `.lpm` file).
+    /// Parses and resolves a spec given as text (a `.lpm` file), as
+    /// [`Model::from_tokens`] does.
     pub fn from_source(source: &str) -> Result<Model, SpecErrors> {
-        let ast: ast::SpecAst = syn::parse_str(source)?;
-        lower::lower(ast)
+        let tokens: TokenStream = source.parse().map_err(syn::Error::from)?;
+        Model::from_tokens(tokens)
     }
 
     pub fn dimension(&self) -> usize {

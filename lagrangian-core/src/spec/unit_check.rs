@@ -54,6 +54,14 @@ pub(super) fn scope(
     scope
 }
 
+/// Energy per unit of a coordinate of dimension `d` (a generalized force's
+/// dimension). `None`, and so no check rather than a wrong one, only when an
+/// exponent leaves exact 128-bit fractions, which takes an absurd declared
+/// unit such as `(m^-9223372036854775807)^9223372036854775807` twice over.
+fn per_unit_of(d: Dimension) -> Option<Dimension> {
+    Dimension::ENERGY.checked_div(d)
+}
+
 /// Checks every statement; returns the problems found.
 pub(super) fn check(
     scope: &mut DimensionScope,
@@ -71,6 +79,7 @@ pub(super) fn check(
         let mut local = DimensionScope {
             names: scope.names.clone(),
             inputs: scope.inputs.clone(),
+            constants: scope.constants.clone(),
         };
         for (arg, d) in input.arguments.iter().zip(&dims.arguments) {
             local.names.insert(arg.name.to_string(), *d);
@@ -80,7 +89,7 @@ pub(super) fn check(
             let expected = position
                 .and_then(|p| dims.arguments[p])
                 .zip(dims.value)
-                .map(|(a, v)| v / a);
+                .and_then(|(a, v)| v.checked_div(a));
             take(local.check(
                 expr,
                 expected,
@@ -105,6 +114,9 @@ pub(super) fn check(
         if let Item::Let { name, value } = item {
             let d = take(scope.infer(value));
             scope.names.insert(name.to_string(), d);
+            if let Ok(Some(c)) = super::constant::evaluate(value, &scope.constants) {
+                scope.constants.insert(name.to_string(), c);
+            }
         }
     }
     for item in statements {
@@ -123,8 +135,7 @@ pub(super) fn check(
             Item::GeneralizedForce {
                 coordinate, value, ..
             } => {
-                let expected =
-                    coordinate_dimension(&coordinate.to_string()).map(|d| Dimension::ENERGY / d);
+                let expected = coordinate_dimension(&coordinate.to_string()).and_then(per_unit_of);
                 take(scope.check(
                     value,
                     expected,
@@ -136,7 +147,7 @@ pub(super) fn check(
             } => {
                 for (p, f) in point.iter().zip(components) {
                     let position = take(scope.infer(p));
-                    let expected = position.map(|d| Dimension::ENERGY / d);
+                    let expected = position.and_then(per_unit_of);
                     take(scope.check(
                         f,
                         expected,

@@ -35,7 +35,7 @@ fn to_json(report: &AuditReport) -> Value {
             json!({
                 "part": match a.part { Part::Equation => "equation", Part::GeneralizedForce => "generalized_force" },
                 "coordinate": a.coordinate,
-                "verdict": match a.verdict { Verdict::Exact => "exact", Verdict::SmallAngle => "small_angle", Verdict::Disagrees => "disagrees" },
+                "verdict": match a.verdict { Verdict::Exact => "exact", Verdict::Numerical => "numerical", Verdict::SmallAngle => "small_angle", Verdict::Disagrees => "disagrees" },
                 "max_residual": a.max_residual,
                 "median_residual": a.median_residual,
                 "dimension_findings": a.dimension_findings.iter().map(|f| json!({
@@ -47,6 +47,7 @@ fn to_json(report: &AuditReport) -> Value {
                     "hand": g.hand,
                     "comparison": match g.verdict {
                         GroupVerdict::Match => "match",
+                        GroupVerdict::NumericalMatch => "numerical_match",
                         GroupVerdict::SmallAngle => "small_angle",
                         GroupVerdict::Differs => "differs",
                         GroupVerdict::MissingByHand => "missing_by_hand",

@@ -1,0 +1,170 @@
+//! Input beyond what the compiler represents exactly is a located error,
+//! never a silently wrong model nor a panic.
+
+use lagrangian_core::Compiled;
+
+const HEADER: &str = "model Spring;
+coordinates { x }
+parameters { m = 1.0, k = 100.0 }
+kinetic = 0.5 * m * pow(dot(x), 2);
+";
+
+/// Compiles `HEADER` + `body` and returns the rendered errors.
+fn error_of(body: &str) -> String {
+    let source = format!("{HEADER}{body}");
+    match Compiled::from_source(&source) {
+        Ok(_) => panic!("should not compile:\n{body}"),
+        Err(e) => e.render("spring.lpm", &source),
+    }
+}
+
+#[test]
+fn a_literal_too_large_for_an_exact_rational_is_an_error_not_zero() {
+    let huge = format!("1{}.0", "0".repeat(42));
+    let text = error_of(&format!("potential = 0.5 * {huge} * k * pow(x, 2);"));
+    assert!(
+        text.contains(&format!("the literal `{huge}` is too large")),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:19"), "{text}");
+}
+
+#[test]
+fn a_parameter_default_may_be_any_finite_f64() {
+    let source = "model Spring;
+coordinates { x }
+parameters { m = 1.0, k = 1000000000000000000000000000000000000000000.0, c = -1e300 }
+kinetic = 0.5 * m * pow(dot(x), 2);
+potential = 0.5 * k * pow(x, 2) + c * x;
+";
+    let compiled = Compiled::from_source(source).unwrap();
+    assert_eq!(compiled.default_parameters(), vec![1.0, 1e42, -1e300]);
+    let text = match Compiled::from_source(&source.replace("1e300", "1e999")) {
+        Ok(_) => panic!("1e999 is not finite"),
+        Err(e) => e.to_string(),
+    };
+    assert!(text.contains("`1e999` is not a finite f64"), "{text}");
+}
+
+#[test]
+fn a_power_of_a_sum_with_a_huge_expansion_is_refused_at_the_call() {
+    let text = error_of("potential = k * pow(x + m + 1, 100);");
+    assert!(
+        text.contains(
+            "this power raises a sum of 3 terms to the power 100, whose expansion would have more than 4096 terms"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:17"), "{text}");
+    // pow(x + 1, 100000) ran for ever.
+    let text = error_of("potential = k * pow(x + 1, 100000);");
+    assert!(
+        text.contains("this power has the exponent 100000, beyond the supported range"),
+        "{text}"
+    );
+    // Beyond i64 the exponent was read as 0: pow(x + 1, …) was 1.
+    let text = error_of("potential = k * pow(x + 1, 100000000000000000000000);");
+    assert!(
+        text.contains(
+            "this power has the exponent 100000000000000000000000, beyond the supported range"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_exponent_beyond_the_supported_range_is_refused() {
+    // 4294967298 = 2³² + 2 was truncated to u32 in the emitted program.
+    let text = error_of("potential = k * pow(x, 4294967298);");
+    assert!(
+        text.contains("this power has the exponent 4294967298, beyond the supported range"),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:17"), "{text}");
+    assert!(text.contains("at most 1024"), "{text}");
+    let text = error_of("potential = k * pow(pow(x, 1000), 1000);");
+    assert!(text.contains("the exponent 1000000"), "{text}");
+}
+
+#[test]
+fn constants_outside_a_function_domain_are_reported_at_compile_time() {
+    // These compiled and failed only at run time ("M or f is not finite").
+    let text = error_of("potential = k * x * sqrt(-1);");
+    assert!(
+        text.contains(
+            "`sqrt` of the constant -1: the square root of a negative number is not real"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:21"), "{text}");
+    let text = error_of("potential = k * x * ln(1 - 1);");
+    assert!(
+        text.contains("`ln` of the constant 0: the logarithm is defined for positive numbers only"),
+        "{text}"
+    );
+    let text = error_of("potential = k * x * (-2.0).powf(0.5);");
+    assert!(
+        text.contains("the negative constant -2 to the power 1/2 is not a real number"),
+        "{text}"
+    );
+    // Exact roots of negative constants are fine, and so is 0⁰ = 1.
+    let source = format!("{HEADER}potential = k * x * pow(-8, 1/3) * pow(0, 0);");
+    Compiled::from_source(&source).unwrap();
+}
+
+/// A spec whose potential is `k * x * (…)` with `inner` in the brackets.
+fn with_potential_factor(inner: &str) -> String {
+    format!("{HEADER}potential = k * x * ({inner});\n")
+}
+
+#[test]
+fn a_sum_of_twenty_thousand_terms_compiles() {
+    // Lowering recursed once per term and overflowed the stack (an abort).
+    let source = with_potential_factor(&vec!["x"; 20_000].join(" + "));
+    let compiled = Compiled::from_source(&source).unwrap();
+    let v = compiled.derivation.potential;
+    assert_eq!(compiled.model.store.to_text(v), "20000*x^2*k");
+}
+
+#[test]
+fn the_longest_accepted_spec_still_compiles() {
+    // Just below MAX_TOKENS: the deepest recursion the limit allows.
+    let terms = lagrangian_core::depth::MAX_TOKENS / 2 - 100;
+    let source = with_potential_factor(&vec!["x"; terms].join(" + "));
+    Compiled::from_source(&source).unwrap();
+    let source = with_potential_factor(&vec!["x"; terms + 200].join(" + "));
+    let text = match Compiled::from_source(&source) {
+        Ok(_) => panic!("more than MAX_TOKENS"),
+        Err(e) => e.render("spring.lpm", &source),
+    };
+    assert!(text.contains("the spec is too long"), "{text}");
+}
+
+#[test]
+fn deep_nesting_and_long_operator_runs_are_located_errors_not_aborts() {
+    let deep = format!("{}x{}", "(".repeat(1000), ")".repeat(1000));
+    let text = error_of(&format!("potential = k * x * {deep};"));
+    assert!(
+        text.contains("brackets nested more than 256 deep"),
+        "{text}"
+    );
+    // The 257th bracket: column 21 + 256.
+    assert!(text.contains("spring.lpm:5:277"), "{text}");
+    let signs = format!("{}x", "-".repeat(20_000));
+    let text = error_of(&format!("potential = k * x * {signs};"));
+    assert!(text.contains("more than 256 operators in a row"), "{text}");
+}
+
+#[test]
+fn deep_input_in_the_macro_is_a_compile_error() {
+    let deep: proc_macro2::TokenStream = format!(
+        "model Deep; coordinates {{ x }} parameters {{ m = 1.0 }} kinetic = m * pow(dot(x), 2) * {}1{};",
+        "(".repeat(1000),
+        ")".repeat(1000)
+    )
+    .parse()
+    .unwrap();
+    let out = lagrangian_core::expand::expand(deep).to_string();
+    assert!(out.contains("compile_error"), "{out}");
+    assert!(out.contains("brackets nested more than 256 deep"), "{out}");
+}
