@@ -94,7 +94,7 @@ pub fn check_tokens(tokens: &TokenStream) -> Result<usize, Diagnostic> {
         match token {
             TokenTree::Group(g) => {
                 run = 0;
-                if stack.len() >= MAX_NESTING + 1 {
+                if stack.len() > MAX_NESTING {
                     return Err(Diagnostic::new(
                         g.span_open(),
                         format!("brackets nested more than {MAX_NESTING} deep"),

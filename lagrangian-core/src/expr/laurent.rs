@@ -33,6 +33,9 @@ const MAX_EXPANDED_DEGREE: i64 = 64;
 /// A sum is recognized as `c · sin^k u · cos^l u` up to this `k + l`.
 const MAX_RECOGNIZED_DEGREE: i64 = 8;
 
+/// `sin^i u · cos^j u` terms of a normal form: `((i, j), coefficient)`.
+type TrigTerms = Vec<((i64, i64), Rational)>;
+
 impl Store {
     /// Takes out of a product the negative powers of `sin u`, `cos u` (from
     /// `kept`) for the first such `u` not in `done`, with the non-negative
@@ -44,7 +47,7 @@ impl Store {
         kept: &mut Vec<(ExprId, Rational)>,
         trig: &mut Vec<(Func, ExprId, u32)>,
         done: &[ExprId],
-    ) -> Option<(ExprId, Vec<((i64, i64), Rational)>)> {
+    ) -> Option<(ExprId, TrigTerms)> {
         let u = kept.iter().find_map(|&(base, e)| {
             let (f, u) = self.as_func(base)?;
             let negative = matches!(f, Func::Sin | Func::Cos) && e.is_integer() && e.is_negative();
