@@ -18,9 +18,11 @@ within the time limit is recorded as skipped.
 
 Run from the repository root (Python >= 3.9, sympy, mpmath)::
 
-    python3 benches/reference/sympy_chain_baseline.py [--limit SECONDS]
+    python3 benches/reference/sympy_chain_baseline.py [--limit SECONDS] [--models NAME ...]
 
-It writes ``benches/reference/sympy_chain_baseline.json``.  Timings depend
+It writes ``benches/reference/sympy_chain_baseline.json``; with
+``--models`` it measures only the named models and updates their entries
+in an existing file (a full run takes about 20 minutes up to n = 20).  Timings depend
 on the machine and its load; the operation counts do not.
 """
 
@@ -81,9 +83,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--limit", type=float, default=600.0,
                         help="seconds allowed per model (default 600)")
+    parser.add_argument("--models", nargs="+", metavar="NAME",
+                        help="measure only these models (e.g. pendulum_chain_40)")
     args = parser.parse_args()
-    names = ["yaris_double_pendulum"] + [f"pendulum_chain_{n}" for n in CHAINS]
+    names = args.models or (
+        ["yaris_double_pendulum"] + [f"pendulum_chain_{n}" for n in CHAINS])
     results = {}
+    if args.models and OUTPUT.exists():
+        results = json.loads(OUTPUT.read_text())["models"]
     for name in names:
         results[name] = run(name, args.limit)
         print(name, results[name], flush=True)

@@ -51,6 +51,7 @@ fn main() {
         "| model | compile time (median) | ops M,f | ops energies | ops Jacobians | Rust tokens (bytes) |"
     );
     println!("|---|---|---|---|---|---|");
+    let mut by_kind = Vec::new();
     for (name, source) in cases {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
             continue;
@@ -75,5 +76,26 @@ fn main() {
             ops(RoutineKind::Energies),
             ops(RoutineKind::Jacobians),
         );
+        if let Some(routine) = compiled.program.routine(RoutineKind::Dynamics) {
+            let c = compiled.program.counts(routine);
+            by_kind.push(format!(
+                "| {name} | {} | {} | {} | {} | {} | {} | {} |",
+                c.total(),
+                c.add,
+                c.mul,
+                c.div,
+                c.neg,
+                c.pow,
+                c.transcendental
+            ));
+        }
+    }
+    println!();
+    println!("Operations of M (upper triangle) and f by kind:");
+    println!();
+    println!("| model | total | add/sub | mul | div | neg | pow | sin/cos/… |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for row in by_kind {
+        println!("{row}");
     }
 }
