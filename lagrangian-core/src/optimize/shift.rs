@@ -36,7 +36,11 @@ impl Builder<'_> {
             return terms;
         }
         let mut best: Option<(Shift, Vec<Term>)> = None;
+        let mut keys = Vec::with_capacity(terms.len());
         for (x, c) in self.shift_candidates(&terms) {
+            if !may_collect(&terms, x, c, &mut keys) {
+                continue;
+            }
             for sign in [1, -1] {
                 let shift = Shift { x, c, sign };
                 let Some(result) = apply(&terms, shift, u32::MAX) else {
@@ -105,6 +109,34 @@ impl Builder<'_> {
         }
         pairs
     }
+}
+
+/// Whether a shift of `x` by `c` can leave fewer terms: only if two terms
+/// have the same monomial apart from `x` and `c` and the same total degree
+/// `D` in `x` and `c`. (A shift maps each such group, a homogeneous
+/// polynomial of degree `D` in `x` and `c`, onto a nonzero one in `a` and
+/// `c`, and different groups onto different monomials; so without two terms
+/// in one group the count cannot drop.) Compares hashes, so a collision only
+/// costs a wasted trial, never a missed one.
+fn may_collect(terms: &[Term], x: u32, c: u32, keys: &mut Vec<u64>) -> bool {
+    use std::hash::Hasher;
+    keys.clear();
+    for term in terms {
+        let mut hasher = rustc_hash::FxHasher::default();
+        let mut degree = 0u128;
+        for &(v, d) in &term.vars {
+            if v == x || v == c {
+                degree += d;
+            } else {
+                hasher.write_u32(v);
+                hasher.write_u128(d);
+            }
+        }
+        hasher.write_u128(degree);
+        keys.push(hasher.finish());
+    }
+    keys.sort_unstable();
+    keys.windows(2).any(|w| w[0] == w[1])
 }
 
 /// `terms` with `x^d` replaced by `(a − sign·c)^d`, expanded, like terms
