@@ -96,24 +96,56 @@ fn hand_written<I: InputFunctions>(
     (mass, Vector3::new(f_r, f_1, f_2))
 }
 
-/// Median nanoseconds per call of `f` over 11 batches of `n` calls.
-fn median_ns(n: usize, mut f: impl FnMut(usize) -> f64) -> f64 {
+/// Nanoseconds per call of `f` over one batch of `n` calls.
+fn batch_ns(n: usize, f: &mut impl FnMut(usize) -> f64) -> f64 {
     let mut sink = 0.0;
+    let start = Instant::now();
     for i in 0..n {
         sink += f(i);
     }
-    let mut times: Vec<f64> = (0..11)
-        .map(|_| {
-            let start = Instant::now();
-            for i in 0..n {
-                sink += f(i);
-            }
-            start.elapsed().as_nanos() as f64 / n as f64
-        })
-        .collect();
+    let elapsed = start.elapsed().as_nanos() as f64 / n as f64;
     black_box(sink);
-    times.sort_by(f64::total_cmp);
-    times[5]
+    elapsed
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+/// Median nanoseconds per call of `f` over 11 batches of `n` calls.
+fn median_ns(n: usize, mut f: impl FnMut(usize) -> f64) -> f64 {
+    batch_ns(n, &mut f);
+    median((0..11).map(|_| batch_ns(n, &mut f)).collect())
+}
+
+/// Batches of `a`, `b` and `c` taken in turn (so that a change of the
+/// machine's speed during the run hits all three alike): the median time of
+/// each, and the medians of the paired ratios `b/a` and `c/b`.
+fn interleaved(
+    n: usize,
+    mut a: impl FnMut(usize) -> f64,
+    mut b: impl FnMut(usize) -> f64,
+    mut c: impl FnMut(usize) -> f64,
+) -> ([f64; 3], f64, f64) {
+    let mut times = [Vec::new(), Vec::new(), Vec::new()];
+    for round in 0..32 {
+        let t = [
+            batch_ns(n, &mut a),
+            batch_ns(n, &mut b),
+            batch_ns(n, &mut c),
+        ];
+        if round > 0 {
+            for (k, t) in t.into_iter().enumerate() {
+                times[k].push(t);
+            }
+        }
+    }
+    let ratio =
+        |x: usize, y: usize| median(times[x].iter().zip(&times[y]).map(|(p, q)| q / p).collect());
+    let (ba, cb) = (ratio(0, 1), ratio(1, 2));
+    let [ta, tb, tc] = times.map(median);
+    ([ta, tb, tc], ba, cb)
 }
 
 fn main() {
@@ -144,31 +176,34 @@ fn main() {
             "f differs: {fh} vs {fc}"
         );
     }
-    let n = 200_000;
+    let n = 50_000;
     let pick = |i: usize| &states[i % states.len()];
-    let compiled_ns = median_ns(n, |i| {
-        let (q, v) = pick(i);
-        compiled
-            .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
-            .unwrap()[0]
-    });
-    let interpreted_ns = median_ns(n, |i| {
-        let (q, v) = pick(i);
-        interpreted
-            .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
-            .unwrap()[0]
-    });
-    let hand_ns = median_ns(n, |i| {
-        let (q, v) = pick(i);
-        let (m, f) = hand_written(
-            &compiled,
-            black_box(0.01),
-            black_box(q),
-            black_box(v),
-            &inputs,
-        );
-        solve_mass_matrix(m, &f).unwrap()[0]
-    });
+    let ([hand_ns, compiled_ns, interpreted_ns], compiled_ratio, interpreted_ratio) = interleaved(
+        n,
+        |i| {
+            let (q, v) = pick(i);
+            let (m, f) = hand_written(
+                &compiled,
+                black_box(0.01),
+                black_box(q),
+                black_box(v),
+                &inputs,
+            );
+            solve_mass_matrix(m, &f).unwrap()[0]
+        },
+        |i| {
+            let (q, v) = pick(i);
+            compiled
+                .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
+                .unwrap()[0]
+        },
+        |i| {
+            let (q, v) = pick(i);
+            interpreted
+                .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
+                .unwrap()[0]
+        },
+    );
     let dynamics_ns = median_ns(n, |i| {
         let (q, v) = pick(i);
         compiled
@@ -181,17 +216,16 @@ fn main() {
             .energies(black_box(0.01), black_box(q), black_box(v), &inputs)
             .external_power
     });
-    println!("| implementation | q̈ = M⁻¹f (ns) | ratio to hand-written |");
+    println!(
+        "Batches of {n} calls taken in turn, 31 rounds; medians, and medians of paired ratios."
+    );
+    println!();
+    println!("| implementation | q̈ = M⁻¹f (ns) | ratio |");
     println!("|---|---|---|");
     println!("| hand-written | {hand_ns:.1} | 1.00 |");
+    println!("| compiled (lagrangian!) | {compiled_ns:.1} | {compiled_ratio:.2} × hand-written |");
     println!(
-        "| compiled (lagrangian!) | {compiled_ns:.1} | {:.2} |",
-        compiled_ns / hand_ns
-    );
-    println!(
-        "| interpreted (spec file) | {interpreted_ns:.1} | {:.2} ({:.2}× compiled) |",
-        interpreted_ns / hand_ns,
-        interpreted_ns / compiled_ns
+        "| interpreted (spec file) | {interpreted_ns:.1} | {interpreted_ratio:.2} × compiled |"
     );
     println!();
     println!("compiled M and f alone: {dynamics_ns:.1} ns; energies: {energies_ns:.1} ns");

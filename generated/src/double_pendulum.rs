@@ -113,10 +113,8 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         let theta2 = q[1];
         let theta1_dot = qd[0];
         let theta2_dot = qd[1];
-        let x0 = theta1.sin();
-        let x1 = theta1.cos();
-        let x2 = theta2.sin();
-        let x3 = theta2.cos();
+        let (x0, x1) = theta1.sin_cos();
+        let (x2, x3) = theta2.sin_cos();
         let x4 = x0 * x3 - x1 * x2;
         mass[(0, 0)] = l1 * ((m1 + m2) * l1);
         mass[(0, 1)] = m2 * l1 * l2 * (x1 * x3 + x0 * x2);
@@ -143,16 +141,16 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         let theta1_dot = qd[0];
         let theta2_dot = qd[1];
         let x0 = m1 + m2;
-        let x1 = theta1.cos();
-        let x2 = theta2.cos();
-        let x3 = m2 * l2;
+        let (x1, x2) = theta1.sin_cos();
+        let (x3, x4) = theta2.sin_cos();
+        let x5 = m2 * l2;
         ::lagrangian_model::Energies {
             kinetic: l1
                 * (theta1_dot
                     * (l1 * (x0 * theta1_dot * 0.5)
-                        + theta2_dot * ((x1 * x2 + theta1.sin() * theta2.sin()) * x3)))
+                        + theta2_dot * ((x2 * x4 + x1 * x3) * x5)))
                 + 0.5 * (m2 * (l2 * l2) * (theta2_dot * theta2_dot)),
-            potential: -(g * (l1 * (x0 * x1) + x2 * x3)),
+            potential: -(g * (l1 * (x0 * x2) + x4 * x5)),
             dissipation: 0.0,
             damping_power: 0.0,
             external_power: 0.0,
@@ -177,10 +175,8 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         let theta2 = q[1];
         let theta1_dot = qd[0];
         let theta2_dot = qd[1];
-        let x0 = theta1.sin();
-        let x1 = theta1.cos();
-        let x2 = theta2.sin();
-        let x3 = theta2.cos();
+        let (x0, x1) = theta1.sin_cos();
+        let (x2, x3) = theta2.sin_cos();
         let x4 = x0 * x3 - x1 * x2;
         mass[(0, 0)] = l1 * ((m1 + m2) * l1);
         mass[(0, 1)] = m2 * l1 * l2 * (x1 * x3 + x0 * x2);

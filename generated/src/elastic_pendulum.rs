@@ -157,17 +157,17 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let x0 = r + l0;
         let x1 = x0 - ls;
         let x2 = r_dot * cs;
-        let x3 = ls * 2.0 - x0;
+        let (x3, x4) = theta.sin_cos();
+        let x5 = ls * 2.0 - x0;
         mass[(0, 0)] = m;
         mass[(0, 1)] = 0.0;
         mass[(1, 0)] = mass[(0, 1)];
         mass[(1, 1)] = I_ + m * (x0 * x0);
-        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * theta.sin())
-            - (r * k + r_dot * c)
+        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * x3) - (r * k + r_dot * c)
             - theta * ((ks * x1 + x2) * theta + x1 * (cs * theta_dot));
         forcing[1] = x0
-            * (theta_dot * (cs * x3 - 2.0 * (m * r_dot))
-                + (theta * (ks * x3 - x2) - m * g * theta.cos()))
+            * (theta_dot * (cs * x5 - 2.0 * (m * r_dot))
+                + (theta * (ks * x5 - x2) - m * g * x4))
             + ls * (theta * (x2 - ks * ls) - cs * (ls * theta_dot));
     }
     fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
@@ -236,23 +236,23 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let x0 = r + l0;
         let x1 = x0 - ls;
         let x2 = r_dot * cs;
-        let x3 = ls * 2.0 - x0;
-        let x4 = r_dot * r_dot;
+        let (x3, x4) = theta.sin_cos();
+        let x5 = ls * 2.0 - x0;
+        let x6 = r_dot * r_dot;
         mass[(0, 0)] = m;
         mass[(0, 1)] = 0.0;
         mass[(1, 0)] = mass[(0, 1)];
         mass[(1, 1)] = I_ + m * (x0 * x0);
-        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * theta.sin())
-            - (r * k + r_dot * c)
+        forcing[0] = m * (x0 * (theta_dot * theta_dot) - g * x3) - (r * k + r_dot * c)
             - theta * ((ks * x1 + x2) * theta + x1 * (cs * theta_dot));
         forcing[1] = x0
-            * (theta_dot * (cs * x3 - 2.0 * (m * r_dot))
-                + (theta * (ks * x3 - x2) - m * g * theta.cos()))
+            * (theta_dot * (cs * x5 - 2.0 * (m * r_dot))
+                + (theta * (ks * x5 - x2) - m * g * x4))
             + ls * (theta * (x2 - ks * ls) - cs * (ls * theta_dot));
         [
             cs
                 * (theta_dot * (x1 * (x1 * theta_dot + 2.0 * (r_dot * theta)))
-                    + theta * theta * x4) + c * x4,
+                    + theta * theta * x6) + c * x6,
             0.0,
         ]
     }

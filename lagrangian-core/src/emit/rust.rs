@@ -12,6 +12,7 @@ use crate::program::{Op, Reg, Routine, RoutineKind};
 use proc_macro2::Literal;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{ToTokens, quote};
+use rustc_hash::FxHashMap;
 
 /// How generated code refers to its surroundings.
 #[derive(Clone, Debug)]
@@ -376,7 +377,48 @@ fn routine_body(
     let mut loads = Vec::new();
     let mut statements = Vec::new();
     let mut temporaries = 0usize;
+    // `sin x` and `cos x` of one argument are computed together by `sin_cos`.
+    let mut partner: FxHashMap<Reg, Reg> = FxHashMap::default();
+    {
+        let mut sines = FxHashMap::default();
+        let mut cosines = FxHashMap::default();
+        for &r in &routine.ops {
+            match ops[r as usize] {
+                Op::Sin(a) => sines.insert(a, r),
+                Op::Cos(a) => cosines.insert(a, r),
+                _ => None,
+            };
+        }
+        for (a, &sin) in &sines {
+            if let Some(&cos) = cosines.get(a) {
+                partner.insert(sin, cos);
+                partner.insert(cos, sin);
+            }
+        }
+    }
     for &r in &routine.ops {
+        if code[r as usize].is_some() {
+            continue; // the cosine or sine of a `sin_cos` pair
+        }
+        if let (Some(&other), Op::Sin(a) | Op::Cos(a)) = (partner.get(&r), &ops[r as usize]) {
+            let (sin, cos) = if matches!(ops[r as usize], Op::Sin(_)) {
+                (r, other)
+            } else {
+                (other, r)
+            };
+            let argument = code[*a as usize]
+                .clone()
+                .map_or(quote!(f64::NAN), |c| c.receiver());
+            let (s, c) = (
+                names.temporary(temporaries),
+                names.temporary(temporaries + 1),
+            );
+            temporaries += 2;
+            statements.push(quote! { let (#s, #c) = #argument.sin_cos(); });
+            code[sin as usize] = Some(Code::atom(quote!(#s)));
+            code[cos as usize] = Some(Code::atom(quote!(#c)));
+            continue;
+        }
         let get = |code: &[Option<Code>], x: &Reg| {
             code[*x as usize]
                 .clone()
