@@ -42,7 +42,7 @@ fn main() {
     if std::env::var("EMIT").is_ok() {
         println!(
             "{}",
-            lagrangian_core::emit::emit_file(&compiled, &Default::default(), "// header")
+            lagrangian_core::emit::emit_file(compiled, &Default::default(), "// header")
         );
     }
 }

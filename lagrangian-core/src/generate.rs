@@ -63,15 +63,17 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
             .map_err(|e| format!("cannot read {relative}: {e}"))?;
         let mut compiled =
             Compiled::from_source(&source).map_err(|e| e.render(relative, &source))?;
+        let equations = render_markdown(&mut compiled, relative);
+        let audit = audit::audit(&mut compiled);
         files.push(GeneratedFile {
             path: PathBuf::from(format!("generated/src/{stem}.rs")),
-            contents: emit_file(&compiled, &runtime(), &header(relative)),
+            contents: emit_file(compiled, &runtime(), &header(relative)),
         });
         files.push(GeneratedFile {
             path: PathBuf::from(format!("generated/{stem}/EQUATIONS.md")),
-            contents: render_markdown(&mut compiled, relative),
+            contents: equations,
         });
-        if let Some(report) = audit::audit(&mut compiled) {
+        if let Some(report) = audit {
             files.push(GeneratedFile {
                 path: PathBuf::from(format!("generated/{stem}/AUDIT.md")),
                 contents: audit::markdown(&report, relative),

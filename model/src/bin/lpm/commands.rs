@@ -56,7 +56,7 @@ pub fn derive(path: &Path, format: DeriveFormat, runtime: &str) -> Result<String
                 path.display(),
                 env!("CARGO_PKG_VERSION")
             );
-            Ok(emit_file(&compiled, &options, &header))
+            Ok(emit_file(compiled, &options, &header))
         }
     }
 }
