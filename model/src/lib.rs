@@ -12,6 +12,7 @@ mod interpreted;
 pub mod linalg;
 pub mod ode;
 pub mod plot;
+pub mod pulse;
 pub mod report;
 pub mod scenario;
 pub mod simulate;

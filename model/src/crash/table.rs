@@ -188,6 +188,25 @@ impl Table {
         })
     }
 
+    pub fn file(&self) -> &Path {
+        &self.file
+    }
+
+    /// The header cells as written (with their units).
+    pub fn headers(&self) -> &[String] {
+        &self.headers
+    }
+
+    /// The values of column `k` (a header's position).
+    pub fn column(&self, k: usize) -> &[f64] {
+        &self.columns[k]
+    }
+
+    /// The file line of data row `row`.
+    pub fn line(&self, row: usize) -> u64 {
+        self.lines.get(row).copied().unwrap_or(0)
+    }
+
     fn column_index(&self, name: &str) -> Result<usize, TableError> {
         self.headers
             .iter()

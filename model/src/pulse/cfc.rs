@@ -1,0 +1,227 @@
+//! SAE J211-1 channel frequency class (CFC) filtering.
+//!
+//! A two-pole Butterworth low-pass run forward and then backward over the
+//! signal (zero phase, four poles overall), with the coefficients of J211-1
+//! Appendix C for sample period `T`:
+//!
+//! ```text
+//! ω_d = 2π · CFC · 2.0775,   ω_a = tan(ω_d T / 2),   s = 1 + √2 ω_a + ω_a²
+//! a0 = ω_a² / s,   a1 = 2 a0,   a2 = a0
+//! b1 = −2 (ω_a² − 1) / s,   b2 = (−1 + √2 ω_a − ω_a²) / s
+//! y[n] = a0 x[n] + a1 x[n−1] + a2 x[n−2] + b1 y[n−1] + b2 y[n−2]
+//! ```
+//!
+//! The CFC number is not the −3 dB frequency: that lies near 5/3 · CFC.
+
+use std::f64::consts::SQRT_2;
+
+/// The standard channel classes of J211-1.
+pub const STANDARD_CLASSES: [f64; 4] = [60.0, 180.0, 600.0, 1000.0];
+
+/// Length of the padding at each end before filtering [s]. J211 asks for at
+/// least 10 ms of pre-test data; the padding stands in for it, and is made
+/// long enough that the start-up transient of the slowest class (CFC 60:
+/// poles with real part −554 s⁻¹) has decayed by e^−27 when the signal begins.
+const PADDING: f64 = 0.050;
+
+/// Why a signal cannot be filtered.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CfcError {
+    /// The sample period is not a positive finite number.
+    SamplePeriod(f64),
+    /// The class is not positive, or too high for the sample rate: the
+    /// design frequency 2.0775·CFC must stay below the Nyquist frequency.
+    Class { cfc: f64, sample_rate: f64 },
+}
+
+impl std::fmt::Display for CfcError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CfcError::SamplePeriod(dt) => {
+                write!(f, "sample period {dt} s is not a positive number")
+            }
+            CfcError::Class { cfc, sample_rate } => write!(
+                f,
+                "CFC {cfc} cannot be applied to a signal sampled at {sample_rate:.0} Hz \
+                 (needs 0 < 2.0775·CFC < half the sample rate; J211 recommends a sample \
+                 rate of at least 10 × CFC)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for CfcError {}
+
+/// The coefficients `[a0, a1, a2, b1, b2]` of one pass.
+pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(CfcError::SamplePeriod(dt));
+    }
+    let wd = 2.0 * std::f64::consts::PI * cfc * 2.0775;
+    if !(cfc > 0.0 && wd * dt < std::f64::consts::PI) {
+        return Err(CfcError::Class {
+            cfc,
+            sample_rate: 1.0 / dt,
+        });
+    }
+    let wa = (wd * dt / 2.0).tan();
+    let s = 1.0 + SQRT_2 * wa + wa * wa;
+    let a0 = wa * wa / s;
+    Ok([
+        a0,
+        2.0 * a0,
+        a0,
+        -2.0 * (wa * wa - 1.0) / s,
+        (-1.0 + SQRT_2 * wa - wa * wa) / s,
+    ])
+}
+
+/// `signal`, sampled every `dt` seconds, filtered to channel class `cfc`.
+///
+/// Both ends are padded by odd reflection (`2 x[0] − x[k]`, 50 ms or as much
+/// of the signal as there is), so that the filter starts and ends settled on
+/// the signal's level and slope instead of on zero.
+pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcError> {
+    let [a0, a1, a2, b1, b2] = coefficients(cfc, dt)?;
+    let n = signal.len();
+    if n < 2 {
+        return Ok(signal.to_vec());
+    }
+    let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
+    let (first, last) = (signal[0], signal[n - 1]);
+    let mut x: Vec<f64> = Vec::with_capacity(n + 2 * pad);
+    x.extend((1..=pad).rev().map(|k| 2.0 * first - signal[k]));
+    x.extend_from_slice(signal);
+    x.extend((1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]));
+    let pass = |x: &mut Vec<f64>| {
+        // Start at rest on the first value: y = x for a constant input.
+        let (mut x1, mut x2, mut y1, mut y2) = (x[0], x[0], x[0], x[0]);
+        for v in x.iter_mut() {
+            let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
+            x2 = x1;
+            x1 = *v;
+            y2 = y1;
+            y1 = y;
+            *v = y;
+        }
+    };
+    pass(&mut x);
+    x.reverse();
+    pass(&mut x);
+    x.reverse();
+    Ok(x[pad..pad + n].to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Gain (dB) of the filter on a sine of `f` Hz sampled at `rate`: the
+    /// amplitude in the middle half of a long record, by projection on the
+    /// sine and cosine of the input frequency.
+    fn measured_gain_db(cfc: f64, f: f64, rate: f64) -> f64 {
+        let dt = 1.0 / rate;
+        let periods = (20.0f64).max(f * 0.5);
+        let n = (periods / f / dt).ceil() as usize;
+        let w = 2.0 * std::f64::consts::PI * f;
+        let x: Vec<f64> = (0..n).map(|k| (w * k as f64 * dt).sin()).collect();
+        let y = cfc_filter(&x, dt, cfc).unwrap();
+        let (lo, hi) = (n / 4, 3 * n / 4);
+        let (mut s, mut c) = (0.0, 0.0);
+        for (k, y) in y.iter().enumerate().take(hi).skip(lo) {
+            s += y * (w * k as f64 * dt).sin();
+            c += y * (w * k as f64 * dt).cos();
+        }
+        let m = (hi - lo) as f64;
+        let amplitude = 2.0 * (s * s + c * c).sqrt() / m;
+        20.0 * amplitude.log10()
+    }
+
+    /// The response corridor of SAE J211-1 (1995) Figure 1 / ISO 6487 for a
+    /// channel of class CFC: F_H = CFC, F_N = 5/3·CFC. Limits in dB:
+    /// 0.1 Hz…F_H: ±0.5; at F_H: +0.5/−1; at F_N: +0.5/−4 (straight lines on
+    /// a log-frequency axis between F_H and F_N); beyond F_N the upper limit
+    /// falls at 9 dB/octave (to a floor of −30 dB) and the lower at 24 dB/octave.
+    fn corridor(cfc: f64, f: f64) -> (f64, f64) {
+        let (fh, fnn) = (cfc, cfc * 5.0 / 3.0);
+        if f <= fh {
+            (0.5, -0.5)
+        } else if f <= fnn {
+            let s = (f / fh).log2() / (fnn / fh).log2();
+            (0.5, -1.0 + s * (-4.0 + 1.0))
+        } else {
+            let octaves = (f / fnn).log2();
+            ((0.5 - 9.0 * octaves).max(-30.0), -4.0 - 24.0 * octaves)
+        }
+    }
+
+    #[test]
+    fn the_magnitude_response_lies_in_the_j211_corridor() {
+        for cfc in STANDARD_CLASSES {
+            // J211 asks for a sample rate of at least 10 × F_H... and the
+            // bilinear transform bends the response near Nyquist, so check
+            // up to 2·F_N with a rate of 20 × F_N (≥ 10 kHz).
+            let rate = (20.0 * cfc * 5.0 / 3.0).max(10_000.0);
+            let fnn = cfc * 5.0 / 3.0;
+            for f in [
+                0.1,
+                1.0,
+                0.1 * cfc,
+                0.5 * cfc,
+                cfc,
+                1.3 * cfc,
+                fnn,
+                1.5 * fnn,
+                2.0 * fnn,
+            ] {
+                if f < 1.0 && cfc > 60.0 {
+                    continue; // the 0.1 Hz point is the same for every class
+                }
+                let gain = measured_gain_db(cfc, f, rate);
+                let (upper, lower) = corridor(cfc, f);
+                assert!(
+                    gain <= upper + 1e-9 && gain >= lower - 1e-9,
+                    "CFC {cfc} at {f} Hz: {gain:.3} dB outside [{lower:.2}, {upper:.2}] dB"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_minus_3_db_point_is_near_five_thirds_of_the_class() {
+        // Analog four-pole response |H| = 1 / (1 + (f / 2.0775 CFC)^4): −3 dB
+        // at f = 2.0775 · CFC · (√2 − 1)^(1/4) = 1.6681 · CFC.
+        let f3 = 2.0775 * (SQRT_2 - 1.0).powf(0.25) * 60.0;
+        let gain = measured_gain_db(60.0, f3, 10_000.0);
+        assert!((gain + 3.0103).abs() < 0.02, "{gain}");
+    }
+
+    #[test]
+    fn constants_and_ramps_pass_unchanged() {
+        let dt = 1e-4;
+        let ramp: Vec<f64> = (0..2000).map(|k| 3.0 + 50.0 * k as f64 * dt).collect();
+        let y = cfc_filter(&ramp, dt, 60.0).unwrap();
+        let worst = ramp
+            .iter()
+            .zip(&y)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-8, "{worst}");
+    }
+
+    #[test]
+    fn a_class_too_high_for_the_sample_rate_is_refused() {
+        let e = cfc_filter(&[0.0; 10], 1e-3, 1000.0).unwrap_err();
+        assert_eq!(
+            e,
+            CfcError::Class {
+                cfc: 1000.0,
+                sample_rate: 1000.0
+            }
+        );
+        assert!(matches!(
+            cfc_filter(&[0.0; 10], 0.0, 60.0),
+            Err(CfcError::SamplePeriod(_))
+        ));
+    }
+}
