@@ -125,6 +125,18 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
     );
     let _ = writeln!(
         out,
+        "  CFC 60 peak, ESW       {}, {}",
+        value(s.peak_deceleration_cfc60_g, 1.0, "g", 1),
+        value(s.equivalent_square_wave_g, 1.0, "g", 1)
+    );
+    let _ = writeln!(
+        out,
+        "  OLC, ASI               {}, {}",
+        value(s.olc_g, 1.0, "g", 1),
+        value(s.asi, 1.0, "", 2).trim_end()
+    );
+    let _ = writeln!(
+        out,
         "  rebound velocity       {}",
         value(s.rebound_velocity_mps, 1.0, "m/s", 2)
     );

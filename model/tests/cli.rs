@@ -212,6 +212,10 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "peak_deceleration_g",
         "rebound_velocity_mps",
         "weld_failure_time_s",
+        "peak_deceleration_cfc60_g",
+        "equivalent_square_wave_g",
+        "olc_g",
+        "asi",
         "steps",
         "rejected_steps",
         "rhs_evaluations",
@@ -219,6 +223,14 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
     ];
     expected.sort();
     assert_eq!(keys, expected);
+    let number = |k: &str| summary[k].as_f64().unwrap();
+    // ESW = v0² / (2 g C) with the scenario's 15.5556 m/s and the run's crush.
+    let esw = 15.5556f64.powi(2) / (2.0 * 9.80665 * number("max_crush_m"));
+    assert!((number("equivalent_square_wave_g") / esw - 1.0).abs() < 1e-9);
+    // CFC 60 smooths the pulse but keeps its peak within a few per cent here.
+    let ratio = number("peak_deceleration_cfc60_g") / number("peak_deceleration_g");
+    assert!((0.85..1.05).contains(&ratio), "{ratio}");
+    assert!(number("olc_g") > 10.0 && number("asi") > 1.0, "{summary}");
     let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
     let header = csv.lines().next().unwrap();
     assert!(

@@ -7,6 +7,7 @@
 
 use super::Sample;
 use crate::ode::{Stats, hermite_weights};
+use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
 use crate::scenario::Scenario;
 use serde::Serialize;
 
@@ -25,6 +26,14 @@ pub struct Summary {
     /// Largest speed away from the barrier after the peak crush [m/s].
     pub rebound_velocity_mps: Option<f64>,
     pub weld_failure_time_s: Option<f64>,
+    /// Largest deceleration after SAE J211 CFC 60 filtering [g].
+    pub peak_deceleration_cfc60_g: Option<f64>,
+    /// `v0² / (2 g C)` with the maximum crush `C` [g].
+    pub equivalent_square_wave_g: Option<f64>,
+    /// Occupant load criterion (Euro NCAP) of the crush coordinate's pulse [g].
+    pub olc_g: Option<f64>,
+    /// Acceleration severity index (EN 1317-1), longitudinal component.
+    pub asi: Option<f64>,
     pub steps: usize,
     pub rejected_steps: usize,
     pub rhs_evaluations: usize,
@@ -80,6 +89,8 @@ pub struct Metrics {
     energy: Option<(f64, f64)>,
     energy_error: f64,
     previous: Option<CrushPoint>,
+    /// The crush rate of the first sample: the impact velocity.
+    first_rate: Option<f64>,
     /// The largest crush so far (the first of equals), its neighbours, and
     /// the value it was compared by (−∞ until a sample has a number).
     peak: Option<(CrushPoint, Option<CrushPoint>, Option<CrushPoint>)>,
@@ -90,6 +101,9 @@ pub struct Metrics {
     /// Largest speed away from the barrier since the peak.
     rebound: f64,
     pitch_extremes: Vec<f64>,
+    /// Time, crush and crush acceleration of every sample, for the pulse
+    /// metrics (filtering needs the whole record).
+    pulse: Vec<(f64, f64, f64)>,
 }
 
 impl Metrics {
@@ -115,8 +129,10 @@ impl Metrics {
             peak_value: f64::NEG_INFINITY,
             peak_index: 0,
             first_zero: None,
+            first_rate: None,
             deceleration: f64::NEG_INFINITY,
             rebound: 0.0,
+            pulse: Vec::new(),
         }
     }
 
@@ -143,6 +159,7 @@ impl Metrics {
                 rate: sign * s.v[k],
             };
             let index = self.samples;
+            self.first_rate.get_or_insert(point.rate);
             if let Some((_, _, after)) = &mut self.peak
                 && index == self.peak_index + 1
             {
@@ -166,6 +183,7 @@ impl Metrics {
                 self.first_zero = Some(p.t + f * (point.t - p.t));
             }
             self.deceleration = self.deceleration.max(-sign * s.a[k] / self.g);
+            self.pulse.push((s.t, point.crush, sign * s.a[k]));
             self.previous = Some(point);
         }
         self.samples += 1;
@@ -182,6 +200,10 @@ impl Metrics {
             peak_deceleration_g: None,
             rebound_velocity_mps: None,
             weld_failure_time_s: weld_failure,
+            peak_deceleration_cfc60_g: None,
+            equivalent_square_wave_g: None,
+            olc_g: None,
+            asi: None,
             steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
             rhs_evaluations: stats.rhs_evaluations,
@@ -194,8 +216,31 @@ impl Metrics {
             summary.time_to_zero_velocity_s = self.first_zero;
             summary.peak_deceleration_g = Some(self.deceleration);
             summary.rebound_velocity_mps = Some(self.rebound);
+            if let Some(pulse) = self.pulse_metrics() {
+                summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
+                summary.equivalent_square_wave_g = summary
+                    .max_crush_m
+                    .filter(|&c| c > 0.0)
+                    .map(|c| pulse.impact_velocity_mps.powi(2) / (2.0 * STANDARD_GRAVITY * c));
+                summary.olc_g = pulse.olc_g;
+                summary.asi = pulse.asi;
+            }
         }
         summary
+    }
+
+    /// The pulse metrics of the crush coordinate's samples (resampled onto
+    /// an even grid when events added samples between the output times);
+    /// `None` for fewer than 3 samples or a record the CFC 60 filter cannot
+    /// take (sampled slower than 250 Hz).
+    fn pulse_metrics(&self) -> Option<PulseMetrics> {
+        let t: Vec<f64> = self.pulse.iter().map(|p| p.0).collect();
+        let crush: Vec<f64> = self.pulse.iter().map(|p| p.1).collect();
+        let acceleration: Vec<f64> = self.pulse.iter().map(|p| p.2).collect();
+        let v0 = self.first_rate?;
+        Pulse::resampled(&t, &acceleration, v0, Some(&crush))
+            .and_then(|p| p.metrics())
+            .ok()
     }
 }
 

@@ -20,7 +20,7 @@ enum Metric {
 }
 
 /// The metrics of a summary in `summary.json` order.
-fn metrics(s: &Summary) -> [(&'static str, Metric); 12] {
+fn metrics(s: &Summary) -> [(&'static str, Metric); 16] {
     use Metric::{Count, Real};
     [
         ("max_crush_m", Real(s.max_crush_m)),
@@ -31,6 +31,13 @@ fn metrics(s: &Summary) -> [(&'static str, Metric); 12] {
         ("peak_deceleration_g", Real(s.peak_deceleration_g)),
         ("rebound_velocity_mps", Real(s.rebound_velocity_mps)),
         ("weld_failure_time_s", Real(s.weld_failure_time_s)),
+        (
+            "peak_deceleration_cfc60_g",
+            Real(s.peak_deceleration_cfc60_g),
+        ),
+        ("equivalent_square_wave_g", Real(s.equivalent_square_wave_g)),
+        ("olc_g", Real(s.olc_g)),
+        ("asi", Real(s.asi)),
         ("steps", Count(s.steps)),
         ("rejected_steps", Count(s.rejected_steps)),
         ("rhs_evaluations", Count(s.rhs_evaluations)),
@@ -50,6 +57,10 @@ const EMPTY: Summary = Summary {
     peak_deceleration_g: None,
     rebound_velocity_mps: None,
     weld_failure_time_s: None,
+    peak_deceleration_cfc60_g: None,
+    equivalent_square_wave_g: None,
+    olc_g: None,
+    asi: None,
     steps: 0,
     rejected_steps: 0,
     rhs_evaluations: 0,

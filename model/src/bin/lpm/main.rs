@@ -8,6 +8,7 @@
 mod audit;
 mod commands;
 mod generate;
+mod metrics;
 mod simulate;
 mod sweep;
 
@@ -169,6 +170,20 @@ enum Command {
         #[arg(long)]
         check: bool,
     },
+    /// Crash-pulse metrics of a pulse in a CSV file: CFC 60 peak, crush,
+    /// time to zero velocity, rebound, equivalent square wave, OLC, ASI.
+    ///
+    /// Columns (units in brackets): `t [s|ms]`, `acceleration [g|m/s^2]`
+    /// (forward positive, so negative in a frontal crash) or `deceleration
+    /// [g|m/s^2]`, and optionally `velocity [m/s|km/h]`, `crush [m|mm]`.
+    Metrics {
+        file: PathBuf,
+        /// Impact velocity [m/s], if the file has no velocity column.
+        #[arg(long, allow_negative_numbers = true)]
+        v0: Option<f64>,
+        #[arg(long, value_parser = ["text", "json"], default_value = "text")]
+        format: String,
+    },
     /// Print the spec of an N-link planar pendulum chain.
     Chain {
         /// Number of links.
@@ -191,6 +206,9 @@ fn main() -> ExitCode {
             time,
             set,
         } => commands::eval(&spec, &state, time, &set).map(success),
+        Command::Metrics { file, v0, format } => {
+            metrics::run(&file, v0, format == "json").map(success)
+        }
         Command::Chain { links } => commands::chain(links).map(success),
         Command::Generate { root, check } => generate::run(&root, check),
         Command::Audit { spec, format } => audit::run(&spec, format == "json")
