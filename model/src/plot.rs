@@ -17,7 +17,8 @@ pub struct PlotSetup {
     pub title: String,
 }
 
-type Series = (String, Vec<(f64, f64)>);
+/// A named line: `(x, y)` points.
+pub type Series = (String, Vec<(f64, f64)>);
 
 const COLORS: [RGBColor; 5] = [
     RGBColor(31, 119, 180),
@@ -169,6 +170,28 @@ fn panels_of(
         ));
     }
     panels
+}
+
+/// Panels of lines side by side, one row: `(title, x label, y label, lines)`.
+pub fn panels_svg(
+    title: &str,
+    panels: &[(String, String, String, Vec<Series>)],
+) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let width = 700 * panels.len().max(1) as u32;
+        let root = SVGBackend::with_string(&mut svg, (width, 500)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let root = root
+            .titled(title, ("sans-serif", 22))
+            .map_err(|e| e.to_string())?;
+        let areas = root.split_evenly((1, panels.len().max(1)));
+        for (area, (name, x_label, y_label, series)) in areas.iter().zip(panels) {
+            draw_panel(area, name, x_label, y_label, series).map_err(|e| e.to_string())?;
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
 }
 
 fn bounds(series: &[Series]) -> ((f64, f64), (f64, f64)) {

@@ -35,7 +35,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// The names a scenario is resolved against.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ModelNames {
     pub coordinates: Vec<String>,
     pub parameters: Vec<String>,
@@ -175,6 +175,21 @@ impl Scenario {
     /// A scenario with nothing but defaults (no file).
     pub fn defaults(names: &ModelNames, settings: &[String]) -> Result<Scenario, ScenarioError> {
         Scenario::parse("", None, names, settings)
+    }
+
+    /// The scenario document `text` with the dotted-key and parameter
+    /// `settings` applied (input constants are not part of the document).
+    pub fn document(
+        text: &str,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<toml::Table, String> {
+        let mut document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
+        let mut constants = BTreeMap::new();
+        for setting in settings {
+            apply_setting(&mut document, setting, names, &mut constants)?;
+        }
+        Ok(document)
     }
 
     /// Resolves scenario `text` (from `file`, which relative paths start from).

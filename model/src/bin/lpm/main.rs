@@ -7,6 +7,7 @@
 
 mod audit;
 mod commands;
+mod fit;
 mod generate;
 mod metrics;
 mod simulate;
@@ -170,6 +171,43 @@ enum Command {
         #[arg(long)]
         check: bool,
     },
+    /// Fit the crush characteristic (paper §2.1) or listed parameters to
+    /// target time histories by Levenberg–Marquardt; writes the fitted
+    /// scenario (fitted.toml), fit.json and an overlay plot fit.svg.
+    ///
+    /// The target CSV has `t [s|ms]` and any of `acceleration [g|m/s^2]`
+    /// (forward positive), `deceleration`, `velocity [m/s|km/h]`, `crush
+    /// [m|mm]` of the scenario's crush coordinate.
+    Fit {
+        /// The spec file (`.lpm`).
+        spec: PathBuf,
+        /// Target time histories (CSV with units in the header).
+        #[arg(long)]
+        target: PathBuf,
+        /// The scenario (TOML); by default the one beside the spec that names it.
+        #[arg(long)]
+        scenario: Option<PathBuf>,
+        /// What to fit, comma-separated: `stiffness`, `damping` (the crush
+        /// component's k1…k7, c1…c7), spec parameters, or dotted scenario
+        /// entries holding numbers (default: stiffness,damping).
+        #[arg(long, value_delimiter = ',')]
+        fit: Vec<String>,
+        /// A setting applied before fitting, as in `lpm simulate --set`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Output directory (default lpm-out/<spec name>-fit).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Number of starts (the scenario's values, then perturbations).
+        #[arg(long, default_value_t = 4)]
+        starts: usize,
+        /// Seed of the perturbed starts.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// No progress display.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Crash-pulse metrics of a pulse in a CSV file: CFC 60 peak, crush,
     /// time to zero velocity, rebound, equivalent square wave, OLC, ASI.
     ///
@@ -206,6 +244,28 @@ fn main() -> ExitCode {
             time,
             set,
         } => commands::eval(&spec, &state, time, &set).map(success),
+        Command::Fit {
+            spec,
+            target,
+            scenario,
+            fit,
+            set,
+            out,
+            starts,
+            seed,
+            quiet,
+        } => fit::run(fit::FitOptions {
+            spec,
+            target,
+            scenario,
+            fit,
+            settings: set,
+            out,
+            starts,
+            seed,
+            quiet,
+        })
+        .map(success),
         Command::Metrics { file, v0, format } => {
             metrics::run(&file, v0, format == "json").map(success)
         }

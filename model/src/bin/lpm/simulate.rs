@@ -23,7 +23,7 @@ pub struct SimulateOptions {
 }
 
 /// The scenario beside a spec: `<spec dir>/scenarios/*.toml` whose `spec` key names it.
-fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
+pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
     let Some(dir) = spec.parent().map(|d| d.join("scenarios")) else {
         return Ok(None);
     };

@@ -1,0 +1,425 @@
+//! The parameters a fit varies: `--fit` names resolved against the scenario
+//! and the model, the transforms that keep them feasible, and the settings
+//! that apply a set of values to the scenario.
+//!
+//! Names: `stiffness` / `damping` (the values k1…k7 / c1…c7 of the
+//! scenario's crush component; `front_end.stiffness` when there are several),
+//! a dotted scenario entry holding a number or a list of numbers
+//! (`components.front_end.unloading_stiffness`), or a spec parameter (`k_f`).
+//!
+//! Bounds by transform: a positive value is fitted as its logarithm (it
+//! stays positive: stiffness ≥ 0), a list named `…breakpoints` as the
+//! logarithms of its first value and its increments (it stays ordered),
+//! anything else as is.
+
+use crate::scenario::ModelNames;
+
+/// How an entry's value maps to the unconstrained variable of the fit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Transform {
+    /// `u = p`.
+    Identity,
+    /// `u = ln p` (p > 0).
+    Log,
+    /// `u = ln(p_i − p_{i−1})` (`ln p_0` for the first): an increasing list.
+    Increment,
+}
+
+/// One scalar the fit varies.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Entry {
+    /// Scenario key (`components.front_end.stiffness_values`) or parameter name.
+    pub key: String,
+    /// Position in the list, for list entries.
+    pub index: Option<usize>,
+    /// Name in reports (`front_end.k3`, `k_f`).
+    pub label: String,
+    pub transform: Transform,
+}
+
+/// A key and the values of everything at it (all entries of a list).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slot {
+    pub key: String,
+    pub is_list: bool,
+    pub base: Vec<f64>,
+}
+
+/// The fitted entries and the slots they live in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameters {
+    pub entries: Vec<Entry>,
+    pub slots: Vec<Slot>,
+}
+
+/// The crush components of a scenario document.
+fn crush_components(document: &toml::Table) -> Vec<String> {
+    document
+        .get("components")
+        .and_then(toml::Value::as_table)
+        .map(|c| {
+            c.iter()
+                .filter(|(_, v)| v.get("type").and_then(toml::Value::as_str) == Some("crush"))
+                .map(|(k, _)| k.clone())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn number(v: &toml::Value) -> Option<f64> {
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
+fn lookup<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let mut table = Some(document);
+    let mut value = None;
+    for part in key.split('.') {
+        value = table.and_then(|t| t.get(part));
+        table = value.and_then(toml::Value::as_table);
+    }
+    value
+}
+
+impl Parameters {
+    /// Resolves `names` against the scenario `document` and the model's
+    /// parameter names and defaults.
+    pub fn resolve(
+        names: &[String],
+        document: &toml::Table,
+        model: &ModelNames,
+        defaults: &[f64],
+    ) -> Result<Parameters, String> {
+        let mut parameters = Parameters {
+            entries: Vec::new(),
+            slots: Vec::new(),
+        };
+        for name in names {
+            let name = name.trim();
+            let short = |component: &str, what: &str| match what {
+                "stiffness" => Some((format!("components.{component}.stiffness_values"), "k")),
+                "damping" => Some((format!("components.{component}.damping_values"), "c")),
+                _ => None,
+            };
+            let crush = crush_components(document);
+            let resolved = if let Some(p) = model.parameters.iter().position(|p| p == name) {
+                let base = document
+                    .get("parameters")
+                    .and_then(|t| t.get(name))
+                    .and_then(number)
+                    .unwrap_or(defaults[p]);
+                parameters.push_scalar(name.to_string(), name.to_string(), base);
+                continue;
+            } else if name == "stiffness" || name == "damping" {
+                match crush.as_slice() {
+                    [one] => short(one, name).map(|(k, l)| (k, format!("{one}.{l}"))),
+                    [] => {
+                        return Err(format!(
+                            "--fit {name}: the scenario has no crush component (type = \"crush\")"
+                        ));
+                    }
+                    many => {
+                        return Err(format!(
+                            "--fit {name}: the scenario has several crush components ({}); name one, e.g. `{}.{name}`",
+                            many.join(", "),
+                            many[0]
+                        ));
+                    }
+                }
+            } else if let Some((component, what)) = name.split_once('.')
+                && crush.iter().any(|c| c == component)
+                && (what == "stiffness" || what == "damping")
+            {
+                short(component, what).map(|(k, l)| (k, format!("{component}.{l}")))
+            } else {
+                None
+            };
+            let (key, prefix) = resolved.unwrap_or_else(|| (name.to_string(), String::new()));
+            let value = lookup(document, &key).ok_or_else(|| {
+                let parameters = model.parameters.join(", ");
+                format!(
+                    "--fit {name}: not a spec parameter ({parameters}), `stiffness`, `damping`, or an entry of the scenario"
+                )
+            })?;
+            match value {
+                toml::Value::Array(items) => {
+                    let base: Vec<f64> = items
+                        .iter()
+                        .map(number)
+                        .collect::<Option<_>>()
+                        .ok_or_else(|| {
+                            format!("--fit {name}: `{key}` holds something other than numbers")
+                        })?;
+                    let ordered = key.ends_with("breakpoints");
+                    for (i, _) in base.iter().enumerate() {
+                        let label = if prefix.is_empty() {
+                            format!("{key}[{i}]")
+                        } else {
+                            format!("{prefix}{}", i + 1)
+                        };
+                        parameters.entries.push(Entry {
+                            key: key.clone(),
+                            index: Some(i),
+                            label,
+                            transform: if ordered {
+                                Transform::Increment
+                            } else if base[i] > 0.0 {
+                                Transform::Log
+                            } else {
+                                Transform::Identity
+                            },
+                        });
+                    }
+                    if ordered
+                        && (base.windows(2).any(|w| w[1] <= w[0])
+                            || base.first().is_some_and(|&b| b <= 0.0))
+                    {
+                        return Err(format!(
+                            "--fit {name}: `{key}` must be positive and increasing"
+                        ));
+                    }
+                    parameters.slots.push(Slot {
+                        key,
+                        is_list: true,
+                        base,
+                    });
+                }
+                other => {
+                    let base = number(other).ok_or_else(|| {
+                        format!("--fit {name}: `{key}` is not a number ({other})")
+                    })?;
+                    parameters.push_scalar(key.clone(), key, base);
+                }
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        if let Some(dup) = parameters
+            .entries
+            .iter()
+            .find(|e| !seen.insert(e.label.clone()))
+        {
+            return Err(format!("--fit: `{}` is named twice", dup.label));
+        }
+        if parameters.entries.is_empty() {
+            return Err("--fit: nothing to fit".into());
+        }
+        Ok(parameters)
+    }
+
+    fn push_scalar(&mut self, key: String, label: String, base: f64) {
+        self.entries.push(Entry {
+            key: key.clone(),
+            index: None,
+            label,
+            transform: if base > 0.0 {
+                Transform::Log
+            } else {
+                Transform::Identity
+            },
+        });
+        self.slots.push(Slot {
+            key,
+            is_list: false,
+            base: vec![base],
+        });
+    }
+
+    /// The physical values of the entries at the base scenario.
+    pub fn base_values(&self) -> Vec<f64> {
+        self.entries.iter().map(|e| self.slot_value(e)).collect()
+    }
+
+    fn slot_of(&self, entry: &Entry) -> &Slot {
+        self.slots
+            .iter()
+            .find(|s| s.key == entry.key)
+            .expect("every entry has its slot")
+    }
+
+    fn slot_value(&self, entry: &Entry) -> f64 {
+        self.slot_of(entry).base[entry.index.unwrap_or(0)]
+    }
+
+    /// The whole slot values with `values` (one per entry) put in place.
+    fn slot_values(&self, values: &[f64]) -> Vec<Vec<f64>> {
+        let mut out: Vec<Vec<f64>> = self.slots.iter().map(|s| s.base.clone()).collect();
+        for (entry, &v) in self.entries.iter().zip(values) {
+            let s = self
+                .slots
+                .iter()
+                .position(|s| s.key == entry.key)
+                .unwrap_or(0);
+            out[s][entry.index.unwrap_or(0)] = v;
+        }
+        out
+    }
+
+    /// Physical values → fit variables.
+    pub fn to_unconstrained(&self, values: &[f64]) -> Vec<f64> {
+        let full = self.slot_values(values);
+        self.entries
+            .iter()
+            .zip(values)
+            .map(|(e, &p)| match e.transform {
+                Transform::Identity => p,
+                Transform::Log => p.ln(),
+                Transform::Increment => {
+                    let s = self.slots.iter().position(|s| s.key == e.key).unwrap_or(0);
+                    let i = e.index.unwrap_or(0);
+                    let previous = if i == 0 { 0.0 } else { full[s][i - 1] };
+                    (p - previous).ln()
+                }
+            })
+            .collect()
+    }
+
+    /// Fit variables → physical values.
+    pub fn to_physical(&self, u: &[f64]) -> Vec<f64> {
+        let mut running = std::collections::HashMap::<&str, (usize, f64)>::new();
+        let mut out = Vec::with_capacity(u.len());
+        for (e, &x) in self.entries.iter().zip(u) {
+            out.push(match e.transform {
+                Transform::Identity => x,
+                Transform::Log => x.exp(),
+                Transform::Increment => {
+                    let i = e.index.unwrap_or(0);
+                    let slot = self.slot_of(e);
+                    let previous = match running.get(e.key.as_str()) {
+                        Some(&(j, v)) if j + 1 == i => v,
+                        _ if i == 0 => 0.0,
+                        _ => slot.base[i - 1],
+                    };
+                    let v = previous + x.exp();
+                    running.insert(&e.key, (i, v));
+                    v
+                }
+            });
+        }
+        out
+    }
+
+    /// `key=value` settings that put `values` (one per entry) into the scenario.
+    pub fn settings(&self, values: &[f64]) -> Vec<String> {
+        self.slots
+            .iter()
+            .zip(self.slot_values(values))
+            .map(|(slot, v)| {
+                if slot.is_list {
+                    let items: Vec<String> = v.iter().map(|x| format!("{x:?}")).collect();
+                    format!("{}=[{}]", slot.key, items.join(", "))
+                } else {
+                    format!("{}={:?}", slot.key, v[0])
+                }
+            })
+            .collect()
+    }
+
+    /// Writes `values` into the scenario document (for the fitted scenario file).
+    pub fn write_into(&self, document: &mut toml::Table, values: &[f64], model: &ModelNames) {
+        for (slot, v) in self.slots.iter().zip(self.slot_values(values)) {
+            let value = if slot.is_list {
+                toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+            } else {
+                toml::Value::Float(v[0])
+            };
+            let path: Vec<&str> = if model.parameters.contains(&slot.key) {
+                vec!["parameters", slot.key.as_str()]
+            } else {
+                slot.key.split('.').collect()
+            };
+            let mut table = &mut *document;
+            for part in &path[..path.len() - 1] {
+                let next = table
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                let toml::Value::Table(t) = next else {
+                    return;
+                };
+                table = t;
+            }
+            table.insert(path[path.len() - 1].to_string(), value);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names() -> ModelNames {
+        ModelNames {
+            parameters: vec!["m".into(), "k_f".into()],
+            ..Default::default()
+        }
+    }
+
+    const SCENARIO: &str = r#"
+        [parameters]
+        k_f = 3.0e4
+        [components.front_end]
+        type = "crush"
+        stiffness_breakpoints = [0.1, 0.3]
+        stiffness_values = [1.0e6, 2.0e6, 3.0e6]
+        damping_values = [1.0e3, 2.0e3, 3.0e3]
+    "#;
+
+    #[test]
+    fn names_resolve_to_entries_and_round_trip_through_the_transforms() {
+        let doc: toml::Table = SCENARIO.parse().unwrap();
+        let p = Parameters::resolve(
+            &[
+                "stiffness".into(),
+                "k_f".into(),
+                "m".into(),
+                "components.front_end.stiffness_breakpoints".into(),
+            ],
+            &doc,
+            &names(),
+            &[1000.0, 1.0],
+        )
+        .unwrap();
+        let labels: Vec<&str> = p.entries.iter().map(|e| e.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            [
+                "front_end.k1",
+                "front_end.k2",
+                "front_end.k3",
+                "k_f",
+                "m",
+                "components.front_end.stiffness_breakpoints[0]",
+                "components.front_end.stiffness_breakpoints[1]"
+            ]
+        );
+        let base = p.base_values();
+        assert_eq!(base, [1.0e6, 2.0e6, 3.0e6, 3.0e4, 1000.0, 0.1, 0.3]);
+        let u = p.to_unconstrained(&base);
+        let back = p.to_physical(&u);
+        for (a, b) in base.iter().zip(&back) {
+            assert!((a / b - 1.0).abs() < 1e-14, "{a} {b}");
+        }
+        // Any variables give increasing breakpoints.
+        let mut wild = u.clone();
+        wild[5] = 3.0;
+        wild[6] = -5.0;
+        let v = p.to_physical(&wild);
+        assert!(v[6] > v[5] && v[5] > 0.0);
+        assert_eq!(
+            p.settings(&base)[0],
+            "components.front_end.stiffness_values=[1000000.0, 2000000.0, 3000000.0]"
+        );
+        assert_eq!(p.settings(&base)[1], "k_f=30000.0");
+    }
+
+    #[test]
+    fn unknown_and_ambiguous_names_are_refused() {
+        let doc: toml::Table = SCENARIO.parse().unwrap();
+        let e = Parameters::resolve(&["stifness".into()], &doc, &names(), &[1.0, 1.0]).unwrap_err();
+        assert!(e.contains("not a spec parameter (m, k_f)"), "{e}");
+        let e = Parameters::resolve(&["k_f".into(), "k_f".into()], &doc, &names(), &[1.0, 1.0])
+            .unwrap_err();
+        assert_eq!(e, "--fit: `k_f` is named twice");
+        let none: toml::Table = "".parse().unwrap();
+        let e = Parameters::resolve(&["damping".into()], &none, &names(), &[1.0, 1.0]).unwrap_err();
+        assert!(e.contains("no crush component"), "{e}");
+    }
+}
