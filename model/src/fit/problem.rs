@@ -76,7 +76,8 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         let r0 = problem
             .residuals(&start)
             .map_err(|e| format!("the scenario's own values do not simulate: {e}"))?;
-        let columns = problem.jacobian_columns::<N>(&start, &r0);
+        let all: Vec<usize> = (0..start.len()).collect();
+        let columns = problem.columns::<N>(&start, &all, &r0);
         let norms: Vec<f64> = columns
             .iter()
             .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
@@ -176,9 +177,9 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         self.residuals_with::<N>(&system, full)
     }
 
-    /// `∂r/∂u_i` for every entry of the full vector, by forward differences,
-    /// the columns simulated in parallel.
-    fn jacobian_columns<const N: usize>(&self, full: &[f64], r: &[f64]) -> Vec<Vec<f64>>
+    /// `∂r/∂u_i` for the entries `indices` of the full vector `full`, by
+    /// forward differences, the columns simulated in parallel.
+    fn columns<const N: usize>(&self, full: &[f64], indices: &[usize], r: &[f64]) -> Vec<Vec<f64>>
     where
         S: LagrangianSystem<N>,
     {
@@ -188,35 +189,10 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
                 .unwrap_or_else(|e| e.into_inner())
                 .clone()
         };
-        (0..full.len())
-            .into_par_iter()
-            .map_init(copy, |system, i| {
-                let mut u = full.to_vec();
-                u[i] += STEP;
-                match self.residuals_with::<N>(system, &u) {
-                    Ok(shifted) => shifted.iter().zip(r).map(|(a, b)| (a - b) / STEP).collect(),
-                    Err(_) => vec![0.0; r.len()],
-                }
-            })
-            .collect()
-    }
-
-    /// The Jacobian with respect to the free variables (rows: residuals).
-    pub fn jacobian<const N: usize>(&self, u: &[f64], r: &[f64]) -> Vec<Vec<f64>>
-    where
-        S: LagrangianSystem<N>,
-    {
-        let full = self.full(u);
-        let copy = || {
-            self.prototype
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .clone()
-        };
-        self.free
+        indices
             .par_iter()
             .map_init(copy, |system, &i| {
-                let mut shifted = full.clone();
+                let mut shifted = full.to_vec();
                 shifted[i] += STEP;
                 match self.residuals_with::<N>(system, &shifted) {
                     Ok(s) => s.iter().zip(r).map(|(a, b)| (a - b) / STEP).collect(),
@@ -224,6 +200,14 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
                 }
             })
             .collect()
+    }
+
+    /// The Jacobian with respect to the free variables, one column each.
+    pub fn jacobian<const N: usize>(&self, u: &[f64], r: &[f64]) -> Vec<Vec<f64>>
+    where
+        S: LagrangianSystem<N>,
+    {
+        self.columns::<N>(&self.full(u), &self.free, r)
     }
 
     /// Residuals at free variables `u`.
