@@ -92,6 +92,14 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         Ok(problem)
     }
 
+    /// A copy of the model for one thread (models keep scratch space).
+    fn system(&self) -> S {
+        self.prototype
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
     pub fn parameters(&self) -> &super::Parameters {
         &self.setup.parameters
     }
@@ -114,11 +122,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     where
         S: LagrangianSystem<N>,
     {
-        let system = self
-            .prototype
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone();
+        let system = self.system();
         self.channels_with::<N>(&system, values)
     }
 
@@ -169,11 +173,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     where
         S: LagrangianSystem<N>,
     {
-        let system = self
-            .prototype
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone();
+        let system = self.system();
         self.residuals_with::<N>(&system, full)
     }
 
@@ -183,12 +183,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     where
         S: LagrangianSystem<N>,
     {
-        let copy = || {
-            self.prototype
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .clone()
-        };
+        let copy = || self.system();
         indices
             .par_iter()
             .map_init(copy, |system, &i| {
