@@ -2,6 +2,7 @@
 //! per step: the allocation count of a run does not grow with its length.
 
 use lagrangian::LagrangianSystem;
+use lagrangian::fault::Fault;
 use lagrangian::nalgebra::Vector3;
 use lagrangian::ode::{OdeProblem, Options, PhaseState, SolverError, dopri5};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -47,9 +48,12 @@ impl OdeProblem<PhaseState<3>> for Problem {
         let a = self
             .0
             .accelerations(t, &y.q, &y.v, &inputs)
-            .map_err(|e| SolverError::Rhs {
+            .map_err(|_| SolverError::Rhs {
                 t,
-                message: e.to_string(),
+                fault: Fault::SingularMassMatrix {
+                    q: y.q.as_slice().to_vec(),
+                    qd: y.v.as_slice().to_vec(),
+                },
             })?;
         let e = self.0.energies(t, &y.q, &y.v, &inputs);
         *dy = PhaseState {

@@ -8,6 +8,7 @@
 //!   force tables) reach a model.
 
 pub mod crash;
+pub mod fault;
 pub mod fit;
 mod interpreted;
 pub mod linalg;

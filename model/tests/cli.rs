@@ -265,7 +265,7 @@ fn simulate_rejects_unknown_names_with_suggestions() {
         "--set",
         "k9=1",
     ]);
-    assert_eq!(typo.status.code(), Some(2));
+    assert_eq!(typo.status.code(), Some(4), "a scenario error");
     assert!(
         stderr(&typo).contains("`k9` does not exist in the spec; did you mean `k1`?"),
         "{}",
@@ -279,9 +279,10 @@ fn simulate_rejects_unknown_names_with_suggestions() {
         "--set",
         "components.front_end.unloding=\"elastic\"",
     ]);
-    assert_eq!(key.status.code(), Some(2));
+    assert_eq!(key.status.code(), Some(4));
     assert!(
-        stderr(&key).contains("unknown field `unloding`"),
+        stderr(&key).contains("unknown field `unloding`")
+            && stderr(&key).contains("(did you mean `unloading`?)"),
         "{}",
         stderr(&key)
     );
@@ -293,7 +294,7 @@ fn simulate_rejects_unknown_names_with_suggestions() {
         "--set",
         "simulation.rtol=-1",
     ]);
-    assert_eq!(method.status.code(), Some(2));
+    assert_eq!(method.status.code(), Some(4));
     assert!(
         !out.join("summary.json").exists(),
         "nothing written on failure"
@@ -337,7 +338,11 @@ fn simulate_runs_a_spec_without_a_scenario_given_constants() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(missing.status.code(), Some(4));
+    assert_eq!(
+        missing.status.code(),
+        Some(17),
+        "a component without a value"
+    );
     assert!(
         stderr(&missing).contains("input function `push` has no value"),
         "{}",

@@ -143,7 +143,7 @@ fn fit_errors_name_the_problem() {
         bad.to_str().unwrap(),
         "--quiet",
     ]);
-    assert_eq!(run.status.code(), Some(2));
+    assert_eq!(run.status.code(), Some(7), "a data-file error");
     assert!(
         stderr(&run).contains("column `deceleration` needs a unit"),
         "{}",

@@ -182,7 +182,7 @@ fn a_failed_run_is_a_row_not_the_end_of_the_sweep() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains("1 failed"));
     let (header, rows) = read_csv(&out);
-    assert_eq!(cell(&header, &rows[0], "status"), "failed");
+    assert_eq!(cell(&header, &rows[0], "status"), "max_steps");
     assert!(cell(&header, &rows[0], "error").contains("more than 3 steps"));
     assert_eq!(cell(&header, &rows[0], "max_crush_m"), "");
     assert_eq!(cell(&header, &rows[1], "status"), "ok");
@@ -193,9 +193,23 @@ fn bad_sweeps_are_refused_before_any_run() {
     let dir = temporary("bad");
     let out = dir.join("x.csv");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 8] = [
-        (&["--grid", "k_one=1,2"], "k_one"),
-        (&["--grid", "simulation.rtool=1e-6,1e-8"], "rtool"),
+    // Keys the scenario does not know: status 4, with a suggestion.
+    let cases: [(&[&str], &str); 2] = [
+        (
+            &["--grid", "kk1=1,2"],
+            "`kk1` does not exist in the spec; did you mean `k1`?",
+        ),
+        (
+            &["--grid", "simulation.rtool=1e-6,1e-8"],
+            "unknown field `rtool`, expected one of `t_end`, `method`, `rtol`, `atol`, `max_step`, `step`, `output_interval`, `max_steps` (did you mean `rtol`?)",
+        ),
+    ];
+    for (args, expected) in cases {
+        let o = lpm(&[&["sweep", SCENARIO, "--quiet", "--out", out][..], args].concat());
+        assert_eq!(o.status.code(), Some(4), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expected), "{args:?}: {}", stderr(&o));
+    }
+    let cases: [(&[&str], &str); 6] = [
         (
             &["--grid", "components.front_end.unloading*=2,3"],
             "a number or a list of numbers",
@@ -223,5 +237,134 @@ fn bad_sweeps_are_refused_before_any_run() {
     assert!(
         !dir.join("x.csv").exists(),
         "nothing is written when the sweep is refused"
+    );
+}
+
+/// The arguments of a sweep long enough to interrupt (the full 150 ms crash).
+fn long_sweep(out: &std::path::Path, runs: usize) -> Vec<String> {
+    [
+        "sweep",
+        SCENARIO,
+        "--quiet",
+        "--threads",
+        "2",
+        "--grid",
+        &format!("k1=20000:80000:{runs}"),
+        "--out",
+        out.to_str().unwrap(),
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}
+
+fn lpm_owned(args: &[String]) -> Output {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    lpm(&args)
+}
+
+#[test]
+fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
+    let dir = temporary("resume");
+    let full = dir.join("full.csv");
+    let o = lpm_owned(&long_sweep(&full, 40));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let complete = std::fs::read_to_string(&full).unwrap();
+    // What a kill leaves: the header, some rows, half of the next row.
+    let out = dir.join("cut.csv");
+    let journal = dir.join("cut.csv.partial");
+    let lines: Vec<&str> = complete.split_inclusive('\n').collect();
+    let mut cut: String = lines[..14].concat();
+    cut.push_str(&lines[14][..lines[14].len() / 2]);
+    std::fs::write(&journal, &cut).unwrap();
+    // Without --resume the journal is not overwritten.
+    let refused = lpm_owned(&long_sweep(&out, 40));
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(
+        stderr(&refused).contains("--resume"),
+        "{}",
+        stderr(&refused)
+    );
+    assert_eq!(std::fs::read_to_string(&journal).unwrap(), cut);
+    let mut resume = long_sweep(&out, 40);
+    resume.push("--resume".into());
+    let o = lpm_owned(&resume);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("(13 from the journal, 27 now)"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), complete);
+    assert!(!journal.exists());
+    // Nothing left to resume.
+    let o = lpm_owned(&resume);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("is complete"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_journal_of_another_sweep_is_not_resumed() {
+    let dir = temporary("other");
+    let first = dir.join("a.csv");
+    assert!(lpm_owned(&long_sweep(&first, 6)).status.success());
+    let text = std::fs::read_to_string(&first).unwrap();
+    let out = dir.join("b.csv");
+    std::fs::write(dir.join("b.csv.partial"), &text).unwrap();
+    // Same columns, other values (7 runs instead of 6 along k1).
+    let mut resume = long_sweep(&out, 7);
+    resume.push("--resume".into());
+    let o = lpm_owned(&resume);
+    assert_eq!(o.status.code(), Some(7), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("b.csv.partial:3: run 1 with values [32000.0] is not run 1 of this sweep (values [30000.0])"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn sigterm_stops_a_sweep_that_resume_then_finishes() {
+    let dir = temporary("sigterm");
+    let full = dir.join("full.csv");
+    let out = dir.join("stopped.csv");
+    let journal = dir.join("stopped.csv.partial");
+    let args = long_sweep(&out, 600);
+    let child = Command::new(env!("CARGO_BIN_EXE_lpm"))
+        .args(&args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait for some rows, then ask it to stop as `kill` does.
+    let rows = || std::fs::read_to_string(&journal).map_or(0, |t| t.lines().count());
+    let start = std::time::Instant::now();
+    while rows() < 20 && start.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let kill = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let o = child.wait_with_output().unwrap();
+    if o.status.success() {
+        // It finished before the signal arrived: nothing to test on this host.
+        return;
+    }
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
+    assert!(!out.exists(), "no half table under the output's name");
+    let kept = rows() - 1;
+    assert!(kept >= 19 && kept < 600, "{kept} rows kept");
+    let mut resume = args.clone();
+    resume.push("--resume".into());
+    let o = lpm_owned(&resume);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(lpm_owned(&long_sweep(&full, 600)).status.success());
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        std::fs::read_to_string(&full).unwrap()
     );
 }

@@ -8,6 +8,7 @@ pub mod table;
 pub mod weld;
 
 use crate::InputFunctions;
+use crate::fault::Fault;
 use crate::ode::Direction;
 use crush::CrushElement;
 use curve::{Curve, OutOfRange};
@@ -127,7 +128,7 @@ pub struct BoundInputs {
     pub event_arguments: Vec<Option<(usize, usize)>>,
     /// The input names, for messages.
     pub input_names: Vec<String>,
-    failure: RefCell<Option<String>>,
+    failure: RefCell<Option<Fault>>,
 }
 
 impl BoundInputs {
@@ -147,14 +148,14 @@ impl BoundInputs {
     }
 
     /// The first failure since the last call, which clears it.
-    pub fn take_failure(&self) -> Option<String> {
+    pub fn take_failure(&self) -> Option<Fault> {
         self.failure.borrow_mut().take()
     }
 
-    fn fail(&self, message: String) -> f64 {
+    fn fail(&self, fault: Fault) -> f64 {
         let mut slot = self.failure.borrow_mut();
         if slot.is_none() {
-            *slot = Some(message);
+            *slot = Some(fault);
         }
         f64::NAN
     }
@@ -162,7 +163,7 @@ impl BoundInputs {
     /// Puts every component in its initial state for a run that starts
     /// with the model's input arguments `arguments` (crush elements in
     /// contact or not, welds intact).
-    pub fn start(&mut self, arguments: &[f64]) -> Result<(), String> {
+    pub fn start(&mut self, arguments: &[f64]) -> Result<(), Fault> {
         for c in 0..self.components.len() {
             let args = self.event_arguments[c].map(|(start, len)| &arguments[start..start + len]);
             let result = match (&mut self.components[c].element, args) {
@@ -175,7 +176,7 @@ impl BoundInputs {
                 }
                 _ => Ok(()),
             };
-            result.map_err(|e| self.out_of_range(c, e))?;
+            result.map_err(|e| self.out_of_range(c, None, e))?;
         }
         Ok(())
     }
@@ -218,7 +219,7 @@ impl BoundInputs {
     }
 
     /// All event functions, given the model's input arguments at one state.
-    pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), String> {
+    pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), Fault> {
         let mut offset = 0;
         for (c, component) in self.components.iter().enumerate() {
             let Some((start, len)) = self.event_arguments[c] else {
@@ -231,7 +232,7 @@ impl BoundInputs {
                 Element::Weld(w) => w.events(args, &mut g[offset..offset + n]),
                 _ => Ok(()),
             };
-            result.map_err(|e| self.out_of_range(c, e))?;
+            result.map_err(|e| self.out_of_range(c, None, e))?;
             offset += n;
         }
         Ok(())
@@ -243,9 +244,9 @@ impl BoundInputs {
         k: usize,
         t: f64,
         arguments: &[f64],
-    ) -> Result<(String, String), String> {
+    ) -> Result<(String, String), Fault> {
         let Some((c, local)) = self.event(k) else {
-            return Err(format!("no event {k}"));
+            return Err(Fault::Component(format!("no event {k}")));
         };
         let (start, len) = self.event_arguments[c].unwrap_or((0, 0));
         let args = &arguments[start..start + len];
@@ -257,14 +258,17 @@ impl BoundInputs {
         };
         result
             .map(|d| (name, d))
-            .map_err(|e| self.out_of_range(c, e))
+            .map_err(|e| self.out_of_range(c, None, e))
     }
 
-    fn out_of_range(&self, component: usize, e: OutOfRange) -> String {
-        format!(
-            "component `{}` evaluated at {} outside its table [{}, {}] (policy `error`)",
-            self.components[component].name, e.x, e.min, e.max
-        )
+    fn out_of_range(&self, component: usize, input: Option<usize>, e: OutOfRange) -> Fault {
+        Fault::OutOfRange {
+            component: self.components[component].name.clone(),
+            input: input.map(|i| self.input_names[i].clone()),
+            x: e.x,
+            min: e.min,
+            max: e.max,
+        }
     }
 
     /// The compression sign of the crush element whose force input `input`
@@ -293,7 +297,7 @@ impl InputFunctions for BoundInputs {
     fn value(&self, input: usize, args: &[f64]) -> f64 {
         let Some(Some(binding)) = self.bindings.get(input) else {
             let name = self.input_names.get(input).map_or("?", String::as_str);
-            return self.fail(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE"));
+            return self.fail(Fault::Component(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE")));
         };
         let component = &self.components[binding.component];
         if let Some((needed, _)) = component.element.arguments()
@@ -302,25 +306,18 @@ impl InputFunctions for BoundInputs {
             // The scenario checks this where it knows the input's arguments;
             // a compiled model does not tell them for inputs only its
             // Jacobians call.
-            return self.fail(format!(
+            return self.fail(Fault::Component(format!(
                 "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
                 self.input_names[input],
                 args.len(),
                 if args.len() == 1 { "" } else { "s" },
                 component.element.kind(),
                 component.name
-            ));
+            )));
         }
         match component.element.value(binding.port, args) {
             Ok(v) => v,
-            Err(e) => {
-                let message = format!(
-                    "input `{}`: {}",
-                    self.input_names[input],
-                    self.out_of_range(binding.component, e)
-                );
-                self.fail(message)
-            }
+            Err(e) => self.fail(self.out_of_range(binding.component, Some(input), e)),
         }
     }
 }
@@ -356,10 +353,11 @@ mod tests {
         );
         assert!(inputs.value(0, &[0.1]).is_nan());
         assert_eq!(
-            inputs.take_failure().as_deref(),
-            Some(
+            inputs.take_failure(),
+            Some(Fault::Component(
                 "input `crush_stiffness` is called with 1 argument, but crush component `front_end` needs 2"
-            )
+                    .to_string()
+            ))
         );
     }
 }

@@ -24,6 +24,7 @@ pub use events::{Direction, EventAction};
 pub use hermite::{Hermite, hermite_weights};
 pub use vector::{OdeVector, PhaseState};
 
+use crate::fault::Fault;
 use std::fmt;
 
 /// The problem `y' = F(t, y)` with optional events.
@@ -111,8 +112,9 @@ pub enum SolverError {
     MaxSteps { t: f64, steps: usize },
     /// The right-hand side or an event function produced NaN or ±∞.
     NonFinite { t: f64, what: String },
-    /// The right-hand side could not be evaluated (e.g. singular mass matrix).
-    Rhs { t: f64, message: String },
+    /// The right-hand side could not be evaluated: a singular mass matrix,
+    /// a non-finite value, a table read outside its range.
+    Rhs { t: f64, fault: Fault },
     /// Newton's method did not converge, and the steps it was retried with
     /// fell below `Options::min_step`.
     NewtonFailure { t: f64, h: f64 },
@@ -136,7 +138,7 @@ impl fmt::Display for SolverError {
                 write!(f, "more than {steps} steps before t = {t:e} s")
             }
             SolverError::NonFinite { t, what } => write!(f, "{what} is not finite at t = {t:e} s"),
-            SolverError::Rhs { t, message } => write!(f, "at t = {t:e} s: {message}"),
+            SolverError::Rhs { t, fault } => write!(f, "at t = {t:e} s: {fault}"),
             SolverError::NewtonFailure { t, h } => {
                 write!(
                     f,

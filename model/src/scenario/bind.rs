@@ -10,11 +10,10 @@ use crate::crash::weld::Weld;
 use crate::crash::{Binding, BoundInputs, Component, Element, Port};
 use std::collections::BTreeMap;
 use std::fmt;
-use std::path::Path;
 
 pub(super) fn bind_components(
     sections: &BTreeMap<String, ComponentSection>,
-    base: &Path,
+    tables: &BTreeMap<String, Table>,
     names: &ModelNames,
     constants: BTreeMap<String, f64>,
 ) -> Result<BoundInputs, String> {
@@ -128,14 +127,15 @@ pub(super) fn bind_components(
                 element
             }
             ComponentSection::Table {
-                file,
                 time_column,
                 columns,
                 outside: policy,
+                ..
             } => {
                 let policy = outside(&format!("components.{name}"), policy)?;
-                let table =
-                    Table::load(&base.join(file)).map_err(|e| format!("components.{name}: {e}"))?;
+                let table = tables
+                    .get(name)
+                    .ok_or_else(|| format!("components.{name}: its table was not loaded"))?;
                 for (input, column) in columns {
                     let curve = table
                         .curve(time_column, column, policy)

@@ -23,6 +23,8 @@ mod overrides;
 mod resolve;
 
 use crate::crash::BoundInputs;
+use crate::crash::curve::Outside;
+use crate::crash::table::Table;
 use crate::ode::Options;
 use crate::{InterpretedModel, LagrangianSystem};
 use file::File;
@@ -115,19 +117,48 @@ impl Method {
     }
 }
 
+/// What is wrong with a scenario.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ScenarioErrorKind {
+    /// The scenario file cannot be read.
+    Unreadable,
+    /// A key, a value or a setting that does not fit the format or the spec.
+    Invalid,
+    /// A data file it names (a CSV table) cannot be read or is malformed.
+    DataFile,
+}
+
 /// A scenario that does not fit its spec, or a file that cannot be read.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScenarioError {
+    pub kind: ScenarioErrorKind,
     pub file: Option<PathBuf>,
+    /// `(line, column)` in the file, both from 1, where the parser knows it.
+    pub location: Option<(usize, usize)>,
     pub message: String,
+}
+
+impl ScenarioError {
+    fn invalid(file: Option<&Path>, message: String) -> ScenarioError {
+        ScenarioError {
+            kind: ScenarioErrorKind::Invalid,
+            file: file.map(Path::to_path_buf),
+            location: None,
+            message,
+        }
+    }
 }
 
 impl fmt::Display for ScenarioError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.file {
-            Some(file) => write!(f, "{}: {}", file.display(), self.message),
-            None => write!(f, "{}", self.message),
+        if let Some(file) = &self.file {
+            write!(f, "{}:", file.display())?;
+            if let Some((line, column)) = self.location {
+                write!(f, "{line}:{column}:")?;
+            }
+            f.write_str(" ")?;
         }
+        f.write_str(&self.message)
     }
 }
 
@@ -166,7 +197,9 @@ impl Scenario {
         settings: &[String],
     ) -> Result<Scenario, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
+            kind: ScenarioErrorKind::Unreadable,
             file: Some(path.to_path_buf()),
+            location: None,
             message: format!("cannot read: {e}"),
         })?;
         Scenario::parse(&text, Some(path), names, settings)
@@ -204,33 +237,95 @@ impl Scenario {
         names: &ModelNames,
         settings: &[String],
     ) -> Result<Scenario, ScenarioError> {
-        let error = |message: String| ScenarioError {
-            file: file.map(Path::to_path_buf),
-            message,
-        };
+        let error = |message: String| ScenarioError::invalid(file, message);
         let mut document: toml::Table = text
             .parse()
-            .map_err(|e: toml::de::Error| error(e.to_string()))?;
+            .map_err(|e: toml::de::Error| toml_error(file, text, &e))?;
         let mut constants = BTreeMap::new();
         for setting in settings {
-            apply_setting(&mut document, setting, names, &mut constants).map_err(|m| {
-                ScenarioError {
-                    file: None,
-                    message: m,
-                }
-            })?;
+            apply_setting(&mut document, setting, names, &mut constants)
+                .map_err(|m| ScenarioError::invalid(None, m))?;
         }
-        let parsed: File = document
-            .try_into()
-            .map_err(|e: toml::de::Error| error(e.to_string()))?;
+        let parsed: File = document.try_into().map_err(|e: toml::de::Error| {
+            // The document has no positions; the text has them when the
+            // problem is in the file rather than in a setting.
+            match toml::from_str::<File>(text) {
+                Err(located) if located.message() == e.message() => {
+                    toml_error(file, text, &located)
+                }
+                _ => error(with_suggestion(e.message())),
+            }
+        })?;
         let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
-        resolve(parsed, base, names, constants)
+        let tables = load_tables(&parsed.components, base).map_err(|message| ScenarioError {
+            kind: ScenarioErrorKind::DataFile,
+            ..error(message)
+        })?;
+        resolve(parsed, base, names, constants, &tables)
             .map_err(error)
             .map(|mut s| {
                 s.file = file.map(Path::to_path_buf);
                 s
             })
     }
+}
+
+/// Reads every table a scenario's components name, and checks that the
+/// columns it names are there, before anything is bound.
+fn load_tables(
+    components: &BTreeMap<String, file::ComponentSection>,
+    base: &Path,
+) -> Result<BTreeMap<String, Table>, String> {
+    let mut tables = BTreeMap::new();
+    for (name, section) in components {
+        if let file::ComponentSection::Table {
+            file,
+            time_column,
+            columns,
+            ..
+        } = section
+        {
+            let table =
+                Table::load(&base.join(file)).map_err(|e| format!("components.{name}: {e}"))?;
+            for column in columns.values() {
+                table
+                    .curve(time_column, column, Outside::Hold)
+                    .map_err(|e| format!("components.{name}: {e}"))?;
+            }
+            tables.insert(name.clone(), table);
+        }
+    }
+    Ok(tables)
+}
+
+/// A TOML error at its `line:column` in `text`, with a suggestion for a
+/// misspelt key or value.
+fn toml_error(file: Option<&Path>, text: &str, e: &toml::de::Error) -> ScenarioError {
+    let location = e.span().map(|span| {
+        let before = &text[..span.start.min(text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        (line, column)
+    });
+    ScenarioError {
+        location,
+        ..ScenarioError::invalid(file, with_suggestion(e.message()))
+    }
+}
+
+/// serde's "unknown field `x`, expected one of `a`, `b`" on one line, with
+/// "did you mean `a`?" when one of the expected names is close.
+fn with_suggestion(message: &str) -> String {
+    let message = message.trim().replace('\n', " ");
+    let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
+    let unknown = message.starts_with("unknown field") || message.starts_with("unknown variant");
+    if unknown
+        && let Some((wanted, expected)) = quoted.split_first()
+        && let Some(best) = lagrangian_core::diagnostic::closest(wanted, expected.iter().copied())
+    {
+        return format!("{message} (did you mean `{best}`?)");
+    }
+    message
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use super::bind::bind_components;
 use super::file::{ComponentSection, File};
 use super::{Method, ModelNames, Scenario};
 use crate::crash::curve::Outside;
+use crate::crash::table::Table;
 use crate::ode::Options;
 use lagrangian_core::diagnostic::closest;
 use std::collections::BTreeMap;
@@ -91,6 +92,7 @@ pub(super) fn resolve(
     base: &Path,
     names: &ModelNames,
     constants: BTreeMap<String, f64>,
+    tables: &BTreeMap<String, Table>,
 ) -> Result<Scenario, String> {
     let s = &file.simulation;
     let method = Method::parse(&s.method).ok_or_else(|| {
@@ -184,7 +186,7 @@ pub(super) fn resolve(
     if let Some(weld) = &file.metrics.weld {
         check_weld_metric(weld, &file.components)?;
     }
-    let inputs = bind_components(&file.components, base, names, constants)?;
+    let inputs = bind_components(&file.components, tables, names, constants)?;
     Ok(Scenario {
         file: None,
         spec: file.spec.as_ref().map(|s| base.join(s)),

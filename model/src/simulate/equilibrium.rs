@@ -3,6 +3,7 @@
 
 use super::{CrashProblem, SimulationError};
 use crate::LagrangianSystem;
+use crate::ode::SolverError;
 use nalgebra::{DMatrix, DVector, SVector};
 
 /// Solves `f_i(q, 0, t) = 0` for the coordinates `free` by Newton's method
@@ -16,8 +17,8 @@ pub fn static_equilibrium<const N: usize, S: LagrangianSystem<N>>(
     let rest = SVector::<f64, N>::zeros();
     let residual = |q: &SVector<f64, N>| -> Result<DVector<f64>, SimulationError> {
         let f = problem.system.forcing(t, q, &rest, &problem.inputs);
-        if let Some(message) = problem.inputs.take_failure() {
-            return Err(SimulationError::Equilibrium(message));
+        if let Some(fault) = problem.inputs.take_failure() {
+            return Err(SimulationError::Solver(SolverError::Rhs { t, fault }));
         }
         let r = DVector::from_iterator(free.len(), free.iter().map(|&i| f[i]));
         if r.iter().all(|x| x.is_finite()) {

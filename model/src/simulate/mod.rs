@@ -11,6 +11,7 @@ pub use equilibrium::static_equilibrium;
 pub use problem::{CrashProblem, EventRecord};
 pub use summary::{Metrics, SampleView, Summary};
 
+use crate::fault::Fault;
 use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
 use crate::scenario::{MAX_SAMPLES, Method, Scenario};
 use crate::{LagrangianSystem, ModelError};
@@ -75,6 +76,78 @@ impl fmt::Display for SimulationError {
 }
 
 impl std::error::Error for SimulationError {}
+
+/// What kind of failure ended a run: one exit status of `lpm` each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FailureKind {
+    /// A scenario value that does not apply (unknown parameter, bad options).
+    Scenario,
+    /// `M(q)` singular or not positive definite.
+    SingularMassMatrix,
+    /// NaN or ±∞ in `M`, `f`, `q̈`, a power or an event function.
+    NonFinite,
+    /// Steps rejected (or Newton failing) below the minimum step size.
+    StepSizeUnderflow,
+    /// The step limit was reached before the end time.
+    MaxSteps,
+    /// An event's zero crossing could not be bracketed.
+    EventNotLocated,
+    /// A table read outside its range under the `error` policy.
+    TableOutOfRange,
+    /// No static equilibrium before the impact.
+    NoEquilibrium,
+    /// A component could not produce a value (an unbound input).
+    Component,
+}
+
+impl FailureKind {
+    /// The kind in snake case, as a sweep's `status` column writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            FailureKind::Scenario => "scenario",
+            FailureKind::SingularMassMatrix => "singular_mass_matrix",
+            FailureKind::NonFinite => "non_finite",
+            FailureKind::StepSizeUnderflow => "step_size_underflow",
+            FailureKind::MaxSteps => "max_steps",
+            FailureKind::EventNotLocated => "event_not_located",
+            FailureKind::TableOutOfRange => "table_out_of_range",
+            FailureKind::NoEquilibrium => "no_equilibrium",
+            FailureKind::Component => "component",
+        }
+    }
+}
+
+impl SimulationError {
+    pub fn kind(&self) -> FailureKind {
+        match self {
+            SimulationError::Model(_) => FailureKind::Scenario,
+            SimulationError::Equilibrium(_) => FailureKind::NoEquilibrium,
+            SimulationError::Solver(e) => match e {
+                SolverError::StepSizeUnderflow { .. }
+                | SolverError::NewtonFailure { .. }
+                | SolverError::SingularIterationMatrix { .. } => FailureKind::StepSizeUnderflow,
+                SolverError::MaxSteps { .. } => FailureKind::MaxSteps,
+                SolverError::NonFinite { .. } => FailureKind::NonFinite,
+                SolverError::EventNotLocated { .. } => FailureKind::EventNotLocated,
+                SolverError::InvalidOptions(_) => FailureKind::Scenario,
+                SolverError::Rhs { fault, .. } => match fault {
+                    Fault::SingularMassMatrix { .. } => FailureKind::SingularMassMatrix,
+                    Fault::NonFinite { .. } => FailureKind::NonFinite,
+                    Fault::OutOfRange { .. } => FailureKind::TableOutOfRange,
+                    Fault::Component(_) => FailureKind::Component,
+                },
+            },
+        }
+    }
+
+    /// The fault inside, when a model evaluation failed.
+    pub fn fault(&self) -> Option<&Fault> {
+        match self {
+            SimulationError::Solver(SolverError::Rhs { fault, .. }) => Some(fault),
+            _ => None,
+        }
+    }
+}
 
 impl From<SolverError> for SimulationError {
     fn from(e: SolverError) -> Self {
@@ -217,10 +290,10 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         Method::Rk4 => rk4::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
         Method::Implicit => sdirk::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
     }?;
-    if let Some(message) = problem.failure.take() {
+    if let Some(fault) = problem.failure.take() {
         return Err(SimulationError::Solver(SolverError::Rhs {
             t: outcome.t,
-            message,
+            fault,
         }));
     }
     if let Some(e) = sample_error {

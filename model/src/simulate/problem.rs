@@ -1,6 +1,7 @@
 //! A model with its crash components as an ODE problem in `(q, q̇, work)`.
 
 use crate::crash::BoundInputs;
+use crate::fault::Fault;
 use crate::ode::sdirk::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, OdeProblem, PhaseState, SolverError};
 use crate::{InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix};
@@ -20,7 +21,7 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     pub inputs: BoundInputs,
     pub events: Vec<EventRecord>,
     /// A failure inside an event handler, reported after the run.
-    pub failure: Option<String>,
+    pub failure: Option<Fault>,
     arguments: Vec<f64>,
 }
 
@@ -42,12 +43,12 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         self.inputs
             .start(&self.arguments)
-            .map_err(|message| SolverError::Rhs { t, message })
+            .map_err(|fault| SolverError::Rhs { t, fault })
     }
 
     fn input_failure(&self, t: f64) -> Result<(), SolverError> {
         match self.inputs.take_failure() {
-            Some(message) => Err(SolverError::Rhs { t, message }),
+            Some(fault) => Err(SolverError::Rhs { t, fault }),
             None => Ok(()),
         }
     }
@@ -59,9 +60,67 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, SolverError> {
-        let result = self.system.accelerations(t, q, v, &self.inputs);
+        let mut mass = SMatrix::zeros();
+        let mut forcing = SVector::zeros();
+        self.system
+            .mass_matrix_and_forcing(t, q, v, &self.inputs, &mut mass, &mut forcing);
         self.input_failure(t)?;
-        result.map_err(|e| model_failure(t, e))
+        self.solve(t, q, v, &mass, &forcing)
+    }
+
+    /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
+    /// singular `M` reported by name and state.
+    fn solve(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        mass: &SMatrix<f64, N, N>,
+        forcing: &SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, SolverError> {
+        let a = solve_mass_matrix(*mass, forcing);
+        if let Some(a) = a
+            && a.iter().all(|x| x.is_finite())
+        {
+            return Ok(a);
+        }
+        // Name the first bad value: a non-finite entry of M or f is the
+        // cause of anything that follows from it.
+        let names = self.system.coordinate_names();
+        let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
+        let non_finite = |output: String, value: f64| {
+            let (q, qd) = state();
+            let fault = Fault::NonFinite {
+                output,
+                value,
+                q,
+                qd,
+            };
+            SolverError::Rhs { t, fault }
+        };
+        for i in 0..N {
+            for j in 0..N {
+                if !mass[(i, j)].is_finite() {
+                    let output = format!("M[{}, {}]", names[i], names[j]);
+                    return Err(non_finite(output, mass[(i, j)]));
+                }
+            }
+            if !forcing[i].is_finite() {
+                return Err(non_finite(format!("f[{}]", names[i]), forcing[i]));
+            }
+        }
+        match a {
+            None => {
+                let (q, qd) = state();
+                let fault = Fault::SingularMassMatrix { q, qd };
+                Err(SolverError::Rhs { t, fault })
+            }
+            Some(a) => {
+                let i = a.iter().position(|x| !x.is_finite()).unwrap_or(0);
+                let output = format!("the acceleration of {}", names[i]);
+                Err(non_finite(output, a[i]))
+            }
+        }
     }
 
     /// `q̈` and the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` at a state, in one pass
@@ -83,15 +142,21 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             &mut forcing,
         );
         self.input_failure(t)?;
-        let a = solve_mass_matrix(mass, &forcing).ok_or_else(|| {
-            model_failure(
-                t,
-                ModelError::SingularMassMatrix {
-                    t,
-                    q: q.iter().copied().collect(),
-                },
-            )
-        })?;
+        let a = self.solve(t, q, v, &mass, &forcing)?;
+        for (power, name) in powers
+            .iter()
+            .zip(["dissipated power", "power of the forces"])
+        {
+            if !power.is_finite() {
+                let fault = Fault::NonFinite {
+                    output: format!("the {name}"),
+                    value: *power,
+                    q: q.as_slice().to_vec(),
+                    qd: v.as_slice().to_vec(),
+                };
+                return Err(SolverError::Rhs { t, fault });
+            }
+        }
         Ok((a, powers))
     }
 
@@ -132,7 +197,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         self.inputs
             .events(&self.arguments, g)
-            .map_err(|message| SolverError::Rhs { t, message })
+            .map_err(|fault| SolverError::Rhs { t, fault })
     }
 
     fn event_direction(&self, k: usize) -> Direction {
@@ -151,8 +216,8 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
                 });
                 EventAction::Restart
             }
-            Err(message) => {
-                self.failure = Some(message);
+            Err(fault) => {
+                self.failure = Some(fault);
                 EventAction::Stop
             }
         }
@@ -177,7 +242,7 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             Err(e) => {
                 return Err(SolverError::Rhs {
                     t,
-                    message: e.to_string(),
+                    fault: Fault::Component(e.to_string()),
                 });
             }
             Ok(()) => {}
@@ -194,24 +259,13 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
         };
         let singular = || SolverError::Rhs {
             t,
-            message: format!("singular mass matrix at q = {:?}", y.q.as_slice()),
+            fault: Fault::SingularMassMatrix {
+                q: y.q.as_slice().to_vec(),
+                qd: y.v.as_slice().to_vec(),
+            },
         };
         let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
         let a_v = solve(j.forcing_qd).ok_or_else(singular)?;
         Ok(Some((a_q, a_v)))
-    }
-}
-
-/// A model failure at `t` as the solver reports it.
-fn model_failure(t: f64, e: ModelError) -> SolverError {
-    match e {
-        ModelError::SingularMassMatrix { t, q } => SolverError::Rhs {
-            t,
-            message: format!("the mass matrix is singular or not positive definite at q = {q:?}"),
-        },
-        other => SolverError::Rhs {
-            t,
-            message: other.to_string(),
-        },
     }
 }

@@ -6,10 +6,12 @@
 //! can be split into [`Shard`]s computed anywhere (a Slurm job array, GNU
 //! parallel) whose tables, concatenated in shard order, are the full sweep.
 
+mod journal;
 mod plan;
 mod run;
 mod table;
 
+pub use journal::{Journal, journal_path, read_groups};
 pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
-pub use run::{BaseScenario, Row, Settings, run_scenario, run_sweep};
-pub use table::{columns, sweep_csv, sweep_parquet};
+pub use run::{BaseScenario, Row, RunFailure, Settings, run_scenario, run_sweep, stream_sweep};
+pub use table::{columns, parse_record, record, sweep_csv, sweep_parquet, write_parquet};

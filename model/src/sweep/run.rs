@@ -4,11 +4,13 @@
 use super::plan::{Assignment, Axis, Plan};
 use crate::LagrangianSystem;
 use crate::scenario::{ModelNames, Scenario};
+use crate::scenario::{ScenarioError, ScenarioErrorKind};
 use crate::simulate::{Summary, simulate_summary};
-use rayon::prelude::*;
+use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::PathBuf;
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
 
 /// The scenario every run starts from.
 #[derive(Clone, Debug)]
@@ -30,7 +32,16 @@ pub struct Row {
     /// The plan's values for the run, one per axis.
     pub values: Vec<f64>,
     /// The metrics, or why the run failed.
-    pub outcome: Result<Summary, String>,
+    pub outcome: Result<Summary, RunFailure>,
+}
+
+/// Why a run failed: the kind (`lpm`'s `status` column: `max_steps`,
+/// `singular_mass_matrix`, … or `scenario` for values the scenario
+/// rejects) and the one-line message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunFailure {
+    pub kind: String,
+    pub message: String,
 }
 
 /// The base value a factor multiplies: a number or a list of numbers.
@@ -178,10 +189,131 @@ pub fn run_scenario(
     base: &BaseScenario,
     settings: &Settings,
     values: &[f64],
-) -> Result<Scenario, String> {
+) -> Result<Scenario, ScenarioError> {
     let mut all = base.settings.clone();
     all.extend(settings.for_values(values));
-    Scenario::parse(&base.text, base.file.as_deref(), &base.names, &all).map_err(|e| e.to_string())
+    Scenario::parse(&base.text, base.file.as_deref(), &base.names, &all)
+}
+
+/// One run: its scenario, simulated to its summary.
+fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
+    model: &S,
+    base: &BaseScenario,
+    settings: &Settings,
+    plan: &Plan,
+    run: usize,
+) -> Row {
+    let values = plan.point(run);
+    let outcome = match run_scenario(base, settings, &values) {
+        Err(e) => Err(RunFailure {
+            kind: match e.kind {
+                ScenarioErrorKind::DataFile => "data_file",
+                _ => "scenario",
+            }
+            .to_string(),
+            message: e.to_string(),
+        }),
+        Ok(scenario) => simulate_summary(model, &scenario).map_err(|e| RunFailure {
+            kind: e.kind().name().to_string(),
+            message: e.to_string(),
+        }),
+    };
+    Row {
+        run,
+        values,
+        outcome,
+    }
+}
+
+/// How many runs may finish ahead of the earliest unfinished one, per
+/// worker: bounds the rows held back to keep the output in run order.
+const AHEAD_PER_WORKER: usize = 256;
+
+/// Runs `runs` of `plan` on `threads` worker threads (0: one per core) and
+/// hands every row to `sink` in run order, as soon as the rows before it
+/// are done: memory stays bounded whatever the number of runs.
+///
+/// Workers take runs in order; once `stop` is set they take no new run,
+/// and the runs under way finish and reach `sink`, so the rows delivered
+/// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
+/// run is a row with its error, not the end of the sweep; an error of
+/// `sink` ends it.
+pub fn stream_sweep<const N: usize, S>(
+    system: &S,
+    base: &BaseScenario,
+    plan: &Plan,
+    settings: &Settings,
+    runs: Range<usize>,
+    threads: usize,
+    stop: &AtomicBool,
+    sink: &mut dyn FnMut(Row) -> Result<(), String>,
+) -> Result<usize, String>
+where
+    S: LagrangianSystem<N> + Clone + Send,
+{
+    let workers = if threads == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        threads
+    };
+    let next = AtomicUsize::new(runs.start);
+    let delivered = AtomicUsize::new(runs.start);
+    let failed_sink = AtomicBool::new(false);
+    let window = AHEAD_PER_WORKER * workers;
+    let (sender, receiver) = mpsc::sync_channel::<Row>(window);
+    let mut outcome = Ok(0);
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let sender = sender.clone();
+            let (next, delivered, failed_sink) = (&next, &delivered, &failed_sink);
+            // Each worker simulates its own copy (models keep scratch space).
+            let model = system.clone();
+            scope.spawn(move || {
+                loop {
+                    if stop.load(Ordering::Relaxed) || failed_sink.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let run = next.fetch_add(1, Ordering::Relaxed);
+                    if run >= runs.end {
+                        break;
+                    }
+                    while run >= delivered.load(Ordering::Acquire) + window
+                        && !failed_sink.load(Ordering::Relaxed)
+                    {
+                        std::thread::sleep(std::time::Duration::from_millis(1));
+                    }
+                    let row = one_run(&model, base, settings, plan, run);
+                    if sender.send(row).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(sender);
+        // Rows arrive nearly in order; those ahead wait here for the ones
+        // before them (at most `window` of them).
+        let mut waiting = BTreeMap::new();
+        let mut expected = runs.start;
+        for row in receiver.iter() {
+            if failed_sink.load(Ordering::Relaxed) {
+                continue;
+            }
+            waiting.insert(row.run, row);
+            while let Some(row) = waiting.remove(&expected) {
+                if let Err(e) = sink(row) {
+                    failed_sink.store(true, Ordering::Relaxed);
+                    outcome = Err(e);
+                    break;
+                }
+                expected += 1;
+                delivered.store(expected, Ordering::Release);
+            }
+        }
+        if outcome.is_ok() {
+            outcome = Ok(expected - runs.start);
+        }
+    });
+    outcome
 }
 
 /// Runs `runs` of `plan` on `threads` worker threads (0: one per core),
@@ -198,28 +330,21 @@ pub fn run_sweep<const N: usize, S>(
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| format!("cannot start {threads} worker threads: {e}"))?;
-    // Each worker simulates its own copy of the model (models keep scratch space).
-    let prototype = Mutex::new(system.clone());
-    let copy = || prototype.lock().unwrap_or_else(|e| e.into_inner()).clone();
-    let rows = pool.install(|| {
-        runs.into_par_iter()
-            .map_init(copy, |model, run| {
-                let values = plan.point(run);
-                let outcome = run_scenario(base, settings, &values).and_then(|scenario| {
-                    simulate_summary(model, &scenario).map_err(|e| e.to_string())
-                });
-                progress();
-                Row {
-                    run,
-                    values,
-                    outcome,
-                }
-            })
-            .collect()
-    });
+    let mut rows = Vec::with_capacity(runs.len());
+    let never = AtomicBool::new(false);
+    stream_sweep(
+        system,
+        base,
+        plan,
+        settings,
+        runs,
+        threads,
+        &never,
+        &mut |row| {
+            progress();
+            rows.push(row);
+            Ok(())
+        },
+    )?;
     Ok(rows)
 }

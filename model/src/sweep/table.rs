@@ -3,7 +3,7 @@
 //! CSV or Parquet; pandas and polars read either directly, and the files of
 //! the shards of one sweep concatenate into the full table.
 
-use super::run::Row;
+use super::run::{Row, RunFailure};
 use crate::simulate::Summary;
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type};
@@ -77,31 +77,104 @@ pub fn columns(axes: &[String]) -> Vec<String> {
     names
 }
 
+/// The CSV cells of a row: the run, its values, `ok` or the failure kind,
+/// the error, the metrics (empty where absent). Numbers are written so that
+/// they read back exactly.
+pub fn record(row: &Row) -> Vec<String> {
+    let mut record = vec![row.run.to_string()];
+    record.extend(row.values.iter().map(|v| format!("{v:?}")));
+    match &row.outcome {
+        Ok(summary) => {
+            record.push("ok".into());
+            record.push(String::new());
+            record.extend(metrics(summary).iter().map(|(_, m)| match *m {
+                Metric::Real(Some(x)) => format!("{x:?}"),
+                Metric::Real(None) => String::new(),
+                Metric::Count(n) => n.to_string(),
+            }));
+        }
+        Err(failure) => {
+            record.push(failure.kind.clone());
+            record.push(failure.message.clone());
+            record.extend(std::iter::repeat_n(String::new(), metrics(&EMPTY).len()));
+        }
+    }
+    record
+}
+
+/// The row a [`record`] was made from (`axes` values before `status`).
+pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, String> {
+    let expected = 3 + axes + metrics(&EMPTY).len();
+    if record.len() != expected {
+        return Err(format!("{} cells instead of {expected}", record.len()));
+    }
+    let number = |k: usize| -> Result<f64, String> {
+        record[k]
+            .parse::<f64>()
+            .map_err(|_| format!("`{}` is not a number", &record[k]))
+    };
+    let run = record[0]
+        .parse::<usize>()
+        .map_err(|_| format!("run `{}` is not a run number", &record[0]))?;
+    let values = (1..=axes)
+        .map(number)
+        .collect::<Result<Vec<f64>, String>>()?;
+    let status = &record[axes + 1];
+    let outcome = if status == "ok" {
+        let mut summary = EMPTY;
+        let first = axes + 3;
+        let cell = |k: usize| &record[first + k];
+        let real = |k: usize| -> Result<Option<f64>, String> {
+            match cell(k) {
+                "" => Ok(None),
+                text => text
+                    .parse()
+                    .map(Some)
+                    .map_err(|_| format!("`{text}` is not a number")),
+            }
+        };
+        let count = |k: usize| -> Result<usize, String> {
+            cell(k)
+                .parse()
+                .map_err(|_| format!("`{}` is not a count", cell(k)))
+        };
+        summary.max_crush_m = real(0)?;
+        summary.time_of_max_crush_s = real(1)?;
+        summary.time_to_zero_velocity_s = real(2)?;
+        summary.max_theta1_deg = real(3)?;
+        summary.max_theta2_deg = real(4)?;
+        summary.peak_deceleration_g = real(5)?;
+        summary.rebound_velocity_mps = real(6)?;
+        summary.weld_failure_time_s = real(7)?;
+        summary.peak_deceleration_cfc60_g = real(8)?;
+        summary.equivalent_square_wave_g = real(9)?;
+        summary.olc_g = real(10)?;
+        summary.asi = real(11)?;
+        summary.steps = count(12)?;
+        summary.rejected_steps = count(13)?;
+        summary.rhs_evaluations = count(14)?;
+        summary.energy_balance_error_rel = real(15)?.unwrap_or(f64::NAN);
+        Ok(summary)
+    } else {
+        Err(RunFailure {
+            kind: status.to_string(),
+            message: record[axes + 2].to_string(),
+        })
+    };
+    Ok(Row {
+        run,
+        values,
+        outcome,
+    })
+}
+
 /// CSV with a header line; a failed run has empty metric cells.
 pub fn sweep_csv(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     let fail = |e: csv::Error| format!("cannot write CSV: {e}");
     writer.write_record(columns(axes)).map_err(fail)?;
     for row in rows {
-        let mut record = vec![row.run.to_string()];
-        record.extend(row.values.iter().map(|v| format!("{v:?}")));
-        match &row.outcome {
-            Ok(summary) => {
-                record.push("ok".into());
-                record.push(String::new());
-                record.extend(metrics(summary).iter().map(|(_, m)| match *m {
-                    Metric::Real(Some(x)) => format!("{x:?}"),
-                    Metric::Real(None) => String::new(),
-                    Metric::Count(n) => n.to_string(),
-                }));
-            }
-            Err(message) => {
-                record.push("failed".into());
-                record.push(message.clone());
-                record.extend(std::iter::repeat_n(String::new(), metrics(&EMPTY).len()));
-            }
-        }
-        writer.write_record(&record).map_err(fail)?;
+        writer.write_record(record(row)).map_err(fail)?;
     }
     writer
         .into_inner()
@@ -126,6 +199,18 @@ fn column_type(
 /// A Parquet file (one row group, uncompressed). Metrics absent from a run
 /// (a failed run, or no crush coordinate) are nulls.
 pub fn sweep_parquet(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
+    let mut bytes = Vec::new();
+    write_parquet(axes, std::iter::once(Ok(rows.to_vec())), &mut bytes)?;
+    Ok(bytes)
+}
+
+/// Writes a Parquet file to `out`, one row group per item of `groups`, so
+/// that a table of any length is written in the memory of one group.
+pub fn write_parquet<W: std::io::Write + Send>(
+    axes: &[String],
+    groups: impl Iterator<Item = Result<Vec<Row>, String>>,
+    out: W,
+) -> Result<(), String> {
     let fail = |e: parquet::errors::ParquetError| format!("cannot write Parquet: {e}");
     let mut fields = vec![column_type("run", Physical::INT64, Repetition::REQUIRED)?];
     for axis in axes {
@@ -153,88 +238,94 @@ pub fn sweep_parquet(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
         .build()
         .map_err(fail)?;
     let properties = Arc::new(WriterProperties::builder().build());
-    let mut writer =
-        SerializedFileWriter::new(Vec::new(), Arc::new(schema), properties).map_err(fail)?;
-    let mut group = writer.next_row_group().map_err(fail)?;
-    let mut column = 0usize;
-    // Writes the next column: values of the present entries and, for an
-    // optional column, the definition levels (1 present, 0 null).
-    macro_rules! write_column {
-        ($kind:ty, $values:expr, $levels:expr) => {{
-            let mut writer = group
-                .next_column()
-                .map_err(fail)?
-                .ok_or_else(|| format!("Parquet: column {column} missing from the schema"))?;
-            let levels: Option<Vec<i16>> = $levels;
-            writer
-                .typed::<$kind>()
-                .write_batch(&$values, levels.as_deref(), None)
-                .map_err(fail)?;
-            writer.close().map_err(fail)?;
-            column += 1;
-        }};
-    }
-    let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
-    write_column!(Int64Type, runs, None);
-    for k in 0..axes.len() {
-        let values: Vec<f64> = rows.iter().map(|r| r.values[k]).collect();
-        write_column!(DoubleType, values, None);
-    }
-    let status: Vec<ByteArray> = rows
-        .iter()
-        .map(|r| ByteArray::from(if r.outcome.is_ok() { "ok" } else { "failed" }))
-        .collect();
-    write_column!(ByteArrayType, status, None);
-    let errors: Vec<ByteArray> = rows
-        .iter()
-        .filter_map(|r| {
-            r.outcome
-                .as_ref()
-                .err()
-                .map(|e| ByteArray::from(e.as_str()))
-        })
-        .collect();
-    let levels = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
-    write_column!(ByteArrayType, errors, Some(levels));
-    for m in 0..metrics(&EMPTY).len() {
-        let cells: Vec<Option<Metric>> = rows
+    let mut writer = SerializedFileWriter::new(out, Arc::new(schema), properties).map_err(fail)?;
+    for rows in groups {
+        let rows = rows?;
+        let mut group = writer.next_row_group().map_err(fail)?;
+        let mut column = 0usize;
+        // Writes the next column: values of the present entries and, for an
+        // optional column, the definition levels (1 present, 0 null).
+        macro_rules! write_column {
+            ($kind:ty, $values:expr, $levels:expr) => {{
+                let mut writer = group
+                    .next_column()
+                    .map_err(fail)?
+                    .ok_or_else(|| format!("Parquet: column {column} missing from the schema"))?;
+                let levels: Option<Vec<i16>> = $levels;
+                writer
+                    .typed::<$kind>()
+                    .write_batch(&$values, levels.as_deref(), None)
+                    .map_err(fail)?;
+                writer.close().map_err(fail)?;
+                column += 1;
+            }};
+        }
+        let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
+        write_column!(Int64Type, runs, None);
+        for k in 0..axes.len() {
+            let values: Vec<f64> = rows.iter().map(|r| r.values[k]).collect();
+            write_column!(DoubleType, values, None);
+        }
+        let status: Vec<ByteArray> = rows
             .iter()
-            .map(|r| r.outcome.as_ref().ok().map(|s| metrics(s)[m].1))
-            .collect();
-        let levels: Vec<i16> = cells
-            .iter()
-            .map(|c| {
-                i16::from(matches!(
-                    c,
-                    Some(Metric::Real(Some(_))) | Some(Metric::Count(_))
-                ))
+            .map(|r| match &r.outcome {
+                Ok(_) => ByteArray::from("ok"),
+                Err(f) => ByteArray::from(f.kind.as_str()),
             })
             .collect();
-        match metrics(&EMPTY)[m].1 {
-            Metric::Real(_) => {
-                let values: Vec<f64> = cells
-                    .iter()
-                    .filter_map(|c| match c {
-                        Some(Metric::Real(x)) => *x,
-                        _ => None,
-                    })
-                    .collect();
-                write_column!(DoubleType, values, Some(levels));
-            }
-            Metric::Count(_) => {
-                let values: Vec<i64> = cells
-                    .iter()
-                    .filter_map(|c| match c {
-                        Some(Metric::Count(n)) => Some(*n as i64),
-                        _ => None,
-                    })
-                    .collect();
-                write_column!(Int64Type, values, Some(levels));
+        write_column!(ByteArrayType, status, None);
+        let errors: Vec<ByteArray> = rows
+            .iter()
+            .filter_map(|r| {
+                r.outcome
+                    .as_ref()
+                    .err()
+                    .map(|e| ByteArray::from(e.message.as_str()))
+            })
+            .collect();
+        let levels = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
+        write_column!(ByteArrayType, errors, Some(levels));
+        for m in 0..metrics(&EMPTY).len() {
+            let cells: Vec<Option<Metric>> = rows
+                .iter()
+                .map(|r| r.outcome.as_ref().ok().map(|s| metrics(s)[m].1))
+                .collect();
+            let levels: Vec<i16> = cells
+                .iter()
+                .map(|c| {
+                    i16::from(matches!(
+                        c,
+                        Some(Metric::Real(Some(_))) | Some(Metric::Count(_))
+                    ))
+                })
+                .collect();
+            match metrics(&EMPTY)[m].1 {
+                Metric::Real(_) => {
+                    let values: Vec<f64> = cells
+                        .iter()
+                        .filter_map(|c| match c {
+                            Some(Metric::Real(x)) => *x,
+                            _ => None,
+                        })
+                        .collect();
+                    write_column!(DoubleType, values, Some(levels));
+                }
+                Metric::Count(_) => {
+                    let values: Vec<i64> = cells
+                        .iter()
+                        .filter_map(|c| match c {
+                            Some(Metric::Count(n)) => Some(*n as i64),
+                            _ => None,
+                        })
+                        .collect();
+                    write_column!(Int64Type, values, Some(levels));
+                }
             }
         }
+        group.close().map_err(fail)?;
     }
-    group.close().map_err(fail)?;
-    writer.into_inner().map_err(fail)
+    writer.close().map_err(fail)?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -263,7 +354,10 @@ mod tests {
             Row {
                 run: 5,
                 values: vec![2.0, 0.25],
-                outcome: Err("integration failed: step size too small".into()),
+                outcome: Err(RunFailure {
+                    kind: "step_size_underflow".into(),
+                    message: "integration failed: step size too small".into(),
+                }),
             },
         ]
     }
@@ -286,9 +380,9 @@ mod tests {
         assert_eq!(lines.len(), 3);
         assert!(lines[0].starts_with("run,k1,stiffness_values*,status,error,max_crush_m,"));
         assert!(lines[1].starts_with("4,1.5,0.25,ok,,0.5,0.066,,"));
-        assert!(
-            lines[2].starts_with("5,2.0,0.25,failed,integration failed: step size too small,,")
-        );
+        assert!(lines[2].starts_with(
+            "5,2.0,0.25,step_size_underflow,integration failed: step size too small,,"
+        ));
         assert_eq!(lines[1].split(',').count(), columns(&axes).len());
     }
 
@@ -329,7 +423,7 @@ mod tests {
         assert_eq!(cell(0, "max_crush_m"), Field::Double(0.5));
         assert_eq!(cell(0, "weld_failure_time_s"), Field::Null);
         assert_eq!(cell(0, "steps"), Field::Long(120));
-        assert_eq!(cell(1, "status"), Field::Str("failed".into()));
+        assert_eq!(cell(1, "status"), Field::Str("step_size_underflow".into()));
         assert_eq!(
             cell(1, "error"),
             Field::Str("integration failed: step size too small".into())

@@ -6,7 +6,7 @@ use serde_json::{Value, json};
 use std::path::Path;
 
 /// Exit status when the audit finds disagreements.
-pub const DISAGREES: u8 = 5;
+pub const DISAGREES: u8 = crate::commands::status::AUDIT_DISAGREES;
 
 pub fn run(spec: &Path, json_format: bool) -> Result<(String, bool), Failure> {
     let mut compiled = compile(spec)?;

@@ -4,27 +4,113 @@ use crate::DeriveFormat;
 use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
 use lagrangian_core::{Compiled, ConstantInputs};
 use lagrangian_model::InterpretedModel;
+use lagrangian_model::crash::table::TableError;
+use lagrangian_model::fault::{Fault, named_values};
+use lagrangian_model::pulse::channels::ChannelError;
+use lagrangian_model::scenario::{ScenarioError, ScenarioErrorKind};
 use lagrangian_model::scenario::{setting_number, split_setting};
+use lagrangian_model::simulate::{FailureKind, SimulationError};
 use std::path::Path;
 
-/// A message for stderr and the exit status that goes with it.
+/// The exit statuses of `lpm`, one per kind of failure (`lpm --help`
+/// lists them).
+pub mod status {
+    pub const IO: u8 = 1;
+    pub const USAGE: u8 = 2;
+    pub const SPEC: u8 = 3;
+    pub const SCENARIO: u8 = 4;
+    pub const AUDIT_DISAGREES: u8 = 5;
+    pub const STALE: u8 = 6;
+    pub const DATA_FILE: u8 = 7;
+    pub const EVALUATION: u8 = 8;
+    pub const SINGULAR_MASS_MATRIX: u8 = 10;
+    pub const NON_FINITE: u8 = 11;
+    pub const STEP_SIZE_UNDERFLOW: u8 = 12;
+    pub const MAX_STEPS: u8 = 13;
+    pub const EVENT_NOT_LOCATED: u8 = 14;
+    pub const TABLE_OUT_OF_RANGE: u8 = 15;
+    pub const NO_EQUILIBRIUM: u8 = 16;
+    pub const COMPONENT: u8 = 17;
+    pub const EVERY_RUN_FAILED: u8 = 18;
+    pub const FIT_FAILED: u8 = 19;
+    /// Stopped by a signal (128 + SIGINT, as shells report it).
+    pub const INTERRUPTED: u8 = 130;
+}
+
+/// A one-line message for stderr, the details `-v` adds, and the exit
+/// status that goes with them.
 pub struct Failure {
     pub message: String,
+    pub details: Vec<String>,
     pub code: u8,
 }
 
 impl Failure {
+    pub fn new(code: u8, message: String) -> Failure {
+        Failure {
+            message,
+            details: Vec::new(),
+            code,
+        }
+    }
     pub fn io(message: String) -> Failure {
-        Failure { message, code: 1 }
+        Failure::new(status::IO, message)
     }
     pub fn usage(message: String) -> Failure {
-        Failure { message, code: 2 }
+        Failure::new(status::USAGE, message)
     }
     pub fn spec(message: String) -> Failure {
-        Failure { message, code: 3 }
+        Failure::new(status::SPEC, message)
     }
     pub fn evaluation(message: String) -> Failure {
-        Failure { message, code: 4 }
+        Failure::new(status::EVALUATION, message)
+    }
+
+    /// A scenario that cannot be read (1), does not fit (4), or names a
+    /// data file that cannot be used (7).
+    pub fn scenario(e: &ScenarioError) -> Failure {
+        let code = match e.kind {
+            ScenarioErrorKind::Unreadable => status::IO,
+            ScenarioErrorKind::Invalid => status::SCENARIO,
+            ScenarioErrorKind::DataFile => status::DATA_FILE,
+        };
+        Failure::new(code, format!("error: {e}"))
+    }
+
+    /// A time-history file that cannot be read (1) or used (7).
+    pub fn channels(e: &ChannelError) -> Failure {
+        let code = match e {
+            ChannelError::Table(TableError::Read { .. }) => status::IO,
+            _ => status::DATA_FILE,
+        };
+        Failure::new(code, format!("error: {e}"))
+    }
+
+    /// A failed run, with the state it failed at (coordinates named) as
+    /// details.
+    pub fn simulation(e: &SimulationError, coordinates: &[String]) -> Failure {
+        let code = match e.kind() {
+            FailureKind::Scenario => status::SCENARIO,
+            FailureKind::SingularMassMatrix => status::SINGULAR_MASS_MATRIX,
+            FailureKind::NonFinite => status::NON_FINITE,
+            FailureKind::StepSizeUnderflow => status::STEP_SIZE_UNDERFLOW,
+            FailureKind::MaxSteps => status::MAX_STEPS,
+            FailureKind::EventNotLocated => status::EVENT_NOT_LOCATED,
+            FailureKind::TableOutOfRange => status::TABLE_OUT_OF_RANGE,
+            FailureKind::NoEquilibrium => status::NO_EQUILIBRIUM,
+            FailureKind::Component => status::COMPONENT,
+        };
+        let mut failure = Failure::new(code, format!("error: {e}"));
+        failure.details.push(format!("kind: {:?}", e.kind()));
+        if let Some((q, qd)) = e.fault().and_then(Fault::state) {
+            failure
+                .details
+                .push(format!("coordinates: {}", named_values(coordinates, q)));
+            failure
+                .details
+                .push(format!("velocities:  {}", named_values(coordinates, qd)));
+        }
+        failure
     }
 }
 

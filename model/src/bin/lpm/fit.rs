@@ -2,7 +2,7 @@
 //! target time histories; writes the fitted scenario, a report and an
 //! overlay plot.
 
-use crate::commands::{Failure, compile};
+use crate::commands::{Failure, compile, status};
 use crate::simulate::find_scenario;
 use indicatif::{ProgressBar, ProgressStyle};
 use lagrangian_model::fit::{FitReport, FitSetup, Parameters, fit};
@@ -46,10 +46,10 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
             scenario_path.display()
         ))
     })?;
-    let target =
-        read_time_histories(&options.target).map_err(|e| Failure::usage(format!("error: {e}")))?;
+    let target = read_time_histories(&options.target).map_err(|e| Failure::channels(&e))?;
     let usage = |e: String| Failure::usage(format!("error: {e}"));
-    let document = Scenario::document(&text, &names, &options.settings).map_err(usage)?;
+    let document = Scenario::document(&text, &names, &options.settings)
+        .map_err(|e| Failure::new(status::SCENARIO, format!("error: {e}")))?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {
@@ -65,7 +65,7 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
     };
     // Check the scenario once, so that its errors read as such.
     Scenario::parse(&base.text, base.file.as_deref(), &names, &options.settings)
-        .map_err(|e| Failure::usage(format!("error: {e}")))?;
+        .map_err(|e| Failure::scenario(&e))?;
     let setup = FitSetup {
         base,
         target,
@@ -114,7 +114,7 @@ macro_rules! dimensions {
             $($n => {
                 let system = Interpreted::<$n>::new($model.clone())
                     .map_err(|e| Failure::evaluation(format!("error: {e}")))?;
-                fit(&system, $setup, $progress).map_err(|e| Failure::evaluation(format!("error: {e}")))
+                fit(&system, $setup, $progress).map_err(|e| Failure::new(status::FIT_FAILED, format!("error: {e}")))
             })*
             n => Err(Failure::usage(format!(
                 "error: lpm fit handles models of up to 12 coordinates; this one has {n}"

@@ -6,7 +6,7 @@ use lagrangian_model::report::write_atomically;
 use std::path::Path;
 
 /// Exit status when `--check` finds stale files.
-pub const STALE: u8 = 6;
+pub const STALE: u8 = crate::commands::status::STALE;
 
 pub fn run(root: &Path, check: bool) -> Result<(String, u8), Failure> {
     if check {

@@ -1,9 +1,6 @@
 //! `lpm`: derive, inspect and evaluate lumped-parameter models from spec files.
 //!
-//! Exit status: 0 success, 1 input/output error, 2 bad command line or
-//! scenario, 3 the spec does not compile, 4 the model cannot be evaluated or
-//! simulated, 5 the audit found equations that disagree, 6 generated files
-//! are stale (`generate --check`).
+//! Exit status: see [`EXIT_STATUS`] (`lpm --help` prints it).
 
 mod audit;
 mod commands;
@@ -17,15 +14,47 @@ use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// The exit statuses, for `lpm --help` (the numbers are those of
+/// `commands::status`).
+const EXIT_STATUS: &str = "\
+Exit status:
+   0  success
+   1  a file cannot be read or written
+   2  bad command line
+   3  the spec does not compile
+   4  the scenario does not fit the spec (unknown key, bad value)
+   5  the audit found equations that disagree
+   6  generated files are stale (generate --check)
+   7  a data file (CSV) is missing columns, non-numeric or unsorted
+   8  the model cannot be evaluated at the given state (eval)
+  10  the mass matrix is singular or not positive definite
+  11  a NaN or infinite value (M, f, acceleration, power, event)
+  12  the step size fell below the minimum
+  13  the step limit was reached
+  14  an event could not be located
+  15  a table was read outside its range (policy `error`)
+  16  no static equilibrium before the impact
+  17  a component could not give a value (an unbound input)
+  18  every run of a sweep failed
+  19  the fit failed
+ 130  a sweep stopped by Ctrl-C or a signal (--resume continues it)
+
+A failure prints one line on stderr; -v adds the details (the state it
+happened at, with coordinate names).";
+
 #[derive(Parser)]
 #[command(
     name = "lpm",
     version,
-    about = "Euler–Lagrange compiler and simulator for lumped-parameter models"
+    about = "Euler–Lagrange compiler and simulator for lumped-parameter models",
+    after_help = EXIT_STATUS
 )]
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// On failure, print the details after the one-line message.
+    #[arg(short, long, global = true)]
+    verbose: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -153,6 +182,10 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Continue an interrupted sweep from its journal (`OUT.partial`):
+        /// the same command line with --resume runs only the missing runs.
+        #[arg(long)]
+        resume: bool,
     },
     /// Audit the spec's hand-derived equations against the derivation; exits
     /// with status 5 when an equation disagrees.
@@ -287,6 +320,7 @@ fn main() -> ExitCode {
             shard,
             threads,
             quiet,
+            resume,
         } => sweep::run(sweep::SweepOptions {
             scenario,
             spec,
@@ -304,6 +338,7 @@ fn main() -> ExitCode {
             shard,
             threads,
             quiet,
+            resume,
         })
         .map(success),
         Command::Simulate {
@@ -334,6 +369,11 @@ fn main() -> ExitCode {
         }
         Err(failure) => {
             eprintln!("{}", failure.message.trim_end());
+            if cli.verbose {
+                for line in &failure.details {
+                    eprintln!("  {line}");
+                }
+            }
             ExitCode::from(failure.code)
         }
     }

@@ -7,7 +7,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 pub fn run(file: &Path, v0: Option<f64>, json: bool) -> Result<String, Failure> {
-    let histories = read_time_histories(file).map_err(|e| Failure::usage(format!("error: {e}")))?;
+    let histories = read_time_histories(file).map_err(|e| Failure::channels(&e))?;
     let Some(acceleration) = histories.channel(Quantity::Acceleration) else {
         return Err(Failure::usage(format!(
             "error: {}: the metrics need an acceleration (or deceleration) column",

@@ -7,7 +7,7 @@ use lagrangian_model::report::{
 };
 use lagrangian_model::scenario::{ModelNames, Scenario};
 use lagrangian_model::simulate::{SimulationResult, simulate};
-use lagrangian_model::{Interpreted, InterpretedModel};
+use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem};
 use std::path::{Path, PathBuf};
 
 /// Options of `lpm simulate`.
@@ -85,7 +85,7 @@ pub fn run(options: SimulateOptions) -> Result<String, Failure> {
         Some(path) => Scenario::load(path, &names, &settings),
         None => Scenario::defaults(&names, &settings),
     }
-    .map_err(|e| Failure::usage(format!("error: {e}")))?;
+    .map_err(|e| Failure::scenario(&e))?;
     let result = dispatch(model.clone(), &scenario)?;
     let scenario_name = scenario_path
         .as_ref()
@@ -130,7 +130,14 @@ fn run_fixed<const N: usize>(
 ) -> Result<SimulationResult, Failure> {
     let system =
         Interpreted::<N>::new(model).map_err(|e| Failure::evaluation(format!("error: {e}")))?;
-    simulate(&system, scenario).map_err(|e| Failure::evaluation(format!("error: {e}")))
+    simulate(&system, scenario).map_err(|e| {
+        let names: Vec<String> = system
+            .coordinate_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        Failure::simulation(&e, &names)
+    })
 }
 
 fn write_outputs(

@@ -1,16 +1,17 @@
 //! `lpm sweep`: run a scenario many times with values varied, in parallel,
 //! and write one row of summary metrics per run (CSV or Parquet).
 
-use crate::commands::{Failure, compile};
+use crate::commands::{Failure, compile, status};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lagrangian_model::report::write_atomically;
 use lagrangian_model::scenario::ModelNames;
 use lagrangian_model::sweep::{
-    BaseScenario, Design, Plan, Row, Settings, Shard, run_scenario, run_sweep, sweep_csv,
-    sweep_parquet,
+    BaseScenario, Design, Journal, Plan, Row, Settings, Shard, journal_path, read_groups,
+    run_scenario, stream_sweep, write_parquet,
 };
 use lagrangian_model::{Interpreted, InterpretedModel};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// Options of `lpm sweep`.
@@ -28,6 +29,7 @@ pub struct SweepOptions {
     pub shard: Option<String>,
     pub threads: usize,
     pub quiet: bool,
+    pub resume: bool,
 }
 
 /// The spec a scenario names with its `spec` key (relative to the scenario).
@@ -92,7 +94,7 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
     let settings = Settings::new(&plan, &base, model.parameters()).map_err(usage)?;
     // A key the scenario does not know fails here, before any run starts.
     if !plan.is_empty() {
-        run_scenario(&base, &settings, &plan.point(0)).map_err(usage)?;
+        run_scenario(&base, &settings, &plan.point(0)).map_err(|e| Failure::scenario(&e))?;
     }
     let runs = shard.runs(plan.len());
     let bar = if options.quiet {
@@ -109,36 +111,56 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
         }
         bar
     };
+    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+    let journal_path = journal_path(&options.out);
+    let (mut journal, done) = open_journal(&options, &journal_path, &axes, &plan, &runs)?;
+    bar.set_position(done as u64);
+    let stop = stop_on_signal();
     let start = Instant::now();
-    let progress = || bar.inc(1);
-    let rows = dispatch(
+    let (mut ok, mut failed) = (0usize, 0usize);
+    let mut first_failure: Option<(usize, String)> = None;
+    let mut sink = |row: Row| -> Result<(), String> {
+        journal.append(&row)?;
+        match &row.outcome {
+            Ok(_) => ok += 1,
+            Err(e) => {
+                failed += 1;
+                first_failure.get_or_insert((row.run, format!("{}: {}", e.kind, e.message)));
+            }
+        }
+        bar.inc(1);
+        Ok(())
+    };
+    let remaining = runs.start + done..runs.end;
+    let finished = dispatch(
         model,
         &base,
         &plan,
         &settings,
-        runs.clone(),
+        remaining.clone(),
         options.threads,
-        &progress,
+        &stop,
+        &mut sink,
     )?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
-    let bytes = if parquet {
-        sweep_parquet(&axes, &rows)
-    } else {
-        sweep_csv(&axes, &rows)
+    drop(journal);
+    let rate = finished as f64 / elapsed.max(1e-9);
+    if finished < remaining.len() {
+        return Err(Failure::new(
+            status::INTERRUPTED,
+            format!(
+                "stopped: {} of {} runs are done and kept in {}; run the same command with --resume to finish",
+                done + finished,
+                runs.len(),
+                journal_path.display()
+            ),
+        ));
     }
-    .map_err(Failure::io)?;
-    write_atomically(&options.out, &bytes).map_err(|e| {
-        Failure::io(format!(
-            "error: cannot write {}: {e}",
-            options.out.display()
-        ))
-    })?;
-    let failed: Vec<&Row> = rows.iter().filter(|r| r.outcome.is_err()).collect();
+    finish_output(&journal_path, &options.out, &axes, parquet)?;
     let mut text = format!(
-        "{} runs{} in {elapsed:.2} s ({:.0} runs/s), {} failed; wrote {}\n",
-        rows.len(),
+        "{} runs{}{} in {elapsed:.2} s ({rate:.0} runs/s), {failed} failed; wrote {}\n",
+        runs.len(),
         if shard == Shard::ALL {
             String::new()
         } else {
@@ -151,21 +173,106 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
                 plan.len()
             )
         },
-        rows.len() as f64 / elapsed.max(1e-9),
-        failed.len(),
+        if done > 0 {
+            format!(" ({done} from the journal, {finished} now)")
+        } else {
+            String::new()
+        },
         options.out.display()
     );
-    if let Some(first) = failed.first()
-        && let Err(message) = &first.outcome
-    {
-        text.push_str(&format!("  first failure, run {}: {message}\n", first.run));
+    if let Some((run, message)) = &first_failure {
+        text.push_str(&format!("  first failure, run {run}: {message}\n"));
     }
-    if !rows.is_empty() && failed.len() == rows.len() {
-        return Err(Failure::evaluation(format!(
-            "error: every run failed\n{text}"
-        )));
+    if runs.len() > 0 && ok == 0 && done == 0 {
+        return Err(Failure::new(
+            status::EVERY_RUN_FAILED,
+            format!("error: every run failed\n{text}"),
+        ));
     }
     Ok(text)
+}
+
+/// The journal to append to: a new one, or with `--resume` the one an
+/// interrupted run of the same sweep left (with the number of runs in it).
+fn open_journal(
+    options: &SweepOptions,
+    path: &Path,
+    axes: &[String],
+    plan: &Plan,
+    runs: &std::ops::Range<usize>,
+) -> Result<(Journal, usize), Failure> {
+    let exists = path.exists();
+    let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
+    match (options.resume, resumable) {
+        (true, true) => Journal::resume(path, axes, plan, runs)
+            .map_err(|e| Failure::new(status::DATA_FILE, format!("error: --resume: {e}"))),
+        (true, false) if options.out.exists() => Err(Failure::usage(format!(
+            "error: --resume: {} is complete and there is no {} to resume",
+            options.out.display(),
+            path.display()
+        ))),
+        (false, true) => Err(Failure::usage(format!(
+            "error: {} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
+            path.display()
+        ))),
+        _ => Journal::create(path, axes)
+            .map(|j| (j, 0))
+            .map_err(|e| Failure::io(format!("error: {e}"))),
+    }
+}
+
+/// Turns the finished journal into the output: renamed for CSV, converted
+/// one row group at a time (then removed) for Parquet.
+fn finish_output(
+    journal: &Path,
+    out: &Path,
+    axes: &[String],
+    parquet: bool,
+) -> Result<(), Failure> {
+    let io = |e: String| Failure::io(format!("error: {e}"));
+    if parquet {
+        let groups = read_groups(journal, axes.len(), PARQUET_GROUP_ROWS).map_err(io)?;
+        let temporary = temporary_beside(out);
+        let file = std::fs::File::create(&temporary)
+            .map_err(|e| io(format!("cannot create {}: {e}", temporary.display())))?;
+        let written = write_parquet(axes, groups, std::io::BufWriter::new(file)).and_then(|()| {
+            std::fs::rename(&temporary, out)
+                .map_err(|e| format!("cannot write {}: {e}", out.display()))
+        });
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&temporary);
+            return Err(io(e));
+        }
+        std::fs::remove_file(journal)
+            .map_err(|e| io(format!("cannot remove {}: {e}", journal.display())))
+    } else {
+        std::fs::rename(journal, out)
+            .map_err(|e| io(format!("cannot write {}: {e}", out.display())))
+    }
+}
+
+/// Rows per Parquet row group (about 14 MB of values with 30 columns).
+const PARQUET_GROUP_ROWS: usize = 1 << 16;
+
+fn temporary_beside(path: &Path) -> PathBuf {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// A flag set by the first SIGINT, SIGTERM or SIGHUP: the sweep takes no
+/// new run and stops once the runs under way are written. A second signal
+/// exits at once (the journal keeps every row written).
+fn stop_on_signal() -> Arc<AtomicBool> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    // Fails only if a handler is already installed (not in this program).
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(status::INTERRUPTED));
+        }
+        eprintln!("\nstopping: finishing the runs under way (again to stop at once)");
+    });
+    stop
 }
 
 fn dispatch(
@@ -175,12 +282,13 @@ fn dispatch(
     settings: &Settings,
     runs: std::ops::Range<usize>,
     threads: usize,
-    progress: &(dyn Fn() + Sync),
-) -> Result<Vec<Row>, Failure> {
+    stop: &AtomicBool,
+    sink: &mut dyn FnMut(Row) -> Result<(), String>,
+) -> Result<usize, Failure> {
     macro_rules! dimensions {
         ($($n:literal)*) => {
             match model.dimension() {
-                $($n => sweep_fixed::<$n>(model, base, plan, settings, runs, threads, progress),)*
+                $($n => sweep_fixed::<$n>(model, base, plan, settings, runs, threads, stop, sink),)*
                 n => Err(Failure::usage(format!(
                     "error: lpm sweep handles models of up to 12 coordinates; this one has {n}"
                 ))),
@@ -197,10 +305,11 @@ fn sweep_fixed<const N: usize>(
     settings: &Settings,
     runs: std::ops::Range<usize>,
     threads: usize,
-    progress: &(dyn Fn() + Sync),
-) -> Result<Vec<Row>, Failure> {
+    stop: &AtomicBool,
+    sink: &mut dyn FnMut(Row) -> Result<(), String>,
+) -> Result<usize, Failure> {
     let system =
         Interpreted::<N>::new(model).map_err(|e| Failure::evaluation(format!("error: {e}")))?;
-    run_sweep(&system, base, plan, settings, runs, threads, progress)
-        .map_err(|e| Failure::evaluation(format!("error: {e}")))
+    stream_sweep(&system, base, plan, settings, runs, threads, stop, sink)
+        .map_err(|e| Failure::io(format!("error: {e}")))
 }

@@ -1,0 +1,83 @@
+//! What can go wrong inside one evaluation of a model during a run.
+//!
+//! The solver reports a [`Fault`] with the time it happened at
+//! ([`crate::ode::SolverError::Rhs`]); the state is kept so that a user can
+//! see where the model broke (`lpm … -v` prints it with coordinate names).
+
+use std::fmt;
+
+/// A failed evaluation of the model or of a component it reads.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Fault {
+    /// `M(q)` has no Cholesky (or LU) factorization: singular, or not
+    /// positive definite, at coordinates `q`.
+    SingularMassMatrix { q: Vec<f64>, qd: Vec<f64> },
+    /// An entry of `M`, `f`, `q̈` or a power is NaN or ±∞.
+    NonFinite {
+        /// Which value, e.g. `f[theta1]` or `M[r, theta2]`.
+        output: String,
+        value: f64,
+        q: Vec<f64>,
+        qd: Vec<f64>,
+    },
+    /// A table read outside its range under the `error` policy.
+    OutOfRange {
+        component: String,
+        /// The model input that read it, when it was read through one.
+        input: Option<String>,
+        x: f64,
+        min: f64,
+        max: f64,
+    },
+    /// Anything else a component reports (an input with no value, an input
+    /// called with the wrong number of arguments).
+    Component(String),
+}
+
+impl Fault {
+    /// The coordinates and velocities at the fault, when it has them.
+    pub fn state(&self) -> Option<(&[f64], &[f64])> {
+        match self {
+            Fault::SingularMassMatrix { q, qd } | Fault::NonFinite { q, qd, .. } => Some((q, qd)),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Fault {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Fault::SingularMassMatrix { q, .. } => write!(
+                f,
+                "the mass matrix is singular or not positive definite at q = {q:?}"
+            ),
+            Fault::NonFinite { output, value, .. } => write!(f, "{output} is {value}"),
+            Fault::OutOfRange {
+                component,
+                input,
+                x,
+                min,
+                max,
+            } => {
+                if let Some(input) = input {
+                    write!(f, "input `{input}`: ")?;
+                }
+                write!(
+                    f,
+                    "component `{component}` evaluated at {x} outside its table [{min}, {max}] (policy `error`)"
+                )
+            }
+            Fault::Component(message) => f.write_str(message),
+        }
+    }
+}
+
+/// `name = value` pairs, for messages: `r = 0.1, theta1 = -0.02`.
+pub fn named_values(names: &[String], values: &[f64]) -> String {
+    names
+        .iter()
+        .zip(values)
+        .map(|(n, v)| format!("{n} = {v:e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
