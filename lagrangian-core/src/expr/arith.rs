@@ -1,6 +1,8 @@
 //! Sums, products and powers in expanded canonical form.
 
-use super::{EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, Node, Store};
+use super::{
+    EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, MAX_PRODUCT_TERMS, Node, Store,
+};
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
@@ -148,6 +150,12 @@ impl Store {
             return r;
         }
         let (ta, tb) = (self.terms(a), self.terms(b));
+        if ta.len().saturating_mul(tb.len()) > MAX_PRODUCT_TERMS {
+            self.record(EngineError::ProductTooLarge {
+                terms: (ta.len(), tb.len()),
+            });
+            return Store::ZERO;
+        }
         let result = if ta.len() == 1 && tb.len() == 1 {
             let product = self.mul_monomials(ta[0].0, tb[0].0);
             let c = self.rmul(ta[0].1, tb[0].1);

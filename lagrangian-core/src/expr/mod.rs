@@ -172,6 +172,11 @@ pub enum EngineError {
         exponent: Rational,
         sum_terms: usize,
     },
+    /// A product of two sums whose expansion would have more than
+    /// [`MAX_PRODUCT_TERMS`] terms (the two sums' numbers of terms).
+    ProductTooLarge { terms: (usize, usize) },
+    /// The model needs more than [`MAX_NODES`] distinct expressions.
+    ModelTooLarge,
 }
 
 /// Errors kept by [`Store::record`] until taken.
@@ -186,6 +191,16 @@ pub const MAX_EXPONENT: i128 = 1024;
 /// with `k` terms has `C(n + k − 1, k − 1)` monomials before any cancel
 /// ([`EngineError::ExpansionTooLarge`] beyond).
 pub const MAX_EXPANDED_TERMS: usize = 4096;
+
+/// The most terms the product of two sums may expand to before any cancel
+/// ([`EngineError::ProductTooLarge`] beyond); the shipped specs and the
+/// 40-link pendulum chain stay below it.
+pub const MAX_PRODUCT_TERMS: usize = 1 << 16;
+
+/// The most distinct expression nodes one model may create: the 40-link
+/// pendulum chain, far beyond the models this tool is for, needs 184 362
+/// (10× fewer). A derivation that would exceed it stops with an error.
+pub const MAX_NODES: usize = 2_000_000;
 
 /// Owner of all nodes, symbols and input functions of one model.
 pub struct Store {
@@ -406,6 +421,12 @@ impl Store {
     fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
+        }
+        if self.nodes.len() >= MAX_NODES {
+            // Past the budget every new node is zero: the work that follows
+            // collapses to nodes that exist, and the error is reported.
+            self.record(EngineError::ModelTooLarge);
+            return Store::ZERO;
         }
         let mut mask = match &node {
             Node::Sym(s) => symbol_bit(*s),

@@ -3,7 +3,8 @@
 use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{
-    CoordinateSymbols, EngineError, ExprId, MAX_EXPANDED_TERMS, MAX_EXPONENT, Store, SymbolId,
+    CoordinateSymbols, EngineError, ExprId, MAX_EXPANDED_TERMS, MAX_EXPONENT, MAX_NODES,
+    MAX_PRODUCT_TERMS, Store, SymbolId,
 };
 use crate::rational::Rational;
 use proc_macro2::Span;
@@ -538,6 +539,22 @@ pub(crate) fn engine_diagnostic(
         )
         .with_help(
             "powers of sums are expanded into monomials; lower the exponent, or make the sum a parameter",
+        ),
+        EngineError::ProductTooLarge { terms: (a, b) } => Diagnostic::new(
+            span,
+            format!(
+                "{what} multiplies a sum of {a} terms by a sum of {b}, whose expansion would have more than {MAX_PRODUCT_TERMS} terms"
+            ),
+        )
+        .with_help(
+            "products of sums are expanded into monomials; simplify the model, or make a sum a parameter",
+        ),
+        EngineError::ModelTooLarge => Diagnostic::new(
+            span,
+            format!("{what} needs more than {MAX_NODES} distinct expressions to derive"),
+        )
+        .with_help(
+            "products of long sums are expanded into monomials; name repeated sums with `let` on a parameter-only expression, or simplify the model",
         ),
         EngineError::MissingDerivative { input, argument } => {
             let info = &store.inputs()[input];

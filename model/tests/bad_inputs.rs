@@ -1,0 +1,80 @@
+//! The corpus of bad inputs in `tests/bad_inputs/` (specs, scenarios, CSV
+//! files): each case of `cases.toml` must fail with its exit status and
+//! exactly its message, and write nothing.
+
+use std::path::Path;
+use std::process::Command;
+
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+#[test]
+fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
+    let text =
+        std::fs::read_to_string(Path::new(ROOT).join("tests/bad_inputs/cases.toml")).unwrap();
+    let cases: toml::Table = text.parse().unwrap();
+    let cases = cases["case"].as_array().unwrap();
+    assert!(cases.len() >= 15, "{} cases", cases.len());
+    let mut failures = Vec::new();
+    for (k, case) in cases.iter().enumerate() {
+        let name = case["name"].as_str().unwrap();
+        let out = std::env::temp_dir().join(format!("lpm-bad-{}-{k}", std::process::id()));
+        let args: Vec<String> = case["args"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a.as_str().unwrap().replace("{out}", out.to_str().unwrap()))
+            .collect();
+        let o = Command::new(env!("CARGO_BIN_EXE_lpm"))
+            .args(&args)
+            .current_dir(ROOT)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+        let expected_status = case["status"].as_integer().unwrap() as i32;
+        let text = |key: &str| {
+            case.get(key)
+                .and_then(|v| v.as_str())
+                .map(|s| s.trim_start_matches('\n'))
+        };
+        let mut problems = Vec::new();
+        if o.status.code() != Some(expected_status) {
+            problems.push(format!(
+                "status {:?}, expected {expected_status}",
+                o.status.code()
+            ));
+        }
+        if let Some(exact) = text("stderr")
+            && stderr != exact
+        {
+            problems.push(format!("stderr differs; expected:\n{exact}"));
+        }
+        if let Some(start) = text("stderr_starts").map(str::trim_end)
+            && !stderr.starts_with(start)
+        {
+            problems.push(format!("stderr does not start with:\n{start}"));
+        }
+        if let Some(part) = text("stderr_contains")
+            && !stderr.contains(part)
+        {
+            problems.push(format!("stderr does not contain:\n{part}"));
+        }
+        if stderr
+            .lines()
+            .next()
+            .is_none_or(|l| !l.starts_with("error: "))
+        {
+            problems.push("the first line is not an `error: ` message".into());
+        }
+        let written = std::fs::read_dir(&out).map_or(0, |d| d.count());
+        if written > 0 {
+            problems.push(format!("{written} files written in {}", out.display()));
+        }
+        if !problems.is_empty() {
+            failures.push(format!(
+                "{name} ({args:?}):\n  {}\n  got:\n{stderr}",
+                problems.join("\n  ")
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
