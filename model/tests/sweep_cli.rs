@@ -357,7 +357,7 @@ fn sigterm_stops_a_sweep_that_resume_then_finishes() {
     assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
     assert!(!out.exists(), "no half table under the output's name");
     let kept = rows() - 1;
-    assert!(kept >= 19 && kept < 600, "{kept} rows kept");
+    assert!((19..600).contains(&kept), "{kept} rows kept");
     let mut resume = args.clone();
     resume.push("--resume".into());
     let o = lpm_owned(&resume);

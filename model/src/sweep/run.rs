@@ -238,6 +238,7 @@ const AHEAD_PER_WORKER: usize = 256;
 /// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
 /// `sink` ends it.
+#[allow(clippy::too_many_arguments)]
 pub fn stream_sweep<const N: usize, S>(
     system: &S,
     base: &BaseScenario,

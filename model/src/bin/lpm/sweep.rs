@@ -183,7 +183,7 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
     if let Some((run, message)) = &first_failure {
         text.push_str(&format!("  first failure, run {run}: {message}\n"));
     }
-    if runs.len() > 0 && ok == 0 && done == 0 {
+    if !runs.is_empty() && ok == 0 && done == 0 {
         return Err(Failure::new(
             status::EVERY_RUN_FAILED,
             format!("error: every run failed\n{text}"),
@@ -275,6 +275,7 @@ fn stop_on_signal() -> Arc<AtomicBool> {
     stop
 }
 
+#[allow(clippy::too_many_arguments)]
 fn dispatch(
     model: InterpretedModel,
     base: &BaseScenario,
@@ -298,6 +299,7 @@ fn dispatch(
     dimensions!(1 2 3 4 5 6 7 8 9 10 11 12)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn sweep_fixed<const N: usize>(
     model: InterpretedModel,
     base: &BaseScenario,
