@@ -13,6 +13,28 @@ mod models {
     lagrangian::lagrangian!(file = "specs/pendulum_chain_10.lpm");
 }
 
+/// Random specs from the property tests' generator (`lagrangian-core/tests/
+/// random_spec`, written by its `write_macro_fixtures`), all named `Random`.
+mod random {
+    macro_rules! random_specs {
+        ($($name:ident = $file:literal),* $(,)?) => {
+            $(pub mod $name {
+                lagrangian::lagrangian!(file = $file);
+            })*
+        };
+    }
+    random_specs! {
+        r1 = "tests/random_specs/random_1.lpm",
+        r2 = "tests/random_specs/random_2.lpm",
+        r3 = "tests/random_specs/random_3.lpm",
+        r4 = "tests/random_specs/random_4.lpm",
+        r5 = "tests/random_specs/random_5.lpm",
+        r6 = "tests/random_specs/random_6.lpm",
+        r7 = "tests/random_specs/random_7.lpm",
+        r8 = "tests/random_specs/random_8.lpm",
+    }
+}
+
 /// Smooth, argument-dependent input values, so wrong arguments show up.
 fn inputs(index: usize, args: &[f64]) -> f64 {
     args.iter()
@@ -196,6 +218,21 @@ fn every_spec_agrees() {
         compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
     ];
     println!("worst ulp difference per spec: {worst:?}");
+}
+
+#[test]
+fn random_specs_agree() {
+    let worst = [
+        compare::<3, random::r1::Random>("tests/random_specs/random_1.lpm"),
+        compare::<3, random::r2::Random>("tests/random_specs/random_2.lpm"),
+        compare::<2, random::r3::Random>("tests/random_specs/random_3.lpm"),
+        compare::<3, random::r4::Random>("tests/random_specs/random_4.lpm"),
+        compare::<3, random::r5::Random>("tests/random_specs/random_5.lpm"),
+        compare::<3, random::r6::Random>("tests/random_specs/random_6.lpm"),
+        compare::<2, random::r7::Random>("tests/random_specs/random_7.lpm"),
+        compare::<3, random::r8::Random>("tests/random_specs/random_8.lpm"),
+    ];
+    println!("worst ulp difference per random spec: {worst:?}");
 }
 
 #[test]
