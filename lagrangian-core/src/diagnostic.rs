@@ -59,7 +59,10 @@ pub struct Diagnostic {
     /// How to fix it, when we can say.
     pub help: Option<String>,
     /// A second location that explains the first (e.g. the earlier declaration).
-    pub note: Option<(String, SpanRange)>,
+    pub note: Option<Box<(String, SpanRange)>>,
+    /// A consequence of a problem already reported (a use of a `let` whose
+    /// definition failed), which is not reported again.
+    follows_earlier: bool,
 }
 
 impl Diagnostic {
@@ -69,7 +72,21 @@ impl Diagnostic {
             span: span.into(),
             help: None,
             note: None,
+            follows_earlier: false,
         }
+    }
+
+    /// A use of something whose own error has been reported: the statement
+    /// fails, but no second message cascades from the first.
+    pub(crate) fn follows_earlier(span: impl Into<SpanRange>) -> Diagnostic {
+        Diagnostic {
+            follows_earlier: true,
+            ..Diagnostic::new(span, "follows an error reported earlier")
+        }
+    }
+
+    pub(crate) fn is_follow_up(&self) -> bool {
+        self.follows_earlier
     }
 
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
@@ -78,7 +95,7 @@ impl Diagnostic {
     }
 
     pub fn with_note(mut self, note: impl Into<String>, span: impl Into<SpanRange>) -> Diagnostic {
-        self.note = Some((note.into(), span.into()));
+        self.note = Some(Box::new((note.into(), span.into())));
         self
     }
 
@@ -86,7 +103,7 @@ impl Diagnostic {
     /// a macro (which can underline only one place: the note gives its line).
     pub fn full_message(&self) -> String {
         let mut text = self.message.clone();
-        if let Some((note, span)) = &self.note {
+        if let Some((note, span)) = self.note.as_deref() {
             let at = span.start.start();
             if at.line > 0 {
                 text.push_str(&format!(
@@ -114,7 +131,7 @@ impl Diagnostic {
     pub fn render(&self, file: &str, source: &str) -> String {
         let mut out = format!("error: {}\n", self.message);
         out.push_str(&snippet(file, source, self.span));
-        if let Some((note, span)) = &self.note {
+        if let Some((note, span)) = self.note.as_deref() {
             out.push_str(&format!("note: {note}\n"));
             out.push_str(&snippet(file, source, *span));
         }
@@ -234,21 +251,30 @@ pub fn closest<'a>(wanted: &str, candidates: impl IntoIterator<Item = &'a str>) 
         .map(|(_, c)| c)
 }
 
+/// Optimal-string-alignment distance: insertions, deletions, substitutions
+/// and transpositions of neighbours each count 1 (`t_ned` is 1 from `t_end`).
 fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let next = (row[j + 1] + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != *cb));
-            diagonal = row[j + 1];
-            row[j + 1] = next;
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    // Rows i − 2, i − 1 and i of the distance table between prefixes.
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    let mut current = vec![0; b.len() + 1];
+    for i in 1..=a.len() {
+        current[0] = i;
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut d = (previous[j] + 1)
+                .min(current[j - 1] + 1)
+                .min(previous[j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d = d.min(before[j - 2] + 1);
+            }
+            current[j] = d;
         }
+        std::mem::swap(&mut before, &mut previous);
+        std::mem::swap(&mut previous, &mut current);
     }
-    row[b.len()]
+    previous[b.len()]
 }
 
 #[cfg(test)]
@@ -261,6 +287,25 @@ mod tests {
         assert_eq!(closest("thta1", names), Some("theta1"));
         assert_eq!(closest("m2", names), Some("m1"));
         assert_eq!(closest("velocity", names), None);
+        // A transposition is one edit.
+        assert_eq!(closest("t_ned", ["t_end", "step", "rtol"]), Some("t_end"));
+        assert_eq!(closest("thetA1", ["theta1", "theta2"]), Some("theta1"));
+    }
+
+    #[test]
+    fn edit_distances() {
+        for (a, b, d) in [
+            ("", "", 0),
+            ("", "abc", 3),
+            ("abc", "abc", 0),
+            ("abc", "acb", 1),
+            ("ca", "abc", 3), // OSA: no edits of a transposed pair
+            ("kitten", "sitting", 3),
+            ("rtool", "rtol", 1),
+        ] {
+            assert_eq!(edit_distance(a, b), d, "{a} → {b}");
+            assert_eq!(edit_distance(b, a), d, "{b} → {a}");
+        }
     }
 
     #[test]

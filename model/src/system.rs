@@ -230,16 +230,14 @@ pub trait LagrangianSystem<const N: usize> {
     }
 }
 
-/// Solves `M x = f` by `L D Lᵀ` (M is symmetric positive definite for a
-/// proper kinetic energy), falling back to Gaussian elimination with partial
-/// pivoting; `None` if `M` is singular or the result is not finite.
+/// Solves `M x = f` by `L D Lᵀ`; `None` unless `M` is numerically positive
+/// definite (a proper kinetic energy makes it so: a singular `M` has a
+/// coordinate without inertia, an indefinite one a negative mass or inertia)
+/// and the result is finite.
 pub fn solve_mass_matrix<const N: usize>(
     mass: SMatrix<f64, N, N>,
     forcing: &SVector<f64, N>,
 ) -> Option<SVector<f64, N>> {
-    let x = match crate::linalg::Ldlt::new(&mass) {
-        Some(ldlt) => ldlt.solve(forcing),
-        None => crate::linalg::Lu::new(mass)?.solve(forcing),
-    };
+    let x = crate::linalg::Ldlt::new(&mass)?.solve(forcing);
     x.iter().all(|v| v.is_finite()).then_some(x)
 }

@@ -188,6 +188,34 @@ fn a_failed_run_is_a_row_not_the_end_of_the_sweep() {
     assert_eq!(cell(&header, &rows[1], "status"), "ok");
 }
 
+/// Every run failing is status 18, and the table still records each failure.
+#[test]
+fn a_sweep_where_every_run_fails_exits_with_status_18() {
+    let dir = temporary("all-failed");
+    let out = dir.join("f.csv");
+    let o = lpm(&[
+        &["sweep", SCENARIO, "--quiet", "--out", out.to_str().unwrap()][..],
+        &SHORT,
+        &["--grid", "simulation.max_steps=2,3"],
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(18), "{}", stderr(&o));
+    let message = stderr(&o);
+    assert!(
+        message.starts_with("error: every run failed\n2 runs"),
+        "{message}"
+    );
+    assert!(
+        message.contains("first failure, run 0: max_steps: integration failed: more than 2 steps"),
+        "{message}"
+    );
+    let (header, rows) = read_csv(&out);
+    assert_eq!(rows.len(), 2);
+    for row in &rows {
+        assert_eq!(cell(&header, row, "status"), "max_steps");
+    }
+}
+
 #[test]
 fn bad_sweeps_are_refused_before_any_run() {
     let dir = temporary("bad");

@@ -21,6 +21,8 @@ pub(super) enum Binding {
     Definition(ExprId, Vec<(usize, SpanRange)>),
     /// An input function with its arity.
     Input(usize, usize),
+    /// A `let` whose definition has an error (reported there).
+    Failed,
 }
 
 /// Name resolution and the model's symbols, shared by all statements.
@@ -210,6 +212,7 @@ impl<'a> ExpressionLowering<'a> {
         let name = ident.to_string();
         match self.scope.names.get(&name) {
             Some((Binding::Value(v), _)) => Ok(*v),
+            Some((Binding::Failed, _)) => Err(Diagnostic::follows_earlier(ident.span())),
             Some((Binding::Definition(v, calls), _)) => {
                 self.input_calls.extend(calls.iter().cloned());
                 Ok(*v)

@@ -15,8 +15,11 @@ use rustc_hash::FxHashMap;
 struct Problems(Vec<Diagnostic>);
 
 impl Problems {
+    /// Records `d`, unless it only follows from a problem already recorded.
     fn push(&mut self, d: Diagnostic) {
-        self.0.push(d);
+        if !d.is_follow_up() {
+            self.0.push(d);
+        }
     }
 
     fn take<T>(&mut self, r: Result<T, Diagnostic>) -> Option<T> {
@@ -230,17 +233,21 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         } = item
         {
             let lowered = ExpressionLowering::new(&mut store, &scope, &input_names).lower(syntax);
-            if let Some(Lowered { value, input_calls }) = problems.take(lowered) {
-                if let Ok(Some(c)) = super::constant::evaluate(syntax, &scope.constants) {
-                    scope.constants.insert(name.to_string(), c);
+            match problems.take(lowered) {
+                Some(Lowered { value, input_calls }) => {
+                    if let Ok(Some(c)) = super::constant::evaluate(syntax, &scope.constants) {
+                        scope.constants.insert(name.to_string(), c);
+                    }
+                    declare(
+                        &mut scope,
+                        name,
+                        Binding::Definition(value, input_calls),
+                        &mut problems,
+                    );
+                    definitions.push((name.to_string(), value));
                 }
-                declare(
-                    &mut scope,
-                    name,
-                    Binding::Definition(value, input_calls),
-                    &mut problems,
-                );
-                definitions.push((name.to_string(), value));
+                // Its uses fail quietly: the definition's error says it all.
+                None => declare(&mut scope, name, Binding::Failed, &mut problems),
             }
         }
     }

@@ -191,9 +191,6 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
             };
             h *= factor;
             rejected_last = true;
-            if h < options.min_step {
-                return Err(SolverError::StepSizeUnderflow { t, h });
-            }
             continue;
         }
         stats.accepted_steps += 1;

@@ -39,6 +39,7 @@ pub(crate) struct Driver<Y> {
     t_end: f64,
     end_tolerance: f64,
     max_steps: usize,
+    min_step: f64,
     events: EventTracker,
     scratch: Y,
 }
@@ -64,6 +65,7 @@ impl<Y: OdeVector> Driver<Y> {
             t_end,
             end_tolerance: 4.0 * f64::EPSILON * t_end.abs().max(1.0),
             max_steps: options.max_steps,
+            min_step: options.min_step,
             events,
             scratch: y0.clone(),
         })
@@ -72,7 +74,10 @@ impl<Y: OdeVector> Driver<Y> {
     /// The step to attempt from `t` given the step `h` the method wants:
     /// `None` once `t_end` is reached, `h` stretched or shortened to land on
     /// `t_end` when that is within 1% of it (no sliver of a last step), or
-    /// an error after `max_steps` attempted steps.
+    /// an error after `max_steps` attempted steps or when `h` is below
+    /// `Options::min_step` or too small to move `t` (`h ≤ 10 ε |t|`, as in
+    /// Hairer's DOPRI5): the solution is no longer smooth at this scale, as
+    /// near a finite-time blow-up.
     #[inline]
     pub fn next_step(&self, t: f64, h: f64) -> Result<Option<f64>, SolverError> {
         let remaining = self.t_end - t;
@@ -84,6 +89,9 @@ impl<Y: OdeVector> Driver<Y> {
                 t,
                 steps: self.max_steps,
             });
+        }
+        if !(h >= self.min_step && h > 10.0 * f64::EPSILON * t.abs()) {
+            return Err(SolverError::StepSizeUnderflow { t, h });
         }
         Ok(Some(if t + 1.01 * h >= self.t_end {
             remaining

@@ -105,8 +105,8 @@ pub struct Stats {
 /// Why an integration stopped early.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverError {
-    /// The error test rejected steps until the step size fell below
-    /// `Options::min_step`.
+    /// The step size fell below `Options::min_step`, or below what moves `t`
+    /// at all, through rejected or accepted steps.
     StepSizeUnderflow { t: f64, h: f64 },
     /// More than `Options::max_steps` steps were attempted.
     MaxSteps { t: f64, steps: usize },

@@ -61,8 +61,20 @@ pub enum SimulationError {
     Model(ModelError),
     /// Newton's method found no static equilibrium.
     Equilibrium(String),
-    /// The integration stopped.
-    Solver(SolverError),
+    /// The integration stopped; `reached` is where its last accepted step
+    /// ended (`None` when it failed before the first step).
+    Solver {
+        error: SolverError,
+        reached: Option<Box<Reached>>,
+    },
+}
+
+/// The state at the end of a run's last accepted step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reached {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
 }
 
 impl fmt::Display for SimulationError {
@@ -70,7 +82,7 @@ impl fmt::Display for SimulationError {
         match self {
             SimulationError::Model(e) => write!(f, "{e}"),
             SimulationError::Equilibrium(m) => write!(f, "no static equilibrium: {m}"),
-            SimulationError::Solver(e) => write!(f, "integration failed: {e}"),
+            SimulationError::Solver { error, .. } => write!(f, "integration failed: {error}"),
         }
     }
 }
@@ -122,7 +134,7 @@ impl SimulationError {
         match self {
             SimulationError::Model(_) => FailureKind::Scenario,
             SimulationError::Equilibrium(_) => FailureKind::NoEquilibrium,
-            SimulationError::Solver(e) => match e {
+            SimulationError::Solver { error, .. } => match error {
                 SolverError::StepSizeUnderflow { .. }
                 | SolverError::NewtonFailure { .. }
                 | SolverError::SingularIterationMatrix { .. } => FailureKind::StepSizeUnderflow,
@@ -143,7 +155,18 @@ impl SimulationError {
     /// The fault inside, when a model evaluation failed.
     pub fn fault(&self) -> Option<&Fault> {
         match self {
-            SimulationError::Solver(SolverError::Rhs { fault, .. }) => Some(fault),
+            SimulationError::Solver {
+                error: SolverError::Rhs { fault, .. },
+                ..
+            } => Some(fault),
+            _ => None,
+        }
+    }
+
+    /// Where a failed integration's last accepted step ended.
+    pub fn reached(&self) -> Option<&Reached> {
+        match self {
+            SimulationError::Solver { reached, .. } => reached.as_deref(),
             _ => None,
         }
     }
@@ -151,7 +174,10 @@ impl SimulationError {
 
 impl From<SolverError> for SimulationError {
     fn from(e: SolverError) -> Self {
-        SimulationError::Solver(e)
+        SimulationError::Solver {
+            error: e,
+            reached: None,
+        }
     }
 }
 
@@ -272,8 +298,12 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     } else {
         0 // NaN
     };
+    // The end of the last accepted step, for the report of a failure.
+    let mut reached: Option<(f64, PhaseState<N>)> = None;
     let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
         let mut y = PhaseState::zeros();
+        step.eval(step.t1(), &mut y);
+        reached = Some((step.t1(), y));
         while next <= last {
             let t = (next as f64 * interval).min(t_end);
             if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
@@ -289,12 +319,23 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         Method::Dopri5 => dopri5::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
         Method::Rk4 => rk4::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
         Method::Implicit => sdirk::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
-    }?;
+    };
+    let outcome = outcome.map_err(|error| SimulationError::Solver {
+        error,
+        reached: reached.map(|(t, y)| {
+            Box::new(Reached {
+                t,
+                q: y.q.as_slice().to_vec(),
+                qd: y.v.as_slice().to_vec(),
+            })
+        }),
+    })?;
     if let Some(fault) = problem.failure.take() {
-        return Err(SimulationError::Solver(SolverError::Rhs {
+        return Err(SolverError::Rhs {
             t: outcome.t,
             fault,
-        }));
+        }
+        .into());
     }
     if let Some(e) = sample_error {
         return Err(e.into());

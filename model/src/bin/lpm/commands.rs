@@ -102,7 +102,18 @@ impl Failure {
         };
         let mut failure = Failure::new(code, format!("error: {e}"));
         failure.details.push(format!("kind: {:?}", e.kind()));
-        if let Some((q, qd)) = e.fault().and_then(Fault::state) {
+        let state = match (e.fault().and_then(Fault::state), e.reached()) {
+            (Some(state), _) => Some(state),
+            (None, Some(reached)) => {
+                let t = reached.t;
+                failure
+                    .details
+                    .push(format!("last accepted step ended at t = {t:e} s"));
+                Some((&reached.q[..], &reached.qd[..]))
+            }
+            (None, None) => None,
+        };
+        if let Some((q, qd)) = state {
             failure
                 .details
                 .push(format!("coordinates: {}", named_values(coordinates, q)));
