@@ -29,7 +29,7 @@ pub(super) struct SimulationSection {
     pub(super) rtol: f64,
     pub(super) atol: f64,
     pub(super) max_step: Option<f64>,
-    /// Step of the fixed-step RK4 method.
+    /// Step of the fixed-step RK4 method; first step of the adaptive ones.
     pub(super) step: Option<f64>,
     pub(super) output_interval: f64,
     pub(super) max_steps: usize,

@@ -120,10 +120,11 @@ pub(super) fn resolve(
     if let Some(h) = s.step {
         positive("simulation.step", h)?;
     }
-    let fixed_step = match (method, s.step) {
-        (Method::Rk4, None) => Some(1e-5),
-        (Method::Rk4, Some(h)) => Some(h),
-        _ => None,
+    // The fixed step of RK4; the first step of the adaptive methods (which
+    // otherwise choose it themselves).
+    let (fixed_step, initial_step) = match method {
+        Method::Rk4 => (Some(s.step.unwrap_or(1e-5)), None),
+        _ => (None, s.step),
     };
     let options = Options {
         rtol: s.rtol,
@@ -132,6 +133,7 @@ pub(super) fn resolve(
         max_step: s.max_step.unwrap_or(f64::INFINITY),
         max_steps: s.max_steps,
         fixed_step,
+        initial_step,
         ..Options::default()
     };
     options.validate().map_err(|e| format!("simulation: {e}"))?;

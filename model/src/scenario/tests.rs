@@ -187,3 +187,19 @@ fn settings_split_at_the_first_equals_sign() {
         Err("--set k: `two` is not a number".to_string())
     );
 }
+
+/// `simulation.step` is RK4's fixed step and the adaptive methods' first step.
+#[test]
+fn the_step_setting_applies_to_every_method() {
+    let names = ModelNames::of_interpreted(&InterpretedModel::from_source(SPRING).unwrap());
+    let options = |method: &str| {
+        let text = format!("[simulation]\nmethod = \"{method}\"\nstep = 2e-6\n{PUSH}");
+        Scenario::parse(&text, None, &names, &[]).unwrap().options
+    };
+    assert_eq!(options("rk4").fixed_step, Some(2e-6));
+    assert_eq!(options("rk4").initial_step, None);
+    for method in ["dopri5", "implicit"] {
+        assert_eq!(options(method).fixed_step, None, "{method}");
+        assert_eq!(options(method).initial_step, Some(2e-6), "{method}");
+    }
+}
