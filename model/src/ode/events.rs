@@ -221,15 +221,12 @@ mod tests {
         }
     }
 
-    /// An event function that defeats the root finder: negative at the start
-    /// and the midpoint, positive at the end, and at every probe negative and
-    /// just small enough that the next regula falsi point lands 3% into the
-    /// bracket (Illinois halves the stale end's value each time), so the
-    /// bracket shrinks by 3% per iteration and never reaches 1e-12 s.
-    struct Adversary {
+    /// A problem that is one event function `g(t, call number)` (from 1).
+    struct OneEvent<G: FnMut(f64, usize) -> f64> {
+        g: G,
         calls: usize,
     }
-    impl OdeProblem<PhaseState<1>> for Adversary {
+    impl<G: FnMut(f64, usize) -> f64> OdeProblem<PhaseState<1>> for OneEvent<G> {
         fn rhs(
             &mut self,
             _t: f64,
@@ -242,32 +239,42 @@ mod tests {
         fn event_count(&self) -> usize {
             1
         }
-        fn events(
-            &mut self,
-            _t: f64,
-            _y: &PhaseState<1>,
-            g: &mut [f64],
-        ) -> Result<(), SolverError> {
+        fn events(&mut self, t: f64, _y: &PhaseState<1>, g: &mut [f64]) -> Result<(), SolverError> {
             self.calls += 1;
-            let r: f64 = 0.03;
-            g[0] = match self.calls {
-                1 => -1.0, // start (reset)
-                2 => 1.0,  // end of the step
-                3 => -1.0, // midpoint: the crossing is in the second half
-                k => -r / (1.0 - r) * 0.5f64.powi(k as i32 - 4),
-            };
+            g[0] = (self.g)(t, self.calls);
             Ok(())
         }
     }
 
-    #[test]
-    fn an_event_that_cannot_be_bracketed_is_an_error_not_a_loop() {
-        let mut problem = Adversary { calls: 0 };
+    /// Resets a tracker at t = 0 and locates the crossing in [`Step`].
+    fn locate_in_step<G: FnMut(f64, usize) -> f64>(
+        problem: &mut OneEvent<G>,
+    ) -> Result<Option<(usize, f64)>, SolverError> {
         let mut tracker = EventTracker::new(1);
         let y = PhaseState::<1>::zeros();
-        tracker.reset(&mut problem, 0.0, &y, &y).unwrap();
+        tracker.reset(problem, 0.0, &y, &y)?;
         let mut scratch = y;
-        let result = tracker.locate(&mut problem, &Step, &y, &mut scratch);
+        tracker.locate(problem, &Step, &y, &mut scratch)
+    }
+
+    /// An event function that defeats the root finder: negative at the start
+    /// and the midpoint, positive at the end, and at every probe negative and
+    /// just small enough that the next regula falsi point lands 3% into the
+    /// bracket (Illinois halves the stale end's value each time), so the
+    /// bracket shrinks by 3% per iteration and never reaches 1e-12 s.
+    #[test]
+    fn an_event_that_cannot_be_bracketed_is_an_error_not_a_loop() {
+        let r: f64 = 0.03;
+        let mut problem = OneEvent {
+            g: |_t, call| match call {
+                1 => -1.0, // start (reset)
+                2 => 1.0,  // end of the step
+                3 => -1.0, // midpoint: the crossing is in the second half
+                k => -r / (1.0 - r) * 0.5f64.powi(k as i32 - 4),
+            },
+            calls: 0,
+        };
+        let result = locate_in_step(&mut problem);
         assert_eq!(
             result,
             Err(SolverError::EventNotLocated { t: 1e-3, event: 0 })
@@ -279,38 +286,11 @@ mod tests {
     /// A crossing of a smooth function is located to 1e-12 s.
     #[test]
     fn a_smooth_crossing_is_located() {
-        struct Line;
-        impl OdeProblem<PhaseState<1>> for Line {
-            fn rhs(
-                &mut self,
-                _t: f64,
-                _y: &PhaseState<1>,
-                dy: &mut PhaseState<1>,
-            ) -> Result<(), SolverError> {
-                *dy = PhaseState::zeros();
-                Ok(())
-            }
-            fn event_count(&self) -> usize {
-                1
-            }
-            fn events(
-                &mut self,
-                t: f64,
-                _y: &PhaseState<1>,
-                g: &mut [f64],
-            ) -> Result<(), SolverError> {
-                g[0] = (t - 3.3e-4).sinh() * 1e3;
-                Ok(())
-            }
-        }
-        let mut tracker = EventTracker::new(1);
-        let y = PhaseState::<1>::zeros();
-        tracker.reset(&mut Line, 0.0, &y, &y).unwrap();
-        let mut scratch = y;
-        let (k, t) = tracker
-            .locate(&mut Line, &Step, &y, &mut scratch)
-            .unwrap()
-            .unwrap();
+        let mut problem = OneEvent {
+            g: |t, _| (t - 3.3e-4).sinh() * 1e3,
+            calls: 0,
+        };
+        let (k, t) = locate_in_step(&mut problem).unwrap().unwrap();
         assert_eq!(k, 0);
         assert!(t >= 3.3e-4 && t - 3.3e-4 <= 1e-12, "{t}");
     }
