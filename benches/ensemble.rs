@@ -5,9 +5,10 @@
 //!
 //! `cargo bench -p lagrangian --bench ensemble [-- RUNS]`
 
+use lagrangian::scenario::BaseScenario;
 use lagrangian::scenario::ModelNames;
-use lagrangian::sweep::{BaseScenario, Plan, Settings, run_sweep};
-use lagrangian::{Interpreted, InterpretedModel, LagrangianSystem};
+use lagrangian::sweep::{Plan, Settings, run_sweep};
+use lagrangian::{Interpreted, LagrangianSystem};
 use std::path::Path;
 use std::time::Instant;
 
@@ -42,8 +43,7 @@ fn main() {
     let scenario = root.join("specs/scenarios/yaris_full_frontal.toml");
     let compiled = models::YarisDoublePendulum::default();
     let source = std::fs::read_to_string(root.join("specs/yaris_double_pendulum.lpm")).unwrap();
-    let interpreted =
-        Interpreted::<3>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let interpreted = Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     let base = BaseScenario {
         text: std::fs::read_to_string(&scenario).unwrap(),
         file: Some(scenario),

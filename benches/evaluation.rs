@@ -6,9 +6,7 @@
 //! `cargo bench -p lagrangian --bench evaluation`
 
 use lagrangian::nalgebra::{Matrix3, Vector3};
-use lagrangian::{
-    InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, solve_mass_matrix,
-};
+use lagrangian::{InputFunctions, Interpreted, LagrangianSystem, solve_mass_matrix};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -155,8 +153,7 @@ fn main() {
         "/specs/yaris_double_pendulum.lpm"
     ))
     .unwrap();
-    let interpreted =
-        Interpreted::<3>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let interpreted = Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     let states: Vec<(Vector3<f64>, Vector3<f64>)> = (0..64)
         .map(|k| {
             let x = k as f64 / 64.0;
@@ -243,8 +240,7 @@ fn chain_20() {
         "/benches/specs/pendulum_chain_20.lpm"
     ))
     .unwrap();
-    let interpreted =
-        Interpreted::<20>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let interpreted = Interpreted::<20>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     let states: Vec<(SVector<f64, 20>, SVector<f64, 20>)> = (0..16)
         .map(|k| {
             let x = k as f64 / 16.0;

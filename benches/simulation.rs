@@ -10,7 +10,7 @@ use lagrangian::nalgebra::SVector;
 use lagrangian::ode::{OdeProblem, Options, PhaseState, SolverError, dopri5};
 use lagrangian::scenario::{ModelNames, Scenario};
 use lagrangian::simulate::{CrashProblem, simulate, simulate_summary, static_equilibrium};
-use lagrangian::{Interpreted, InterpretedModel, LagrangianSystem};
+use lagrangian::{Interpreted, LagrangianSystem};
 use std::cell::RefCell;
 use std::path::Path;
 use std::time::Instant;
@@ -132,7 +132,7 @@ fn peer_rows<S: LagrangianSystem<3> + Clone>(model: &S, scenario_path: &Path) {
         });
         let ours = ours.unwrap();
         println!(
-            "| lagrangian-model dopri5 | {rtol:e} | {us:.0} µs | {} | {} | {:.1e} |",
+            "| lagrangian-sim dopri5 | {rtol:e} | {us:.0} µs | {} | {} | {:.1e} |",
             ours.stats.accepted_steps,
             ours.stats.rhs_evaluations,
             error(&ours.y)
@@ -212,8 +212,7 @@ fn main() {
     let scenario_path = root.join("specs/scenarios/yaris_full_frontal.toml");
     let compiled = models::YarisDoublePendulum::default();
     let source = std::fs::read_to_string(root.join("specs/yaris_double_pendulum.lpm")).unwrap();
-    let interpreted =
-        Interpreted::<3>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let interpreted = Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     println!("| model | rtol | output samples | time (median) | steps | right-hand sides |");
     println!("|---|---|---|---|---|---|");
     for rtol in ["1e-6", "1e-8", "1e-9"] {

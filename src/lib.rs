@@ -58,6 +58,7 @@
 
 pub use lagrangian_macro::lagrangian;
 pub use lagrangian_model::*;
-
-/// The compiler itself: spec parser, symbolic engine, derivation, optimizer, emitters.
-pub use lagrangian_core as compiler;
+/// The crash-simulation library (feature `sim`, on by default): scenarios,
+/// crash components, integration, pulse metrics, sweeps, fitting, plots.
+#[cfg(feature = "sim")]
+pub use lagrangian_sim::*;

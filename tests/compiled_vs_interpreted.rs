@@ -2,7 +2,7 @@
 //! optimized program, so they must agree to the last few ulps on every spec.
 
 use lagrangian::nalgebra::SVector;
-use lagrangian::{Interpreted, InterpretedModel, Jacobians, LagrangianSystem};
+use lagrangian::{Interpreted, Jacobians, LagrangianSystem};
 
 mod models {
     lagrangian::lagrangian!(file = "specs/simple_pendulum.lpm");
@@ -101,7 +101,7 @@ fn one_pass<const N: usize, M: LagrangianSystem<N>>(
 fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 {
     let source = std::fs::read_to_string(spec).unwrap();
     let mut interpreted =
-        Interpreted::<N>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+        Interpreted::<N>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     let mut compiled = M::default();
     assert_eq!(
         compiled.parameters(),

@@ -3,7 +3,7 @@
 //! energy scale. A wrong sign or a missing term in f breaks this at once.
 
 use lagrangian::nalgebra::SVector;
-use lagrangian::{ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem};
+use lagrangian::{ConstantInputs, InputFunctions, Interpreted, LagrangianSystem};
 
 mod models {
     lagrangian::lagrangian!(file = "specs/simple_pendulum.lpm");
@@ -92,7 +92,7 @@ fn check<const N: usize, S: LagrangianSystem<N>>(
 
 fn interpreted<const N: usize>(path: &str) -> Interpreted<N> {
     let source = std::fs::read_to_string(path).unwrap();
-    Interpreted::new(InterpretedModel::from_source(&source).unwrap()).unwrap()
+    Interpreted::new(lagrangian_core::interpret(&source).unwrap()).unwrap()
 }
 
 #[test]

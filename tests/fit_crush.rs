@@ -5,9 +5,9 @@
 use lagrangian::LagrangianSystem;
 use lagrangian::fit::{FitReport, FitSetup, Parameters, fit};
 use lagrangian::pulse::channels::{Channel, Quantity, TimeHistories};
+use lagrangian::scenario::BaseScenario;
 use lagrangian::scenario::{ModelNames, Scenario};
 use lagrangian::simulate::simulate;
-use lagrangian::sweep::BaseScenario;
 use std::path::Path;
 
 mod models {

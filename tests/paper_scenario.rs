@@ -4,7 +4,7 @@
 
 use lagrangian::scenario::{ModelNames, Scenario};
 use lagrangian::simulate::{SimulationResult, simulate};
-use lagrangian::{Interpreted, InterpretedModel, LagrangianSystem};
+use lagrangian::{Interpreted, LagrangianSystem};
 use std::path::Path;
 
 mod models {
@@ -16,7 +16,7 @@ const SCENARIO: &str = "specs/scenarios/yaris_full_frontal.toml";
 
 fn interpreted() -> Interpreted<3> {
     let source = std::fs::read_to_string(SPEC).unwrap();
-    Interpreted::new(InterpretedModel::from_source(&source).unwrap()).unwrap()
+    Interpreted::new(lagrangian_core::interpret(&source).unwrap()).unwrap()
 }
 
 fn run<S: LagrangianSystem<3> + Clone>(model: &S, settings: &[&str]) -> SimulationResult {

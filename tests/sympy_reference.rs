@@ -5,7 +5,7 @@
 //! paper's model and the double pendulum, the macro-compiled code.
 
 use lagrangian::nalgebra::SVector;
-use lagrangian::{InputFunctions, Interpreted, InterpretedModel, LagrangianSystem};
+use lagrangian::{InputFunctions, Interpreted, LagrangianSystem};
 use serde_json::Value;
 use std::cell::RefCell;
 
@@ -147,11 +147,11 @@ fn interpreted(name: &str, reference: &Value) -> f64 {
     let spec = reference["models"][name]["spec"].as_str().unwrap();
     let source = match spec.strip_prefix("generated:pendulum_chain(") {
         Some(n) => {
-            lagrangian::compiler::examples::pendulum_chain(n.trim_end_matches(')').parse().unwrap())
+            lagrangian_core::examples::pendulum_chain(n.trim_end_matches(')').parse().unwrap())
         }
         None => std::fs::read_to_string(spec).unwrap(),
     };
-    let mut model = InterpretedModel::from_source(&source).unwrap();
+    let mut model = lagrangian_core::interpret(&source).unwrap();
     let names: Vec<String> = reference["models"][name]["parameters"]
         .as_array()
         .unwrap()
@@ -231,7 +231,7 @@ fn compiled_code_matches_sympy() {
 fn the_interpreted_adapter_matches_too() {
     let reference = reference();
     let source = std::fs::read_to_string("specs/yaris_double_pendulum.lpm").unwrap();
-    let model = Interpreted::<3>::new(InterpretedModel::from_source(&source).unwrap()).unwrap();
+    let model = Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
     let mut model = model;
     let names: Vec<String> = model
         .parameter_names()

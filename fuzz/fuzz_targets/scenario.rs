@@ -5,10 +5,9 @@
 #![no_main]
 
 use lagrangian_core::Compiled;
-use lagrangian_model::InterpretedModel;
-use lagrangian_model::crash::table::Table;
-use lagrangian_model::pulse::channels::from_table;
-use lagrangian_model::scenario::{ModelNames, Scenario};
+use lagrangian_sim::crash::table::Table;
+use lagrangian_sim::pulse::channels::from_table;
+use lagrangian_sim::scenario::{ModelNames, Scenario};
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -18,7 +17,7 @@ fn names() -> &'static ModelNames {
     NAMES.get_or_init(|| {
         let source = include_str!("../../specs/yaris_double_pendulum.lpm");
         let compiled = Compiled::from_source(source).expect("the paper's spec compiles");
-        ModelNames::of_interpreted(&InterpretedModel::from_compiled(&compiled))
+        ModelNames::of_interpreted(&compiled.interpreted())
     })
 }
 

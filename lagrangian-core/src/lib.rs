@@ -3,7 +3,8 @@
 //! Pipeline: spec text or tokens → [`spec::Model`] (names resolved, expressions
 //! in canonical form) → [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians)
 //! → [`program::Program`] (optimized straight-line code) → Rust source
-//! ([`emit`]) or direct evaluation ([`program::Program::run`]).
+//! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
+//! [`tape::lower`]).
 
 pub mod audit;
 pub mod depth;
@@ -22,10 +23,10 @@ pub mod tape;
 pub mod units;
 
 pub use diagnostic::{Diagnostic, SpecErrors};
-pub use expr::{ConstantInputs, InputFunctions, NoInputs};
 pub use spec::Model;
 
 use derive::Derivation;
+use lagrangian_model::{InterpretedModel, ModelDescription};
 use program::Program;
 
 /// A model with its derived equations and optimized program.
@@ -58,4 +59,39 @@ impl Compiled {
     pub fn default_parameters(&self) -> Vec<f64> {
         self.model.parameters.iter().map(|p| p.default).collect()
     }
+
+    /// The names, units and defaults the interpreter needs.
+    pub fn description(&self) -> ModelDescription {
+        let model = &self.model;
+        let unit = |u: &Option<spec::UnitText>| u.as_ref().map(|u| u.text.clone());
+        ModelDescription {
+            name: model.name.clone(),
+            coordinates: model.coordinates.iter().map(|c| c.name.clone()).collect(),
+            coordinate_units: model.coordinates.iter().map(|c| unit(&c.unit)).collect(),
+            parameters: model.parameters.iter().map(|p| p.name.clone()).collect(),
+            parameter_defaults: self.default_parameters(),
+            inputs: model.inputs.iter().map(|i| i.name.clone()).collect(),
+            input_arguments: model
+                .inputs
+                .iter()
+                .map(|i| i.arguments.iter().map(|(name, _)| name.clone()).collect())
+                .collect(),
+            input_units: model.inputs.iter().map(|i| unit(&i.unit)).collect(),
+            input_sites: self.program.input_sites.clone(),
+        }
+    }
+
+    /// The model run by the runtime's interpreter, without recompiling,
+    /// with default parameters.
+    pub fn interpreted(&self) -> InterpretedModel {
+        let description = self.description();
+        let tape = tape::lower(&self.program, description.parameters.len());
+        InterpretedModel::new(description, tape)
+            .expect("the description lists what the program computes")
+    }
+}
+
+/// Parses, derives and optimizes a spec and returns it ready to interpret.
+pub fn interpret(source: &str) -> Result<InterpretedModel, SpecErrors> {
+    Ok(Compiled::from_source(source)?.interpreted())
 }

@@ -14,6 +14,7 @@ use crate::derive::Derivation;
 use crate::expr::{ExprId, Func, Node, Store, SymbolKind};
 use crate::program::{Op, Program, Reg, Routine, RoutineKind};
 use crate::rational::Rational;
+use lagrangian_model::layout::mass_entries;
 use rustc_hash::FxHashMap;
 
 mod shift;
@@ -83,12 +84,9 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
         var_regs: FxHashMap::default(),
         shifted_vars: Default::default(),
     };
-    let mut dynamics = Vec::new();
-    for i in 0..n {
-        for j in i..n {
-            dynamics.push(b.output(derivation.mass(i, j)));
-        }
-    }
+    let mut dynamics: Vec<Reg> = mass_entries(n)
+        .map(|(i, j)| b.output(derivation.mass(i, j)))
+        .collect();
     for &f in &derivation.forcing {
         dynamics.push(b.output(f));
     }

@@ -7,7 +7,7 @@
 //! run by [`Program::run`], which performs exactly the same floating-point
 //! operations in the same order.
 
-use crate::expr::InputFunctions;
+use crate::expr::Inputs;
 use std::hash::{Hash, Hasher};
 
 /// Register index: the result of operation number `Reg`.
@@ -139,24 +139,7 @@ impl Op {
     }
 }
 
-/// Which output group a routine computes.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum RoutineKind {
-    /// Upper triangle of `M` (row-major), then `f`.
-    Dynamics,
-    /// `T, V, D, Σ ∂D/∂q̇·q̇, Σ Q·q̇`.
-    Energies,
-    /// `∂f/∂q`, `∂f/∂q̇`, `∂(M a)/∂q`, each row-major `n × n`.
-    Jacobians,
-    /// The arguments of every input-function call of the dynamics routine,
-    /// concatenated in the order of [`Program::input_sites`].
-    InputArguments,
-    /// The outputs of [`RoutineKind::Dynamics`], then `Σ ∂D/∂q̇·q̇` and
-    /// `Σ Q·q̇`: one pass for an integrator that also integrates the
-    /// dissipated energy and the work of the forces, sharing the operations
-    /// and input calls the two groups have in common.
-    DynamicsAndPowers,
-}
+pub use lagrangian_model::layout::RoutineKind;
 
 /// A group of outputs and the operations needed to compute them, in order.
 #[derive(Clone, Debug)]
@@ -187,14 +170,14 @@ impl OpCounts {
 }
 
 /// The values a routine reads: time, state, parameters and input functions.
-pub struct EvalContext<'a, I: InputFunctions + ?Sized> {
+pub struct EvalContext<'a> {
     pub t: f64,
     pub q: &'a [f64],
     pub qd: &'a [f64],
     /// Accelerations (only the Jacobians routine reads them).
     pub qdd: &'a [f64],
     pub parameters: &'a [f64],
-    pub inputs: &'a I,
+    pub inputs: Inputs<'a>,
 }
 
 /// An optimized straight-line program for all outputs of a model.
@@ -242,10 +225,10 @@ impl Program {
     ///
     /// `registers` must come from [`Program::registers`]; `out` must hold
     /// `routine.outputs.len()` values.
-    pub fn run<I: InputFunctions + ?Sized>(
+    pub fn run(
         &self,
         routine: &Routine,
-        ctx: &EvalContext<I>,
+        ctx: &EvalContext,
         registers: &mut [f64],
         out: &mut [f64],
     ) {
@@ -264,10 +247,10 @@ impl Program {
                         for (slot, a) in args.iter_mut().zip(regs.iter()) {
                             *slot = registers[*a as usize];
                         }
-                        ctx.inputs.value(*index as usize, &args[..regs.len()])
+                        (ctx.inputs)(*index as usize, &args[..regs.len()])
                     } else {
                         let values: Vec<f64> = regs.iter().map(reg).collect();
-                        ctx.inputs.value(*index as usize, &values)
+                        (ctx.inputs)(*index as usize, &values)
                     }
                 }
                 Op::Add(a, b) => reg(a) + reg(b),

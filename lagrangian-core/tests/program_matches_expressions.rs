@@ -5,15 +5,12 @@ use lagrangian_core::expr::{Evaluator, SymbolKind};
 use lagrangian_core::program::{EvalContext, RoutineKind};
 
 /// Input function `k` evaluates to a smooth function of its arguments.
-struct SmoothInputs;
-impl lagrangian_core::InputFunctions for SmoothInputs {
-    fn value(&self, input: usize, args: &[f64]) -> f64 {
-        args.iter()
-            .enumerate()
-            .fold(1.0 + input as f64, |acc, (i, a)| {
-                acc + (a * (i as f64 + 1.3)).sin()
-            })
-    }
+fn smooth_inputs(input: usize, args: &[f64]) -> f64 {
+    args.iter()
+        .enumerate()
+        .fold(1.0 + input as f64, |acc, (i, a)| {
+            acc + (a * (i as f64 + 1.3)).sin()
+        })
 }
 
 fn lcg(seed: &mut u64) -> f64 {
@@ -51,14 +48,14 @@ fn check_spec(path: &str) {
                 _ => 0.0,
             };
         }
-        let mut ev = Evaluator::new(store, values, &SmoothInputs);
+        let mut ev = Evaluator::new(store, values, &smooth_inputs);
         let ctx = EvalContext {
             t,
             q: &q,
             qd: &qd,
             qdd: &qdd,
             parameters: &params,
-            inputs: &SmoothInputs,
+            inputs: &smooth_inputs,
         };
         let mut regs = compiled.program.registers();
         let d = &compiled.derivation;

@@ -1,29 +1,45 @@
-//! Runtime for `lagrangian` models.
+//! The model runtime of `lagrangian`: what a derived model is at run time,
+//! compiled or interpreted.
 //!
-//! * [`LagrangianSystem`]: what every derived model implements — `M(q, t)`,
-//!   `f(q, q̇, t)`, energies, Jacobians — whether compiled by the
-//!   `lagrangian!` macro or interpreted from a spec file.
-//! * [`InterpretedModel`]: a spec file evaluated at run time, without recompiling.
+//! * [`LagrangianSystem`]: the interface every derived model implements —
+//!   `M(q, t)`, `f(q, q̇, t)`, energies, Jacobians — on nalgebra's fixed-size
+//!   vectors. The `lagrangian!` macro generates implementations of it.
+//! * [`InterpretedModel`]: a spec's compiled program run by the interpreter
+//!   ([`tape`]) without recompiling; [`Interpreted<N>`] puts it behind
+//!   [`LagrangianSystem<N>`]. `lagrangian_core::Compiled::interpreted` makes one.
 //! * [`InputFunctions`]: how run-time inputs (crush characteristics, barrier
 //!   force tables) reach a model.
+//! * [`layout`]: the order of every routine's outputs, shared by the compiler,
+//!   its emitters and the interpreter.
+//!
+//! The crate depends on nalgebra alone, so that generated code compiles
+//! quickly. Without its default `nalgebra` feature it holds what the compiler
+//! needs of it (the interpreter, the layout, input functions, [`names`]) and
+//! depends on nothing.
+#![warn(missing_docs)]
 
-pub mod crash;
-pub mod fault;
-pub mod fit;
+mod error;
+#[cfg(feature = "nalgebra")]
+mod fixed;
+mod inputs;
 mod interpreted;
+pub mod layout;
+#[cfg(feature = "nalgebra")]
 pub mod linalg;
-pub mod ode;
-pub mod plot;
-pub mod pulse;
-pub mod report;
-pub mod scenario;
-pub mod simulate;
-pub mod sweep;
+pub mod names;
+#[cfg(feature = "nalgebra")]
 mod system;
+pub mod tape;
 
-pub use interpreted::{Interpreted, InterpretedModel};
-pub use lagrangian_core::{ConstantInputs, InputFunctions, NoInputs};
-pub use system::{Energies, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix};
+pub use error::ModelError;
+#[cfg(feature = "nalgebra")]
+pub use fixed::{Interpreted, MAX_INTERPRETED_DIMENSION, WithDimension};
+pub use inputs::{ConstantInputs, InputFunctions, NoInputs};
+pub use interpreted::{InterpretedModel, ModelDescription};
+pub use layout::Energies;
+#[cfg(feature = "nalgebra")]
+pub use system::{Jacobians, LagrangianSystem, solve_mass_matrix};
 
 /// The linear-algebra crate of the generated code's signatures.
+#[cfg(feature = "nalgebra")]
 pub use nalgebra;

@@ -1,25 +1,10 @@
 //! The interface every derived model implements, compiled or interpreted.
 
-use crate::InputFunctions;
+use crate::{Energies, InputFunctions, ModelError};
 use nalgebra::{SMatrix, SVector};
-use std::fmt;
 
-/// Energy bookkeeping at one state.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Energies {
-    /// Kinetic energy `T`.
-    pub kinetic: f64,
-    /// Potential energy `V`.
-    pub potential: f64,
-    /// Rayleigh dissipation function `D`.
-    pub dissipation: f64,
-    /// `Σ_i ∂D/∂q̇_i q̇_i`: power dissipated by `D` (= 2D when D is quadratic).
-    pub damping_power: f64,
-    /// `Σ_i Q_i q̇_i`: power of the generalized forces of the force statements.
-    pub external_power: f64,
-}
-
-/// Jacobians of the equations of motion `M(q) q̈ = f(q, q̇, t)`.
+/// Jacobians of the equations of motion `M(q) q̈ = f(q, q̇, t)` (the blocks of
+/// [`crate::layout::JACOBIAN_BLOCKS`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Jacobians<const N: usize> {
     /// `∂f_i/∂q_k`.
@@ -39,60 +24,6 @@ impl<const N: usize> Default for Jacobians<N> {
         }
     }
 }
-
-/// Why a model could not do what was asked.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ModelError {
-    /// No parameter of that name; `suggestion` is the closest existing one.
-    UnknownParameter {
-        name: String,
-        suggestion: Option<String>,
-    },
-    /// The spec did not ask for Jacobians (`jacobians;`).
-    JacobiansNotDerived,
-    /// `M(q)` is singular or not positive definite at this state.
-    SingularMassMatrix { t: f64, q: Vec<f64> },
-    /// The dimension of a state does not match the model's.
-    DimensionMismatch { expected: usize, found: usize },
-}
-
-impl ModelError {
-    /// An unknown-parameter error suggesting the closest of `candidates`.
-    pub fn unknown_parameter(name: &str, candidates: &[&str]) -> ModelError {
-        ModelError::UnknownParameter {
-            name: name.to_string(),
-            suggestion: lagrangian_core::diagnostic::closest(name, candidates.iter().copied())
-                .map(str::to_string),
-        }
-    }
-}
-
-impl fmt::Display for ModelError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ModelError::UnknownParameter { name, suggestion } => {
-                write!(f, "unknown parameter `{name}`")?;
-                if let Some(s) = suggestion {
-                    write!(f, " (did you mean `{s}`?)")?;
-                }
-                Ok(())
-            }
-            ModelError::JacobiansNotDerived => write!(
-                f,
-                "the model's spec does not request Jacobians; add `jacobians;` to it"
-            ),
-            ModelError::SingularMassMatrix { t, q } => write!(
-                f,
-                "the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"
-            ),
-            ModelError::DimensionMismatch { expected, found } => {
-                write!(f, "expected {expected} values, found {found}")
-            }
-        }
-    }
-}
-
-impl std::error::Error for ModelError {}
 
 /// A mechanical model in the form `M(q, t) q̈ = f(q, q̇, t)` with `N` coordinates.
 ///

@@ -9,6 +9,7 @@
 use super::names::Names;
 use crate::Compiled;
 use crate::program::{Op, Reg, Routine, RoutineKind};
+use lagrangian_model::layout::{Energies, JACOBIAN_BLOCKS, mass_entries};
 use proc_macro2::Literal;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{ToTokens, quote};
@@ -270,25 +271,14 @@ fn routine_method(
             }
         }
         RoutineKind::Energies => {
-            let [
-                kinetic,
-                potential,
-                dissipation,
-                damping_power,
-                external_power,
-            ] = [0, 1, 2, 3, 4].map(|i| outputs[i].clone());
+            let fields = Energies::FIELDS.map(|f| Ident::new(f, Span::call_site()));
+            let values = &outputs[..fields.len()];
             quote! {
                 fn energies<I: #rt::InputFunctions + ?Sized>(
                     &self, t: f64, q: &#vector, qd: &#vector, inputs: &I,
                 ) -> #rt::Energies {
                     #(#statements)*
-                    #rt::Energies {
-                        kinetic: #kinetic,
-                        potential: #potential,
-                        dissipation: #dissipation,
-                        damping_power: #damping_power,
-                        external_power: #external_power,
-                    }
+                    #rt::Energies { #(#fields: #values,)* }
                 }
             }
         }
@@ -306,10 +296,7 @@ fn routine_method(
         }
         RoutineKind::Jacobians => {
             let mut writes = Vec::new();
-            for (b, field) in ["forcing_q", "forcing_qd", "mass_times_acceleration_q"]
-                .iter()
-                .enumerate()
-            {
+            for (b, field) in JACOBIAN_BLOCKS.iter().enumerate() {
                 let field = Ident::new(field, Span::call_site());
                 for i in 0..n {
                     for k in 0..n {
@@ -338,16 +325,14 @@ fn routine_method(
 fn dynamics_writes(n: usize, outputs: &[TokenStream]) -> Vec<TokenStream> {
     let mut writes = Vec::new();
     let mut k = 0;
-    for i in 0..n {
-        for j in i..n {
-            let value = &outputs[k];
-            let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
-            writes.push(quote! { mass[(#li, #lj)] = #value; });
-            if i != j {
-                writes.push(quote! { mass[(#lj, #li)] = mass[(#li, #lj)]; });
-            }
-            k += 1;
+    for (i, j) in mass_entries(n) {
+        let value = &outputs[k];
+        let (li, lj) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
+        writes.push(quote! { mass[(#li, #lj)] = #value; });
+        if i != j {
+            writes.push(quote! { mass[(#lj, #li)] = mass[(#li, #lj)]; });
         }
+        k += 1;
     }
     for i in 0..n {
         let value = &outputs[k + i];

@@ -4,58 +4,26 @@
 use super::{ExprId, Func, Node, Store, SymbolKind};
 use rustc_hash::FxHashMap;
 
-/// The run-time values of a model's input functions.
-///
-/// Generated code and the interpreter call `value(index, args)` with the
-/// input's number in declaration order and its evaluated arguments. A closure
-/// `|index, args| …` implements it, and so do [`NoInputs`] and [`ConstantInputs`].
-pub trait InputFunctions {
-    /// Value of input function number `input` (declaration order) at `args`.
-    fn value(&self, input: usize, args: &[f64]) -> f64;
-}
+/// The values of a model's input functions: `inputs(index, args)` (any
+/// `lagrangian_model::InputFunctions` is one through `|i, a| f.value(i, a)`).
+pub type Inputs<'a> = &'a dyn Fn(usize, &[f64]) -> f64;
 
-impl<F: Fn(usize, &[f64]) -> f64> InputFunctions for F {
-    fn value(&self, input: usize, args: &[f64]) -> f64 {
-        self(input, args)
-    }
-}
-
-/// For models without input functions: any call yields NaN, which the
-/// integrators report as a non-finite output rather than a wrong number.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoInputs;
-
-impl InputFunctions for NoInputs {
-    fn value(&self, _input: usize, _args: &[f64]) -> f64 {
-        f64::NAN
-    }
-}
-
-/// Every input function is a constant: `values[index]`.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ConstantInputs(pub Vec<f64>);
-
-impl InputFunctions for ConstantInputs {
-    fn value(&self, input: usize, _args: &[f64]) -> f64 {
-        self.0.get(input).copied().unwrap_or(f64::NAN)
-    }
+/// Inputs of a model without input functions: every call is NaN.
+pub fn no_inputs(_input: usize, _args: &[f64]) -> f64 {
+    f64::NAN
 }
 
 /// Evaluates expressions of one store at one point, caching shared nodes.
 pub struct Evaluator<'a> {
     store: &'a Store,
     symbol_values: Vec<f64>,
-    inputs: &'a dyn InputFunctions,
+    inputs: Inputs<'a>,
     cache: FxHashMap<ExprId, f64>,
 }
 
 impl<'a> Evaluator<'a> {
     /// `symbol_values[s]` is the value of symbol `s`; π is filled in automatically.
-    pub fn new(
-        store: &'a Store,
-        mut symbol_values: Vec<f64>,
-        inputs: &'a dyn InputFunctions,
-    ) -> Self {
+    pub fn new(store: &'a Store, mut symbol_values: Vec<f64>, inputs: Inputs<'a>) -> Self {
         symbol_values.resize(store.symbols().len(), 0.0);
         for (i, s) in store.symbols().iter().enumerate() {
             if s.kind == SymbolKind::Pi {
@@ -99,7 +67,7 @@ impl<'a> Evaluator<'a> {
             }
             Node::Input(input, args) => {
                 let values: Vec<f64> = args.iter().map(|&a| self.eval(a)).collect();
-                self.inputs.value(*input as usize, &values)
+                (self.inputs)(*input as usize, &values)
             }
         };
         self.cache.insert(e, v);

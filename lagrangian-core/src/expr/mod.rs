@@ -46,7 +46,7 @@ mod trig;
 
 pub use calculus::CoordinateSymbols;
 pub use display::DisplayExpr;
-pub use eval::{ConstantInputs, Evaluator, InputFunctions, NoInputs};
+pub use eval::{Evaluator, Inputs, no_inputs};
 
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;

@@ -1,5 +1,5 @@
 use super::*;
-use crate::expr::NoInputs;
+use crate::expr::no_inputs;
 use crate::rational::Rational;
 
 fn setup() -> (Store, Vec<ExprId>) {
@@ -139,7 +139,7 @@ fn evaluation_matches_direct_arithmetic() {
     let c = s.cos(sum);
     let q = s.div(c, y);
     let e = s.mul(q, sum);
-    let mut ev = Evaluator::new(&s, vec![0.3, 1.7, 0.0, 0.0], &NoInputs);
+    let mut ev = Evaluator::new(&s, vec![0.3, 1.7, 0.0, 0.0], &no_inputs);
     let expected = (0.3f64 + 1.7).cos() / 1.7 * (0.3 + 1.7);
     assert!((ev.eval(e) - expected).abs() < 1e-14);
 }
@@ -192,7 +192,7 @@ fn high_powers_of_a_sine_stay_small() {
     assert!(s.terms(p).len() <= 21, "{} terms", s.terms(p).len());
     assert!(s.take_errors().is_empty());
     let x = 0.7f64;
-    let mut ev = Evaluator::new(&s, vec![x, 0.0, 0.0, 0.0], &NoInputs);
+    let mut ev = Evaluator::new(&s, vec![x, 0.0, 0.0, 0.0], &no_inputs);
     assert!((ev.eval(p) - x.sin().powi(40)).abs() < 1e-15);
 }
 
@@ -342,7 +342,7 @@ fn negative_trig_powers_keep_their_value() {
     let e = s.mul(q, f2);
     assert!(s.take_errors().is_empty());
     for (a, b) in [(0.3, -1.1), (1.2, 0.4), (-2.5, 2.0)] {
-        let mut ev = Evaluator::new(&s, vec![a, b, 0.0, 0.0], &NoInputs);
+        let mut ev = Evaluator::new(&s, vec![a, b, 0.0, 0.0], &no_inputs);
         let f = a.cos() + (2.0 * a).sin();
         let expected = (a.sin().powi(3) + (3.0 * a).cos() * (a - b).sin())
             / (a.sin() * a.cos().powi(2))

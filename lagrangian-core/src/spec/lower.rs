@@ -6,7 +6,7 @@ use super::expression::{
 };
 use super::{Coordinate, ForceStatement, Input, Model, Parameter, RESERVED_NAMES, Statement};
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
-use crate::expr::{CoordinateSymbols, Evaluator, ExprId, NoInputs, Store, SymbolKind};
+use crate::expr::{CoordinateSymbols, Evaluator, ExprId, Store, SymbolKind, no_inputs};
 use proc_macro2::Span;
 use rustc_hash::FxHashMap;
 
@@ -462,7 +462,7 @@ fn constant_value(
             "a parameter default must be a constant",
         ));
     }
-    let result = Evaluator::new(store, Vec::new(), &NoInputs).eval(lowered.value);
+    let result = Evaluator::new(store, Vec::new(), &no_inputs).eval(lowered.value);
     if result.is_finite() {
         Ok(result)
     } else {

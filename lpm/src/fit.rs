@@ -1,0 +1,313 @@
+//! `lpm fit`: identify the crush characteristic (or listed parameters) from
+//! target time histories; writes the fitted scenario, a report and an
+//! overlay plot.
+
+use crate::commands::{Failure, compile, status};
+use crate::simulate::find_scenario;
+use indicatif::{ProgressBar, ProgressStyle};
+use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, fit};
+use lagrangian_sim::plot::{Series, panels_svg};
+use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
+use lagrangian_sim::report::write_atomically;
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
+use std::fmt::Write;
+use std::path::{Component, Path, PathBuf};
+
+pub struct FitOptions {
+    pub spec: PathBuf,
+    pub target: PathBuf,
+    pub scenario: Option<PathBuf>,
+    pub fit: Vec<String>,
+    pub settings: Vec<String>,
+    pub out: Option<PathBuf>,
+    pub starts: usize,
+    pub seed: u64,
+    pub quiet: bool,
+}
+
+pub fn run(options: FitOptions) -> Result<String, Failure> {
+    let compiled = compile(&options.spec)?;
+    let model = compiled.interpreted();
+    let names = ModelNames::of_interpreted(&model);
+    let scenario_path = match &options.scenario {
+        Some(p) => p.clone(),
+        None => find_scenario(&options.spec)?.ok_or_else(|| {
+            Failure::usage(format!(
+                "error: no scenario names {}; give one with --scenario",
+                options.spec.display()
+            ))
+        })?,
+    };
+    let text = std::fs::read_to_string(&scenario_path).map_err(|e| {
+        Failure::io(format!(
+            "error: cannot read {}: {e}",
+            scenario_path.display()
+        ))
+    })?;
+    let target = read_time_histories(&options.target).map_err(|e| Failure::channels(&e))?;
+    let usage = |e: String| Failure::usage(format!("error: {e}"));
+    let document = Scenario::document(&text, &names, &options.settings)
+        .map_err(|e| Failure::new(status::SCENARIO, format!("error: {e}")))?;
+    let fit_names = if options.fit.is_empty() {
+        vec!["stiffness".to_string(), "damping".to_string()]
+    } else {
+        options.fit.clone()
+    };
+    let parameters =
+        Parameters::resolve(&fit_names, &document, &names, model.parameters()).map_err(usage)?;
+    let base = BaseScenario {
+        text,
+        file: Some(scenario_path.clone()),
+        names: names.clone(),
+        settings: options.settings.clone(),
+    };
+    // Check the scenario once, so that its errors read as such.
+    Scenario::parse(&base.text, base.file.as_deref(), &names, &options.settings)
+        .map_err(|e| Failure::scenario(&e))?;
+    let setup = FitSetup {
+        base,
+        target,
+        parameters,
+        starts: options.starts.max(1),
+        seed: options.seed,
+    };
+    let bar = if options.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new_spinner()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed} fitting: {pos} simulations, {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    let progress = |simulations: usize, cost: f64| {
+        bar.set_position(simulations as u64);
+        bar.set_message(format!("cost {cost:.4e}"));
+    };
+    let report = dispatch(&model, &setup, &progress)?;
+    bar.finish_and_clear();
+
+    let stem = options
+        .spec
+        .file_stem()
+        .map_or("model".into(), |s| s.to_string_lossy().into_owned());
+    let out = options
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("lpm-out").join(format!("{stem}-fit")));
+    write_outputs(&out, &report, &setup, &document, &names, &scenario_path)?;
+    let mut text = text_report(&report);
+    let _ = writeln!(
+        text,
+        "  wrote {0}/fitted.toml (lpm simulate {1} --scenario {0}/fitted.toml), {0}/fit.json, {0}/fit.svg",
+        out.display(),
+        options.spec.display()
+    );
+    Ok(text)
+}
+
+/// `fit` on the model at its dimension.
+struct Fit<'a> {
+    setup: &'a FitSetup,
+    progress: &'a (dyn Fn(usize, f64) + Sync),
+}
+
+impl WithDimension for Fit<'_> {
+    type Output = Result<FitReport, Failure>;
+
+    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+        fit(&system, self.setup, self.progress)
+            .map_err(|e| Failure::new(status::FIT_FAILED, format!("error: {e}")))
+    }
+}
+
+fn dispatch(
+    model: &InterpretedModel,
+    setup: &FitSetup,
+    progress: &(dyn Fn(usize, f64) + Sync),
+) -> Result<FitReport, Failure> {
+    model
+        .clone()
+        .with_dimension(Fit { setup, progress })
+        .map_err(|e| Failure::usage(format!("error: {e}")))?
+}
+
+fn text_report(report: &FitReport) -> String {
+    let mut out = String::new();
+    let converged = report.starts.iter().filter(|s| s.converged).count();
+    let _ = writeln!(
+        out,
+        "fit: {} simulations in {:.2} s, {} of {} starts converged; cost {:.4e} → {:.4e}",
+        report.simulations,
+        report.seconds,
+        converged,
+        report.starts.len(),
+        report.cost_initial,
+        report.cost
+    );
+    let _ = writeln!(
+        out,
+        "  {:<28}{:>14}{:>14}{:>22}",
+        "parameter", "initial", "fitted", "standard error"
+    );
+    for p in &report.parameters {
+        let error = match (p.identifiable, p.standard_error) {
+            (false, _) => "held: no influence on the target".to_string(),
+            (true, Some(se)) => format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs()),
+            (true, None) => "not determined".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "  {:<28}{:>14.5e}{:>14.5e}  {error}",
+            p.name, p.initial, p.fitted
+        );
+    }
+    for c in &report.channels {
+        let _ = writeln!(
+            out,
+            "  residual {}: RMS {:.4e} {} ({:.2} % of the target's RMS; {:.4e} at the start)",
+            c.channel,
+            c.rms_error,
+            c.unit,
+            100.0 * c.relative_rms_error,
+            c.rms_error_initial
+        );
+    }
+    for (a, b, rho) in &report.strong_correlations {
+        let _ = writeln!(
+            out,
+            "  warning: {a} and {b} are correlated ({rho:+.3}): the target determines a combination of them, not each"
+        );
+    }
+    out
+}
+
+fn write_outputs(
+    out: &Path,
+    report: &FitReport,
+    setup: &FitSetup,
+    document: &toml::Table,
+    names: &ModelNames,
+    scenario: &Path,
+) -> Result<(), Failure> {
+    let io = |path: &Path, e: std::io::Error| {
+        Failure::io(format!("error: cannot write {}: {e}", path.display()))
+    };
+    std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
+    let values: Vec<f64> = report.parameters.iter().map(|p| p.fitted).collect();
+    let mut fitted = document.clone();
+    setup.parameters.write_into(&mut fitted, &values, names);
+    rebase_paths(
+        &mut fitted,
+        scenario.parent().unwrap_or(Path::new(".")),
+        out,
+    );
+    let header = format!(
+        "# Fitted by `lpm fit` from {} to {}: the scenario with the fitted values\n# (cost {:.4e}). Relative paths start from this file.\n",
+        scenario.display(),
+        setup.target_description(),
+        report.cost
+    );
+    let toml_text = header
+        + &toml::to_string(&fitted)
+            .map_err(|e| Failure::io(format!("error: cannot write the scenario: {e}")))?;
+    let json = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
+    let svg = overlay(report, &setup.target)
+        .map_err(|e| Failure::io(format!("error: plotting failed: {e}")))?;
+    for (name, contents) in [
+        ("fitted.toml", toml_text),
+        ("fit.json", json),
+        ("fit.svg", svg),
+    ] {
+        let path = out.join(name);
+        write_atomically(&path, contents.as_bytes()).map_err(|e| io(&path, e))?;
+    }
+    Ok(())
+}
+
+trait Describe {
+    fn target_description(&self) -> String;
+}
+
+impl Describe for FitSetup {
+    fn target_description(&self) -> String {
+        let channels: Vec<&str> = self
+            .target
+            .channels
+            .iter()
+            .map(|c| c.header.as_str())
+            .collect();
+        format!("target {}", channels.join(", "))
+    }
+}
+
+/// Rewrites the relative paths of a scenario (`spec`, `components.*.file`)
+/// written in `from` so that they hold for a file written in `to`.
+fn rebase_paths(document: &mut toml::Table, from: &Path, to: &Path) {
+    let rebase = |value: &mut toml::Value| {
+        if let Some(p) = value.as_str().map(PathBuf::from)
+            && p.is_relative()
+            && let (Ok(target), Ok(dir)) = (
+                std::fs::canonicalize(from.join(&p)),
+                std::fs::canonicalize(to),
+            )
+        {
+            *value = toml::Value::String(relative(&target, &dir).display().to_string());
+        }
+    };
+    if let Some(v) = document.get_mut("spec") {
+        rebase(v);
+    }
+    if let Some(toml::Value::Table(components)) = document.get_mut("components") {
+        for (_, c) in components.iter_mut() {
+            if let Some(v) = c.get_mut("file") {
+                rebase(v);
+            }
+        }
+    }
+}
+
+/// `target` relative to directory `dir` (both absolute).
+fn relative(target: &Path, dir: &Path) -> PathBuf {
+    let t: Vec<Component> = target.components().collect();
+    let d: Vec<Component> = dir.components().collect();
+    let common = t.iter().zip(&d).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..d.len() {
+        out.push("..");
+    }
+    for c in &t[common..] {
+        out.push(c);
+    }
+    out
+}
+
+fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, String> {
+    let panels: Vec<(String, String, String, Vec<Series>)> = target
+        .channels
+        .iter()
+        .zip(&report.curves)
+        .map(|(c, (initial, fitted))| {
+            let line = |values: &[f64]| -> Vec<(f64, f64)> {
+                target
+                    .t
+                    .iter()
+                    .map(|t| t * 1e3)
+                    .zip(values.iter().copied())
+                    .collect()
+            };
+            (
+                c.header.clone(),
+                "t [ms]".to_string(),
+                format!("{} [{}]", c.quantity.name(), c.quantity.si_unit()),
+                vec![
+                    ("target".to_string(), line(&c.values)),
+                    ("initial".to_string(), line(initial)),
+                    ("fitted".to_string(), line(fitted)),
+                ],
+            )
+        })
+        .collect();
+    panels_svg("lpm fit: target, initial and fitted", &panels)
+}

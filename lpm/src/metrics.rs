@@ -1,0 +1,101 @@
+//! `lpm metrics FILE.csv`: crash-pulse metrics of a measured or exported pulse.
+
+use crate::commands::Failure;
+use lagrangian_sim::pulse::channels::{Quantity, read_time_histories};
+use lagrangian_sim::pulse::{Pulse, PulseMetrics};
+use std::fmt::Write;
+use std::path::Path;
+
+pub fn run(file: &Path, v0: Option<f64>, json: bool) -> Result<String, Failure> {
+    let histories = read_time_histories(file).map_err(|e| Failure::channels(&e))?;
+    let Some(acceleration) = histories.channel(Quantity::Acceleration) else {
+        return Err(Failure::usage(format!(
+            "error: {}: the metrics need an acceleration (or deceleration) column",
+            file.display()
+        )));
+    };
+    let v0 = match (v0, histories.channel(Quantity::Velocity)) {
+        (Some(v), _) => v,
+        (None, Some(v)) => v.values[0],
+        (None, None) => {
+            return Err(Failure::usage(format!(
+                "error: {}: no velocity column to take the impact velocity from; give it with --v0 <m/s>",
+                file.display()
+            )));
+        }
+    };
+    if !v0.is_finite() {
+        return Err(Failure::usage(format!(
+            "error: impact velocity {v0} is not a number"
+        )));
+    }
+    let crush = histories
+        .channel(Quantity::Crush)
+        .map(|c| c.values.as_slice());
+    let metrics = Pulse::resampled(&histories.t, &acceleration.values, v0, crush)
+        .and_then(|p| p.metrics())
+        .map_err(|e| Failure::evaluation(format!("error: {}: {e}", file.display())))?;
+    Ok(if json {
+        serde_json::to_string_pretty(&metrics).unwrap_or_default() + "\n"
+    } else {
+        text(&metrics, file)
+    })
+}
+
+fn text(m: &PulseMetrics, file: &Path) -> String {
+    let opt = |v: Option<f64>, scale: f64, unit: &str, digits: usize| {
+        v.map_or("–".to_string(), |x| {
+            format!("{:.*} {unit}", digits, x * scale)
+        })
+    };
+    let mut out = String::new();
+    let _ = writeln!(out, "{}", file.display());
+    let rows = [
+        (
+            "impact velocity",
+            format!("{:.2} m/s", m.impact_velocity_mps),
+        ),
+        ("max dynamic crush", opt(m.max_dynamic_crush_m, 1.0, "m", 3)),
+        ("at", opt(m.time_of_max_crush_s, 1e3, "ms", 1)),
+        (
+            "time to zero velocity",
+            opt(m.time_to_zero_velocity_s, 1e3, "ms", 1),
+        ),
+        (
+            "rebound velocity",
+            opt(m.rebound_velocity_mps, 1.0, "m/s", 2),
+        ),
+        (
+            "peak deceleration",
+            format!("{:.1} g (unfiltered)", m.peak_deceleration_g),
+        ),
+        (
+            "CFC 60 peak",
+            format!("{:.1} g", m.peak_deceleration_cfc60_g),
+        ),
+        (
+            "equivalent square wave",
+            opt(m.equivalent_square_wave_g, 1.0, "g", 1),
+        ),
+        (
+            "OLC",
+            match (m.olc_g, m.olc_t1_s, m.olc_t2_s) {
+                (Some(o), Some(t1), Some(t2)) => {
+                    format!("{o:.1} g (t1 {:.1} ms, t2 {:.1} ms)", t1 * 1e3, t2 * 1e3)
+                }
+                _ => "– (the pulse ends before the occupant travels 300 mm)".into(),
+            },
+        ),
+        (
+            "ASI",
+            match (m.asi, m.asi_time_s) {
+                (Some(a), Some(t)) => format!("{a:.2} (window ending at {:.1} ms)", t * 1e3),
+                _ => "– (the pulse is shorter than 50 ms)".into(),
+            },
+        ),
+    ];
+    for (name, value) in rows {
+        let _ = writeln!(out, "  {name:<23}{value}");
+    }
+    out
+}

@@ -1,0 +1,307 @@
+//! `lpm sweep`: run a scenario many times with values varied, in parallel,
+//! and write one row of summary metrics per run (CSV or Parquet).
+
+use crate::commands::{Failure, compile, status};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames};
+use lagrangian_sim::sweep::{
+    Design, Journal, Plan, Row, Settings, Shard, journal_path, read_groups, run_scenario,
+    stream_sweep, write_parquet,
+};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Options of `lpm sweep`.
+pub struct SweepOptions {
+    pub scenario: PathBuf,
+    pub spec: Option<PathBuf>,
+    pub grid: Vec<String>,
+    pub samples: Option<usize>,
+    pub vary: Vec<String>,
+    pub design: Design,
+    pub seed: u64,
+    pub settings: Vec<String>,
+    pub out: PathBuf,
+    pub parquet: Option<bool>,
+    pub shard: Option<String>,
+    pub threads: usize,
+    pub quiet: bool,
+    pub resume: bool,
+}
+
+/// The spec a scenario names with its `spec` key (relative to the scenario).
+fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, Failure> {
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| Failure::usage(format!("error: {}: {e}", scenario.display())))?;
+    let spec = table.get("spec").and_then(|s| s.as_str()).ok_or_else(|| {
+        Failure::usage(format!(
+            "error: {} has no `spec = \"…\"` entry; name the spec with --spec",
+            scenario.display()
+        ))
+    })?;
+    Ok(scenario.parent().unwrap_or(Path::new(".")).join(spec))
+}
+
+pub fn run(options: SweepOptions) -> Result<String, Failure> {
+    let usage = |m: String| Failure::usage(format!("error: {m}"));
+    let plan = match (options.grid.is_empty(), options.samples) {
+        (false, None) if options.vary.is_empty() => Plan::grid(&options.grid),
+        (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, options.design),
+        (true, None) => {
+            Err("give --grid KEY=VALUES or --samples N with --vary KEY=LOW:HIGH".into())
+        }
+        _ => Err("--grid cannot be combined with --samples/--vary".into()),
+    }
+    .map_err(usage)?;
+    let shard = match &options.shard {
+        Some(text) => Shard::parse(text).map_err(usage)?,
+        None => Shard::ALL,
+    };
+    let parquet = match options.parquet {
+        Some(p) => p,
+        None => match options.out.extension().and_then(|e| e.to_str()) {
+            Some("parquet") => true,
+            Some("csv") => false,
+            _ => {
+                return Err(usage(format!(
+                    "--out {}: name a .csv or .parquet file, or give --format",
+                    options.out.display()
+                )));
+            }
+        },
+    };
+    let text = std::fs::read_to_string(&options.scenario).map_err(|e| {
+        Failure::io(format!(
+            "error: cannot read {}: {e}",
+            options.scenario.display()
+        ))
+    })?;
+    let spec = match &options.spec {
+        Some(spec) => spec.clone(),
+        None => spec_of(&options.scenario, &text)?,
+    };
+    let model = compile(&spec)?.interpreted();
+    let base = BaseScenario {
+        text,
+        file: Some(options.scenario.clone()),
+        names: ModelNames::of_interpreted(&model),
+        settings: options.settings.clone(),
+    };
+    let settings = Settings::new(&plan, &base, model.parameters()).map_err(usage)?;
+    // A key the scenario does not know fails here, before any run starts.
+    if !plan.is_empty() {
+        run_scenario(&base, &settings, &plan.point(0)).map_err(|e| Failure::scenario(&e))?;
+    }
+    let runs = shard.runs(plan.len());
+    let bar = if options.quiet {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::with_draw_target(
+            Some(runs.len() as u64),
+            ProgressDrawTarget::stderr_with_hz(4),
+        );
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {per_sec}  eta {eta}")
+        {
+            bar.set_style(style);
+        }
+        bar
+    };
+    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+    let journal_path = journal_path(&options.out);
+    let (mut journal, done) = open_journal(&options, &journal_path, &axes, &plan, &runs)?;
+    bar.set_position(done as u64);
+    let stop = stop_on_signal();
+    let start = Instant::now();
+    let (mut ok, mut failed) = (0usize, 0usize);
+    let mut first_failure: Option<(usize, String)> = None;
+    let mut sink = |row: Row| -> Result<(), String> {
+        journal.append(&row)?;
+        match &row.outcome {
+            Ok(_) => ok += 1,
+            Err(e) => {
+                failed += 1;
+                first_failure.get_or_insert((row.run, format!("{}: {}", e.kind, e.message)));
+            }
+        }
+        bar.inc(1);
+        Ok(())
+    };
+    let remaining = runs.start + done..runs.end;
+    let sweep = Sweep {
+        base: &base,
+        plan: &plan,
+        settings: &settings,
+        runs: remaining.clone(),
+        threads: options.threads,
+        stop: &stop,
+        sink: &mut sink,
+    };
+    let finished = model
+        .with_dimension(sweep)
+        .map_err(|e| Failure::usage(format!("error: {e}")))??;
+    bar.finish_and_clear();
+    let elapsed = start.elapsed().as_secs_f64();
+    drop(journal);
+    let rate = finished as f64 / elapsed.max(1e-9);
+    if finished < remaining.len() {
+        return Err(Failure::new(
+            status::INTERRUPTED,
+            format!(
+                "stopped: {} of {} runs are done and kept in {}; run the same command with --resume to finish",
+                done + finished,
+                runs.len(),
+                journal_path.display()
+            ),
+        ));
+    }
+    finish_output(&journal_path, &options.out, &axes, parquet)?;
+    let mut text = format!(
+        "{} runs{}{} in {elapsed:.2} s ({rate:.0} runs/s), {failed} failed; wrote {}\n",
+        runs.len(),
+        if shard == Shard::ALL {
+            String::new()
+        } else {
+            format!(
+                " (shard {}/{}: runs {}..{} of {})",
+                shard.index,
+                shard.count,
+                runs.start,
+                runs.end,
+                plan.len()
+            )
+        },
+        if done > 0 {
+            format!(" ({done} from the journal, {finished} now)")
+        } else {
+            String::new()
+        },
+        options.out.display()
+    );
+    if let Some((run, message)) = &first_failure {
+        text.push_str(&format!("  first failure, run {run}: {message}\n"));
+    }
+    if !runs.is_empty() && ok == 0 && done == 0 {
+        return Err(Failure::new(
+            status::EVERY_RUN_FAILED,
+            format!("error: every run failed\n{text}"),
+        ));
+    }
+    Ok(text)
+}
+
+/// The journal to append to: a new one, or with `--resume` the one an
+/// interrupted run of the same sweep left (with the number of runs in it).
+fn open_journal(
+    options: &SweepOptions,
+    path: &Path,
+    axes: &[String],
+    plan: &Plan,
+    runs: &std::ops::Range<usize>,
+) -> Result<(Journal, usize), Failure> {
+    let exists = path.exists();
+    let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
+    match (options.resume, resumable) {
+        (true, true) => Journal::resume(path, axes, plan, runs)
+            .map_err(|e| Failure::new(status::DATA_FILE, format!("error: --resume: {e}"))),
+        (true, false) if options.out.exists() => Err(Failure::usage(format!(
+            "error: --resume: {} is complete and there is no {} to resume",
+            options.out.display(),
+            path.display()
+        ))),
+        (false, true) => Err(Failure::usage(format!(
+            "error: {} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
+            path.display()
+        ))),
+        _ => Journal::create(path, axes)
+            .map(|j| (j, 0))
+            .map_err(|e| Failure::io(format!("error: {e}"))),
+    }
+}
+
+/// Turns the finished journal into the output: renamed for CSV, converted
+/// one row group at a time (then removed) for Parquet.
+fn finish_output(
+    journal: &Path,
+    out: &Path,
+    axes: &[String],
+    parquet: bool,
+) -> Result<(), Failure> {
+    let io = |e: String| Failure::io(format!("error: {e}"));
+    if parquet {
+        let groups = read_groups(journal, axes.len(), PARQUET_GROUP_ROWS).map_err(io)?;
+        let temporary = temporary_beside(out);
+        let file = std::fs::File::create(&temporary)
+            .map_err(|e| io(format!("cannot create {}: {e}", temporary.display())))?;
+        let written = write_parquet(axes, groups, std::io::BufWriter::new(file)).and_then(|()| {
+            std::fs::rename(&temporary, out)
+                .map_err(|e| format!("cannot write {}: {e}", out.display()))
+        });
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&temporary);
+            return Err(io(e));
+        }
+        std::fs::remove_file(journal)
+            .map_err(|e| io(format!("cannot remove {}: {e}", journal.display())))
+    } else {
+        std::fs::rename(journal, out)
+            .map_err(|e| io(format!("cannot write {}: {e}", out.display())))
+    }
+}
+
+/// Rows per Parquet row group (about 14 MB of values with 30 columns).
+const PARQUET_GROUP_ROWS: usize = 1 << 16;
+
+fn temporary_beside(path: &Path) -> PathBuf {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// A flag set by the first SIGINT, SIGTERM or SIGHUP: the sweep takes no
+/// new run and stops once the runs under way are written. A second signal
+/// exits at once (the journal keeps every row written).
+fn stop_on_signal() -> Arc<AtomicBool> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    // Fails only if a handler is already installed (not in this program).
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(status::INTERRUPTED));
+        }
+        eprintln!("\nstopping: finishing the runs under way (again to stop at once)");
+    });
+    stop
+}
+
+/// `stream_sweep` on the model at its dimension.
+struct Sweep<'a> {
+    base: &'a BaseScenario,
+    plan: &'a Plan,
+    settings: &'a Settings,
+    runs: std::ops::Range<usize>,
+    threads: usize,
+    stop: &'a AtomicBool,
+    sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
+}
+
+impl WithDimension for Sweep<'_> {
+    type Output = Result<usize, Failure>;
+
+    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+        let Sweep {
+            base,
+            plan,
+            settings,
+            runs,
+            threads,
+            stop,
+            sink,
+        } = self;
+        stream_sweep(&system, base, plan, settings, runs, threads, stop, sink)
+            .map_err(|e| Failure::io(format!("error: {e}")))
+    }
+}

@@ -1,0 +1,391 @@
+//! The interpreter: a compiled model's routines as flat lists of
+//! three-address instructions over one register file.
+//!
+//! The register file is laid out as `[constants | parameters | q | q̇ | q̈ | t |
+//! temporaries]` ([`RegisterLayout`]). Constants are written when the file is
+//! made and parameters when they change, and the state is copied into its
+//! slots at each call, so the instruction lists hold arithmetic and input
+//! calls only. The compiler (`lagrangian-core`) lowers its optimized program
+//! to a tape instruction by instruction, in the program's order, so a tape
+//! computes bit for bit what the program and the emitted Rust do.
+
+use crate::InputFunctions;
+use crate::layout::RoutineKind;
+use std::fmt;
+
+/// One instruction: destination register first, then the operands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Instruction {
+    /// `dst = a + b`.
+    Add(u32, u32, u32),
+    /// `dst = a − b`.
+    Sub(u32, u32, u32),
+    /// `dst = a · b`.
+    Mul(u32, u32, u32),
+    /// `dst = a / b`.
+    Div(u32, u32, u32),
+    /// `dst = −a`.
+    Neg(u32, u32),
+    /// `dst = sin a`.
+    Sin(u32, u32),
+    /// `dst = cos a`.
+    Cos(u32, u32),
+    /// `dst = exp a`.
+    Exp(u32, u32),
+    /// `dst = ln a`.
+    Ln(u32, u32),
+    /// `dst = √a`.
+    Sqrt(u32, u32),
+    /// `dst = a^k` for an integer `k`.
+    Powi(u32, u32, i32),
+    /// `dst = a^b` with the exponent in register `b`.
+    Powf(u32, u32, u32),
+    /// `dst = input[index](registers of arguments[start..start + count])`.
+    Input {
+        /// Destination register.
+        dst: u32,
+        /// The input function's index.
+        index: u32,
+        /// First argument register in [`Tape::new`]'s `arguments`.
+        start: u32,
+        /// Number of arguments.
+        count: u32,
+    },
+}
+
+impl Instruction {
+    /// The registers it writes and reads.
+    fn registers(&self) -> (u32, [Option<u32>; 2]) {
+        use Instruction::*;
+        match *self {
+            Add(d, a, b) | Sub(d, a, b) | Mul(d, a, b) | Div(d, a, b) | Powf(d, a, b) => {
+                (d, [Some(a), Some(b)])
+            }
+            Neg(d, a)
+            | Sin(d, a)
+            | Cos(d, a)
+            | Exp(d, a)
+            | Ln(d, a)
+            | Sqrt(d, a)
+            | Powi(d, a, _) => (d, [Some(a), None]),
+            Input { dst, .. } => (dst, [None, None]),
+        }
+    }
+}
+
+/// The instructions and output registers of one routine.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TapeRoutine {
+    /// What it computes.
+    pub kind: RoutineKind,
+    /// Its instructions, in order.
+    pub instructions: Vec<Instruction>,
+    /// The registers holding its outputs, in the order of [`RoutineKind`].
+    pub outputs: Vec<u32>,
+}
+
+/// The sizes of the register file's regions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegisterLayout {
+    /// The values of the constant registers, which come first.
+    pub constants: Vec<f64>,
+    /// Number of parameters.
+    pub parameters: usize,
+    /// Number of coordinates `n` (the file holds `q`, `q̇` and `q̈`).
+    pub dimension: usize,
+    /// Number of temporaries, after the time slot.
+    pub temporaries: usize,
+}
+
+impl RegisterLayout {
+    /// The register of parameter `i`.
+    pub fn parameter(&self, i: usize) -> u32 {
+        (self.constants.len() + i) as u32
+    }
+
+    /// The register of coordinate `q_i`.
+    pub fn coordinate(&self, i: usize) -> u32 {
+        (self.q_base() + i) as u32
+    }
+
+    /// The register of velocity `q̇_i`.
+    pub fn velocity(&self, i: usize) -> u32 {
+        (self.q_base() + self.dimension + i) as u32
+    }
+
+    /// The register of acceleration `q̈_i`.
+    pub fn acceleration(&self, i: usize) -> u32 {
+        (self.q_base() + 2 * self.dimension + i) as u32
+    }
+
+    /// The register of the time `t`.
+    pub fn time(&self) -> u32 {
+        (self.q_base() + 3 * self.dimension) as u32
+    }
+
+    /// The register of temporary `k`.
+    pub fn temporary(&self, k: usize) -> u32 {
+        self.time() + 1 + k as u32
+    }
+
+    /// The size of the register file.
+    pub fn registers(&self) -> usize {
+        self.time() as usize + 1 + self.temporaries
+    }
+
+    fn q_base(&self) -> usize {
+        self.constants.len() + self.parameters
+    }
+}
+
+/// A tape whose registers or argument ranges fall outside its register
+/// file: a bug in whatever built it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct InvalidTape(pub String);
+
+impl fmt::Display for InvalidTape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid tape: {}", self.0)
+    }
+}
+
+impl std::error::Error for InvalidTape {}
+
+/// A compiled model's routines, ready to interpret (see the module
+/// documentation).
+#[derive(Clone, Debug)]
+pub struct Tape {
+    layout: RegisterLayout,
+    routines: Vec<TapeRoutine>,
+    /// Argument registers of the input calls.
+    arguments: Vec<u32>,
+}
+
+impl Tape {
+    /// A tape over the register file `layout`, with input calls reading their
+    /// arguments from the registers `arguments[start..start + count]`.
+    /// Checks that every register and argument range is inside the file.
+    pub fn new(
+        layout: RegisterLayout,
+        routines: Vec<TapeRoutine>,
+        arguments: Vec<u32>,
+    ) -> Result<Tape, InvalidTape> {
+        let size = layout.registers();
+        let check = |r: u32, what: &str| {
+            if (r as usize) < size {
+                Ok(())
+            } else {
+                Err(InvalidTape(format!(
+                    "{what} register {r} outside a file of {size}"
+                )))
+            }
+        };
+        for &a in &arguments {
+            check(a, "argument")?;
+        }
+        for routine in &routines {
+            for instruction in &routine.instructions {
+                let (dst, operands) = instruction.registers();
+                check(dst, "destination")?;
+                for r in operands.into_iter().flatten() {
+                    check(r, "operand")?;
+                }
+                if let Instruction::Input { start, count, .. } = *instruction
+                    && start as usize + count as usize > arguments.len()
+                {
+                    return Err(InvalidTape(format!(
+                        "input arguments {start}..{} outside {}",
+                        start + count,
+                        arguments.len()
+                    )));
+                }
+            }
+            for &r in &routine.outputs {
+                check(r, "output")?;
+            }
+        }
+        Ok(Tape {
+            layout,
+            routines,
+            arguments,
+        })
+    }
+
+    /// The number of coordinates.
+    pub fn dimension(&self) -> usize {
+        self.layout.dimension
+    }
+
+    /// A register file holding the constants and `parameters`.
+    pub fn registers(&self, parameters: &[f64]) -> Vec<f64> {
+        let mut registers = vec![0.0; self.layout.registers()];
+        let constants = &self.layout.constants;
+        registers[..constants.len()].copy_from_slice(constants);
+        self.set_parameters(&mut registers, parameters);
+        registers
+    }
+
+    /// Writes new parameter values into a register file.
+    pub fn set_parameters(&self, registers: &mut [f64], parameters: &[f64]) {
+        let base = self.layout.parameter(0) as usize;
+        registers[base..base + parameters.len()].copy_from_slice(parameters);
+    }
+
+    /// Whether the tape has routine `kind`.
+    pub fn has(&self, kind: RoutineKind) -> bool {
+        self.routine(kind).is_some()
+    }
+
+    /// Number of outputs of routine `kind` (0 when absent).
+    pub fn output_count(&self, kind: RoutineKind) -> usize {
+        self.routine(kind).map_or(0, |r| r.outputs.len())
+    }
+
+    fn routine(&self, kind: RoutineKind) -> Option<&TapeRoutine> {
+        self.routines.iter().find(|r| r.kind == kind)
+    }
+
+    /// Runs routine `kind` at `(t, q, q̇, q̈)` and writes its outputs to `out`;
+    /// `q̈` may be empty for routines that do not use it. Returns `false`
+    /// when the tape has no such routine.
+    ///
+    /// `registers` must come from [`Tape::registers`]; `q` and `qd` must have
+    /// the tape's dimension and `out` room for the outputs.
+    pub fn run<I: InputFunctions + ?Sized>(
+        &self,
+        kind: RoutineKind,
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        registers: &mut [f64],
+        out: &mut [f64],
+    ) -> bool {
+        let Some(routine) = self.routine(kind) else {
+            return false;
+        };
+        let (t, q, qd, qdd) = state;
+        let n = self.layout.dimension;
+        let base = self.layout.coordinate(0) as usize;
+        registers[base..base + n].copy_from_slice(q);
+        registers[base + n..base + 2 * n].copy_from_slice(qd);
+        if qdd.len() == n {
+            registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
+        }
+        registers[self.layout.time() as usize] = t;
+        for instruction in &routine.instructions {
+            self.execute(*instruction, inputs, registers);
+        }
+        for (slot, &o) in out.iter_mut().zip(&routine.outputs) {
+            *slot = registers[o as usize];
+        }
+        true
+    }
+
+    #[inline(always)]
+    fn execute<I: InputFunctions + ?Sized>(
+        &self,
+        instruction: Instruction,
+        inputs: &I,
+        r: &mut [f64],
+    ) {
+        use Instruction::*;
+        match instruction {
+            Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
+            Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
+            Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
+            Div(d, a, b) => r[d as usize] = r[a as usize] / r[b as usize],
+            Neg(d, a) => r[d as usize] = -r[a as usize],
+            Sin(d, a) => r[d as usize] = r[a as usize].sin(),
+            Cos(d, a) => r[d as usize] = r[a as usize].cos(),
+            Exp(d, a) => r[d as usize] = r[a as usize].exp(),
+            Ln(d, a) => r[d as usize] = r[a as usize].ln(),
+            Sqrt(d, a) => r[d as usize] = r[a as usize].sqrt(),
+            Powi(d, a, k) => r[d as usize] = r[a as usize].powi(k),
+            Powf(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
+            Input {
+                dst,
+                index,
+                start,
+                count,
+            } => {
+                let args = &self.arguments[start as usize..(start + count) as usize];
+                let mut buffer = [0.0f64; 8];
+                r[dst as usize] = if args.len() <= buffer.len() {
+                    for (slot, &a) in buffer.iter_mut().zip(args) {
+                        *slot = r[a as usize];
+                    }
+                    inputs.value(index as usize, &buffer[..args.len()])
+                } else {
+                    let values: Vec<f64> = args.iter().map(|&a| r[a as usize]).collect();
+                    inputs.value(index as usize, &values)
+                };
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x² + c` with `c` a constant and `x` the first coordinate.
+    fn square_plus_constant() -> (RegisterLayout, Vec<TapeRoutine>) {
+        let layout = RegisterLayout {
+            constants: vec![0.5],
+            parameters: 1,
+            dimension: 1,
+            temporaries: 2,
+        };
+        let (x, c, k) = (layout.coordinate(0), 0, layout.parameter(0));
+        let (t0, t1) = (layout.temporary(0), layout.temporary(1));
+        let routine = TapeRoutine {
+            kind: RoutineKind::Energies,
+            instructions: vec![Instruction::Mul(t0, x, x), Instruction::Add(t1, t0, c)],
+            outputs: vec![t1, k],
+        };
+        (layout, vec![routine])
+    }
+
+    #[test]
+    fn runs_a_routine_over_the_register_file() {
+        let (layout, routines) = square_plus_constant();
+        assert_eq!(layout.registers(), 1 + 1 + 3 + 1 + 2);
+        let tape = Tape::new(layout, routines, vec![]).unwrap();
+        let mut registers = tape.registers(&[7.0]);
+        let mut out = [0.0; 2];
+        let state = (0.0, &[3.0][..], &[0.0][..], &[][..]);
+        let no_inputs = |_: usize, _: &[f64]| f64::NAN;
+        assert!(tape.run(
+            RoutineKind::Energies,
+            state,
+            &no_inputs,
+            &mut registers,
+            &mut out
+        ));
+        assert_eq!(out, [9.5, 7.0]);
+        assert!(!tape.run(
+            RoutineKind::Dynamics,
+            state,
+            &no_inputs,
+            &mut registers,
+            &mut out
+        ));
+    }
+
+    #[test]
+    fn a_register_outside_the_file_is_refused() {
+        let (layout, mut routines) = square_plus_constant();
+        routines[0].instructions.push(Instruction::Neg(99, 0));
+        let error = Tape::new(layout.clone(), routines, vec![]).unwrap_err();
+        assert_eq!(error.0, "destination register 99 outside a file of 8");
+        let input = Instruction::Input {
+            dst: layout.temporary(0),
+            index: 0,
+            start: 0,
+            count: 2,
+        };
+        let (_, mut routines) = square_plus_constant();
+        routines[0].instructions.push(input);
+        let error = Tape::new(layout, routines, vec![0]).unwrap_err();
+        assert_eq!(error.0, "input arguments 0..2 outside 1");
+    }
+}

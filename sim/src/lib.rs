@@ -1,0 +1,41 @@
+//! Crash simulation with `lagrangian` models, compiled or interpreted.
+//!
+//! * [`scenario`]: a TOML scenario — parameters, initial state, solver
+//!   settings, and the crash components that supply the model's inputs
+//!   ([`crash`]) — resolved against a model.
+//! * [`simulate`]: static equilibrium, integration with events ([`ode`]),
+//!   output samples and the summary metrics of a run; [`report`] writes them.
+//! * [`pulse`]: crash-pulse metrics (SAE J211 CFC filter, OLC, ASI, ESW) of a
+//!   run or of a measured pulse.
+//! * [`sweep`] (feature `sweep`): a scenario run many times in parallel, to a
+//!   CSV or Parquet table; [`fit`] (feature `fit`): identification of the crush
+//!   characteristic by Levenberg–Marquardt; [`plot`] (feature `plot`): SVG
+//!   figures.
+//!
+//! ```no_run
+//! use lagrangian_model::LagrangianSystem;
+//! use lagrangian_sim::scenario::{ModelNames, Scenario};
+//! use lagrangian_sim::simulate::simulate;
+//!
+//! fn run<S: LagrangianSystem<3> + Clone>(model: &S) -> Result<(), Box<dyn std::error::Error>> {
+//!     let path = std::path::Path::new("specs/scenarios/yaris_full_frontal.toml");
+//!     let scenario = Scenario::load(path, &ModelNames::of(model), &[])?;
+//!     let result = simulate(model, &scenario)?;
+//!     println!("max crush {:?} m", result.summary.max_crush_m);
+//!     Ok(())
+//! }
+//! ```
+
+pub mod crash;
+pub mod fault;
+#[cfg(feature = "fit")]
+pub mod fit;
+pub mod ode;
+#[cfg(feature = "plot")]
+pub mod plot;
+pub mod pulse;
+pub mod report;
+pub mod scenario;
+pub mod simulate;
+#[cfg(feature = "sweep")]
+pub mod sweep;

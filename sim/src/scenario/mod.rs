@@ -1,0 +1,334 @@
+//! Scenario files: what to simulate with a model — parameters, initial
+//! state, crash components for its input functions, solver settings.
+//!
+//! ```toml
+//! spec = "../yaris_double_pendulum.lpm"   # the spec this scenario is for
+//! [simulation]   t_end = 0.15, method = "dopri5", rtol = 1e-8, atol = 1e-10
+//! [initial]      coordinates = { r = 0.0 }, velocities = { r = -15.56 }, equilibrium = ["theta1"]
+//! [parameters]   k_tor = 0.0
+//! [metrics]      crush = "-r", pitch = ["theta1", "theta2"], weld = "weld"
+//! [components.front_end]  type = "crush", inputs = { force = "crush", … }, …
+//! [components.barrier]    type = "table", file = "../data/forces.csv", columns = { barrier_x1 = "Fx1" }
+//! ```
+//!
+//! Every name is checked against the spec, with a suggestion for typos.
+//!
+//! By phase: [`file`] is the file format, [`overrides`] applies `--set`
+//! settings to the document, [`resolve`] checks values and names, and
+//! [`bind`] binds the model's inputs to crash components.
+
+mod base;
+mod bind;
+mod file;
+mod overrides;
+mod resolve;
+
+use crate::crash::BoundInputs;
+use crate::crash::curve::Outside;
+use crate::crash::table::Table;
+use crate::ode::Options;
+pub use base::BaseScenario;
+use file::File;
+use lagrangian_model::{InterpretedModel, LagrangianSystem};
+use overrides::apply_setting;
+pub use overrides::{setting_number, split_setting};
+pub use resolve::MAX_SAMPLES;
+use resolve::resolve;
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The names a scenario is resolved against.
+#[derive(Clone, Debug, Default)]
+pub struct ModelNames {
+    pub coordinates: Vec<String>,
+    pub parameters: Vec<String>,
+    pub inputs: Vec<String>,
+    /// The declared argument names of each input, where the model tells them
+    /// (specs do; compiled models do not, and the number of arguments is
+    /// then known from `input_sites` for the inputs the dynamics calls).
+    pub input_arguments: Vec<Option<Vec<String>>>,
+    /// `(input, number of arguments)` per input call of the dynamics.
+    pub input_sites: Vec<(usize, usize)>,
+}
+
+impl ModelNames {
+    /// The names of any model (compiled or interpreted).
+    pub fn of<const N: usize, S: LagrangianSystem<N>>(system: &S) -> ModelNames {
+        let own = |v: Vec<&str>| v.into_iter().map(str::to_string).collect();
+        ModelNames {
+            coordinates: own(system.coordinate_names()),
+            parameters: own(system.parameter_names()),
+            inputs: own(system.input_names()),
+            input_arguments: vec![None; system.input_names().len()],
+            input_sites: system.input_sites().to_vec(),
+        }
+    }
+
+    /// The names of a spec, with the declared arguments of every input.
+    pub fn of_interpreted(model: &InterpretedModel) -> ModelNames {
+        ModelNames {
+            coordinates: model.coordinates().to_vec(),
+            parameters: model.parameter_names().to_vec(),
+            inputs: model.input_names().to_vec(),
+            input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
+            input_sites: model.input_sites().to_vec(),
+        }
+    }
+
+    /// The number of arguments of input `k`, where known.
+    pub fn arity(&self, k: usize) -> Option<usize> {
+        match self.input_arguments.get(k) {
+            Some(Some(arguments)) => Some(arguments.len()),
+            _ => self
+                .input_sites
+                .iter()
+                .find(|(input, _)| *input == k)
+                .map(|&(_, arity)| arity),
+        }
+    }
+
+    /// Input `k` as declared, `name(a, b)`, or its name and number of arguments.
+    pub fn signature(&self, k: usize) -> String {
+        let name = &self.inputs[k];
+        match (self.input_arguments.get(k), self.arity(k)) {
+            (Some(Some(arguments)), _) => format!("`{name}({})`", arguments.join(", ")),
+            (_, Some(1)) => format!("`{name}` of 1 argument"),
+            (_, Some(n)) => format!("`{name}` of {n} arguments"),
+            (_, None) => format!("`{name}`"),
+        }
+    }
+}
+
+/// Integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Dopri5,
+    Rk4,
+    Implicit,
+}
+
+impl Method {
+    pub fn parse(text: &str) -> Option<Method> {
+        match text {
+            "dopri5" => Some(Method::Dopri5),
+            "rk4" => Some(Method::Rk4),
+            "implicit" | "tr-bdf2" => Some(Method::Implicit),
+            _ => None,
+        }
+    }
+}
+
+/// What is wrong with a scenario.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ScenarioErrorKind {
+    /// The scenario file cannot be read.
+    Unreadable,
+    /// A key, a value or a setting that does not fit the format or the spec.
+    Invalid,
+    /// A data file it names (a CSV table) cannot be read or is malformed.
+    DataFile,
+}
+
+/// A scenario that does not fit its spec, or a file that cannot be read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenarioError {
+    pub kind: ScenarioErrorKind,
+    pub file: Option<PathBuf>,
+    /// `(line, column)` in the file, both from 1, where the parser knows it.
+    pub location: Option<(usize, usize)>,
+    pub message: String,
+}
+
+impl ScenarioError {
+    fn invalid(file: Option<&Path>, message: String) -> ScenarioError {
+        ScenarioError {
+            kind: ScenarioErrorKind::Invalid,
+            file: file.map(Path::to_path_buf),
+            location: None,
+            message,
+        }
+    }
+}
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(file) = &self.file {
+            write!(f, "{}:", file.display())?;
+            if let Some((line, column)) = self.location {
+                write!(f, "{line}:{column}:")?;
+            }
+            f.write_str(" ")?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for ScenarioError {}
+
+/// A scenario resolved against a model.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    pub file: Option<PathBuf>,
+    /// The spec the file names, resolved relative to the file.
+    pub spec: Option<PathBuf>,
+    pub description: String,
+    pub t_end: f64,
+    pub method: Method,
+    pub options: Options,
+    pub output_interval: f64,
+    /// Parameter overrides by index.
+    pub parameters: Vec<(usize, f64)>,
+    pub initial_coordinates: Vec<(usize, f64)>,
+    pub initial_velocities: Vec<(usize, f64)>,
+    /// Coordinates solved for static equilibrium before the run.
+    pub equilibrium: Vec<usize>,
+    /// The crush coordinate and the sign that makes compression positive.
+    pub crush: Option<(usize, f64)>,
+    pub pitch: Vec<usize>,
+    pub weld: Option<String>,
+    pub inputs: BoundInputs,
+}
+
+impl Scenario {
+    /// Reads and resolves a scenario file, applying `settings` (`key=value`,
+    /// see [`Scenario::parse`]) first.
+    pub fn load(
+        path: &Path,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
+            kind: ScenarioErrorKind::Unreadable,
+            file: Some(path.to_path_buf()),
+            location: None,
+            message: format!("cannot read: {e}"),
+        })?;
+        Scenario::parse(&text, Some(path), names, settings)
+    }
+
+    /// A scenario with nothing but defaults (no file).
+    pub fn defaults(names: &ModelNames, settings: &[String]) -> Result<Scenario, ScenarioError> {
+        Scenario::parse("", None, names, settings)
+    }
+
+    /// The scenario document `text` with the dotted-key and parameter
+    /// `settings` applied (input constants are not part of the document).
+    pub fn document(
+        text: &str,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<toml::Table, String> {
+        let mut document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
+        let mut constants = BTreeMap::new();
+        for setting in settings {
+            apply_setting(&mut document, setting, names, &mut constants)?;
+        }
+        Ok(document)
+    }
+
+    /// Resolves scenario `text` (from `file`, which relative paths start from).
+    ///
+    /// `settings` override it: `name=value` sets a spec parameter, or gives
+    /// an input function a constant value; a dotted key such as
+    /// `simulation.t_end=0.2` or `components.front_end.unloading=elastic`
+    /// sets that entry of the file (the value is read as TOML).
+    pub fn parse(
+        text: &str,
+        file: Option<&Path>,
+        names: &ModelNames,
+        settings: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let error = |message: String| ScenarioError::invalid(file, message);
+        let mut document: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| toml_error(file, text, &e))?;
+        let mut constants = BTreeMap::new();
+        for setting in settings {
+            apply_setting(&mut document, setting, names, &mut constants)
+                .map_err(|m| ScenarioError::invalid(None, m))?;
+        }
+        let parsed: File = document.try_into().map_err(|e: toml::de::Error| {
+            // The document has no positions; the text has them when the
+            // problem is in the file rather than in a setting.
+            match toml::from_str::<File>(text) {
+                Err(located) if located.message() == e.message() => {
+                    toml_error(file, text, &located)
+                }
+                _ => error(with_suggestion(e.message())),
+            }
+        })?;
+        let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
+        let tables = load_tables(&parsed.components, base).map_err(|message| ScenarioError {
+            kind: ScenarioErrorKind::DataFile,
+            ..error(message)
+        })?;
+        resolve(parsed, base, names, constants, &tables)
+            .map_err(error)
+            .map(|mut s| {
+                s.file = file.map(Path::to_path_buf);
+                s
+            })
+    }
+}
+
+/// Reads every table a scenario's components name, and checks that the
+/// columns it names are there, before anything is bound.
+fn load_tables(
+    components: &BTreeMap<String, file::ComponentSection>,
+    base: &Path,
+) -> Result<BTreeMap<String, Table>, String> {
+    let mut tables = BTreeMap::new();
+    for (name, section) in components {
+        if let file::ComponentSection::Table {
+            file,
+            time_column,
+            columns,
+            ..
+        } = section
+        {
+            let table =
+                Table::load(&base.join(file)).map_err(|e| format!("components.{name}: {e}"))?;
+            for column in columns.values() {
+                table
+                    .curve(time_column, column, Outside::Hold)
+                    .map_err(|e| format!("components.{name}: {e}"))?;
+            }
+            tables.insert(name.clone(), table);
+        }
+    }
+    Ok(tables)
+}
+
+/// A TOML error at its `line:column` in `text`, with a suggestion for a
+/// misspelt key or value.
+fn toml_error(file: Option<&Path>, text: &str, e: &toml::de::Error) -> ScenarioError {
+    let location = e.span().map(|span| {
+        let before = &text[..span.start.min(text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        (line, column)
+    });
+    ScenarioError {
+        location,
+        ..ScenarioError::invalid(file, with_suggestion(e.message()))
+    }
+}
+
+/// serde's "unknown field `x`, expected one of `a`, `b`" on one line, with
+/// "did you mean `a`?" when one of the expected names is close.
+fn with_suggestion(message: &str) -> String {
+    let message = message.trim().replace('\n', " ");
+    let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
+    let unknown = message.starts_with("unknown field") || message.starts_with("unknown variant");
+    if unknown
+        && let Some((wanted, expected)) = quoted.split_first()
+        && let Some(best) = lagrangian_model::names::closest(wanted, expected.iter().copied())
+    {
+        return format!("{message} (did you mean `{best}`?)");
+    }
+    message
+}
+
+#[cfg(test)]
+mod tests;

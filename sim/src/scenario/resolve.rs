@@ -1,0 +1,242 @@
+//! Checking a scenario file against its model and the value ranges of its
+//! entries, and resolving names to indices.
+
+use super::bind::bind_components;
+use super::file::{ComponentSection, File};
+use super::{Method, ModelNames, Scenario};
+use crate::crash::curve::Outside;
+use crate::crash::table::Table;
+use crate::ode::Options;
+use lagrangian_model::names::closest;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub(super) fn unknown<'a>(
+    what: &str,
+    name: &str,
+    known: impl Iterator<Item = &'a str> + Clone,
+) -> String {
+    let mut message = format!("{what} `{name}` does not exist in the spec");
+    if let Some(best) = closest(name, known.clone()) {
+        message.push_str(&format!("; did you mean `{best}`?"));
+    } else {
+        let list: Vec<&str> = known.collect();
+        message.push_str(&format!(" (known: {})", list.join(", ")));
+    }
+    message
+}
+
+pub(super) fn index_of(what: &str, name: &str, list: &[String]) -> Result<usize, String> {
+    list.iter()
+        .position(|n| n == name)
+        .ok_or_else(|| unknown(what, name, list.iter().map(String::as_str)))
+}
+
+/// The most output samples a run may ask for (`t_end / output_interval`);
+/// each keeps the whole state, so more would exhaust memory.
+pub const MAX_SAMPLES: f64 = 1e6;
+
+/// `value` as written in a message: plainly in a readable range, else in
+/// scientific notation (`1e-300`, not three hundred zeros).
+pub(super) fn number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
+
+/// `value` if it is a finite number; else an error naming `key`.
+pub(super) fn finite(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {}: must be a finite number",
+            number(value)
+        ))
+    }
+}
+
+/// `value` if it is finite and positive; else an error naming `key`.
+pub(super) fn positive(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {value}: must be a positive, finite number"
+        ))
+    }
+}
+
+/// `value` if it is finite and not negative; else an error naming `key`.
+pub(super) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "{key} = {}: must be a finite number ≥ 0",
+            number(value)
+        ))
+    }
+}
+
+pub(super) fn outside(what: &str, text: &str) -> Result<Outside, String> {
+    Outside::parse(text)
+        .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
+}
+
+pub(super) fn resolve(
+    file: File,
+    base: &Path,
+    names: &ModelNames,
+    constants: BTreeMap<String, f64>,
+    tables: &BTreeMap<String, Table>,
+) -> Result<Scenario, String> {
+    let s = &file.simulation;
+    let method = Method::parse(&s.method).ok_or_else(|| {
+        format!(
+            "simulation.method = `{}`; use dopri5, rk4 or implicit",
+            s.method
+        )
+    })?;
+    positive("simulation.t_end", s.t_end)?;
+    positive("simulation.output_interval", s.output_interval)?;
+    let samples = s.t_end / s.output_interval;
+    if samples > MAX_SAMPLES {
+        return Err(format!(
+            "simulation.output_interval = {}: gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
+            number(s.output_interval),
+            number(samples.round()),
+            number(s.t_end)
+        ));
+    }
+    non_negative("simulation.rtol", s.rtol)?;
+    non_negative("simulation.atol", s.atol)?;
+    if let Some(h) = s.max_step {
+        positive("simulation.max_step", h)?;
+    }
+    if let Some(h) = s.step {
+        positive("simulation.step", h)?;
+    }
+    // The fixed step of RK4; the first step of the adaptive methods (which
+    // otherwise choose it themselves).
+    let (fixed_step, initial_step) = match method {
+        Method::Rk4 => (Some(s.step.unwrap_or(1e-5)), None),
+        _ => (None, s.step),
+    };
+    let options = Options {
+        rtol: s.rtol,
+        atol: s.atol,
+        // No limit unless one is given.
+        max_step: s.max_step.unwrap_or(f64::INFINITY),
+        max_steps: s.max_steps,
+        fixed_step,
+        initial_step,
+        ..Options::default()
+    };
+    options.validate().map_err(|e| format!("simulation: {e}"))?;
+
+    let parameters = file
+        .parameters
+        .iter()
+        .map(|(name, value)| {
+            Ok((
+                index_of("parameters: parameter", name, &names.parameters)?,
+                finite(&format!("parameters.{name}"), *value)?,
+            ))
+        })
+        .collect::<Result<_, String>>()?;
+    let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
+    // `initial.{section}`: values by coordinate name.
+    let initial = |section: &str, values: &BTreeMap<String, f64>| {
+        values
+            .iter()
+            .map(|(n, v)| {
+                Ok((
+                    coordinate(&format!("initial.{section}: coordinate"), n)?,
+                    finite(&format!("initial.{section}.{n}"), *v)?,
+                ))
+            })
+            .collect::<Result<Vec<_>, String>>()
+    };
+    let initial_coordinates = initial("coordinates", &file.initial.coordinates)?;
+    let initial_velocities = initial("velocities", &file.initial.velocities)?;
+    let equilibrium = file
+        .initial
+        .equilibrium
+        .iter()
+        .map(|n| coordinate("initial.equilibrium: coordinate", n))
+        .collect::<Result<_, String>>()?;
+    let crush = match &file.metrics.crush {
+        None => None,
+        Some(text) => {
+            let (sign, name) = match text.trim().strip_prefix('-') {
+                Some(rest) => (-1.0, rest.trim()),
+                None => (1.0, text.trim().trim_start_matches('+')),
+            };
+            Some((coordinate("metrics.crush: coordinate", name)?, sign))
+        }
+    };
+    let pitch = file
+        .metrics
+        .pitch
+        .iter()
+        .map(|n| coordinate("metrics.pitch: coordinate", n))
+        .collect::<Result<_, String>>()?;
+    if let Some(weld) = &file.metrics.weld {
+        check_weld_metric(weld, &file.components)?;
+    }
+    let inputs = bind_components(&file.components, tables, names, constants)?;
+    Ok(Scenario {
+        file: None,
+        spec: file.spec.as_ref().map(|s| base.join(s)),
+        description: file.description,
+        t_end: s.t_end,
+        method,
+        options,
+        output_interval: s.output_interval,
+        parameters,
+        initial_coordinates,
+        initial_velocities,
+        equilibrium,
+        crush,
+        pitch,
+        weld: file.metrics.weld.clone(),
+        inputs,
+    })
+}
+
+/// `metrics.weld` must name a weld component of the file.
+fn check_weld_metric(
+    weld: &str,
+    components: &BTreeMap<String, ComponentSection>,
+) -> Result<(), String> {
+    let welds: Vec<&str> = components
+        .iter()
+        .filter(|(_, c)| matches!(c, ComponentSection::Weld { .. }))
+        .map(|(name, _)| name.as_str())
+        .collect();
+    let allowed = if welds.is_empty() {
+        "the scenario has none".to_string()
+    } else {
+        format!("weld components: {}", welds.join(", "))
+    };
+    match components.get(weld) {
+        Some(ComponentSection::Weld { .. }) => Ok(()),
+        Some(other) => Err(format!(
+            "metrics.weld = \"{weld}\": component `{weld}` is a {} component; metrics.weld names a weld component ({allowed})",
+            other.kind()
+        )),
+        None => {
+            let mut message =
+                format!("metrics.weld = \"{weld}\": the scenario has no component `{weld}`");
+            match closest(weld, welds.iter().copied()) {
+                Some(best) => message.push_str(&format!("; did you mean `{best}`?")),
+                None => message.push_str(&format!(" ({allowed})")),
+            }
+            Err(message)
+        }
+    }
+}

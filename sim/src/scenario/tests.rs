@@ -1,0 +1,204 @@
+//! Scenario files that do not fit their spec or hold values out of range.
+
+use super::*;
+
+const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
+
+/// The message with which `text` (and `settings`) is refused for `spec`.
+fn error_for(spec: &str, text: &str, settings: &[&str]) -> String {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(spec).unwrap());
+    let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
+    match Scenario::parse(text, None, &names, &settings) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The message with which `text` is refused for the spring–mass–damper.
+fn error(text: &str, settings: &[&str]) -> String {
+    error_for(SPRING, text, settings)
+}
+
+const PUSH: &str = "[components.c]\ntype = \"constant\"\nvalues = { push = 1.0 }\n";
+
+#[test]
+fn non_finite_and_out_of_range_numbers_name_their_key() {
+    let e = error(
+        &format!("[simulation]\nt_end = 0.01\noutput_interval = inf\n{PUSH}"),
+        &[],
+    );
+    assert_eq!(
+        e,
+        "simulation.output_interval = inf: must be a positive, finite number"
+    );
+    let e = error(
+        &format!("[simulation]\nt_end = 1e300\noutput_interval = 1e-300\n{PUSH}"),
+        &[],
+    );
+    assert_eq!(
+        e,
+        "simulation.output_interval = 1e-300: gives inf samples over t_end = 1e300 s, more than 1e6; use a longer interval"
+    );
+    let cases = [
+        ("[simulation]\nt_end = inf\n", "simulation.t_end = inf"),
+        ("[simulation]\nrtol = nan\n", "simulation.rtol = NaN"),
+        ("[simulation]\natol = -inf\n", "simulation.atol = -inf"),
+        ("[simulation]\nmax_step = 0.0\n", "simulation.max_step = 0"),
+        (
+            "[simulation]\nmethod = \"rk4\"\nstep = inf\n",
+            "simulation.step = inf",
+        ),
+        ("[parameters]\nk = nan\n", "parameters.k = NaN"),
+        (
+            "[initial]\ncoordinates = { x = inf }\n",
+            "initial.coordinates.x = inf",
+        ),
+        (
+            "[initial]\nvelocities = { x = nan }\n",
+            "initial.velocities.x = NaN",
+        ),
+    ];
+    for (section, key) in cases {
+        let e = error(&format!("{section}{PUSH}"), &[]);
+        assert!(e.starts_with(&format!("{key}: must be")), "{section}: {e}");
+    }
+    let e = error(
+        "[components.c]\ntype = \"constant\"\nvalues = { push = nan }\n",
+        &[],
+    );
+    assert!(
+        e.starts_with("components.c.values.push = NaN: must be"),
+        "{e}"
+    );
+    let e = error(PUSH, &["k=inf"]);
+    assert!(e.starts_with("parameters.k = inf: must be"), "{e}");
+    let e = error("", &["push=-inf"]);
+    assert!(e.starts_with("--set push = -inf: must be"), "{e}");
+    let weld = "[components.w]\ntype = \"weld\"\ninputs = { moment = \"push\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\n";
+    let e = error(&format!("{weld}failure_moment = -1.0\n"), &[]);
+    assert!(
+        e.starts_with("components.w.failure_moment = -1: must be"),
+        "{e}"
+    );
+    let e = error(&format!("{weld}damping = inf\n"), &[]);
+    assert!(e.starts_with("components.w.damping = inf: must be"), "{e}");
+}
+
+const YARIS: &str = include_str!("../../../specs/yaris_double_pendulum.lpm");
+
+const CRUSH: &str = "type = \"crush\"\ncompression = \"positive\"\nstiffness_breakpoints = [0.1]\nstiffness_values = [1.0, 2.0]\ndamping_breakpoints = [1.0]\ndamping_values = [1.0, 1.0]\n";
+
+#[test]
+fn components_need_inputs_of_as_many_arguments_as_they_read() {
+    // A crush element or weld reads (x, ẋ); push(t) has one argument.
+    let e = error(
+        &format!("[components.fe]\ninputs = {{ force = \"push\" }}\n{CRUSH}"),
+        &[],
+    );
+    assert_eq!(
+        e,
+        "components.fe.inputs.force = \"push\": input `push(t)` has 1 argument, but a crush component needs an input of 2 arguments (the crush coordinate and its rate)"
+    );
+    let e = error(
+        "[components.w]\ntype = \"weld\"\ninputs = { moment = \"push\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\nfailure_angle = 0.5\n",
+        &[],
+    );
+    assert!(
+        e.starts_with("components.w.inputs.moment = \"push\": input `push(t)` has 1 argument, but a weld component needs an input of 2 arguments"),
+        "{e}"
+    );
+    // The derivative ports too.
+    let e = error_for(
+        YARIS,
+        &format!(
+            "[components.fe]\ninputs = {{ force = \"crush\", stiffness = \"barrier_x1\" }}\n{CRUSH}"
+        ),
+        &[],
+    );
+    assert!(
+        e.starts_with("components.fe.inputs.stiffness = \"barrier_x1\": input `barrier_x1(t)` has 1 argument, but a crush component needs"),
+        "{e}"
+    );
+    // A table is a function of one argument; push() has none.
+    let no_arguments = SPRING
+        .replace("push(t [s]) [N]", "push() [N]")
+        .replace("push(t);", "push();");
+    let csv = std::env::temp_dir().join(format!("lpm-arity-{}.csv", std::process::id()));
+    std::fs::write(&csv, "t,F\n0,5\n1,100\n").unwrap();
+    let e = error_for(
+        &no_arguments,
+        &format!(
+            "[components.b]\ntype = \"table\"\nfile = {:?}\ncolumns = {{ push = \"F\" }}\n",
+            csv.display().to_string()
+        ),
+        &[],
+    );
+    std::fs::remove_file(&csv).ok();
+    assert_eq!(
+        e,
+        "components.b.columns.push: input `push()` has 0 arguments, but a table component needs an input of 1 argument (the time or abscissa of the table)"
+    );
+    // A constant takes any arguments.
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(&no_arguments).unwrap());
+    Scenario::parse(PUSH, None, &names, &["push=2".to_string()]).unwrap();
+}
+
+#[test]
+fn the_weld_metric_names_a_weld_component() {
+    let weld = "[components.hinge]\ntype = \"weld\"\ninputs = { moment = \"weld\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\n";
+    let front = format!("[components.front_end]\ninputs = {{ force = \"crush\" }}\n{CRUSH}");
+    let e = error_for(
+        YARIS,
+        &format!("[metrics]\nweld = \"front_end\"\n{front}{weld}"),
+        &[],
+    );
+    assert_eq!(
+        e,
+        "metrics.weld = \"front_end\": component `front_end` is a crush component; metrics.weld names a weld component (weld components: hinge)"
+    );
+    let e = error_for(
+        YARIS,
+        &format!("[metrics]\nweld = \"front_end\"\n{front}"),
+        &[],
+    );
+    assert!(e.ends_with("(the scenario has none)"), "{e}");
+    let e = error_for(YARIS, &format!("[metrics]\nweld = \"hing\"\n{weld}"), &[]);
+    assert_eq!(
+        e,
+        "metrics.weld = \"hing\": the scenario has no component `hing`; did you mean `hinge`?"
+    );
+}
+
+#[test]
+fn settings_split_at_the_first_equals_sign() {
+    assert_eq!(split_setting(" k = 2 "), Ok(("k", "2")));
+    assert_eq!(
+        split_setting("components.c.file=\"a=b.csv\""),
+        Ok(("components.c.file", "\"a=b.csv\""))
+    );
+    assert_eq!(
+        split_setting("k"),
+        Err("--set `k` is not of the form key=value".to_string())
+    );
+    assert_eq!(setting_number("k", "2e3"), Ok(2e3));
+    assert_eq!(
+        setting_number("k", "two"),
+        Err("--set k: `two` is not a number".to_string())
+    );
+}
+
+/// `simulation.step` is RK4's fixed step and the adaptive methods' first step.
+#[test]
+fn the_step_setting_applies_to_every_method() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let options = |method: &str| {
+        let text = format!("[simulation]\nmethod = \"{method}\"\nstep = 2e-6\n{PUSH}");
+        Scenario::parse(&text, None, &names, &[]).unwrap().options
+    };
+    assert_eq!(options("rk4").fixed_step, Some(2e-6));
+    assert_eq!(options("rk4").initial_step, None);
+    for method in ["dopri5", "implicit"] {
+        assert_eq!(options(method).fixed_step, None, "{method}");
+        assert_eq!(options(method).initial_step, Some(2e-6), "{method}");
+    }
+}

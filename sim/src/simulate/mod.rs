@@ -1,0 +1,425 @@
+//! Running a scenario: static equilibrium, integration with events, output
+//! samples, summary metrics.
+
+mod equilibrium;
+mod problem;
+mod summary;
+#[cfg(test)]
+mod tests;
+
+pub use equilibrium::static_equilibrium;
+pub use problem::{CrashProblem, EventRecord};
+pub use summary::{Metrics, SampleView, Summary};
+
+use crate::fault::Fault;
+use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
+use crate::scenario::{MAX_SAMPLES, Method, Scenario};
+use lagrangian_model::{LagrangianSystem, ModelError};
+use nalgebra::SVector;
+use std::fmt;
+
+/// The state and derived quantities at one output time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+    pub kinetic: f64,
+    pub potential: f64,
+    /// Energy dissipated by `D` since the start.
+    pub dissipated: f64,
+    /// Work of the generalized forces since the start.
+    pub external_work: f64,
+    /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
+    pub inputs: Vec<f64>,
+}
+
+/// Everything a run produced.
+#[derive(Clone, Debug)]
+pub struct SimulationResult {
+    pub model: String,
+    pub coordinates: Vec<String>,
+    /// `(name, unit)` of each column of [`Sample::inputs`].
+    pub input_columns: Vec<String>,
+    /// The coordinates at the start (after the static-equilibrium solve).
+    pub initial_q: Vec<f64>,
+    pub samples: Vec<Sample>,
+    pub stats: Stats,
+    pub events: Vec<EventRecord>,
+    pub summary: Summary,
+    pub method: Method,
+    /// The gravitational acceleration `g` the summary's decelerations are
+    /// in: the model's `g` parameter, or standard gravity without one.
+    pub g: f64,
+}
+
+/// Why a run failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimulationError {
+    /// A scenario value does not apply to the model.
+    Model(ModelError),
+    /// Newton's method found no static equilibrium.
+    Equilibrium(String),
+    /// The integration stopped; `reached` is where its last accepted step
+    /// ended (`None` when it failed before the first step).
+    Solver {
+        error: SolverError,
+        reached: Option<Box<Reached>>,
+    },
+}
+
+/// The state at the end of a run's last accepted step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reached {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+}
+
+impl fmt::Display for SimulationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimulationError::Model(e) => write!(f, "{e}"),
+            SimulationError::Equilibrium(m) => write!(f, "no static equilibrium: {m}"),
+            SimulationError::Solver { error, .. } => write!(f, "integration failed: {error}"),
+        }
+    }
+}
+
+impl std::error::Error for SimulationError {}
+
+/// What kind of failure ended a run: one exit status of `lpm` each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FailureKind {
+    /// A scenario value that does not apply (unknown parameter, bad options).
+    Scenario,
+    /// `M(q)` singular or not positive definite.
+    SingularMassMatrix,
+    /// NaN or ±∞ in `M`, `f`, `q̈`, a power or an event function.
+    NonFinite,
+    /// Steps rejected (or Newton failing) below the minimum step size.
+    StepSizeUnderflow,
+    /// The step limit was reached before the end time.
+    MaxSteps,
+    /// An event's zero crossing could not be bracketed.
+    EventNotLocated,
+    /// A table read outside its range under the `error` policy.
+    TableOutOfRange,
+    /// No static equilibrium before the impact.
+    NoEquilibrium,
+    /// A component could not produce a value (an unbound input).
+    Component,
+}
+
+impl FailureKind {
+    /// The kind in snake case, as a sweep's `status` column writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            FailureKind::Scenario => "scenario",
+            FailureKind::SingularMassMatrix => "singular_mass_matrix",
+            FailureKind::NonFinite => "non_finite",
+            FailureKind::StepSizeUnderflow => "step_size_underflow",
+            FailureKind::MaxSteps => "max_steps",
+            FailureKind::EventNotLocated => "event_not_located",
+            FailureKind::TableOutOfRange => "table_out_of_range",
+            FailureKind::NoEquilibrium => "no_equilibrium",
+            FailureKind::Component => "component",
+        }
+    }
+}
+
+impl SimulationError {
+    pub fn kind(&self) -> FailureKind {
+        match self {
+            SimulationError::Model(_) => FailureKind::Scenario,
+            SimulationError::Equilibrium(_) => FailureKind::NoEquilibrium,
+            SimulationError::Solver { error, .. } => match error {
+                SolverError::StepSizeUnderflow { .. }
+                | SolverError::NewtonFailure { .. }
+                | SolverError::SingularIterationMatrix { .. } => FailureKind::StepSizeUnderflow,
+                SolverError::MaxSteps { .. } => FailureKind::MaxSteps,
+                SolverError::NonFinite { .. } => FailureKind::NonFinite,
+                SolverError::EventNotLocated { .. } => FailureKind::EventNotLocated,
+                SolverError::InvalidOptions(_) => FailureKind::Scenario,
+                SolverError::Rhs { fault, .. } => match fault {
+                    Fault::SingularMassMatrix { .. } => FailureKind::SingularMassMatrix,
+                    Fault::NonFinite { .. } => FailureKind::NonFinite,
+                    Fault::OutOfRange { .. } => FailureKind::TableOutOfRange,
+                    Fault::Component(_) => FailureKind::Component,
+                },
+            },
+        }
+    }
+
+    /// The fault inside, when a model evaluation failed.
+    pub fn fault(&self) -> Option<&Fault> {
+        match self {
+            SimulationError::Solver {
+                error: SolverError::Rhs { fault, .. },
+                ..
+            } => Some(fault),
+            _ => None,
+        }
+    }
+
+    /// Where a failed integration's last accepted step ended.
+    pub fn reached(&self) -> Option<&Reached> {
+        match self {
+            SimulationError::Solver { reached, .. } => reached.as_deref(),
+            _ => None,
+        }
+    }
+}
+
+impl From<SolverError> for SimulationError {
+    fn from(e: SolverError) -> Self {
+        SimulationError::Solver {
+            error: e,
+            reached: None,
+        }
+    }
+}
+
+/// Simulates `system` under `scenario` (the scenario's parameter overrides are
+/// applied to a copy of `system`).
+pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<SimulationResult, SimulationError> {
+    let (model, run) = run(system, scenario, true)?;
+    let input_columns = model
+        .input_sites()
+        .iter()
+        .map(|&(input, _)| model.input_names()[input].to_string())
+        .collect();
+    Ok(SimulationResult {
+        model: model.model_name().to_string(),
+        coordinates: model
+            .coordinate_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        input_columns,
+        initial_q: run.initial_q,
+        samples: run.samples,
+        stats: run.stats,
+        events: run.events,
+        summary: run.summary,
+        method: scenario.method,
+        g: run.g,
+    })
+}
+
+/// The summary of a run only — what a sweep records: the same numbers as
+/// `simulate(…).summary`, without keeping the samples or evaluating the
+/// inputs at them.
+pub fn simulate_summary<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<Summary, SimulationError> {
+    run(system, scenario, false).map(|(_, run)| run.summary)
+}
+
+/// What a run produced.
+struct Run {
+    initial_q: Vec<f64>,
+    samples: Vec<Sample>,
+    stats: Stats,
+    events: Vec<EventRecord>,
+    summary: Summary,
+    g: f64,
+}
+
+/// Runs the scenario, keeping the samples if `keep`; returns the model with
+/// the scenario's parameters.
+fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+    keep: bool,
+) -> Result<(S, Run), SimulationError> {
+    let mut model = system.clone();
+    let parameter_names: Vec<String> = model
+        .parameter_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    for &(index, value) in &scenario.parameters {
+        model
+            .set_parameter(&parameter_names[index], value)
+            .map_err(SimulationError::Model)?;
+    }
+    let mut q = SVector::<f64, N>::zeros();
+    let mut v = SVector::<f64, N>::zeros();
+    for &(i, value) in &scenario.initial_coordinates {
+        q[i] = value;
+    }
+    for &(i, value) in &scenario.initial_velocities {
+        v[i] = value;
+    }
+    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    // The components' state (a crush element in contact or not) follows the
+    // initial state, for the equilibrium as for the run.
+    problem.start(0.0, &PhaseState::new(q, v))?;
+    if !scenario.equilibrium.is_empty() {
+        q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
+    }
+    let y0 = PhaseState::new(q, v);
+    problem.start(0.0, &y0)?;
+    let g = gravity(&model);
+    let mut metrics = Metrics::new(scenario, q.as_slice(), g);
+    let mut samples = Vec::new();
+    let mut sample_error = None;
+    let interval = scenario.output_interval;
+    let mut next = 0usize;
+    let mut record = |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(
+        problem, t, y, keep,
+    ) {
+        Ok((view, inputs)) => {
+            metrics.push(view.as_view());
+            if keep {
+                samples.push(view.into_sample(inputs));
+            }
+        }
+        Err(e) => {
+            sample_error.get_or_insert(e);
+        }
+    };
+    record(&mut problem, 0.0, &y0);
+    next += 1;
+    let t_end = scenario.t_end;
+    // Samples at k·interval, the last one moved onto t_end when it falls
+    // within half an interval of it. `last` (one or two beyond that) bounds
+    // the loop even for an interval the scenario check would not let through
+    // (∞ or NaN, when `k·interval` never passes t_end, or too small).
+    let bound = (t_end / interval + 1.0).ceil();
+    let last = if bound >= 0.0 {
+        bound.min(MAX_SAMPLES + 1.0) as usize
+    } else {
+        0 // NaN
+    };
+    // The end of the last accepted step, for the report of a failure.
+    let mut reached: Option<(f64, PhaseState<N>)> = None;
+    let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
+        let mut y = PhaseState::zeros();
+        step.eval(step.t1(), &mut y);
+        reached = Some((step.t1(), y));
+        while next <= last {
+            let t = (next as f64 * interval).min(t_end);
+            if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
+                break;
+            }
+            step.eval(t, &mut y);
+            record(problem, t, &y);
+            next += 1;
+        }
+    };
+    let options: Options = scenario.options;
+    let outcome = match scenario.method {
+        Method::Dopri5 => dopri5::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+        Method::Rk4 => rk4::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+        Method::Implicit => sdirk::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
+    };
+    let outcome = outcome.map_err(|error| SimulationError::Solver {
+        error,
+        reached: reached.map(|(t, y)| {
+            Box::new(Reached {
+                t,
+                q: y.q.as_slice().to_vec(),
+                qd: y.v.as_slice().to_vec(),
+            })
+        }),
+    })?;
+    if let Some(fault) = problem.failure.take() {
+        return Err(SolverError::Rhs {
+            t: outcome.t,
+            fault,
+        }
+        .into());
+    }
+    if let Some(e) = sample_error {
+        return Err(e.into());
+    }
+    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
+    let summary = metrics.finish(&outcome.stats, weld);
+    let run = Run {
+        initial_q: q.as_slice().to_vec(),
+        samples,
+        stats: outcome.stats,
+        events: problem.events,
+        summary,
+        g,
+    };
+    Ok((model, run))
+}
+
+/// The model's `g` parameter if it has one, else standard gravity.
+fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
+    model
+        .parameter_names()
+        .iter()
+        .position(|p| *p == "g")
+        .map_or(9.80665, |i| model.parameters()[i])
+}
+
+/// The state, accelerations and energies at one output time.
+struct SampleValues<const N: usize> {
+    t: f64,
+    y: PhaseState<N>,
+    a: SVector<f64, N>,
+    kinetic: f64,
+    potential: f64,
+}
+
+impl<const N: usize> SampleValues<N> {
+    fn as_view(&self) -> SampleView<'_> {
+        SampleView {
+            t: self.t,
+            q: self.y.q.as_slice(),
+            v: self.y.v.as_slice(),
+            a: self.a.as_slice(),
+            kinetic: self.kinetic,
+            potential: self.potential,
+            dissipated: self.y.work[0],
+            external_work: self.y.work[1],
+        }
+    }
+
+    fn into_sample(self, inputs: Vec<f64>) -> Sample {
+        Sample {
+            t: self.t,
+            q: self.y.q.as_slice().to_vec(),
+            v: self.y.v.as_slice().to_vec(),
+            a: self.a.as_slice().to_vec(),
+            kinetic: self.kinetic,
+            potential: self.potential,
+            dissipated: self.y.work[0],
+            external_work: self.y.work[1],
+            inputs,
+        }
+    }
+}
+
+/// Evaluates a sample, with the input values when `inputs` is set.
+fn sample<const N: usize, S: LagrangianSystem<N>>(
+    problem: &mut CrashProblem<N, S>,
+    t: f64,
+    y: &PhaseState<N>,
+    inputs: bool,
+) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
+    let a = problem.accelerations(t, &y.q, &y.v)?;
+    let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
+    let values = if inputs {
+        problem.input_values(t, &y.q, &y.v)
+    } else {
+        Vec::new()
+    };
+    let sample = SampleValues {
+        t,
+        y: *y,
+        a,
+        kinetic: energies.kinetic,
+        potential: energies.potential,
+    };
+    Ok((sample, values))
+}

@@ -1,0 +1,273 @@
+//! A model with its crash components as an ODE problem in `(q, q̇, work)`.
+
+use crate::crash::BoundInputs;
+use crate::fault::Fault;
+use crate::ode::sdirk::{AccelerationJacobian, AccelerationJacobians};
+use crate::ode::{Direction, EventAction, OdeProblem, PhaseState, SolverError};
+use lagrangian_model::{
+    InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix,
+};
+use nalgebra::{SMatrix, SVector};
+
+/// One event handled during a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord {
+    pub t: f64,
+    pub component: String,
+    pub description: String,
+}
+
+/// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`.
+pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
+    pub system: &'a S,
+    pub inputs: BoundInputs,
+    pub events: Vec<EventRecord>,
+    /// A failure inside an event handler, reported after the run.
+    pub failure: Option<Fault>,
+    arguments: Vec<f64>,
+}
+
+impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
+    pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
+        let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
+        CrashProblem {
+            system,
+            inputs,
+            events: Vec::new(),
+            failure: None,
+            arguments,
+        }
+    }
+
+    /// Puts the crash components in the state a run from `(t, y)` starts in.
+    pub fn start(&mut self, t: f64, y: &PhaseState<N>) -> Result<(), SolverError> {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        self.inputs
+            .start(&self.arguments)
+            .map_err(|fault| SolverError::Rhs { t, fault })
+    }
+
+    fn input_failure(&self, t: f64) -> Result<(), SolverError> {
+        match self.inputs.take_failure() {
+            Some(fault) => Err(SolverError::Rhs { t, fault }),
+            None => Ok(()),
+        }
+    }
+
+    /// `q̈` at a state, by `L D Lᵀ` (LU fallback) solution of `M q̈ = f`.
+    pub fn accelerations(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, SolverError> {
+        let mut mass = SMatrix::zeros();
+        let mut forcing = SVector::zeros();
+        self.system
+            .mass_matrix_and_forcing(t, q, v, &self.inputs, &mut mass, &mut forcing);
+        self.input_failure(t)?;
+        self.solve(t, q, v, &mass, &forcing)
+    }
+
+    /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
+    /// singular `M` reported by name and state.
+    fn solve(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        mass: &SMatrix<f64, N, N>,
+        forcing: &SVector<f64, N>,
+    ) -> Result<SVector<f64, N>, SolverError> {
+        let a = solve_mass_matrix(*mass, forcing);
+        if let Some(a) = a
+            && a.iter().all(|x| x.is_finite())
+        {
+            return Ok(a);
+        }
+        // Name the first bad value: a non-finite entry of M or f is the
+        // cause of anything that follows from it.
+        let names = self.system.coordinate_names();
+        let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
+        let non_finite = |output: String, value: f64| {
+            let (q, qd) = state();
+            let fault = Fault::NonFinite {
+                output,
+                value,
+                q,
+                qd,
+            };
+            SolverError::Rhs { t, fault }
+        };
+        for i in 0..N {
+            for j in 0..N {
+                if !mass[(i, j)].is_finite() {
+                    let output = format!("M[{}, {}]", names[i], names[j]);
+                    return Err(non_finite(output, mass[(i, j)]));
+                }
+            }
+            if !forcing[i].is_finite() {
+                return Err(non_finite(format!("f[{}]", names[i]), forcing[i]));
+            }
+        }
+        match a {
+            None => {
+                let (q, qd) = state();
+                let fault = Fault::SingularMassMatrix { q, qd };
+                Err(SolverError::Rhs { t, fault })
+            }
+            Some(a) => {
+                let i = a.iter().position(|x| !x.is_finite()).unwrap_or(0);
+                let output = format!("the acceleration of {}", names[i]);
+                Err(non_finite(output, a[i]))
+            }
+        }
+    }
+
+    /// `q̈` and the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` at a state, in one pass
+    /// of the model.
+    fn accelerations_and_powers(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<(SVector<f64, N>, [f64; 2]), SolverError> {
+        let mut mass = SMatrix::zeros();
+        let mut forcing = SVector::zeros();
+        let powers = self.system.mass_matrix_forcing_and_powers(
+            t,
+            q,
+            v,
+            &self.inputs,
+            &mut mass,
+            &mut forcing,
+        );
+        self.input_failure(t)?;
+        let a = self.solve(t, q, v, &mass, &forcing)?;
+        for (power, name) in powers
+            .iter()
+            .zip(["dissipated power", "power of the forces"])
+        {
+            if !power.is_finite() {
+                let fault = Fault::NonFinite {
+                    output: format!("the {name}"),
+                    value: *power,
+                    q: q.as_slice().to_vec(),
+                    qd: v.as_slice().to_vec(),
+                };
+                return Err(SolverError::Rhs { t, fault });
+            }
+        }
+        Ok((a, powers))
+    }
+
+    /// The value of every input the dynamics calls, in input-site order.
+    pub fn input_values(&mut self, t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>) -> Vec<f64> {
+        self.system.input_arguments(t, q, v, &mut self.arguments);
+        let mut offset = 0;
+        let mut values = Vec::with_capacity(self.system.input_sites().len());
+        for &(input, arity) in self.system.input_sites() {
+            values.push(
+                self.inputs
+                    .value(input, &self.arguments[offset..offset + arity]),
+            );
+            offset += arity;
+        }
+        values
+    }
+}
+
+impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for CrashProblem<'_, N, S> {
+    fn rhs(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+        dy: &mut PhaseState<N>,
+    ) -> Result<(), SolverError> {
+        let (a, work) = self.accelerations_and_powers(t, &y.q, &y.v)?;
+        *dy = PhaseState { q: y.v, v: a, work };
+        Ok(())
+    }
+
+    fn event_count(&self) -> usize {
+        self.inputs.event_count()
+    }
+
+    fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), SolverError> {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        self.inputs
+            .events(&self.arguments, g)
+            .map_err(|fault| SolverError::Rhs { t, fault })
+    }
+
+    fn event_direction(&self, k: usize) -> Direction {
+        self.inputs.event_direction(k)
+    }
+
+    fn on_event(&mut self, k: usize, t: f64, y: &mut PhaseState<N>) -> EventAction {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        match self.inputs.on_event(k, t, &self.arguments) {
+            Ok((component, description)) => {
+                self.events.push(EventRecord {
+                    t,
+                    component,
+                    description,
+                });
+                EventAction::Restart
+            }
+            Err(fault) => {
+                self.failure = Some(fault);
+                EventAction::Stop
+            }
+        }
+    }
+}
+
+impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashProblem<'_, N, S> {
+    /// `∂a/∂q = M⁻¹ (∂f/∂q − ∂(M a)/∂q)`, `∂a/∂v = M⁻¹ ∂f/∂q̇` from the
+    /// model's derived Jacobians; `None` when the spec did not ask for them.
+    fn acceleration_jacobians(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+    ) -> Result<Option<AccelerationJacobian<N>>, SolverError> {
+        let a = self.accelerations(t, &y.q, &y.v)?;
+        let mut j = Jacobians::<N>::default();
+        match self
+            .system
+            .jacobians(t, &y.q, &y.v, &a, &self.inputs, &mut j)
+        {
+            Err(ModelError::JacobiansNotDerived) => return Ok(None),
+            Err(e) => {
+                return Err(SolverError::Rhs {
+                    t,
+                    fault: Fault::Component(e.to_string()),
+                });
+            }
+            Ok(()) => {}
+        }
+        self.input_failure(t)?;
+        let mass = self.system.mass_matrix(t, &y.q, &y.v, &self.inputs);
+        let solve = |m: SMatrix<f64, N, N>| -> Option<SMatrix<f64, N, N>> {
+            let mut out = SMatrix::<f64, N, N>::zeros();
+            for k in 0..N {
+                let column: SVector<f64, N> = m.column(k).into_owned();
+                out.set_column(k, &solve_mass_matrix(mass, &column)?);
+            }
+            Some(out)
+        };
+        let singular = || SolverError::Rhs {
+            t,
+            fault: Fault::SingularMassMatrix {
+                q: y.q.as_slice().to_vec(),
+                qd: y.v.as_slice().to_vec(),
+            },
+        };
+        let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
+        let a_v = solve(j.forcing_qd).ok_or_else(singular)?;
+        Ok(Some((a_q, a_v)))
+    }
+}

@@ -1,0 +1,17 @@
+//! Ensembles: one scenario run many times with some of its values varied —
+//! over a full-factorial grid or a sampled design — in parallel, one output
+//! row of summary metrics per run.
+//!
+//! A run's values depend only on the plan and the run's index, so a sweep
+//! can be split into [`Shard`]s computed anywhere (a Slurm job array, GNU
+//! parallel) whose tables, concatenated in shard order, are the full sweep.
+
+mod journal;
+mod plan;
+mod run;
+mod table;
+
+pub use journal::{Journal, journal_path, read_groups};
+pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
+pub use run::{Row, RunFailure, Settings, run_scenario, run_sweep, stream_sweep};
+pub use table::{columns, parse_record, record, sweep_csv, sweep_parquet, write_parquet};

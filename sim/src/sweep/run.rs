@@ -1,0 +1,336 @@
+//! Running the runs of a plan in parallel: each run is the base scenario with
+//! the plan's values applied as settings, simulated to its summary metrics.
+
+use super::plan::{Assignment, Axis, Plan};
+use crate::scenario::{BaseScenario, ModelNames, Scenario};
+use crate::scenario::{ScenarioError, ScenarioErrorKind};
+use crate::simulate::{Summary, simulate_summary};
+use lagrangian_model::LagrangianSystem;
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
+
+/// The result of one run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// The run's index in the whole sweep (not the shard).
+    pub run: usize,
+    /// The plan's values for the run, one per axis.
+    pub values: Vec<f64>,
+    /// The metrics, or why the run failed.
+    pub outcome: Result<Summary, RunFailure>,
+}
+
+/// Why a run failed: the kind (`lpm`'s `status` column: `max_steps`,
+/// `singular_mass_matrix`, … or `scenario` for values the scenario
+/// rejects) and the one-line message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunFailure {
+    pub kind: String,
+    pub message: String,
+}
+
+/// The base value a factor multiplies: a number or a list of numbers.
+#[derive(Clone, Debug)]
+enum Scaled {
+    Number(f64),
+    List(Vec<f64>),
+}
+
+/// The plan's axes, resolved against the base scenario: turns run values
+/// into `key=value` settings.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    axes: Vec<(Axis, Option<Scaled>)>,
+}
+
+impl Settings {
+    /// Checks the axes against the scenario and the model, reading the base
+    /// value of each factor (`KEY*=`): the scenario file's entry, or for a
+    /// parameter the file's `[parameters]` value or else the spec default.
+    pub fn new(
+        plan: &Plan,
+        base: &BaseScenario,
+        parameter_defaults: &[f64],
+    ) -> Result<Settings, String> {
+        let document: toml::Table = base
+            .text
+            .parse()
+            .map_err(|e: toml::de::Error| format!("scenario: {e}"))?;
+        let mut axes = Vec::new();
+        for axis in plan.axes() {
+            let overridden = base.settings.iter().any(|s| {
+                s.split_once('=')
+                    .is_some_and(|(k, _)| k.trim().trim_end_matches('*').trim() == axis.key)
+            });
+            if overridden {
+                return Err(format!(
+                    "`{}` is both swept and fixed by --set; drop one",
+                    axis.key
+                ));
+            }
+            let scaled = match axis.assignment {
+                Assignment::Set => None,
+                Assignment::Scale => Some(scaled_base(
+                    axis,
+                    &document,
+                    &base.names,
+                    parameter_defaults,
+                )?),
+            };
+            axes.push((axis.clone(), scaled));
+        }
+        Ok(Settings { axes })
+    }
+
+    /// The settings that give the axes `values`.
+    pub fn for_values(&self, values: &[f64]) -> Vec<String> {
+        self.axes
+            .iter()
+            .zip(values)
+            .map(|((axis, scaled), &x)| {
+                let value = match scaled {
+                    None => toml_number(x),
+                    Some(Scaled::Number(b)) => toml_number(b * x),
+                    Some(Scaled::List(list)) => {
+                        let items: Vec<String> = list.iter().map(|b| toml_number(b * x)).collect();
+                        format!("[{}]", items.join(", "))
+                    }
+                };
+                format!("{}={value}", axis.key)
+            })
+            .collect()
+    }
+}
+
+/// A number as TOML reads it back exactly: a whole number as an integer
+/// (so that integer entries such as `simulation.max_steps` can be swept;
+/// float entries accept integers), else the shortest round-tripping float.
+fn toml_number(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
+    }
+}
+
+fn scaled_base(
+    axis: &Axis,
+    document: &toml::Table,
+    names: &ModelNames,
+    parameter_defaults: &[f64],
+) -> Result<Scaled, String> {
+    let path: Vec<&str> = if axis.key.contains('.') {
+        axis.key.split('.').collect()
+    } else if let Some(k) = names.parameters.iter().position(|p| *p == axis.key) {
+        let in_file = document
+            .get("parameters")
+            .and_then(|t| t.get(&axis.key))
+            .and_then(as_number);
+        return Ok(Scaled::Number(in_file.unwrap_or(parameter_defaults[k])));
+    } else {
+        return Err(format!(
+            "`{0}*=`: a factor applies to a parameter or a dotted scenario entry, and `{0}` is no parameter",
+            axis.key
+        ));
+    };
+    let mut value: Option<&toml::Value> = None;
+    let mut table = Some(document);
+    for part in &path {
+        value = table.and_then(|t| t.get(*part));
+        table = value.and_then(toml::Value::as_table);
+    }
+    let missing = || format!("`{}*=`: the scenario has no such entry to scale", axis.key);
+    match value.ok_or_else(missing)? {
+        toml::Value::Array(items) => items
+            .iter()
+            .map(as_number)
+            .collect::<Option<Vec<f64>>>()
+            .map(Scaled::List)
+            .ok_or_else(|| {
+                format!(
+                    "`{}*=`: a factor scales a number or a list of numbers, and this list holds something else",
+                    axis.key
+                )
+            }),
+        other => as_number(other).map(Scaled::Number).ok_or_else(|| {
+            format!(
+                "`{}*=`: a factor scales a number or a list of numbers, not `{other}`",
+                axis.key
+            )
+        }),
+    }
+}
+
+fn as_number(value: &toml::Value) -> Option<f64> {
+    match value {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// The scenario of one run.
+pub fn run_scenario(
+    base: &BaseScenario,
+    settings: &Settings,
+    values: &[f64],
+) -> Result<Scenario, ScenarioError> {
+    base.resolve(&settings.for_values(values))
+}
+
+/// One run: its scenario, simulated to its summary.
+fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
+    model: &S,
+    base: &BaseScenario,
+    settings: &Settings,
+    plan: &Plan,
+    run: usize,
+) -> Row {
+    let values = plan.point(run);
+    let outcome = match run_scenario(base, settings, &values) {
+        Err(e) => Err(RunFailure {
+            kind: match e.kind {
+                ScenarioErrorKind::DataFile => "data_file",
+                _ => "scenario",
+            }
+            .to_string(),
+            message: e.to_string(),
+        }),
+        Ok(scenario) => simulate_summary(model, &scenario).map_err(|e| RunFailure {
+            kind: e.kind().name().to_string(),
+            message: e.to_string(),
+        }),
+    };
+    Row {
+        run,
+        values,
+        outcome,
+    }
+}
+
+/// How many runs may finish ahead of the earliest unfinished one, per
+/// worker: bounds the rows held back to keep the output in run order.
+const AHEAD_PER_WORKER: usize = 256;
+
+/// Runs `runs` of `plan` on `threads` worker threads (0: one per core) and
+/// hands every row to `sink` in run order, as soon as the rows before it
+/// are done: memory stays bounded whatever the number of runs.
+///
+/// Workers take runs in order; once `stop` is set they take no new run,
+/// and the runs under way finish and reach `sink`, so the rows delivered
+/// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
+/// run is a row with its error, not the end of the sweep; an error of
+/// `sink` ends it.
+#[allow(clippy::too_many_arguments)]
+pub fn stream_sweep<const N: usize, S>(
+    system: &S,
+    base: &BaseScenario,
+    plan: &Plan,
+    settings: &Settings,
+    runs: Range<usize>,
+    threads: usize,
+    stop: &AtomicBool,
+    sink: &mut dyn FnMut(Row) -> Result<(), String>,
+) -> Result<usize, String>
+where
+    S: LagrangianSystem<N> + Clone + Send,
+{
+    let workers = if threads == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        threads
+    };
+    let next = AtomicUsize::new(runs.start);
+    let delivered = AtomicUsize::new(runs.start);
+    let failed_sink = AtomicBool::new(false);
+    let window = AHEAD_PER_WORKER * workers;
+    let (sender, receiver) = mpsc::sync_channel::<Row>(window);
+    let mut outcome = Ok(0);
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let sender = sender.clone();
+            let (next, delivered, failed_sink) = (&next, &delivered, &failed_sink);
+            // Each worker simulates its own copy (models keep scratch space).
+            let model = system.clone();
+            scope.spawn(move || {
+                loop {
+                    if stop.load(Ordering::Relaxed) || failed_sink.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let run = next.fetch_add(1, Ordering::Relaxed);
+                    if run >= runs.end {
+                        break;
+                    }
+                    while run >= delivered.load(Ordering::Acquire) + window
+                        && !failed_sink.load(Ordering::Relaxed)
+                    {
+                        std::thread::sleep(std::time::Duration::from_millis(1));
+                    }
+                    let row = one_run(&model, base, settings, plan, run);
+                    if sender.send(row).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(sender);
+        // Rows arrive nearly in order; those ahead wait here for the ones
+        // before them (at most `window` of them).
+        let mut waiting = BTreeMap::new();
+        let mut expected = runs.start;
+        for row in receiver.iter() {
+            if failed_sink.load(Ordering::Relaxed) {
+                continue;
+            }
+            waiting.insert(row.run, row);
+            while let Some(row) = waiting.remove(&expected) {
+                if let Err(e) = sink(row) {
+                    failed_sink.store(true, Ordering::Relaxed);
+                    outcome = Err(e);
+                    break;
+                }
+                expected += 1;
+                delivered.store(expected, Ordering::Release);
+            }
+        }
+        if outcome.is_ok() {
+            outcome = Ok(expected - runs.start);
+        }
+    });
+    outcome
+}
+
+/// Runs `runs` of `plan` on `threads` worker threads (0: one per core),
+/// calling `progress` after each run. Rows come back in run order.
+pub fn run_sweep<const N: usize, S>(
+    system: &S,
+    base: &BaseScenario,
+    plan: &Plan,
+    settings: &Settings,
+    runs: Range<usize>,
+    threads: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<Row>, String>
+where
+    S: LagrangianSystem<N> + Clone + Send,
+{
+    let mut rows = Vec::with_capacity(runs.len());
+    let never = AtomicBool::new(false);
+    stream_sweep(
+        system,
+        base,
+        plan,
+        settings,
+        runs,
+        threads,
+        &never,
+        &mut |row| {
+            progress();
+            rows.push(row);
+            Ok(())
+        },
+    )?;
+    Ok(rows)
+}
