@@ -6,8 +6,11 @@
 //!
 //! `cargo bench -p lagrangian --bench simulation`
 
+use lagrangian::fault::Fault;
 use lagrangian::nalgebra::SVector;
-use lagrangian::ode::{OdeProblem, Options, PhaseState, SolverError, dopri5};
+use lagrangian::ode::explicit;
+use lagrangian::ode::tableau::DOPRI5;
+use lagrangian::ode::{OdeProblem, Options, PhaseState};
 use lagrangian::scenario::{ModelNames, Scenario};
 use lagrangian::simulate::{CrashProblem, simulate, simulate_summary, static_equilibrium};
 use lagrangian::{Interpreted, LagrangianSystem};
@@ -39,12 +42,9 @@ fn median_us(runs: usize, mut f: impl FnMut()) -> f64 {
 struct WithoutEvents<'a, S: LagrangianSystem<3>>(CrashProblem<'a, 3, S>);
 
 impl<S: LagrangianSystem<3>> OdeProblem<PhaseState<3>> for WithoutEvents<'_, S> {
-    fn rhs(
-        &mut self,
-        t: f64,
-        y: &PhaseState<3>,
-        dy: &mut PhaseState<3>,
-    ) -> Result<(), SolverError> {
+    type Error = Fault;
+
+    fn rhs(&mut self, t: f64, y: &PhaseState<3>, dy: &mut PhaseState<3>) -> Result<(), Fault> {
         self.0.rhs(t, y, dy)
     }
 }
@@ -91,7 +91,8 @@ fn peer_rows<S: LagrangianSystem<3> + Clone>(model: &S, scenario_path: &Path) {
             max_steps: 10_000_000,
             ..scenario.options
         };
-        dopri5::integrate(
+        explicit::integrate(
+            &DOPRI5,
             &mut problem,
             0.0,
             y0,
@@ -119,7 +120,8 @@ fn peer_rows<S: LagrangianSystem<3> + Clone>(model: &S, scenario_path: &Path) {
         let us = median_us(51, || {
             let (mut problem, _) = setup(model, &scenario);
             ours = Some(
-                dopri5::integrate(
+                explicit::integrate(
+                    &DOPRI5,
                     &mut problem,
                     0.0,
                     y0,

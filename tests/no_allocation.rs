@@ -2,9 +2,11 @@
 //! per step: the allocation count of a run does not grow with its length.
 
 use lagrangian::LagrangianSystem;
-use lagrangian::fault::Fault;
+use lagrangian::ModelError;
 use lagrangian::nalgebra::Vector3;
-use lagrangian::ode::{OdeProblem, Options, PhaseState, SolverError, dopri5};
+use lagrangian::ode::explicit;
+use lagrangian::ode::tableau::DOPRI5;
+use lagrangian::ode::{OdeProblem, Options, PhaseState};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -39,22 +41,10 @@ fn inputs(index: usize, args: &[f64]) -> f64 {
 }
 
 impl OdeProblem<PhaseState<3>> for Problem {
-    fn rhs(
-        &mut self,
-        t: f64,
-        y: &PhaseState<3>,
-        dy: &mut PhaseState<3>,
-    ) -> Result<(), SolverError> {
-        let a = self
-            .0
-            .accelerations(t, &y.q, &y.v, &inputs)
-            .map_err(|_| SolverError::Rhs {
-                t,
-                fault: Fault::SingularMassMatrix {
-                    q: y.q.as_slice().to_vec(),
-                    qd: y.v.as_slice().to_vec(),
-                },
-            })?;
+    type Error = ModelError;
+
+    fn rhs(&mut self, t: f64, y: &PhaseState<3>, dy: &mut PhaseState<3>) -> Result<(), ModelError> {
+        let a = self.0.accelerations(t, &y.q, &y.v, &inputs)?;
         let e = self.0.energies(t, &y.q, &y.v, &inputs);
         *dy = PhaseState {
             q: y.v,
@@ -74,7 +64,16 @@ fn allocations_for(t_end: f64) -> (usize, usize) {
         ..Options::default()
     };
     let before = ALLOCATIONS.load(Ordering::Relaxed);
-    let out = dopri5::integrate(&mut problem, 0.0, y0, t_end, &options, &mut |_, _| {}).unwrap();
+    let out = explicit::integrate(
+        &DOPRI5,
+        &mut problem,
+        0.0,
+        y0,
+        t_end,
+        &options,
+        &mut |_, _| {},
+    )
+    .unwrap();
     (
         ALLOCATIONS.load(Ordering::Relaxed) - before,
         out.stats.accepted_steps,

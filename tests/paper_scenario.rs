@@ -80,7 +80,7 @@ fn the_methods_agree() {
     let reference = run(&model, &["simulation.rtol=1e-10", "simulation.atol=1e-12"]).summary;
     let implicit = run(
         &model,
-        &["simulation.method=\"implicit\"", "simulation.rtol=1e-7"],
+        &["simulation.method=\"tr-bdf2\"", "simulation.rtol=1e-7"],
     )
     .summary;
     let rk4 = run(
@@ -88,7 +88,7 @@ fn the_methods_agree() {
         &["simulation.method=\"rk4\"", "simulation.step=2e-6"],
     )
     .summary;
-    for (name, s) in [("implicit", &implicit), ("rk4", &rk4)] {
+    for (name, s) in [("tr-bdf2", &implicit), ("rk4", &rk4)] {
         let crush = (s.max_crush_m.unwrap() - reference.max_crush_m.unwrap()).abs();
         let time = (s.time_of_max_crush_s.unwrap() - reference.time_of_max_crush_s.unwrap()).abs();
         let pitch = (s.max_theta1_deg.unwrap() - reference.max_theta1_deg.unwrap()).abs();

@@ -11,6 +11,7 @@ mod simulate;
 mod sweep;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use lagrangian_sim::ode::Method;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -127,7 +128,8 @@ enum Command {
         rtol: Option<f64>,
         #[arg(long)]
         atol: Option<f64>,
-        #[arg(long, value_parser = ["dopri5", "rk4", "implicit"])]
+        /// Integration method (the scenario's `simulation.method`).
+        #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Method::NAMES))]
         method: Option<String>,
         /// Output directory (default lpm-out/<spec name>).
         #[arg(long)]

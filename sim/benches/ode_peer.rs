@@ -3,7 +3,9 @@
 //! right-hand-side evaluations. `cargo bench -p lagrangian-sim --bench ode_peer`.
 
 use lagrangian_model::nalgebra::Vector4;
-use lagrangian_sim::ode::{OdeProblem, Options, SolverError, dopri5};
+use lagrangian_sim::ode::tableau::DOPRI5;
+use lagrangian_sim::ode::{OdeProblem, Options, explicit};
+use std::convert::Infallible;
 use std::time::{Duration, Instant};
 
 const MU: f64 = 0.012277471;
@@ -24,7 +26,9 @@ fn arenstorf(y: &[f64]) -> [f64; 4] {
 
 struct Ours;
 impl OdeProblem<Vector4<f64>> for Ours {
-    fn rhs(&mut self, _t: f64, y: &Vector4<f64>, dy: &mut Vector4<f64>) -> Result<(), SolverError> {
+    type Error = Infallible;
+
+    fn rhs(&mut self, _t: f64, y: &Vector4<f64>, dy: &mut Vector4<f64>) -> Result<(), Infallible> {
         *dy = Vector4::from(arenstorf(y.as_slice()));
         Ok(())
     }
@@ -62,7 +66,8 @@ fn main() {
         let mut ours_error = 0.0;
         let (time, steps, evals) = median(
             || {
-                let out = dopri5::integrate(
+                let out = explicit::integrate(
+                    &DOPRI5,
                     &mut Ours,
                     0.0,
                     Vector4::from(Y0),

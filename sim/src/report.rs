@@ -159,7 +159,7 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
     );
     let _ = writeln!(
         out,
-        "  solver                 {:?}: {} steps, {} rejected, {} right-hand sides",
+        "  solver                 {}: {} steps, {} rejected, {} right-hand sides",
         result.method, s.steps, s.rejected_steps, s.rhs_evaluations
     );
     if !result.events.is_empty() {

@@ -1,13 +1,16 @@
-//! What every integrator does around its own steps: end exactly at `t_end`,
-//! give up after `Options::max_steps`, and handle events — locate the
-//! earliest crossing in an accepted step, cut the step there, show it to the
-//! observer, let the problem act on the event, then stop or restart.
+//! The loop every method runs in: ask the method's [`Stepper`] for steps,
+//! end exactly at `t_end`, give up after `Options::max_steps` or below the
+//! minimum step, and handle events — locate the earliest crossing in an
+//! accepted step, cut the step there, show it to the observer, let the
+//! problem act on the event, then stop or restart.
 //!
 //! The per-step path is generic (no dynamic dispatch of the dense output)
 //! and allocates nothing for fixed-size states.
 
 use super::events::{EventAction, EventTracker};
-use super::{DenseStep, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, evaluate};
+use super::{
+    DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, evaluate,
+};
 
 /// A step's dense output that can be cut short at an event.
 pub(crate) trait Truncate {
@@ -15,15 +18,106 @@ pub(crate) trait Truncate {
     fn truncate(self, end: f64) -> Self;
 }
 
+/// What became of an attempted step.
+pub(crate) enum Attempt<D> {
+    /// Accepted: its dense output; the stepper holds its end state.
+    Accepted(D),
+    /// Rejected: try again with this step.
+    Rejected(f64),
+}
+
+/// One method: how it takes a step. The driver owns the state `(t, y)` and
+/// `f = F(t, y)`; the stepper owns the end of the step it attempted.
+pub(crate) trait Stepper<Y: OdeVector, P: OdeProblem<Y>> {
+    /// The dense output of an accepted step.
+    type Dense: DenseStep<Y> + Truncate;
+
+    /// The first step to attempt from `(t, y)` with `F(t, y) = f`.
+    fn first_step(
+        &mut self,
+        problem: &mut P,
+        start: (f64, &Y, &Y),
+        span: f64,
+        stats: &mut Stats,
+    ) -> Result<f64, SolverError<P::Error>>;
+
+    /// Attempts a step of size `h` from `(t, y)` with `F(t, y) = f`.
+    fn attempt(
+        &mut self,
+        problem: &mut P,
+        start: (f64, &Y, &Y),
+        h: f64,
+        stats: &mut Stats,
+    ) -> Result<Attempt<Self::Dense>, SolverError<P::Error>>;
+
+    /// The end state of the accepted step and `F` there.
+    fn end(&self) -> &Y;
+
+    /// Moves to the end of the accepted step of size `h` (swapping its end
+    /// state and `F` there into `y` and `f`) and returns the next step.
+    fn advance(&mut self, y: &mut Y, f: &mut Y, h: f64) -> f64;
+
+    /// The step to go on with after an event restarted the step sequence
+    /// (the accepted step was `h`).
+    fn restart(&mut self, h: f64) -> f64;
+}
+
+/// Integrates `problem` from `(t0, y0)` to `t_end` with `stepper`, calling
+/// `observer` with the problem and every accepted step (truncated at events).
+pub(crate) fn run<Y, P, S>(
+    stepper: &mut S,
+    problem: &mut P,
+    (t0, y0): (f64, Y),
+    t_end: f64,
+    options: &Options,
+    observer: Observer<'_, P, Y>,
+) -> Result<Outcome<Y>, SolverError<P::Error>>
+where
+    Y: OdeVector,
+    P: OdeProblem<Y>,
+    S: Stepper<Y, P>,
+{
+    let (mut t, mut y) = (t0, y0);
+    let mut f = y.clone();
+    let mut driver = Driver::start(problem, t, &y, &mut f, t_end, options)?;
+    let mut h = stepper.first_step(problem, (t, &y, &f), t_end - t, &mut driver.stats)?;
+    while let Some(step) = driver.next_step(t, h)? {
+        h = step;
+        let dense = match stepper.attempt(problem, (t, &y, &f), h, &mut driver.stats)? {
+            Attempt::Rejected(shorter) => {
+                driver.stats.rejected_steps += 1;
+                h = shorter;
+                continue;
+            }
+            Attempt::Accepted(dense) => dense,
+        };
+        driver.stats.accepted_steps += 1;
+        let point = Point {
+            t: &mut t,
+            y: &mut y,
+            f: &mut f,
+        };
+        match driver.finish_step(problem, dense, stepper.end(), point, observer)? {
+            StepEnd::Next => {
+                t += h;
+                h = stepper.advance(&mut y, &mut f, h);
+            }
+            StepEnd::Restarted => h = stepper.restart(h),
+            StepEnd::Stopped(k) => return Ok(driver.outcome(t, y, Some(k))),
+        }
+    }
+    Ok(driver.outcome(t, y, None))
+}
+
 /// Where the integration stands: time, state and `F(t, y)`.
-pub(crate) struct Point<'a, Y> {
-    pub t: &'a mut f64,
-    pub y: &'a mut Y,
-    pub f: &'a mut Y,
+struct Point<'a, Y> {
+    t: &'a mut f64,
+    y: &'a mut Y,
+    f: &'a mut Y,
 }
 
 /// How an accepted step ended.
-pub(crate) enum StepEnd {
+enum StepEnd {
     /// No event: the step was observed; go on from its end.
     Next,
     /// An event restarted the step sequence from the point written back.
@@ -32,10 +126,10 @@ pub(crate) enum StepEnd {
     Stopped(usize),
 }
 
-/// The state an integrator shares with the others: its statistics, the
-/// end of the interval, the step limit and the event functions.
-pub(crate) struct Driver<Y> {
-    pub stats: Stats,
+/// What the loop keeps besides the state: statistics, the end of the
+/// interval, the step limits and the event functions.
+struct Driver<Y> {
+    stats: Stats,
     t_end: f64,
     end_tolerance: f64,
     max_steps: usize,
@@ -47,14 +141,14 @@ pub(crate) struct Driver<Y> {
 impl<Y: OdeVector> Driver<Y> {
     /// Checks `options`, writes `F(t0, y0)` into `f` and evaluates the event
     /// functions at the start.
-    pub fn start<P: OdeProblem<Y>>(
+    fn start<P: OdeProblem<Y>>(
         problem: &mut P,
         t0: f64,
         y0: &Y,
         f: &mut Y,
         t_end: f64,
         options: &Options,
-    ) -> Result<Driver<Y>, SolverError> {
+    ) -> Result<Driver<Y>, SolverError<P::Error>> {
         options.validate()?;
         let mut stats = Stats::default();
         evaluate(problem, t0, y0, f, &mut stats)?;
@@ -79,7 +173,7 @@ impl<Y: OdeVector> Driver<Y> {
     /// Hairer's DOPRI5): the solution is no longer smooth at this scale, as
     /// near a finite-time blow-up.
     #[inline]
-    pub fn next_step(&self, t: f64, h: f64) -> Result<Option<f64>, SolverError> {
+    fn next_step<E>(&self, t: f64, h: f64) -> Result<Option<f64>, SolverError<E>> {
         let remaining = self.t_end - t;
         if remaining.is_nan() || remaining <= self.end_tolerance {
             return Ok(None);
@@ -107,14 +201,14 @@ impl<Y: OdeVector> Driver<Y> {
     /// the problem's [`OdeProblem::on_event`] leaves it, and the integration
     /// stops there or restarts from it (with `F` and the event functions
     /// evaluated anew).
-    pub fn finish_step<P, D>(
+    fn finish_step<P, D>(
         &mut self,
         problem: &mut P,
         dense: D,
         y1: &Y,
         point: Point<'_, Y>,
-        observer: &mut dyn FnMut(&mut P, &dyn DenseStep<Y>),
-    ) -> Result<StepEnd, SolverError>
+        observer: Observer<'_, P, Y>,
+    ) -> Result<StepEnd, SolverError<P::Error>>
     where
         P: OdeProblem<Y>,
         D: DenseStep<Y> + Truncate,
@@ -140,7 +234,7 @@ impl<Y: OdeVector> Driver<Y> {
     }
 
     /// The result of the integration, ended at `(t, y)`.
-    pub fn outcome(self, t: f64, y: Y, stopped_by: Option<usize>) -> Outcome<Y> {
+    fn outcome(self, t: f64, y: Y, stopped_by: Option<usize>) -> Outcome<Y> {
         Outcome {
             t,
             y,

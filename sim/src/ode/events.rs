@@ -72,17 +72,17 @@ impl EventTracker {
         t: f64,
         y: &Y,
         f: &Y,
-    ) -> Result<(), SolverError> {
+    ) -> Result<(), SolverError<P::Error>> {
         if self.is_empty() {
             return Ok(());
         }
-        problem.events(t, y, &mut self.start)?;
+        events_at(problem, t, y, &mut self.start)?;
         check_finite(&self.start, t)?;
         if self.start.contains(&0.0) {
             let delta = 1e-9 * t.abs().max(1.0);
             let mut ahead = y.clone();
             ahead.set_combination(y, &[(delta, f)]);
-            problem.events(t + delta, &ahead, &mut self.probe)?;
+            events_at(problem, t + delta, &ahead, &mut self.probe)?;
             for (g, probe) in self.start.iter_mut().zip(&self.probe) {
                 if *g == 0.0 {
                     *g = *probe;
@@ -100,17 +100,17 @@ impl EventTracker {
         dense: &dyn DenseStep<Y>,
         y_end: &Y,
         scratch: &mut Y,
-    ) -> Result<Option<(usize, f64)>, SolverError> {
+    ) -> Result<Option<(usize, f64)>, SolverError<P::Error>> {
         if self.is_empty() {
             return Ok(None);
         }
         let (t0, t1) = (dense.t0(), dense.t1());
-        problem.events(t1, y_end, &mut self.end)?;
+        events_at(problem, t1, y_end, &mut self.end)?;
         check_finite(&self.end, t1)?;
         // The midpoint catches a function that crosses and returns within one step.
         let tm = 0.5 * (t0 + t1);
         dense.eval(tm, scratch);
-        problem.events(tm, scratch, &mut self.middle)?;
+        events_at(problem, tm, scratch, &mut self.middle)?;
         check_finite(&self.middle, tm)?;
         let mut earliest: Option<(usize, f64)> = None;
         for k in 0..self.start.len() {
@@ -146,7 +146,7 @@ impl EventTracker {
         k: usize,
         (mut a, mut ga): (f64, f64),
         (mut b, mut gb): (f64, f64),
-    ) -> Result<f64, SolverError> {
+    ) -> Result<f64, SolverError<P::Error>> {
         let before_sign = ga.signum();
         let mut side = 0i8;
         for _ in 0..200 {
@@ -164,7 +164,7 @@ impl EventTracker {
                 c = 0.5 * (a + b);
             }
             dense.eval(c, scratch);
-            problem.events(c, scratch, &mut self.probe)?;
+            events_at(problem, c, scratch, &mut self.probe)?;
             let gc = self.probe[k];
             if !gc.is_finite() {
                 return Err(SolverError::NonFinite {
@@ -192,7 +192,19 @@ impl EventTracker {
     }
 }
 
-fn check_finite(values: &[f64], t: f64) -> Result<(), SolverError> {
+/// The event functions at `(t, y)` into `g`, a failure reported at `t`.
+fn events_at<Y: OdeVector, P: OdeProblem<Y>>(
+    problem: &mut P,
+    t: f64,
+    y: &Y,
+    g: &mut [f64],
+) -> Result<(), SolverError<P::Error>> {
+    problem
+        .events(t, y, g)
+        .map_err(|error| SolverError::Rhs { t, error })
+}
+
+fn check_finite<E>(values: &[f64], t: f64) -> Result<(), SolverError<E>> {
     match values.iter().position(|g| !g.is_finite()) {
         None => Ok(()),
         Some(k) => Err(SolverError::NonFinite {
@@ -227,19 +239,21 @@ mod tests {
         calls: usize,
     }
     impl<G: FnMut(f64, usize) -> f64> OdeProblem<PhaseState<1>> for OneEvent<G> {
+        type Error = std::convert::Infallible;
+
         fn rhs(
             &mut self,
             _t: f64,
             _y: &PhaseState<1>,
             dy: &mut PhaseState<1>,
-        ) -> Result<(), SolverError> {
+        ) -> Result<(), Self::Error> {
             *dy = PhaseState::zeros();
             Ok(())
         }
         fn event_count(&self) -> usize {
             1
         }
-        fn events(&mut self, t: f64, _y: &PhaseState<1>, g: &mut [f64]) -> Result<(), SolverError> {
+        fn events(&mut self, t: f64, _y: &PhaseState<1>, g: &mut [f64]) -> Result<(), Self::Error> {
             self.calls += 1;
             g[0] = (self.g)(t, self.calls);
             Ok(())
@@ -249,7 +263,7 @@ mod tests {
     /// Resets a tracker at t = 0 and locates the crossing in [`Step`].
     fn locate_in_step<G: FnMut(f64, usize) -> f64>(
         problem: &mut OneEvent<G>,
-    ) -> Result<Option<(usize, f64)>, SolverError> {
+    ) -> Result<Option<(usize, f64)>, SolverError<std::convert::Infallible>> {
         let mut tracker = EventTracker::new(1);
         let y = PhaseState::<1>::zeros();
         tracker.reset(problem, 0.0, &y, &y)?;

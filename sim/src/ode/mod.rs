@@ -1,37 +1,49 @@
 //! Integrators for `y' = F(t, y)` with event location.
 //!
-//! * [`dopri5`]: Dormand–Prince 5(4) with FSAL, PI step-size control and its
-//!   4th-order continuous extension (dense output).
-//! * [`rk4`]: the classical fixed-step Runge–Kutta method, for reference.
-//! * [`sdirk`]: an L-stable, stiffly accurate SDIRK method for stiff
-//!   mechanical systems, with Newton iterations on the model's Jacobians.
+//! The methods ([`Method`]) share one driver ([`driver`]): it asks a method's
+//! stepper for steps, ends exactly at `t_end`, enforces the step limit and
+//! the minimum step, and handles events. A method is a stepper:
 //!
-//! Events are zero crossings of user functions `g_k(t, y)` with a direction;
-//! they are located on the dense output by the Illinois method to
+//! * explicit Runge–Kutta methods are one implementation ([`explicit`]) fed
+//!   by Butcher tableaux as data ([`tableau`]): Dormand–Prince 5(4) with PI
+//!   step control and its 4th-order dense output, and the classical
+//!   fixed-step RK4;
+//! * [`tr_bdf2`]: TR-BDF2, an L-stable, stiffly accurate ESDIRK method for
+//!   stiff mechanical systems, with Newton iterations on the model's
+//!   Jacobians.
+//!
+//! Events are zero crossings of functions `g_k(t, y)` with a direction; they
+//! are located on the dense output by the Illinois method to
 //! `|Δt| ≤ 1e-12`, and the problem decides what happens ([`EventAction`]):
 //! stop there, or restart the step sequence from the event after changing
 //! its mode, parameters or state.
+//!
+//! Adding a method: a stepper in its own file (or, for an explicit method, a
+//! tableau in [`tableau`]) and one variant of [`Method`].
 
-pub mod dopri5;
 mod driver;
 mod events;
+pub mod explicit;
 mod hermite;
 mod lu;
-pub mod rk4;
-pub mod sdirk;
+mod method;
+pub mod tableau;
+pub mod tr_bdf2;
 mod vector;
 
 pub use events::{Direction, EventAction};
 pub use hermite::{Hermite, hermite_weights};
+pub use method::{Method, UnknownMethod, integrate};
 pub use vector::{OdeVector, PhaseState};
-
-use crate::fault::Fault;
-use std::fmt;
 
 /// The problem `y' = F(t, y)` with optional events.
 pub trait OdeProblem<Y: OdeVector> {
+    /// Why `F` or an event function could not be evaluated (the integrator
+    /// reports it as [`SolverError::Rhs`] with the time).
+    type Error;
+
     /// Writes `F(t, y)` into `dy`.
-    fn rhs(&mut self, t: f64, y: &Y, dy: &mut Y) -> Result<(), SolverError>;
+    fn rhs(&mut self, t: f64, y: &Y, dy: &mut Y) -> Result<(), Self::Error>;
 
     /// Number of event functions.
     fn event_count(&self) -> usize {
@@ -39,7 +51,7 @@ pub trait OdeProblem<Y: OdeVector> {
     }
 
     /// Writes `g_k(t, y)` for every event `k` into `g`.
-    fn events(&mut self, t: f64, y: &Y, g: &mut [f64]) -> Result<(), SolverError> {
+    fn events(&mut self, t: f64, y: &Y, g: &mut [f64]) -> Result<(), Self::Error> {
         let _ = (t, y, g);
         Ok(())
     }
@@ -61,10 +73,13 @@ pub trait OdeProblem<Y: OdeVector> {
 /// Step-size control and limits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
+    /// Relative tolerance of the local error.
     pub rtol: f64,
+    /// Absolute tolerance of the local error.
     pub atol: f64,
     /// First step; chosen automatically (Hairer's algorithm) when `None`.
     pub initial_step: Option<f64>,
+    /// Largest step.
     pub max_step: f64,
     /// A step that has to shrink below this is an error, which says why it
     /// shrank (error test, Newton divergence, singular iteration matrix).
@@ -92,8 +107,11 @@ impl Default for Options {
 /// What an integration cost.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Stats {
+    /// Steps accepted.
     pub accepted_steps: usize,
+    /// Steps rejected (error test, Newton failure, singular iteration matrix).
     pub rejected_steps: usize,
+    /// Evaluations of `F`.
     pub rhs_evaluations: usize,
     /// Newton iterations (implicit methods).
     pub newton_iterations: usize,
@@ -103,68 +121,85 @@ pub struct Stats {
     pub events: Vec<(usize, f64)>,
 }
 
-/// Why an integration stopped early.
-#[derive(Clone, Debug, PartialEq)]
-pub enum SolverError {
+/// Why an integration stopped early; `E` is the problem's own error.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SolverError<E> {
     /// The step size fell below `Options::min_step`, or below what moves `t`
     /// at all, through rejected or accepted steps.
-    StepSizeUnderflow { t: f64, h: f64 },
+    #[error("step size underflow at t = {t:e} s (h = {h:e} s)")]
+    StepSizeUnderflow {
+        /// Where the integration stood.
+        t: f64,
+        /// The step it would have needed.
+        h: f64,
+    },
     /// More than `Options::max_steps` steps were attempted.
-    MaxSteps { t: f64, steps: usize },
+    #[error("more than {steps} steps before t = {t:e} s")]
+    MaxSteps {
+        /// Where the integration stood.
+        t: f64,
+        /// The limit.
+        steps: usize,
+    },
     /// The right-hand side or an event function produced NaN or ±∞.
-    NonFinite { t: f64, what: String },
-    /// The right-hand side could not be evaluated: a singular mass matrix,
-    /// a non-finite value, a table read outside its range.
-    Rhs { t: f64, fault: Fault },
+    #[error("{what} is not finite at t = {t:e} s")]
+    NonFinite {
+        /// When.
+        t: f64,
+        /// Which value.
+        what: String,
+    },
+    /// The right-hand side, an event function or a Jacobian could not be
+    /// evaluated: the problem's own error.
+    #[error("at t = {t:e} s: {error}")]
+    Rhs {
+        /// When.
+        t: f64,
+        /// Why.
+        error: E,
+    },
     /// Newton's method did not converge, and the steps it was retried with
     /// fell below `Options::min_step`.
-    NewtonFailure { t: f64, h: f64 },
+    #[error("Newton iterations diverge at t = {t:e} s even with h = {h:e} s")]
+    NewtonFailure {
+        /// Where the integration stood.
+        t: f64,
+        /// The last step tried.
+        h: f64,
+    },
     /// The Newton iteration matrix `I − d·h·J` of an implicit method was
     /// singular or not finite, and the steps it was retried with fell below
     /// `Options::min_step`.
-    SingularIterationMatrix { t: f64, h: f64 },
+    #[error(
+        "the Newton iteration matrix I − d·h·J is singular or not finite at t = {t:e} s even with h = {h:e} s"
+    )]
+    SingularIterationMatrix {
+        /// Where the integration stood.
+        t: f64,
+        /// The last step tried.
+        h: f64,
+    },
     /// An event's zero crossing could not be bracketed to the required accuracy.
-    EventNotLocated { t: f64, event: usize },
+    #[error("event {event} near t = {t:e} s could not be located")]
+    EventNotLocated {
+        /// Near when.
+        t: f64,
+        /// Which event function.
+        event: usize,
+    },
     /// Invalid options.
+    #[error("invalid solver options: {0}")]
     InvalidOptions(String),
 }
-
-impl fmt::Display for SolverError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SolverError::StepSizeUnderflow { t, h } => {
-                write!(f, "step size underflow at t = {t:e} s (h = {h:e} s)")
-            }
-            SolverError::MaxSteps { t, steps } => {
-                write!(f, "more than {steps} steps before t = {t:e} s")
-            }
-            SolverError::NonFinite { t, what } => write!(f, "{what} is not finite at t = {t:e} s"),
-            SolverError::Rhs { t, fault } => write!(f, "at t = {t:e} s: {fault}"),
-            SolverError::NewtonFailure { t, h } => {
-                write!(
-                    f,
-                    "Newton iterations diverge at t = {t:e} s even with h = {h:e} s"
-                )
-            }
-            SolverError::SingularIterationMatrix { t, h } => write!(
-                f,
-                "the Newton iteration matrix I − d·h·J is singular or not finite at t = {t:e} s even with h = {h:e} s"
-            ),
-            SolverError::EventNotLocated { t, event } => {
-                write!(f, "event {event} near t = {t:e} s could not be located")
-            }
-            SolverError::InvalidOptions(message) => write!(f, "invalid solver options: {message}"),
-        }
-    }
-}
-
-impl std::error::Error for SolverError {}
 
 /// How an integration ended.
 #[derive(Clone, Debug)]
 pub struct Outcome<Y> {
+    /// The time it ended at: `t_end`, or an event that stopped it.
     pub t: f64,
+    /// The state there.
     pub y: Y,
+    /// What it cost.
     pub stats: Stats,
     /// The event that stopped the integration, if one did.
     pub stopped_by: Option<usize>,
@@ -172,14 +207,21 @@ pub struct Outcome<Y> {
 
 /// An accepted step with its continuous extension, as observers see it.
 pub trait DenseStep<Y> {
+    /// The start of the step.
     fn t0(&self) -> f64;
+    /// The end of the step (the event time for a step cut at an event).
     fn t1(&self) -> f64;
     /// The solution at `t ∈ [t0, t1]`, written into `out`.
     fn eval(&self, t: f64, out: &mut Y);
 }
 
+/// What the integrators call with every accepted step: the problem and the
+/// step's dense output (truncated at events).
+pub type Observer<'a, P, Y> = &'a mut dyn FnMut(&mut P, &dyn DenseStep<Y>);
+
 impl Options {
-    pub(crate) fn validate(&self) -> Result<(), SolverError> {
+    /// `Err` with the reason when the options cannot be used.
+    pub fn validate<E>(&self) -> Result<(), SolverError<E>> {
         let bad = |what: &str| Err(SolverError::InvalidOptions(what.to_string()));
         let non_negative = |x: f64| x >= 0.0; // false for NaN
         if !(non_negative(self.rtol) && non_negative(self.atol)) || self.rtol + self.atol == 0.0 {
@@ -208,9 +250,11 @@ pub(crate) fn evaluate<Y: OdeVector, P: OdeProblem<Y>>(
     y: &Y,
     dy: &mut Y,
     stats: &mut Stats,
-) -> Result<(), SolverError> {
+) -> Result<(), SolverError<P::Error>> {
     stats.rhs_evaluations += 1;
-    problem.rhs(t, y, dy)?;
+    problem
+        .rhs(t, y, dy)
+        .map_err(|error| SolverError::Rhs { t, error })?;
     if dy.all_finite() {
         Ok(())
     } else {
@@ -232,4 +276,44 @@ pub(crate) fn error_norm<Y: OdeVector>(err: &Y, y0: &Y, y1: &Y, options: &Option
         sum += e * e;
     }
     (sum / n.max(1) as f64).sqrt()
+}
+
+/// Hairer's starting step for a 5th-order method: `h0 = 0.01‖y0‖/‖f0‖`,
+/// refined with one Euler step so that `h^5 · max(‖f0‖, ‖f1 − f0‖/h0) =
+/// 0.01` (the same as SciPy's `select_initial_step`). TR-BDF2 starts with it
+/// too; its controller adapts the step within the first few.
+pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
+    problem: &mut P,
+    t: f64,
+    y: &Y,
+    f0: &Y,
+    span: f64,
+    options: &Options,
+    stats: &mut Stats,
+) -> Result<f64, SolverError<P::Error>> {
+    // The error norm's weights with the scale of y alone.
+    let scaled = |v: &Y| error_norm(v, y, y, options);
+    let (d0, d1) = (scaled(y), scaled(f0));
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    }
+    .min(span);
+    let mut y1 = y.clone();
+    y1.set_combination(y, &[(h0, f0)]);
+    let mut f1 = y.clone();
+    stats.rhs_evaluations += 1;
+    problem
+        .rhs(t + h0, &y1, &mut f1)
+        .map_err(|error| SolverError::Rhs { t: t + h0, error })?;
+    let mut diff = y.clone();
+    diff.set_combination(&f1, &[(-1.0, f0)]);
+    let d2 = scaled(&diff) / h0;
+    let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d1.max(d2)).powf(0.2)
+    };
+    Ok((100.0 * h0).min(h1).min(span).min(options.max_step))
 }

@@ -3,7 +3,7 @@
 //!
 //! ```toml
 //! spec = "../yaris_double_pendulum.lpm"   # the spec this scenario is for
-//! [simulation]   t_end = 0.15, method = "dopri5", rtol = 1e-8, atol = 1e-10
+//! [simulation]   t_end = 0.15, method = "dopri5", rtol = 1e-8, atol = 1e-10   # or rk4, tr-bdf2
 //! [initial]      coordinates = { r = 0.0 }, velocities = { r = -15.56 }, equilibrium = ["theta1"]
 //! [parameters]   k_tor = 0.0
 //! [metrics]      crush = "-r", pitch = ["theta1", "theta2"], weld = "weld"
@@ -26,7 +26,7 @@ mod resolve;
 use crate::crash::BoundInputs;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
-use crate::ode::Options;
+use crate::ode::{Method, Options};
 pub use base::BaseScenario;
 use file::File;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};
@@ -96,25 +96,6 @@ impl ModelNames {
             (_, Some(1)) => format!("`{name}` of 1 argument"),
             (_, Some(n)) => format!("`{name}` of {n} arguments"),
             (_, None) => format!("`{name}`"),
-        }
-    }
-}
-
-/// Integration method.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    Dopri5,
-    Rk4,
-    Implicit,
-}
-
-impl Method {
-    pub fn parse(text: &str) -> Option<Method> {
-        match text {
-            "dopri5" => Some(Method::Dopri5),
-            "rk4" => Some(Method::Rk4),
-            "implicit" | "tr-bdf2" => Some(Method::Implicit),
-            _ => None,
         }
     }
 }

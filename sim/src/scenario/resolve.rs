@@ -3,10 +3,10 @@
 
 use super::bind::bind_components;
 use super::file::{ComponentSection, File};
-use super::{Method, ModelNames, Scenario};
+use super::{ModelNames, Scenario};
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
-use crate::ode::Options;
+use crate::ode::{Method, Options};
 use lagrangian_model::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -95,10 +95,11 @@ pub(super) fn resolve(
     tables: &BTreeMap<String, Table>,
 ) -> Result<Scenario, String> {
     let s = &file.simulation;
-    let method = Method::parse(&s.method).ok_or_else(|| {
+    let method: Method = s.method.parse().map_err(|_| {
         format!(
-            "simulation.method = `{}`; use dopri5, rk4 or implicit",
-            s.method
+            "simulation.method = `{}`; use {}",
+            s.method,
+            Method::NAMES.join(", ")
         )
     })?;
     positive("simulation.t_end", s.t_end)?;
@@ -120,11 +121,12 @@ pub(super) fn resolve(
     if let Some(h) = s.step {
         positive("simulation.step", h)?;
     }
-    // The fixed step of RK4; the first step of the adaptive methods (which
+    // The step of a fixed-step method; the first step of the adaptive ones (which
     // otherwise choose it themselves).
-    let (fixed_step, initial_step) = match method {
-        Method::Rk4 => (Some(s.step.unwrap_or(1e-5)), None),
-        _ => (None, s.step),
+    let (fixed_step, initial_step) = if method.is_adaptive() {
+        (None, s.step)
+    } else {
+        (Some(s.step.unwrap_or(1e-5)), None)
     };
     let options = Options {
         rtol: s.rtol,
@@ -136,7 +138,9 @@ pub(super) fn resolve(
         initial_step,
         ..Options::default()
     };
-    options.validate().map_err(|e| format!("simulation: {e}"))?;
+    options
+        .validate::<std::convert::Infallible>()
+        .map_err(|e| format!("simulation: {e}"))?;
 
     let parameters = file
         .parameters

@@ -197,7 +197,7 @@ fn the_step_setting_applies_to_every_method() {
     };
     assert_eq!(options("rk4").fixed_step, Some(2e-6));
     assert_eq!(options("rk4").initial_step, None);
-    for method in ["dopri5", "implicit"] {
+    for method in ["dopri5", "tr-bdf2"] {
         assert_eq!(options(method).fixed_step, None, "{method}");
         assert_eq!(options(method).initial_step, Some(2e-6), "{method}");
     }

@@ -18,7 +18,7 @@ pub fn static_equilibrium<const N: usize, S: LagrangianSystem<N>>(
     let residual = |q: &SVector<f64, N>| -> Result<DVector<f64>, SimulationError> {
         let f = problem.system.forcing(t, q, &rest, &problem.inputs);
         if let Some(fault) = problem.inputs.take_failure() {
-            return Err(SolverError::Rhs { t, fault }.into());
+            return Err(SolverError::Rhs { t, error: fault }.into());
         }
         let r = DVector::from_iterator(free.len(), free.iter().map(|&i| f[i]));
         if r.iter().all(|x| x.is_finite()) {

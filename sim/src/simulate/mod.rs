@@ -12,11 +12,15 @@ pub use problem::{CrashProblem, EventRecord};
 pub use summary::{Metrics, SampleView, Summary};
 
 use crate::fault::Fault;
-use crate::ode::{DenseStep, Options, PhaseState, SolverError, Stats, dopri5, rk4, sdirk};
-use crate::scenario::{MAX_SAMPLES, Method, Scenario};
+use crate::ode::{self, DenseStep, Method, Options, PhaseState, Stats};
+use crate::scenario::{MAX_SAMPLES, Scenario};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 use std::fmt;
+
+/// Why the integration of a run stopped: the solver's reasons, with the
+/// model's [`Fault`] for a failed evaluation.
+pub type SolverError = ode::SolverError<Fault>;
 
 /// The state and derived quantities at one output time.
 #[derive(Clone, Debug, PartialEq)]
@@ -142,7 +146,7 @@ impl SimulationError {
                 SolverError::NonFinite { .. } => FailureKind::NonFinite,
                 SolverError::EventNotLocated { .. } => FailureKind::EventNotLocated,
                 SolverError::InvalidOptions(_) => FailureKind::Scenario,
-                SolverError::Rhs { fault, .. } => match fault {
+                SolverError::Rhs { error: fault, .. } => match fault {
                     Fault::SingularMassMatrix { .. } => FailureKind::SingularMassMatrix,
                     Fault::NonFinite { .. } => FailureKind::NonFinite,
                     Fault::OutOfRange { .. } => FailureKind::TableOutOfRange,
@@ -156,7 +160,7 @@ impl SimulationError {
     pub fn fault(&self) -> Option<&Fault> {
         match self {
             SimulationError::Solver {
-                error: SolverError::Rhs { fault, .. },
+                error: SolverError::Rhs { error: fault, .. },
                 ..
             } => Some(fault),
             _ => None,
@@ -315,11 +319,15 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         }
     };
     let options: Options = scenario.options;
-    let outcome = match scenario.method {
-        Method::Dopri5 => dopri5::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
-        Method::Rk4 => rk4::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
-        Method::Implicit => sdirk::integrate(&mut problem, 0.0, y0, t_end, &options, &mut observer),
-    };
+    let start = (0.0, y0);
+    let outcome = ode::integrate(
+        scenario.method,
+        &mut problem,
+        start,
+        t_end,
+        &options,
+        &mut observer,
+    );
     let outcome = outcome.map_err(|error| SimulationError::Solver {
         error,
         reached: reached.map(|(t, y)| {
@@ -333,7 +341,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     if let Some(fault) = problem.failure.take() {
         return Err(SolverError::Rhs {
             t: outcome.t,
-            fault,
+            error: fault,
         }
         .into());
     }
@@ -407,7 +415,9 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     y: &PhaseState<N>,
     inputs: bool,
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
-    let a = problem.accelerations(t, &y.q, &y.v)?;
+    let a = problem
+        .accelerations(t, &y.q, &y.v)
+        .map_err(|fault| SolverError::Rhs { t, error: fault })?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
     let values = if inputs {
         problem.input_values(t, &y.q, &y.v)

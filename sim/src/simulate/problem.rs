@@ -1,9 +1,10 @@
 //! A model with its crash components as an ODE problem in `(q, q̇, work)`.
 
+use super::SolverError;
 use crate::crash::BoundInputs;
 use crate::fault::Fault;
-use crate::ode::sdirk::{AccelerationJacobian, AccelerationJacobians};
-use crate::ode::{Direction, EventAction, OdeProblem, PhaseState, SolverError};
+use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
+use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
 use lagrangian_model::{
     InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix,
 };
@@ -45,41 +46,41 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         self.inputs
             .start(&self.arguments)
-            .map_err(|fault| SolverError::Rhs { t, fault })
+            .map_err(|fault| SolverError::Rhs { t, error: fault })
     }
 
-    fn input_failure(&self, t: f64) -> Result<(), SolverError> {
+    /// The failure an input reported since the last call, if any.
+    fn input_failure(&self) -> Result<(), Fault> {
         match self.inputs.take_failure() {
-            Some(fault) => Err(SolverError::Rhs { t, fault }),
+            Some(fault) => Err(fault),
             None => Ok(()),
         }
     }
 
-    /// `q̈` at a state, by `L D Lᵀ` (LU fallback) solution of `M q̈ = f`.
+    /// `q̈` at a state, by the `L D Lᵀ` solution of `M q̈ = f`.
     pub fn accelerations(
         &self,
         t: f64,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
-    ) -> Result<SVector<f64, N>, SolverError> {
+    ) -> Result<SVector<f64, N>, Fault> {
         let mut mass = SMatrix::zeros();
         let mut forcing = SVector::zeros();
         self.system
             .mass_matrix_and_forcing(t, q, v, &self.inputs, &mut mass, &mut forcing);
-        self.input_failure(t)?;
-        self.solve(t, q, v, &mass, &forcing)
+        self.input_failure()?;
+        self.solve(q, v, &mass, &forcing)
     }
 
     /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
     /// singular `M` reported by name and state.
     fn solve(
         &self,
-        t: f64,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
-    ) -> Result<SVector<f64, N>, SolverError> {
+    ) -> Result<SVector<f64, N>, Fault> {
         let a = solve_mass_matrix(*mass, forcing);
         if let Some(a) = a
             && a.iter().all(|x| x.is_finite())
@@ -92,13 +93,12 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
         let non_finite = |output: String, value: f64| {
             let (q, qd) = state();
-            let fault = Fault::NonFinite {
+            Fault::NonFinite {
                 output,
                 value,
                 q,
                 qd,
-            };
-            SolverError::Rhs { t, fault }
+            }
         };
         for i in 0..N {
             for j in 0..N {
@@ -114,8 +114,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         match a {
             None => {
                 let (q, qd) = state();
-                let fault = Fault::SingularMassMatrix { q, qd };
-                Err(SolverError::Rhs { t, fault })
+                Err(Fault::SingularMassMatrix { q, qd })
             }
             Some(a) => {
                 let i = a.iter().position(|x| !x.is_finite()).unwrap_or(0);
@@ -132,7 +131,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         t: f64,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
-    ) -> Result<(SVector<f64, N>, [f64; 2]), SolverError> {
+    ) -> Result<(SVector<f64, N>, [f64; 2]), Fault> {
         let mut mass = SMatrix::zeros();
         let mut forcing = SVector::zeros();
         let powers = self.system.mass_matrix_forcing_and_powers(
@@ -143,20 +142,19 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             &mut mass,
             &mut forcing,
         );
-        self.input_failure(t)?;
-        let a = self.solve(t, q, v, &mass, &forcing)?;
+        self.input_failure()?;
+        let a = self.solve(q, v, &mass, &forcing)?;
         for (power, name) in powers
             .iter()
             .zip(["dissipated power", "power of the forces"])
         {
             if !power.is_finite() {
-                let fault = Fault::NonFinite {
+                return Err(Fault::NonFinite {
                     output: format!("the {name}"),
                     value: *power,
                     q: q.as_slice().to_vec(),
                     qd: v.as_slice().to_vec(),
-                };
-                return Err(SolverError::Rhs { t, fault });
+                });
             }
         }
         Ok((a, powers))
@@ -179,12 +177,9 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
 }
 
 impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for CrashProblem<'_, N, S> {
-    fn rhs(
-        &mut self,
-        t: f64,
-        y: &PhaseState<N>,
-        dy: &mut PhaseState<N>,
-    ) -> Result<(), SolverError> {
+    type Error = Fault;
+
+    fn rhs(&mut self, t: f64, y: &PhaseState<N>, dy: &mut PhaseState<N>) -> Result<(), Fault> {
         let (a, work) = self.accelerations_and_powers(t, &y.q, &y.v)?;
         *dy = PhaseState { q: y.v, v: a, work };
         Ok(())
@@ -194,12 +189,10 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.inputs.event_count()
     }
 
-    fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), SolverError> {
+    fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), Fault> {
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
-        self.inputs
-            .events(&self.arguments, g)
-            .map_err(|fault| SolverError::Rhs { t, fault })
+        self.inputs.events(&self.arguments, g)
     }
 
     fn event_direction(&self, k: usize) -> Direction {
@@ -233,7 +226,7 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
         &mut self,
         t: f64,
         y: &PhaseState<N>,
-    ) -> Result<Option<AccelerationJacobian<N>>, SolverError> {
+    ) -> Result<Option<AccelerationJacobian<N>>, Fault> {
         let a = self.accelerations(t, &y.q, &y.v)?;
         let mut j = Jacobians::<N>::default();
         match self
@@ -241,15 +234,10 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             .jacobians(t, &y.q, &y.v, &a, &self.inputs, &mut j)
         {
             Err(ModelError::JacobiansNotDerived) => return Ok(None),
-            Err(e) => {
-                return Err(SolverError::Rhs {
-                    t,
-                    fault: Fault::Component(e.to_string()),
-                });
-            }
+            Err(e) => return Err(Fault::Component(e.to_string())),
             Ok(()) => {}
         }
-        self.input_failure(t)?;
+        self.input_failure()?;
         let mass = self.system.mass_matrix(t, &y.q, &y.v, &self.inputs);
         let solve = |m: SMatrix<f64, N, N>| -> Option<SMatrix<f64, N, N>> {
             let mut out = SMatrix::<f64, N, N>::zeros();
@@ -259,12 +247,9 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             }
             Some(out)
         };
-        let singular = || SolverError::Rhs {
-            t,
-            fault: Fault::SingularMassMatrix {
-                q: y.q.as_slice().to_vec(),
-                qd: y.v.as_slice().to_vec(),
-            },
+        let singular = || Fault::SingularMassMatrix {
+            q: y.q.as_slice().to_vec(),
+            qd: y.v.as_slice().to_vec(),
         };
         let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
         let a_v = solve(j.forcing_qd).ok_or_else(singular)?;

@@ -3,8 +3,19 @@
 //! TR-BDF2 is the L-stable, stiffly accurate ESDIRK method of order 2
 //! (Bank et al. 1985; Hosea & Shampine 1996): a trapezoidal stage to
 //! `t + γh` and a BDF2 stage to `t + h`, `γ = 2 − √2`, with an embedded
-//! 3rd-order solution for error control. Both implicit stages share the
-//! Newton matrix `I − d h J` (`d = γ/2`).
+//! 3rd-order solution for error control. As a Butcher tableau:
+//!
+//! ```text
+//!  0 |
+//!  γ |  d     d
+//!  1 |  w     w     d
+//! ---+-----------------
+//!    |  w     w     d          (stiffly accurate: the last row)
+//!    | b̂1    b̂2    b̂3         (embedded, 3rd order)
+//! ```
+//!
+//! with `d = γ/2`, `w = √2/4`. Both implicit stages share the Newton matrix
+//! `I − d h J`.
 //!
 //! For `y = (q, v, w)` with `q̇ = v`, `v̇ = a(t, q, v)` and the energy
 //! integrals `ẇ = P(t, q, v)`, the Newton system reduces to `N × N`:
@@ -12,18 +23,21 @@
 //! `A_q = ∂a/∂q`, `A_v = ∂a/∂v` from the model's derived Jacobians (or
 //! finite differences); `w` follows each stage explicitly.
 
-use super::driver::{Driver, Point, StepEnd};
+use super::driver::{Attempt, Stepper};
 use super::hermite::Hermite;
 use super::lu::Lu;
 use super::{
-    DenseStep, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats, error_norm,
-    evaluate,
+    Observer, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats, error_norm,
+    evaluate, initial_step,
 };
 use nalgebra::{SMatrix, SVector};
 
 const SQRT2: f64 = std::f64::consts::SQRT_2;
+/// The node of the trapezoidal stage.
 const GAMMA: f64 = 2.0 - SQRT2;
+/// The diagonal of the tableau.
 const D: f64 = GAMMA / 2.0;
+/// The weights of the first two stages in the last row.
 const W: f64 = SQRT2 / 4.0;
 // Embedded 3rd-order weights (Hosea & Shampine).
 const B1_HAT: f64 = (1.0 - W) / 3.0;
@@ -34,134 +48,161 @@ const B3_HAT: f64 = D / 3.0;
 pub type AccelerationJacobian<const N: usize> = (SMatrix<f64, N, N>, SMatrix<f64, N, N>);
 
 /// The acceleration Jacobians of a mechanical problem.
-pub trait AccelerationJacobians<const N: usize> {
+pub trait AccelerationJacobians<const N: usize>: OdeProblem<PhaseState<N>> {
     /// `(∂a/∂q, ∂a/∂v)` at `(t, y)`, or `None` when the model has none
     /// (finite differences are used instead).
     fn acceleration_jacobians(
         &mut self,
         t: f64,
         y: &PhaseState<N>,
-    ) -> Result<Option<AccelerationJacobian<N>>, SolverError>;
+    ) -> Result<Option<AccelerationJacobian<N>>, Self::Error>;
 }
 
 /// Integrates a stiff mechanical problem with TR-BDF2.
-pub fn integrate<const N: usize, P>(
+pub fn integrate<const N: usize, P: AccelerationJacobians<N>>(
     problem: &mut P,
     t0: f64,
     y0: PhaseState<N>,
     t_end: f64,
     options: &Options,
-    observer: &mut dyn FnMut(&mut P, &dyn DenseStep<PhaseState<N>>),
-) -> Result<Outcome<PhaseState<N>>, SolverError>
-where
-    P: OdeProblem<PhaseState<N>> + AccelerationJacobians<N>,
-{
-    let (mut t, mut y) = (t0, y0);
-    let mut k1 = PhaseState::zeros();
-    let mut driver = Driver::start(problem, t, &y, &mut k1, t_end, options)?;
-    let mut h = match options.fixed_step.or(options.initial_step) {
-        Some(h) => h,
-        None => {
-            super::dopri5::initial_step(problem, t, &y, &k1, t_end - t, options, &mut driver.stats)?
-        }
+    observer: Observer<'_, P, PhaseState<N>>,
+) -> Result<Outcome<PhaseState<N>>, SolverError<P::Error>> {
+    let mut stepper = TrBdf2 {
+        options: *options,
+        end: (PhaseState::zeros(), PhaseState::zeros()),
+        norm: 0.0,
+    };
+    super::driver::run(&mut stepper, problem, (t0, y0), t_end, options, observer)
+}
+
+/// The stepper: the end of the last step and its error norm.
+struct TrBdf2<const N: usize> {
+    options: Options,
+    /// `(y3, F(t + h, y3))` of the last accepted step.
+    end: (PhaseState<N>, PhaseState<N>),
+    norm: f64,
+}
+
+impl<const N: usize> TrBdf2<N> {
+    /// `Rejected(h/4)`, or `failure` when that is below the minimum step.
+    fn retry<E>(
+        &self,
+        h: f64,
+        failure: impl FnOnce(f64) -> SolverError<E>,
+    ) -> Result<Attempt<Hermite<PhaseState<N>>>, SolverError<E>> {
+        let h = h * 0.25;
+        check_step(h, &self.options, failure(h))?;
+        Ok(Attempt::Rejected(h))
     }
-    .min(options.max_step);
-    while let Some(step) = driver.next_step(t, h)? {
-        h = step;
-        let stats = &mut driver.stats;
-        let (a_q, a_v) = jacobians(problem, t, &y, &k1, stats)?;
+}
+
+impl<const N: usize, P: AccelerationJacobians<N>> Stepper<PhaseState<N>, P> for TrBdf2<N> {
+    type Dense = Hermite<PhaseState<N>>;
+
+    fn first_step(
+        &mut self,
+        problem: &mut P,
+        (t, y, f): (f64, &PhaseState<N>, &PhaseState<N>),
+        span: f64,
+        stats: &mut Stats,
+    ) -> Result<f64, SolverError<P::Error>> {
+        let h = match self.options.fixed_step.or(self.options.initial_step) {
+            Some(h) => h,
+            None => initial_step(problem, t, y, f, span, &self.options, stats)?,
+        };
+        Ok(h.min(self.options.max_step))
+    }
+
+    fn attempt(
+        &mut self,
+        problem: &mut P,
+        (t, y, k1): (f64, &PhaseState<N>, &PhaseState<N>),
+        h: f64,
+        stats: &mut Stats,
+    ) -> Result<Attempt<Self::Dense>, SolverError<P::Error>> {
+        let (a_q, a_v) = jacobians(problem, t, y, k1, stats)?;
         let dh = D * h;
         let newton_matrix = SMatrix::<f64, N, N>::identity() - a_v * dh - a_q * (dh * dh);
         let Some(lu) = Lu::new(newton_matrix) else {
-            h *= 0.25;
-            stats.rejected_steps += 1;
-            check_step(h, options, SolverError::SingularIterationMatrix { t, h })?;
-            continue;
+            return self.retry(h, |h| SolverError::SingularIterationMatrix { t, h });
         };
         let newton = Newton {
             lu: &lu,
             a_q: &a_q,
             dh,
-            options,
+            options: &self.options,
         };
         // Trapezoidal stage to t + γh, then BDF2 stage to t + h.
         let mut base2 = PhaseState::zeros();
-        base2.set_combination(&y, &[(dh, &k1)]);
+        base2.set_combination(y, &[(dh, k1)]);
         let mut guess = PhaseState::zeros();
-        guess.set_combination(&y, &[(GAMMA * h, &k1)]);
+        guess.set_combination(y, &[(GAMMA * h, k1)]);
         let Some((y2, k2)) = newton.solve(problem, t + GAMMA * h, &base2, guess, stats)? else {
-            h *= 0.25;
-            stats.rejected_steps += 1;
-            check_step(h, options, SolverError::NewtonFailure { t, h })?;
-            continue;
+            return self.retry(h, |h| SolverError::NewtonFailure { t, h });
         };
         let mut base3 = PhaseState::zeros();
-        base3.set_combination(&y, &[(W * h, &k1), (W * h, &k2)]);
+        base3.set_combination(y, &[(W * h, k1), (W * h, &k2)]);
         guess.set_combination(&y2, &[((1.0 - GAMMA) * h, &k2)]);
         let Some((y3, k3)) = newton.solve(problem, t + h, &base3, guess, stats)? else {
-            h *= 0.25;
-            stats.rejected_steps += 1;
-            check_step(h, options, SolverError::NewtonFailure { t, h })?;
-            continue;
+            return self.retry(h, |h| SolverError::NewtonFailure { t, h });
         };
         // Error estimate, filtered by the Newton matrix so that stiff
         // components are not overestimated (Shampine).
         let mut error = PhaseState::zeros();
         error.set_sum(&[
-            ((W - B1_HAT) * h, &k1),
+            ((W - B1_HAT) * h, k1),
             ((W - B2_HAT) * h, &k2),
             ((D - B3_HAT) * h, &k3),
         ]);
         let filtered = newton.apply_inverse(&error);
-        let norm = if options.fixed_step.is_some() {
+        let norm = if self.options.fixed_step.is_some() {
             0.0
         } else {
-            error_norm(&filtered, &y, &y3, options)
+            error_norm(&filtered, y, &y3, &self.options)
         };
         if norm.is_nan() || norm > 1.0 {
-            stats.rejected_steps += 1;
-            h *= if norm.is_finite() {
+            let h = h * if norm.is_finite() {
                 (0.9 * norm.powf(-1.0 / 3.0)).max(0.2)
             } else {
                 0.2
             };
-            check_step(h, options, SolverError::StepSizeUnderflow { t, h })?;
-            continue;
+            check_step(h, &self.options, SolverError::StepSizeUnderflow { t, h })?;
+            return Ok(Attempt::Rejected(h));
         }
-        stats.accepted_steps += 1;
-        let dense = Hermite {
+        self.norm = norm;
+        self.end = (y3, k3);
+        Ok(Attempt::Accepted(Hermite {
             t0: t,
             h,
             end: t + h,
-            y0: y,
-            f0: k1,
+            y0: *y,
+            f0: *k1,
             y1: y3,
             f1: k3,
-        };
-        let point = Point {
-            t: &mut t,
-            y: &mut y,
-            f: &mut k1,
-        };
-        match driver.finish_step(problem, dense, &y3, point, observer)? {
-            StepEnd::Next => {}
-            StepEnd::Restarted => continue,
-            StepEnd::Stopped(k) => return Ok(driver.outcome(t, y, Some(k))),
-        }
-        t += h;
-        y = y3;
-        k1 = k3;
-        if options.fixed_step.is_none() {
-            h = (h * (0.9 * norm.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 5.0))
-                .min(options.max_step);
-        }
+        }))
     }
-    Ok(driver.outcome(t, y, None))
+
+    fn end(&self) -> &PhaseState<N> {
+        &self.end.0
+    }
+
+    fn advance(&mut self, y: &mut PhaseState<N>, f: &mut PhaseState<N>, h: f64) -> f64 {
+        (*y, *f) = self.end;
+        if self.options.fixed_step.is_some() {
+            return h;
+        }
+        (h * (0.9 * self.norm.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 5.0))
+            .min(self.options.max_step)
+    }
+
+    fn restart(&mut self, h: f64) -> f64 {
+        h
+    }
 }
 
 /// `Err(failure)` when the shrunk step `h` is below the minimum; `failure`
 /// says why the step had to shrink.
-fn check_step(h: f64, options: &Options, failure: SolverError) -> Result<(), SolverError> {
+fn check_step<E>(h: f64, options: &Options, failure: SolverError<E>) -> Result<(), SolverError<E>> {
     if h < options.min_step {
         Err(failure)
     } else {
@@ -170,18 +211,18 @@ fn check_step(h: f64, options: &Options, failure: SolverError) -> Result<(), Sol
 }
 
 /// `(∂a/∂q, ∂a/∂v)`: the problem's own, or forward differences of `a`.
-fn jacobians<const N: usize, P>(
+fn jacobians<const N: usize, P: AccelerationJacobians<N>>(
     problem: &mut P,
     t: f64,
     y: &PhaseState<N>,
     f: &PhaseState<N>,
     stats: &mut Stats,
-) -> Result<AccelerationJacobian<N>, SolverError>
-where
-    P: OdeProblem<PhaseState<N>> + AccelerationJacobians<N>,
-{
+) -> Result<AccelerationJacobian<N>, SolverError<P::Error>> {
     stats.jacobian_evaluations += 1;
-    if let Some(j) = problem.acceleration_jacobians(t, y)? {
+    let own = problem
+        .acceleration_jacobians(t, y)
+        .map_err(|error| SolverError::Rhs { t, error })?;
+    if let Some(j) = own {
         return Ok(j);
     }
     let (mut a_q, mut a_v) = (SMatrix::<f64, N, N>::zeros(), SMatrix::<f64, N, N>::zeros());
@@ -228,7 +269,7 @@ impl<const N: usize> Newton<'_, N> {
         base: &PhaseState<N>,
         mut y: PhaseState<N>,
         stats: &mut Stats,
-    ) -> Result<Option<(PhaseState<N>, PhaseState<N>)>, SolverError> {
+    ) -> Result<Option<(PhaseState<N>, PhaseState<N>)>, SolverError<P::Error>> {
         let mut f = PhaseState::zeros();
         let mut previous = f64::INFINITY;
         for _ in 0..10 {

@@ -1,0 +1,346 @@
+//! Explicit Runge–Kutta methods from their tableaux ([`super::tableau`]).
+//!
+//! With an embedded error estimate and no fixed step, the step size is
+//! controlled: the error estimate `‖err‖` is the weighted RMS norm of
+//! [`super::error_norm`]; a step is accepted when `‖err‖ ≤ 1`, and the next
+//! step is `h · clamp(0.9 · ‖err‖^(−α) · ‖err_prev‖^β, 0.2, 10)` with the Lund
+//! stabilization `β = 0.04`, `α = 1/p − 0.75 β` for a method of order `p`
+//! (no growth right after a rejection). The first step follows Hairer's
+//! `hinit` (the same as SciPy's `select_initial_step`). Without an estimate,
+//! or with `Options::fixed_step`, steps have the fixed size.
+
+use super::driver::{Attempt, Stepper, Truncate};
+use super::hermite::Hermite;
+use super::tableau::{DenseOutput, Tableau};
+use super::{
+    DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, error_norm,
+    evaluate, initial_step,
+};
+
+const SAFETY: f64 = 0.9;
+const BETA: f64 = 0.04;
+const MIN_FACTOR: f64 = 0.2;
+const MAX_FACTOR: f64 = 10.0;
+
+/// Integrates from `(t0, y0)` to `t_end` with the explicit method `tableau`,
+/// calling `observer` with the problem and every accepted step (truncated
+/// at events).
+pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
+    tableau: &'static Tableau,
+    problem: &mut P,
+    t0: f64,
+    y0: Y,
+    t_end: f64,
+    options: &Options,
+    observer: Observer<'_, P, Y>,
+) -> Result<Outcome<Y>, SolverError<P::Error>> {
+    let mut stepper = ExplicitRk::new(tableau, &y0, options)?;
+    super::driver::run(&mut stepper, problem, (t0, y0), t_end, options, observer)
+}
+
+/// The stepper of an explicit method: its stages and the end of a step.
+struct ExplicitRk<Y> {
+    tableau: &'static Tableau,
+    options: Options,
+    /// `Some(h)` for fixed steps.
+    fixed: Option<f64>,
+    /// Stages `k_1 … k_{s−1}` (`k_0` is the driver's `F(t, y)`).
+    k: Vec<Y>,
+    stage: Y,
+    y1: Y,
+    /// `F(t + h, y1)` of a method that is not FSAL.
+    f1: Y,
+    err: Y,
+    /// The error norm of the last accepted step, for the next step size.
+    norm: f64,
+    previous_error: f64,
+    rejected_last: bool,
+}
+
+impl<Y: OdeVector> ExplicitRk<Y> {
+    fn new<E>(
+        tableau: &'static Tableau,
+        y0: &Y,
+        options: &Options,
+    ) -> Result<Self, SolverError<E>> {
+        options.validate()?;
+        let fixed = match (options.fixed_step, tableau.error) {
+            (Some(h), _) => Some(h),
+            (None, Some(_)) => None,
+            (None, None) => {
+                return Err(SolverError::InvalidOptions(format!(
+                    "{} needs a fixed step size",
+                    tableau.name
+                )));
+            }
+        };
+        Ok(ExplicitRk {
+            tableau,
+            options: *options,
+            fixed,
+            k: vec![y0.clone(); tableau.stages()],
+            stage: y0.clone(),
+            y1: y0.clone(),
+            f1: y0.clone(),
+            err: y0.clone(),
+            norm: 0.0,
+            previous_error: 1e-4,
+            rejected_last: false,
+        })
+    }
+
+    /// Stage `i`'s argument `y + h Σ_{j<i} a_ij k_j` (into `y1` for the last
+    /// stage of an FSAL method), then `k_i` at `t + c_i h`.
+    fn stage<P: OdeProblem<Y>>(
+        &mut self,
+        problem: &mut P,
+        (t, y, f): (f64, &Y, &Y),
+        (i, h): (usize, f64),
+        stats: &mut Stats,
+    ) -> Result<(), SolverError<P::Error>> {
+        let (tableau, k) = (self.tableau, &self.k);
+        let row = tableau.a[i];
+        let mut terms = [(0.0, f); MAX_STAGES];
+        let mut m = 0;
+        for (j, &a) in row.iter().enumerate().filter(|(_, a)| **a != 0.0) {
+            terms[m] = (h * a, if j == 0 { f } else { &k[j] });
+            m += 1;
+        }
+        let last_is_y1 = tableau.fsal && i + 1 == tableau.stages();
+        let argument = if last_is_y1 {
+            &mut self.y1
+        } else {
+            &mut self.stage
+        };
+        argument.set_combination(y, &terms[..m]);
+        let argument = if last_is_y1 { &self.y1 } else { &self.stage };
+        evaluate(
+            problem,
+            t + tableau.c[i] * h,
+            argument,
+            &mut self.k[i],
+            stats,
+        )
+    }
+
+    /// `Σ h w_j k_j` over the non-zero weights `w` (`k_0 = f`) into `out`,
+    /// added to `base` when given.
+    fn weighted(k: &[Y], f: &Y, weights: &[f64], h: f64, base: Option<&Y>, out: &mut Y) {
+        let mut terms = [(0.0, f); MAX_STAGES];
+        let mut m = 0;
+        for (j, &w) in weights.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+            terms[m] = (h * w, if j == 0 { f } else { &k[j] });
+            m += 1;
+        }
+        match base {
+            Some(base) => out.set_combination(base, &terms[..m]),
+            None => out.set_sum(&terms[..m]),
+        }
+    }
+
+    /// `F(t + h, y1)`: the last stage of an FSAL method, else `f1`.
+    fn end_derivative(&self) -> &Y {
+        if self.tableau.fsal {
+            &self.k[self.tableau.stages() - 1]
+        } else {
+            &self.f1
+        }
+    }
+
+    /// The step size factor after a rejection with error norm `norm`.
+    fn shrink(&self, norm: f64) -> f64 {
+        if norm.is_finite() {
+            (SAFETY * norm.powf(-1.0 / self.tableau.order as f64)).max(MIN_FACTOR)
+        } else {
+            MIN_FACTOR
+        }
+    }
+
+    /// The dense output of the accepted step from `(t, y, f)`.
+    fn dense(&self, (t, y, f): (f64, &Y, &Y), h: f64) -> Dense<Y> {
+        match self.tableau.dense {
+            DenseOutput::Hermite => Dense::Hermite(Hermite {
+                t0: t,
+                h,
+                end: t + h,
+                y0: y.clone(),
+                f0: f.clone(),
+                y1: self.y1.clone(),
+                f1: self.end_derivative().clone(),
+            }),
+            DenseOutput::DormandPrince { d } => {
+                let (y1, last) = (&self.y1, self.end_derivative());
+                let mut difference = y.clone();
+                difference.set_combination(y1, &[(-1.0, y)]);
+                let mut slope = y.clone();
+                slope.set_sum(&[(h, f), (-1.0, &difference)]);
+                let mut curvature = y.clone();
+                curvature.set_combination(&difference, &[(-h, last), (-1.0, &slope)]);
+                let mut correction = y.clone();
+                Self::weighted(&self.k, f, d, h, None, &mut correction);
+                Dense::DormandPrince(DormandPrince {
+                    t0: t,
+                    t1: t + h,
+                    h,
+                    r: [y.clone(), difference, slope, curvature, correction],
+                })
+            }
+        }
+    }
+}
+
+/// The most stages a tableau may have.
+const MAX_STAGES: usize = 16;
+
+impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
+    type Dense = Dense<Y>;
+
+    fn first_step(
+        &mut self,
+        problem: &mut P,
+        (t, y, f): (f64, &Y, &Y),
+        span: f64,
+        stats: &mut Stats,
+    ) -> Result<f64, SolverError<P::Error>> {
+        let h = match self.fixed.or(self.options.initial_step) {
+            Some(h) => h,
+            None => initial_step(problem, t, y, f, span, &self.options, stats)?,
+        };
+        Ok(h.min(self.options.max_step))
+    }
+
+    fn attempt(
+        &mut self,
+        problem: &mut P,
+        (t, y, f): (f64, &Y, &Y),
+        h: f64,
+        stats: &mut Stats,
+    ) -> Result<Attempt<Dense<Y>>, SolverError<P::Error>> {
+        let tableau = self.tableau;
+        for i in 1..tableau.stages() {
+            self.stage(problem, (t, y, f), (i, h), stats)?;
+        }
+        if !tableau.fsal {
+            Self::weighted(&self.k, f, tableau.b, h, Some(y), &mut self.y1);
+            evaluate(problem, t + h, &self.y1, &mut self.f1, stats)?;
+        }
+        let norm = match (self.fixed, tableau.error) {
+            (None, Some(e)) => {
+                Self::weighted(&self.k, f, e, h, None, &mut self.err);
+                error_norm(&self.err, y, &self.y1, &self.options)
+            }
+            _ => 0.0,
+        };
+        if norm.is_nan() || norm > 1.0 {
+            // Rejected (NaN counts as a failure too): shrink and retry.
+            self.rejected_last = true;
+            return Ok(Attempt::Rejected(h * self.shrink(norm)));
+        }
+        self.norm = norm;
+        Ok(Attempt::Accepted(self.dense((t, y, f), h)))
+    }
+
+    fn end(&self) -> &Y {
+        &self.y1
+    }
+
+    fn advance(&mut self, y: &mut Y, f: &mut Y, h: f64) -> f64 {
+        std::mem::swap(y, &mut self.y1);
+        let last = self.tableau.stages() - 1;
+        std::mem::swap(
+            f,
+            if self.tableau.fsal {
+                &mut self.k[last]
+            } else {
+                &mut self.f1
+            },
+        );
+        let next = match self.fixed {
+            Some(fixed) => fixed,
+            None => {
+                let alpha = 1.0 / self.tableau.order as f64 - 0.75 * BETA;
+                let mut factor =
+                    SAFETY * self.norm.max(1e-10).powf(-alpha) * self.previous_error.powf(BETA);
+                factor = factor.clamp(MIN_FACTOR, MAX_FACTOR);
+                if self.rejected_last {
+                    factor = factor.min(1.0);
+                }
+                self.previous_error = self.norm.max(1e-4);
+                (h * factor).min(self.options.max_step)
+            }
+        };
+        self.rejected_last = false;
+        next
+    }
+
+    fn restart(&mut self, h: f64) -> f64 {
+        self.rejected_last = false;
+        self.fixed.unwrap_or(h)
+    }
+}
+
+/// The dense output of an explicit method's step.
+pub enum Dense<Y> {
+    /// Cubic Hermite.
+    Hermite(Hermite<Y>),
+    /// Dormand–Prince's 4th-order extension.
+    DormandPrince(DormandPrince<Y>),
+}
+
+impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
+    fn t0(&self) -> f64 {
+        match self {
+            Dense::Hermite(d) => d.t0(),
+            Dense::DormandPrince(d) => d.t0,
+        }
+    }
+
+    fn t1(&self) -> f64 {
+        match self {
+            Dense::Hermite(d) => d.t1(),
+            Dense::DormandPrince(d) => d.t1,
+        }
+    }
+
+    fn eval(&self, t: f64, out: &mut Y) {
+        match self {
+            Dense::Hermite(d) => d.eval(t, out),
+            Dense::DormandPrince(d) => d.eval(t, out),
+        }
+    }
+}
+
+impl<Y> Truncate for Dense<Y> {
+    fn truncate(self, end: f64) -> Self {
+        match self {
+            Dense::Hermite(d) => Dense::Hermite(d.truncate(end)),
+            Dense::DormandPrince(d) => Dense::DormandPrince(DormandPrince { t1: end, ..d }),
+        }
+    }
+}
+
+/// Dormand–Prince's continuous extension of one step:
+/// `y(t0 + θh) = r0 + θ(r1 + (1−θ)(r2 + θ(r3 + (1−θ) r4)))`.
+pub struct DormandPrince<Y> {
+    t0: f64,
+    t1: f64,
+    h: f64,
+    r: [Y; 5],
+}
+
+impl<Y: OdeVector> DormandPrince<Y> {
+    fn eval(&self, t: f64, out: &mut Y) {
+        let theta = (t - self.t0) / self.h;
+        let theta1 = 1.0 - theta;
+        let [r0, r1, r2, r3, r4] = &self.r;
+        out.set_combination(
+            r0,
+            &[
+                (theta, r1),
+                (theta * theta1, r2),
+                (theta * theta * theta1, r3),
+                (theta * theta * theta1 * theta1, r4),
+            ],
+        );
+    }
+}
