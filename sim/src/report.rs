@@ -98,65 +98,8 @@ pub fn summary_json(result: &SimulationResult) -> String {
 pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
     let s = &result.summary;
     let mut out = String::new();
-    let value = |v: Option<f64>, scale: f64, unit: &str, digits: usize| match v {
-        Some(x) => format!("{:.*} {unit}", digits, x * scale),
-        None => "–".to_string(),
-    };
     let _ = writeln!(out, "{} — {}", result.model, scenario_name);
-    let _ = writeln!(
-        out,
-        "  max dynamic crush      {}",
-        value(s.max_crush_m, 1.0, "m", 3)
-    );
-    let _ = writeln!(
-        out,
-        "  at                     {}",
-        value(s.time_of_max_crush_s, 1e3, "ms", 1)
-    );
-    let _ = writeln!(
-        out,
-        "  time to zero velocity  {}",
-        value(s.time_to_zero_velocity_s, 1e3, "ms", 1)
-    );
-    let _ = writeln!(
-        out,
-        "  peak deceleration      {} (unfiltered)",
-        value(s.peak_deceleration_g, 1.0, "g", 1)
-    );
-    let _ = writeln!(
-        out,
-        "  CFC 60 peak, ESW       {}, {}",
-        value(s.peak_deceleration_cfc60_g, 1.0, "g", 1),
-        value(s.equivalent_square_wave_g, 1.0, "g", 1)
-    );
-    let _ = writeln!(
-        out,
-        "  OLC, ASI               {}, {}",
-        value(s.olc_g, 1.0, "g", 1),
-        value(s.asi, 1.0, "", 2).trim_end()
-    );
-    let _ = writeln!(
-        out,
-        "  rebound velocity       {}",
-        value(s.rebound_velocity_mps, 1.0, "m/s", 2)
-    );
-    let _ = writeln!(
-        out,
-        "  max pitch θ1, θ2       {}, {} (from static equilibrium)",
-        value(s.max_theta1_deg, 1.0, "°", 2),
-        value(s.max_theta2_deg, 1.0, "°", 2)
-    );
-    let _ = writeln!(
-        out,
-        "  weld failure           {}",
-        s.weld_failure_time_s
-            .map_or("none".to_string(), |t| format!("{:.1} ms", t * 1e3))
-    );
-    let _ = writeln!(
-        out,
-        "  energy balance error   {:.1e} (relative)",
-        s.energy_balance_error_rel
-    );
+    out.push_str(&s.text_lines());
     let _ = writeln!(
         out,
         "  solver                 {}: {} steps, {} rejected, {} right-hand sides",

@@ -2,14 +2,16 @@
 //! samples, summary metrics.
 
 mod equilibrium;
+mod metrics;
 mod problem;
 mod summary;
 #[cfg(test)]
 mod tests;
 
 pub use equilibrium::static_equilibrium;
+pub use metrics::{Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
-pub use summary::{Metrics, SampleView, Summary};
+pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, Options, PhaseState, Stats};

@@ -1,266 +1,346 @@
-//! Crash metrics of a run (the keys of `summary.json`).
+//! The summary of a run — the keys of `summary.json`, the metric columns of
+//! a sweep table and the lines of the text summary — from one list.
 //!
-//! With the crush `c = ±q_k` of the scenario's `metrics.crush` coordinate
-//! (compression positive), the vehicle's velocity towards the barrier is `ċ`
-//! and its deceleration `−c̈`. Pitch angles are reported relative to the
-//! static equilibrium the run started from.
+//! Each entry of the `summary!` list below is a field of [`Summary`] and a
+//! [`Metric`] of [`Summary::METRICS`] (its name, and how the text summary
+//! shows it); everything that lists metrics iterates that table.
 
-use super::Sample;
-use crate::ode::{Stats, hermite_weights};
-use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
-use crate::scenario::Scenario;
 use serde::Serialize;
+use std::fmt::Write as _;
 
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Summary {
-    /// Largest crush [m].
-    pub max_crush_m: Option<f64>,
-    pub time_of_max_crush_s: Option<f64>,
-    /// First time the velocity towards the barrier reaches zero [s].
-    pub time_to_zero_velocity_s: Option<f64>,
-    /// The pitch deviation of largest magnitude from equilibrium, signed [°].
-    pub max_theta1_deg: Option<f64>,
-    pub max_theta2_deg: Option<f64>,
-    /// Largest deceleration, unfiltered [g].
-    pub peak_deceleration_g: Option<f64>,
-    /// Largest speed away from the barrier after the peak crush [m/s].
-    pub rebound_velocity_mps: Option<f64>,
-    pub weld_failure_time_s: Option<f64>,
-    /// Largest deceleration after SAE J211 CFC 60 filtering [g].
-    pub peak_deceleration_cfc60_g: Option<f64>,
-    /// `v0² / (2 g C)` with the maximum crush `C` [g].
-    pub equivalent_square_wave_g: Option<f64>,
-    /// Occupant load criterion (Euro NCAP) of the crush coordinate's pulse [g].
-    pub olc_g: Option<f64>,
-    /// Acceleration severity index (EN 1317-1), longitudinal component.
-    pub asi: Option<f64>,
-    pub steps: usize,
-    pub rejected_steps: usize,
-    pub rhs_evaluations: usize,
-    /// `max |(T + V + dissipated − external work)(t) − (T + V)(0)| / (T(0) + |V(0)|)`.
-    pub energy_balance_error_rel: f64,
+/// A metric's value: a measurement (absent when the run cannot say, e.g.
+/// no crush coordinate) or a count.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// A real number, or none.
+    Real(Option<f64>),
+    /// A count.
+    Count(usize),
 }
 
-/// One output sample as the metrics see it.
-#[derive(Clone, Copy, Debug)]
-pub struct SampleView<'a> {
-    pub t: f64,
-    pub q: &'a [f64],
-    pub v: &'a [f64],
-    pub a: &'a [f64],
-    pub kinetic: f64,
-    pub potential: f64,
-    pub dissipated: f64,
-    pub external_work: f64,
+/// A summary field's type: how it becomes a [`Value`] and is read back from
+/// the text of a table cell.
+pub trait Field: Sized {
+    /// The value with nothing measured.
+    const EMPTY: Self;
+    /// The field as a table value.
+    fn value(&self) -> Value;
+    /// The field from a table cell as [`Value`]'s text writes it (`""` for
+    /// a missing measurement).
+    fn parse(cell: &str) -> Result<Self, String>;
 }
 
-impl<'a> From<&'a Sample> for SampleView<'a> {
-    fn from(s: &'a Sample) -> Self {
-        SampleView {
-            t: s.t,
-            q: &s.q,
-            v: &s.v,
-            a: &s.a,
-            kinetic: s.kinetic,
-            potential: s.potential,
-            dissipated: s.dissipated,
-            external_work: s.external_work,
+fn parse_real(cell: &str) -> Result<Option<f64>, String> {
+    match cell {
+        "" => Ok(None),
+        text => text
+            .parse()
+            .map(Some)
+            .map_err(|_| format!("`{text}` is not a number")),
+    }
+}
+
+impl Field for Option<f64> {
+    const EMPTY: Self = None;
+    fn value(&self) -> Value {
+        Value::Real(*self)
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        parse_real(cell)
+    }
+}
+
+impl Field for f64 {
+    const EMPTY: Self = 0.0;
+    fn value(&self) -> Value {
+        Value::Real(Some(*self))
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        Ok(parse_real(cell)?.unwrap_or(f64::NAN))
+    }
+}
+
+impl Field for usize {
+    const EMPTY: Self = 0;
+    fn value(&self) -> Value {
+        Value::Count(*self)
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        cell.parse().map_err(|_| format!("`{cell}` is not a count"))
+    }
+}
+
+impl Value {
+    /// The text of a table cell: numbers that read back exactly, empty
+    /// for a missing measurement.
+    pub fn cell(self) -> String {
+        match self {
+            Value::Real(Some(x)) => format!("{x:?}"),
+            Value::Real(None) => String::new(),
+            Value::Count(n) => n.to_string(),
         }
     }
 }
 
-/// Time, crush and crush rate of one sample.
-#[derive(Clone, Copy, Debug)]
-struct CrushPoint {
-    t: f64,
-    crush: f64,
-    rate: f64,
+/// How the text summary shows a metric: on a line of its own under `label`,
+/// or, without one, after the previous metric on its line.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Text {
+    /// The line's label; `None` continues the previous metric's line.
+    pub label: Option<&'static str>,
+    /// The unit shown (after scaling).
+    pub unit: &'static str,
+    /// The factor from the stored unit to the one shown (1e3 for s → ms).
+    pub scale: f64,
+    /// Digits after the decimal point.
+    pub digits: usize,
+    /// Scientific notation instead of fixed.
+    pub scientific: bool,
+    /// What stands for a missing value.
+    pub missing: &'static str,
+    /// Written at the end of the line.
+    pub note: &'static str,
 }
 
-/// The metrics of a run, accumulated sample by sample, so that a run need
-/// not keep its samples (a sweep does not).
-#[derive(Clone, Debug)]
-pub struct Metrics {
-    crush: Option<(usize, f64)>,
-    pitch: Vec<(usize, f64)>,
-    g: f64,
-    samples: usize,
-    /// `(T + V)(0)` and the scale of the energy balance.
-    energy: Option<(f64, f64)>,
-    energy_error: f64,
-    previous: Option<CrushPoint>,
-    /// The crush rate of the first sample: the impact velocity.
-    first_rate: Option<f64>,
-    /// The largest crush so far (the first of equals), its neighbours, and
-    /// the value it was compared by (−∞ until a sample has a number).
-    peak: Option<(CrushPoint, Option<CrushPoint>, Option<CrushPoint>)>,
-    peak_value: f64,
-    peak_index: usize,
-    first_zero: Option<f64>,
-    deceleration: f64,
-    /// Largest speed away from the barrier since the peak.
-    rebound: f64,
-    pitch_extremes: Vec<f64>,
-    /// Time, crush and crush acceleration of every sample, for the pulse
-    /// metrics (filtering needs the whole record).
-    pulse: Vec<(f64, f64, f64)>,
-}
-
-impl Metrics {
-    /// Metrics of `scenario`'s crush and pitch coordinates; pitch is measured
-    /// from `initial_q`, deceleration in units of `g`.
-    pub fn new(scenario: &Scenario, initial_q: &[f64], g: f64) -> Metrics {
-        let pitch: Vec<(usize, f64)> = scenario
-            .pitch
-            .iter()
-            .take(2)
-            .map(|&k| (k, initial_q[k]))
-            .collect();
-        Metrics {
-            crush: scenario.crush,
-            pitch_extremes: vec![0.0; pitch.len()],
-            pitch,
-            g,
-            samples: 0,
-            energy: None,
-            energy_error: 0.0,
-            previous: None,
-            peak: None,
-            peak_value: f64::NEG_INFINITY,
-            peak_index: 0,
-            first_zero: None,
-            first_rate: None,
-            deceleration: f64::NEG_INFINITY,
-            rebound: 0.0,
-            pulse: Vec::new(),
+impl Text {
+    const fn line(label: &'static str, unit: &'static str, digits: usize) -> Text {
+        Text {
+            label: Some(label),
+            unit,
+            scale: 1.0,
+            digits,
+            scientific: false,
+            missing: "–",
+            note: "",
         }
     }
 
-    /// Takes the next sample (in time order).
-    pub fn push(&mut self, s: SampleView) {
-        let (e0, scale) = *self.energy.get_or_insert_with(|| {
-            (
-                s.kinetic + s.potential,
-                (s.kinetic + s.potential.abs()).max(f64::MIN_POSITIVE),
-            )
-        });
-        let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
-        self.energy_error = self.energy_error.max(balance);
-        for ((k, q0), extreme) in self.pitch.iter().zip(&mut self.pitch_extremes) {
-            let d = s.q[*k] - q0;
-            if d.abs() > extreme.abs() {
-                *extreme = d;
-            }
+    const fn more(unit: &'static str, digits: usize) -> Text {
+        Text {
+            label: None,
+            ..Text::line("", unit, digits)
         }
-        if let Some((k, sign)) = self.crush {
-            let point = CrushPoint {
-                t: s.t,
-                crush: sign * s.q[k],
-                rate: sign * s.v[k],
-            };
-            let index = self.samples;
-            self.first_rate.get_or_insert(point.rate);
-            if let Some((_, _, after)) = &mut self.peak
-                && index == self.peak_index + 1
-            {
-                *after = Some(point);
-            }
-            if index == 0 || point.crush > self.peak_value {
-                self.peak = Some((point, self.previous, None));
-                self.peak_index = index;
-                self.rebound = 0.0;
-            }
-            if point.crush > self.peak_value {
-                self.peak_value = point.crush;
-            }
-            self.rebound = self.rebound.max(-point.rate);
-            if self.first_zero.is_none()
-                && let Some(p) = self.previous
-                && p.rate > 0.0
-                && point.rate <= 0.0
-            {
-                let f = p.rate / (p.rate - point.rate);
-                self.first_zero = Some(p.t + f * (point.t - p.t));
-            }
-            self.deceleration = self.deceleration.max(-sign * s.a[k] / self.g);
-            self.pulse.push((s.t, point.crush, sign * s.a[k]));
-            self.previous = Some(point);
-        }
-        self.samples += 1;
     }
 
-    /// The summary, with the run's statistics and the weld's failure time.
-    pub fn finish(&self, stats: &Stats, weld_failure: Option<f64>) -> Summary {
-        let mut summary = Summary {
-            max_crush_m: None,
-            time_of_max_crush_s: None,
-            time_to_zero_velocity_s: None,
-            max_theta1_deg: self.pitch_extremes.first().map(|d| d.to_degrees()),
-            max_theta2_deg: self.pitch_extremes.get(1).map(|d| d.to_degrees()),
-            peak_deceleration_g: None,
-            rebound_velocity_mps: None,
-            weld_failure_time_s: weld_failure,
-            peak_deceleration_cfc60_g: None,
-            equivalent_square_wave_g: None,
-            olc_g: None,
-            asi: None,
-            steps: stats.accepted_steps,
-            rejected_steps: stats.rejected_steps,
-            rhs_evaluations: stats.rhs_evaluations,
-            energy_balance_error_rel: self.energy_error,
+    const fn in_ms(self) -> Text {
+        Text {
+            unit: "ms",
+            scale: 1e3,
+            ..self
+        }
+    }
+
+    const fn note(self, note: &'static str) -> Text {
+        Text { note, ..self }
+    }
+
+    const fn missing(self, missing: &'static str) -> Text {
+        Text { missing, ..self }
+    }
+
+    const fn scientific(self) -> Text {
+        Text {
+            scientific: true,
+            ..self
+        }
+    }
+
+    /// The value as shown.
+    fn show(&self, value: Value) -> String {
+        let x = match value {
+            Value::Real(Some(x)) => x * self.scale,
+            Value::Real(None) => return self.missing.to_string(),
+            Value::Count(n) => n as f64,
         };
-        if let Some((peak, before, after)) = self.peak {
-            let (t, c) = refine_peak(peak, before, after);
-            summary.max_crush_m = Some(c);
-            summary.time_of_max_crush_s = Some(t);
-            summary.time_to_zero_velocity_s = self.first_zero;
-            summary.peak_deceleration_g = Some(self.deceleration);
-            summary.rebound_velocity_mps = Some(self.rebound);
-            if let Some(pulse) = self.pulse_metrics() {
-                summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
-                summary.equivalent_square_wave_g = summary
-                    .max_crush_m
-                    .filter(|&c| c > 0.0)
-                    .map(|c| pulse.impact_velocity_mps.powi(2) / (2.0 * STANDARD_GRAVITY * c));
-                summary.olc_g = pulse.olc_g;
-                summary.asi = pulse.asi;
-            }
+        let number = if self.scientific {
+            format!("{x:.*e}", self.digits)
+        } else {
+            format!("{x:.*}", self.digits)
+        };
+        match self.unit {
+            "" => number,
+            unit => format!("{number} {unit}"),
         }
-        summary
-    }
-
-    /// The pulse metrics of the crush coordinate's samples (resampled onto
-    /// an even grid when events added samples between the output times);
-    /// `None` for fewer than 3 samples or a record the CFC 60 filter cannot
-    /// take (sampled slower than 250 Hz).
-    fn pulse_metrics(&self) -> Option<PulseMetrics> {
-        let t: Vec<f64> = self.pulse.iter().map(|p| p.0).collect();
-        let crush: Vec<f64> = self.pulse.iter().map(|p| p.1).collect();
-        let acceleration: Vec<f64> = self.pulse.iter().map(|p| p.2).collect();
-        let v0 = self.first_rate?;
-        Pulse::resampled(&t, &acceleration, v0, Some(&crush))
-            .and_then(|p| p.metrics())
-            .ok()
     }
 }
 
-/// `(t, c)` of the crush maximum: the zero of the crush rate next to the
-/// largest sample, by cubic Hermite interpolation of the crush.
-fn refine_peak(
-    peak: CrushPoint,
-    before: Option<CrushPoint>,
-    after: Option<CrushPoint>,
-) -> (f64, f64) {
-    let candidates = [before.map(|b| (b, peak)), after.map(|a| (peak, a))];
-    for (a, b) in candidates.into_iter().flatten() {
-        if a.rate >= 0.0 && b.rate <= 0.0 && a.rate != b.rate {
-            let h = b.t - a.t;
-            let s = a.rate / (a.rate - b.rate);
-            // Hermite on [a, b] evaluated at the linear estimate of the rate's zero.
-            let [w0, w1, w2, w3] = hermite_weights(s, h);
-            let c = w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate;
-            return (a.t + s * h, c.max(peak.crush));
+/// One metric of [`Summary`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Metric {
+    /// The key in `summary.json` and the column of a sweep table.
+    pub name: &'static str,
+    /// How the text summary shows it; `None`: not there (the solver's
+    /// counts, which it shows on their own line).
+    pub text: Option<Text>,
+}
+
+/// Defines [`Summary`] with one field per entry and [`Summary::METRICS`]
+/// with the entries in the same order.
+macro_rules! summary {
+    ($($(#[doc = $doc:literal])* $name:ident: $type:ty => $text:expr,)*) => {
+        /// The metrics of a run (`summary.json`), in [`Summary::METRICS`] order.
+        #[derive(Clone, Debug, PartialEq, Serialize)]
+        pub struct Summary {
+            $($(#[doc = $doc])* pub $name: $type,)*
         }
+
+        impl Summary {
+            /// Every metric, in field order.
+            pub const METRICS: &'static [Metric] = &[
+                $(Metric { name: stringify!($name), text: $text },)*
+            ];
+
+            /// A summary with nothing measured.
+            pub const EMPTY: Summary = Summary { $($name: <$type as Field>::EMPTY,)* };
+
+            /// The values, in [`Summary::METRICS`] order.
+            pub fn values(&self) -> Vec<Value> {
+                vec![$(self.$name.value(),)*]
+            }
+
+            /// Sets metric `name` from the text of its table cell.
+            pub fn set(&mut self, name: &str, cell: &str) -> Result<(), String> {
+                match name {
+                    $(stringify!($name) => self.$name = Field::parse(cell)?,)*
+                    _ => return Err(format!("`{name}` is not a metric")),
+                }
+                Ok(())
+            }
+        }
+    };
+}
+
+summary! {
+    /// Largest crush [m].
+    max_crush_m: Option<f64> => Some(Text::line("max dynamic crush", "m", 3)),
+    /// When the crush was largest [s].
+    time_of_max_crush_s: Option<f64> => Some(Text::line("at", "", 1).in_ms()),
+    /// First time the velocity towards the barrier reaches zero [s].
+    time_to_zero_velocity_s: Option<f64> =>
+        Some(Text::line("time to zero velocity", "", 1).in_ms()),
+    /// The first pitch coordinate's deviation of largest magnitude from
+    /// equilibrium, signed [°].
+    max_theta1_deg: Option<f64> => Some(Text::line("max pitch θ1, θ2", "°", 2)),
+    /// The second pitch coordinate's, likewise [°].
+    max_theta2_deg: Option<f64> =>
+        Some(Text::more("°", 2).note(" (from static equilibrium)")),
+    /// Largest deceleration, unfiltered [g].
+    peak_deceleration_g: Option<f64> =>
+        Some(Text::line("peak deceleration", "g", 1).note(" (unfiltered)")),
+    /// Largest speed away from the barrier after the peak crush [m/s].
+    rebound_velocity_mps: Option<f64> => Some(Text::line("rebound velocity", "m/s", 2)),
+    /// When the weld failed [s].
+    weld_failure_time_s: Option<f64> =>
+        Some(Text::line("weld failure", "", 1).in_ms().missing("none")),
+    /// Largest deceleration after SAE J211 CFC 60 filtering [g].
+    peak_deceleration_cfc60_g: Option<f64> => Some(Text::line("CFC 60 peak, ESW", "g", 1)),
+    /// `v0² / (2 g C)` with the maximum crush `C` [g].
+    equivalent_square_wave_g: Option<f64> => Some(Text::more("g", 1)),
+    /// Occupant load criterion (Euro NCAP) of the crush coordinate's pulse [g].
+    olc_g: Option<f64> => Some(Text::line("OLC, ASI", "g", 1)),
+    /// Acceleration severity index (EN 1317-1), longitudinal component.
+    asi: Option<f64> => Some(Text::more("", 2)),
+    /// Accepted steps of the integration.
+    steps: usize => None,
+    /// Rejected steps.
+    rejected_steps: usize => None,
+    /// Evaluations of the right-hand side.
+    rhs_evaluations: usize => None,
+    /// `max |(T + V + dissipated − external work)(t) − (T + V)(0)| / (T(0) + |V(0)|)`.
+    energy_balance_error_rel: f64 =>
+        Some(Text::line("energy balance error", "", 1).scientific().note(" (relative)")),
+}
+
+impl Summary {
+    /// The metric lines of the text summary: `  label  value[, value…]note`.
+    pub fn text_lines(&self) -> String {
+        let mut out = String::new();
+        let mut note = "";
+        for (metric, value) in Summary::METRICS.iter().zip(self.values()) {
+            let Some(text) = metric.text else { continue };
+            match text.label {
+                Some(label) => {
+                    if !out.is_empty() {
+                        let _ = writeln!(out, "{note}");
+                    }
+                    let _ = write!(out, "  {label:<23}{}", text.show(value));
+                }
+                None => {
+                    let _ = write!(out, ", {}", text.show(value));
+                }
+            }
+            note = text.note;
+        }
+        if !out.is_empty() {
+            let _ = writeln!(out, "{note}");
+        }
+        out
     }
-    (peak.t, peak.crush)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_metrics_are_the_keys_of_summary_json_in_order() {
+        let json = serde_json::to_string(&Summary::EMPTY).unwrap();
+        let mut position = 0;
+        for metric in Summary::METRICS {
+            let key = format!("\"{}\":", metric.name);
+            let at = json[position..].find(&key).map(|k| k + position);
+            assert!(
+                at.is_some(),
+                "{} is not after position {position} in {json}",
+                metric.name
+            );
+            position = at.unwrap_or(position);
+        }
+        let keys = serde_json::to_value(Summary::EMPTY).unwrap();
+        assert_eq!(keys.as_object().unwrap().len(), Summary::METRICS.len());
+    }
+
+    #[test]
+    fn every_metric_reads_back_from_its_cell() {
+        let mut summary = Summary::EMPTY;
+        for (k, metric) in Summary::METRICS.iter().enumerate() {
+            let cell = match Summary::EMPTY.values()[k] {
+                Value::Real(_) => format!("{:?}", 0.25 + k as f64),
+                Value::Count(_) => (10 + k).to_string(),
+            };
+            summary.set(metric.name, &cell).unwrap();
+            assert_eq!(summary.values()[k].cell(), cell, "{}", metric.name);
+        }
+        assert_eq!(
+            summary.set("max_crush", "1.0"),
+            Err("`max_crush` is not a metric".to_string())
+        );
+    }
+
+    #[test]
+    fn the_text_shows_units_groups_and_missing_values() {
+        let summary = Summary {
+            max_crush_m: Some(0.5468),
+            time_of_max_crush_s: Some(0.06641),
+            max_theta1_deg: Some(-13.613),
+            max_theta2_deg: None,
+            asi: Some(2.114),
+            olc_g: Some(29.46),
+            energy_balance_error_rel: 3.4e-10,
+            ..Summary::EMPTY
+        };
+        let text = summary.text_lines();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "  max dynamic crush      0.547 m");
+        assert_eq!(lines[1], "  at                     66.4 ms");
+        assert_eq!(lines[2], "  time to zero velocity  –");
+        assert_eq!(
+            lines[3],
+            "  max pitch θ1, θ2       -13.61 °, – (from static equilibrium)"
+        );
+        assert_eq!(lines[6], "  weld failure           none");
+        assert_eq!(lines[8], "  OLC, ASI               29.5 g, 2.11");
+        assert_eq!(lines[9], "  energy balance error   3.4e-10 (relative)");
+        assert_eq!(lines.len(), 10);
+    }
 }

@@ -4,7 +4,7 @@
 //! the shards of one sweep concatenate into the full table.
 
 use super::run::{Row, RunFailure};
-use crate::simulate::Summary;
+use crate::simulate::{Summary, Value};
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type};
 use parquet::file::properties::WriterProperties;
@@ -12,68 +12,13 @@ use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::Type;
 use std::sync::Arc;
 
-/// A metric's value: a measurement or a count.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Metric {
-    Real(Option<f64>),
-    Count(usize),
-}
-
-/// The metrics of a summary in `summary.json` order.
-fn metrics(s: &Summary) -> [(&'static str, Metric); 16] {
-    use Metric::{Count, Real};
-    [
-        ("max_crush_m", Real(s.max_crush_m)),
-        ("time_of_max_crush_s", Real(s.time_of_max_crush_s)),
-        ("time_to_zero_velocity_s", Real(s.time_to_zero_velocity_s)),
-        ("max_theta1_deg", Real(s.max_theta1_deg)),
-        ("max_theta2_deg", Real(s.max_theta2_deg)),
-        ("peak_deceleration_g", Real(s.peak_deceleration_g)),
-        ("rebound_velocity_mps", Real(s.rebound_velocity_mps)),
-        ("weld_failure_time_s", Real(s.weld_failure_time_s)),
-        (
-            "peak_deceleration_cfc60_g",
-            Real(s.peak_deceleration_cfc60_g),
-        ),
-        ("equivalent_square_wave_g", Real(s.equivalent_square_wave_g)),
-        ("olc_g", Real(s.olc_g)),
-        ("asi", Real(s.asi)),
-        ("steps", Count(s.steps)),
-        ("rejected_steps", Count(s.rejected_steps)),
-        ("rhs_evaluations", Count(s.rhs_evaluations)),
-        (
-            "energy_balance_error_rel",
-            Real(Some(s.energy_balance_error_rel)),
-        ),
-    ]
-}
-
-const EMPTY: Summary = Summary {
-    max_crush_m: None,
-    time_of_max_crush_s: None,
-    time_to_zero_velocity_s: None,
-    max_theta1_deg: None,
-    max_theta2_deg: None,
-    peak_deceleration_g: None,
-    rebound_velocity_mps: None,
-    weld_failure_time_s: None,
-    peak_deceleration_cfc60_g: None,
-    equivalent_square_wave_g: None,
-    olc_g: None,
-    asi: None,
-    steps: 0,
-    rejected_steps: 0,
-    rhs_evaluations: 0,
-    energy_balance_error_rel: 0.0,
-};
-
 /// The column names: `run`, the axes, `status`, `error`, the metrics.
 pub fn columns(axes: &[String]) -> Vec<String> {
     let mut names = vec!["run".to_string()];
     names.extend(axes.iter().cloned());
     names.push("status".into());
     names.push("error".into());
-    names.extend(metrics(&EMPTY).iter().map(|(n, _)| n.to_string()));
+    names.extend(Summary::METRICS.iter().map(|m| m.name.to_string()));
     names
 }
 
@@ -87,24 +32,22 @@ pub fn record(row: &Row) -> Vec<String> {
         Ok(summary) => {
             record.push("ok".into());
             record.push(String::new());
-            record.extend(metrics(summary).iter().map(|(_, m)| match *m {
-                Metric::Real(Some(x)) => format!("{x:?}"),
-                Metric::Real(None) => String::new(),
-                Metric::Count(n) => n.to_string(),
-            }));
+            record.extend(summary.values().into_iter().map(Value::cell));
         }
         Err(failure) => {
             record.push(failure.kind.clone());
             record.push(failure.message.clone());
-            record.extend(std::iter::repeat_n(String::new(), metrics(&EMPTY).len()));
+            record.extend(std::iter::repeat_n(String::new(), Summary::METRICS.len()));
         }
     }
     record
 }
 
-/// The row a [`record`] was made from (`axes` values before `status`).
+/// The row a [`record`] was made from (`axes` values before `status`):
+/// the metrics are read by name from the cells of the columns of
+/// [`columns`], in [`Summary::METRICS`] order.
 pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, String> {
-    let expected = 3 + axes + metrics(&EMPTY).len();
+    let expected = 3 + axes + Summary::METRICS.len();
     if record.len() != expected {
         return Err(format!("{} cells instead of {expected}", record.len()));
     }
@@ -121,39 +64,11 @@ pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, Stri
         .collect::<Result<Vec<f64>, String>>()?;
     let status = &record[axes + 1];
     let outcome = if status == "ok" {
-        let mut summary = EMPTY;
-        let first = axes + 3;
-        let cell = |k: usize| &record[first + k];
-        let real = |k: usize| -> Result<Option<f64>, String> {
-            match cell(k) {
-                "" => Ok(None),
-                text => text
-                    .parse()
-                    .map(Some)
-                    .map_err(|_| format!("`{text}` is not a number")),
-            }
-        };
-        let count = |k: usize| -> Result<usize, String> {
-            cell(k)
-                .parse()
-                .map_err(|_| format!("`{}` is not a count", cell(k)))
-        };
-        summary.max_crush_m = real(0)?;
-        summary.time_of_max_crush_s = real(1)?;
-        summary.time_to_zero_velocity_s = real(2)?;
-        summary.max_theta1_deg = real(3)?;
-        summary.max_theta2_deg = real(4)?;
-        summary.peak_deceleration_g = real(5)?;
-        summary.rebound_velocity_mps = real(6)?;
-        summary.weld_failure_time_s = real(7)?;
-        summary.peak_deceleration_cfc60_g = real(8)?;
-        summary.equivalent_square_wave_g = real(9)?;
-        summary.olc_g = real(10)?;
-        summary.asi = real(11)?;
-        summary.steps = count(12)?;
-        summary.rejected_steps = count(13)?;
-        summary.rhs_evaluations = count(14)?;
-        summary.energy_balance_error_rel = real(15)?.unwrap_or(f64::NAN);
+        let mut summary = Summary::EMPTY;
+        let cells = record.iter().skip(axes + 3);
+        for (metric, cell) in Summary::METRICS.iter().zip(cells) {
+            summary.set(metric.name, cell)?;
+        }
         Ok(summary)
     } else {
         Err(RunFailure {
@@ -226,12 +141,12 @@ pub fn write_parquet<W: std::io::Write + Send>(
         Physical::BYTE_ARRAY,
         Repetition::OPTIONAL,
     )?);
-    for (name, metric) in metrics(&EMPTY) {
-        let physical = match metric {
-            Metric::Real(_) => Physical::DOUBLE,
-            Metric::Count(_) => Physical::INT64,
+    for (metric, value) in Summary::METRICS.iter().zip(Summary::EMPTY.values()) {
+        let physical = match value {
+            Value::Real(_) => Physical::DOUBLE,
+            Value::Count(_) => Physical::INT64,
         };
-        fields.push(column_type(name, physical, Repetition::OPTIONAL)?);
+        fields.push(column_type(metric.name, physical, Repetition::OPTIONAL)?);
     }
     let schema = Type::group_type_builder("sweep")
         .with_fields(fields)
@@ -285,36 +200,38 @@ pub fn write_parquet<W: std::io::Write + Send>(
             .collect();
         let levels = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
         write_column!(ByteArrayType, errors, Some(levels));
-        for m in 0..metrics(&EMPTY).len() {
-            let cells: Vec<Option<Metric>> = rows
-                .iter()
-                .map(|r| r.outcome.as_ref().ok().map(|s| metrics(s)[m].1))
-                .collect();
+        let values: Vec<Option<Vec<Value>>> = rows
+            .iter()
+            .map(|r| r.outcome.as_ref().ok().map(Summary::values))
+            .collect();
+        for (m, empty) in Summary::EMPTY.values().into_iter().enumerate() {
+            let cells: Vec<Option<Value>> =
+                values.iter().map(|v| v.as_ref().map(|v| v[m])).collect();
             let levels: Vec<i16> = cells
                 .iter()
                 .map(|c| {
                     i16::from(matches!(
                         c,
-                        Some(Metric::Real(Some(_))) | Some(Metric::Count(_))
+                        Some(Value::Real(Some(_))) | Some(Value::Count(_))
                     ))
                 })
                 .collect();
-            match metrics(&EMPTY)[m].1 {
-                Metric::Real(_) => {
+            match empty {
+                Value::Real(_) => {
                     let values: Vec<f64> = cells
                         .iter()
                         .filter_map(|c| match c {
-                            Some(Metric::Real(x)) => *x,
+                            Some(Value::Real(x)) => *x,
                             _ => None,
                         })
                         .collect();
                     write_column!(DoubleType, values, Some(levels));
                 }
-                Metric::Count(_) => {
+                Value::Count(_) => {
                     let values: Vec<i64> = cells
                         .iter()
                         .filter_map(|c| match c {
-                            Some(Metric::Count(n)) => Some(*n as i64),
+                            Some(Value::Count(n)) => Some(*n as i64),
                             _ => None,
                         })
                         .collect();
@@ -340,7 +257,7 @@ mod tests {
             time_of_max_crush_s: Some(0.066),
             weld_failure_time_s: None,
             steps: 120,
-            ..EMPTY
+            ..Summary::EMPTY
         }
     }
 
@@ -363,13 +280,11 @@ mod tests {
     }
 
     #[test]
-    fn metric_columns_are_the_keys_of_summary_json() {
-        let json = serde_json::to_value(EMPTY).unwrap();
-        let mut keys: Vec<&String> = json.as_object().unwrap().keys().collect();
-        let mut ours: Vec<String> = metrics(&EMPTY).iter().map(|(n, _)| n.to_string()).collect();
-        keys.sort();
-        ours.sort();
-        assert_eq!(keys, ours.iter().collect::<Vec<_>>());
+    fn rows_read_back_from_their_records_by_column() {
+        for row in rows() {
+            let record = csv::StringRecord::from(record(&row));
+            assert_eq!(parse_record(&record, 2), Ok(row));
+        }
     }
 
     #[test]
