@@ -1,22 +1,32 @@
 //! `lpm audit`: compare a spec's hand-derived equations with the derivation.
 
-use crate::commands::{Failure, compile};
+use crate::failure::{Failure, Outcome};
+use crate::spec::compile;
+use crate::status::ExitStatus;
 use lagrangian_core::audit::{AuditReport, Finding, GroupVerdict, Part, Verdict, audit, markdown};
 use serde_json::{Value, json};
-use std::path::Path;
+use std::path::PathBuf;
 
-/// Exit status when the audit finds disagreements.
-pub const DISAGREES: u8 = crate::commands::status::AUDIT_DISAGREES;
+/// Options of `lpm audit`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The spec file (`.lpm`) with a `hand_derived` section.
+    spec: PathBuf,
+    #[arg(long, value_parser = ["markdown", "json"], default_value = "markdown")]
+    format: String,
+}
 
-pub fn run(spec: &Path, json_format: bool) -> Result<(String, bool), Failure> {
+/// Runs `lpm audit`: the report, with status 5 when anything disagrees.
+pub fn run(args: Args) -> Result<Outcome, Failure> {
+    let spec = &args.spec;
     let mut compiled = compile(spec)?;
     let report = audit(&mut compiled).ok_or_else(|| {
         Failure::usage(format!(
-            "error: {} has no `hand_derived` section to audit",
+            "{} has no `hand_derived` section to audit",
             spec.display()
         ))
     })?;
-    let text = if json_format {
+    let text = if args.format == "json" {
         format!(
             "{}\n",
             serde_json::to_string_pretty(&to_json(&report)).unwrap_or_default()
@@ -24,7 +34,12 @@ pub fn run(spec: &Path, json_format: bool) -> Result<(String, bool), Failure> {
     } else {
         markdown(&report, &spec.display().to_string())
     };
-    Ok((text, report.disagrees()))
+    let status = if report.disagrees() {
+        ExitStatus::AuditDisagrees
+    } else {
+        ExitStatus::Success
+    };
+    Ok(Outcome { text, status })
 }
 
 fn to_json(report: &AuditReport) -> Value {

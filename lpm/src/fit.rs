@@ -2,8 +2,9 @@
 //! target time histories; writes the fitted scenario, a report and an
 //! overlay plot.
 
-use crate::commands::{Failure, compile, status};
-use crate::simulate::find_scenario;
+use crate::failure::{Failure, Outcome};
+use crate::spec::{compile, find_scenario, out_dir};
+use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, fit};
@@ -14,19 +15,41 @@ use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
 
-pub struct FitOptions {
-    pub spec: PathBuf,
-    pub target: PathBuf,
-    pub scenario: Option<PathBuf>,
-    pub fit: Vec<String>,
-    pub settings: Vec<String>,
-    pub out: Option<PathBuf>,
-    pub starts: usize,
-    pub seed: u64,
-    pub quiet: bool,
+/// Options of `lpm fit`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The spec file (`.lpm`).
+    spec: PathBuf,
+    /// Target time histories (CSV with units in the header).
+    #[arg(long)]
+    target: PathBuf,
+    /// The scenario (TOML); by default the one beside the spec that names it.
+    #[arg(long)]
+    scenario: Option<PathBuf>,
+    /// What to fit, comma-separated: `stiffness`, `damping` (the crush
+    /// component's k1…k7, c1…c7), spec parameters, or dotted scenario
+    /// entries holding numbers (default: stiffness,damping).
+    #[arg(long, value_delimiter = ',')]
+    fit: Vec<String>,
+    /// A setting applied before fitting, as in `lpm simulate --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Output directory (default lpm-out/<spec name>-fit).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Number of starts (the scenario's values, then perturbations).
+    #[arg(long, default_value_t = 4)]
+    starts: usize,
+    /// Seed of the perturbed starts.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// No progress display.
+    #[arg(long)]
+    quiet: bool,
 }
 
-pub fn run(options: FitOptions) -> Result<String, Failure> {
+/// Runs `lpm fit`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
     let compiled = compile(&options.spec)?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
@@ -34,21 +57,17 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
         Some(p) => p.clone(),
         None => find_scenario(&options.spec)?.ok_or_else(|| {
             Failure::usage(format!(
-                "error: no scenario names {}; give one with --scenario",
+                "no scenario names {}; give one with --scenario",
                 options.spec.display()
             ))
         })?,
     };
-    let text = std::fs::read_to_string(&scenario_path).map_err(|e| {
-        Failure::io(format!(
-            "error: cannot read {}: {e}",
-            scenario_path.display()
-        ))
-    })?;
+    let text = std::fs::read_to_string(&scenario_path)
+        .map_err(|e| Failure::io(format!("cannot read {}: {e}", scenario_path.display())))?;
     let target = read_time_histories(&options.target).map_err(|e| Failure::channels(&e))?;
-    let usage = |e: String| Failure::usage(format!("error: {e}"));
-    let document = Scenario::document(&text, &names, &options.settings)
-        .map_err(|e| Failure::new(status::SCENARIO, format!("error: {e}")))?;
+    let usage = |e: String| Failure::usage(e);
+    let document = Scenario::document(&text, &names, &options.set)
+        .map_err(|e| Failure::new(ExitStatus::Scenario, e))?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {
@@ -60,10 +79,10 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
         text,
         file: Some(scenario_path.clone()),
         names: names.clone(),
-        settings: options.settings.clone(),
+        settings: options.set.clone(),
     };
     // Check the scenario once, so that its errors read as such.
-    Scenario::parse(&base.text, base.file.as_deref(), &names, &options.settings)
+    Scenario::parse(&base.text, base.file.as_deref(), &names, &options.set)
         .map_err(|e| Failure::scenario(&e))?;
     let setup = FitSetup {
         base,
@@ -88,14 +107,7 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
     let report = dispatch(&model, &setup, &progress)?;
     bar.finish_and_clear();
 
-    let stem = options
-        .spec
-        .file_stem()
-        .map_or("model".into(), |s| s.to_string_lossy().into_owned());
-    let out = options
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("lpm-out").join(format!("{stem}-fit")));
+    let out = out_dir(options.out.clone(), &options.spec, "-fit");
     write_outputs(&out, &report, &setup, &document, &names, &scenario_path)?;
     let mut text = text_report(&report);
     let _ = writeln!(
@@ -104,7 +116,7 @@ pub fn run(options: FitOptions) -> Result<String, Failure> {
         out.display(),
         options.spec.display()
     );
-    Ok(text)
+    Ok(Outcome::success(text))
 }
 
 /// `fit` on the model at its dimension.
@@ -117,8 +129,7 @@ impl WithDimension for Fit<'_> {
     type Output = Result<FitReport, Failure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        fit(&system, self.setup, self.progress)
-            .map_err(|e| Failure::new(status::FIT_FAILED, format!("error: {e}")))
+        fit(&system, self.setup, self.progress).map_err(|e| Failure::new(ExitStatus::FitFailed, e))
     }
 }
 
@@ -130,7 +141,7 @@ fn dispatch(
     model
         .clone()
         .with_dimension(Fit { setup, progress })
-        .map_err(|e| Failure::usage(format!("error: {e}")))?
+        .map_err(|e| Failure::usage(e.to_string()))?
 }
 
 fn text_report(report: &FitReport) -> String {
@@ -192,7 +203,7 @@ fn write_outputs(
     scenario: &Path,
 ) -> Result<(), Failure> {
     let io = |path: &Path, e: std::io::Error| {
-        Failure::io(format!("error: cannot write {}: {e}", path.display()))
+        Failure::io(format!("cannot write {}: {e}", path.display()))
     };
     std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
     let values: Vec<f64> = report.parameters.iter().map(|p| p.fitted).collect();
@@ -211,10 +222,10 @@ fn write_outputs(
     );
     let toml_text = header
         + &toml::to_string(&fitted)
-            .map_err(|e| Failure::io(format!("error: cannot write the scenario: {e}")))?;
+            .map_err(|e| Failure::io(format!("cannot write the scenario: {e}")))?;
     let json = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
-    let svg = overlay(report, &setup.target)
-        .map_err(|e| Failure::io(format!("error: plotting failed: {e}")))?;
+    let svg =
+        overlay(report, &setup.target).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
     for (name, contents) in [
         ("fitted.toml", toml_text),
         ("fit.json", json),

@@ -1,29 +1,51 @@
 //! `lpm generate`: write (or check) the committed generated files.
 
-use crate::commands::Failure;
+use crate::failure::{Failure, Outcome};
+use crate::status::ExitStatus;
 use lagrangian_core::generate::{generate_all, stale};
 use lagrangian_sim::report::write_atomically;
-use std::path::Path;
+use std::path::PathBuf;
 
-/// Exit status when `--check` finds stale files.
-pub const STALE: u8 = crate::commands::status::STALE;
+/// Options of `lpm generate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The workspace root (with specs/ and generated/).
+    #[arg(long, default_value = ".")]
+    root: PathBuf,
+    /// List the stale files (status 6) instead of writing them.
+    #[arg(long)]
+    check: bool,
+}
 
-pub fn run(root: &Path, check: bool) -> Result<(String, u8), Failure> {
-    if check {
-        let files = stale(root).map_err(|e| Failure::spec(format!("error: {e}")))?;
+/// A failure of the generator: a spec's rendered diagnostics, or a file.
+fn failure(e: String) -> Failure {
+    if e.starts_with("error:") {
+        Failure::rendered(ExitStatus::Spec, e)
+    } else {
+        Failure::new(ExitStatus::Spec, e)
+    }
+}
+
+/// Runs `lpm generate`.
+pub fn run(args: Args) -> Result<Outcome, Failure> {
+    let root = &args.root;
+    if args.check {
+        let files = stale(root).map_err(failure)?;
         if files.is_empty() {
-            return Ok(("generated files are up to date\n".to_string(), 0));
+            return Ok(Outcome::success(
+                "generated files are up to date\n".to_string(),
+            ));
         }
         let list: Vec<String> = files.iter().map(|p| format!("  {}", p.display())).collect();
-        return Ok((
-            format!(
+        return Ok(Outcome {
+            text: format!(
                 "stale generated files (run `cargo generate`):\n{}\n",
                 list.join("\n")
             ),
-            STALE,
-        ));
+            status: ExitStatus::Stale,
+        });
     }
-    let files = generate_all(root).map_err(|e| Failure::spec(format!("error: {e}")))?;
+    let files = generate_all(root).map_err(failure)?;
     let mut written = 0;
     for file in &files {
         let path = root.join(&file.path);
@@ -32,14 +54,14 @@ pub fn run(root: &Path, check: bool) -> Result<(String, u8), Failure> {
         }
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir)
-                .map_err(|e| Failure::io(format!("error: cannot create {}: {e}", dir.display())))?;
+                .map_err(|e| Failure::io(format!("cannot create {}: {e}", dir.display())))?;
         }
         write_atomically(&path, file.contents.as_bytes())
-            .map_err(|e| Failure::io(format!("error: cannot write {}: {e}", path.display())))?;
+            .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
         written += 1;
     }
-    Ok((
-        format!("{} generated files, {written} rewritten\n", files.len()),
-        0,
-    ))
+    Ok(Outcome::success(format!(
+        "{} generated files, {written} rewritten\n",
+        files.len()
+    )))
 }

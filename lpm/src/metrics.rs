@@ -1,16 +1,30 @@
 //! `lpm metrics FILE.csv`: crash-pulse metrics of a measured or exported pulse.
 
-use crate::commands::Failure;
+use crate::failure::{Failure, Outcome};
 use lagrangian_sim::pulse::channels::{Quantity, read_time_histories};
 use lagrangian_sim::pulse::{Pulse, PulseMetrics};
 use std::fmt::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-pub fn run(file: &Path, v0: Option<f64>, json: bool) -> Result<String, Failure> {
+/// Options of `lpm metrics`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The pulse: a CSV file with units in its header.
+    file: PathBuf,
+    /// Impact velocity [m/s], if the file has no velocity column.
+    #[arg(long, allow_negative_numbers = true)]
+    v0: Option<f64>,
+    #[arg(long, value_parser = ["text", "json"], default_value = "text")]
+    format: String,
+}
+
+/// Runs `lpm metrics`.
+pub fn run(args: Args) -> Result<Outcome, Failure> {
+    let (file, v0, json) = (args.file.as_path(), args.v0, args.format == "json");
     let histories = read_time_histories(file).map_err(|e| Failure::channels(&e))?;
     let Some(acceleration) = histories.channel(Quantity::Acceleration) else {
         return Err(Failure::usage(format!(
-            "error: {}: the metrics need an acceleration (or deceleration) column",
+            "{}: the metrics need an acceleration (or deceleration) column",
             file.display()
         )));
     };
@@ -19,14 +33,14 @@ pub fn run(file: &Path, v0: Option<f64>, json: bool) -> Result<String, Failure> 
         (None, Some(v)) => v.values[0],
         (None, None) => {
             return Err(Failure::usage(format!(
-                "error: {}: no velocity column to take the impact velocity from; give it with --v0 <m/s>",
+                "{}: no velocity column to take the impact velocity from; give it with --v0 <m/s>",
                 file.display()
             )));
         }
     };
     if !v0.is_finite() {
         return Err(Failure::usage(format!(
-            "error: impact velocity {v0} is not a number"
+            "impact velocity {v0} is not a number"
         )));
     }
     let crush = histories
@@ -34,12 +48,12 @@ pub fn run(file: &Path, v0: Option<f64>, json: bool) -> Result<String, Failure> 
         .map(|c| c.values.as_slice());
     let metrics = Pulse::resampled(&histories.t, &acceleration.values, v0, crush)
         .and_then(|p| p.metrics())
-        .map_err(|e| Failure::evaluation(format!("error: {}: {e}", file.display())))?;
-    Ok(if json {
+        .map_err(|e| Failure::evaluation(format!("{}: {e}", file.display())))?;
+    Ok(Outcome::success(if json {
         serde_json::to_string_pretty(&metrics).unwrap_or_default() + "\n"
     } else {
         text(&metrics, file)
-    })
+    }))
 }
 
 fn text(m: &PulseMetrics, file: &Path) -> String {

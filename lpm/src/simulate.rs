@@ -1,7 +1,9 @@
 //! `lpm simulate`: run a spec file under a scenario and write the results.
 
-use crate::commands::{Failure, compile};
+use crate::failure::{Failure, Outcome};
+use crate::spec::{compile, find_scenario, out_dir};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::ode::Method;
 use lagrangian_sim::plot::{PlotSetup, figure_svg};
 use lagrangian_sim::report::{Units, summary_json, text_summary, trajectory_csv, write_atomically};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
@@ -9,64 +11,37 @@ use lagrangian_sim::simulate::{SimulationResult, simulate};
 use std::path::{Path, PathBuf};
 
 /// Options of `lpm simulate`.
-pub struct SimulateOptions {
-    pub spec: PathBuf,
-    pub scenario: Option<PathBuf>,
-    pub settings: Vec<String>,
-    pub t_end: Option<f64>,
-    pub rtol: Option<f64>,
-    pub atol: Option<f64>,
-    pub method: Option<String>,
-    pub out: Option<PathBuf>,
+#[derive(clap::Args)]
+pub struct Args {
+    /// The spec file (`.lpm`).
+    spec: PathBuf,
+    /// The scenario (TOML); by default the one in `scenarios/` beside the spec that names it.
+    #[arg(long)]
+    scenario: Option<PathBuf>,
+    /// Override a parameter (`k1=7e4`), give an input a constant (`barrier_x1=0`)
+    /// or set a scenario entry (`components.front_end.unloading=elastic`).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// End time [s].
+    #[arg(long)]
+    t_end: Option<f64>,
+    /// Relative tolerance of the local error.
+    #[arg(long)]
+    rtol: Option<f64>,
+    /// Absolute tolerance of the local error.
+    #[arg(long)]
+    atol: Option<f64>,
+    /// Integration method (the scenario's `simulation.method`).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Method::NAMES))]
+    method: Option<String>,
+    /// Output directory (default lpm-out/<spec name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
-/// The scenario beside a spec: `<spec dir>/scenarios/*.toml` whose `spec` key names it.
-pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
-    let Some(dir) = spec.parent().map(|d| d.join("scenarios")) else {
-        return Ok(None);
-    };
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return Ok(None);
-    };
-    let target = std::fs::canonicalize(spec).ok();
-    let mut found: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .filter(|p| {
-            let named = std::fs::read_to_string(p)
-                .ok()
-                .and_then(|text| text.parse::<toml::Table>().ok())
-                .and_then(|t| t.get("spec").and_then(|s| s.as_str()).map(|s| dir.join(s)));
-            named
-                .and_then(|n| std::fs::canonicalize(n).ok())
-                .is_some_and(|n| Some(n) == target)
-        })
-        .collect();
-    found.sort();
-    match found.len() {
-        0 => Ok(None),
-        1 => Ok(found.pop()),
-        _ => Err(Failure::usage(format!(
-            "error: several scenarios name {}: {}; choose one with --scenario",
-            spec.display(),
-            found
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ))),
-    }
-}
-
-pub fn run(options: SimulateOptions) -> Result<String, Failure> {
-    let compiled = compile(&options.spec)?;
-    let model = compiled.interpreted();
-    let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match &options.scenario {
-        Some(p) => Some(p.clone()),
-        None => find_scenario(&options.spec)?,
-    };
-    let mut settings = options.settings.clone();
+/// The settings the command line adds to the scenario's.
+fn settings(options: &Args) -> Vec<String> {
+    let mut settings = options.set.clone();
     if let Some(t) = options.t_end {
         settings.push(format!("simulation.t_end={t}"));
     }
@@ -79,6 +54,19 @@ pub fn run(options: SimulateOptions) -> Result<String, Failure> {
     if let Some(m) = &options.method {
         settings.push(format!("simulation.method=\"{m}\""));
     }
+    settings
+}
+
+/// Runs `lpm simulate`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let compiled = compile(&options.spec)?;
+    let model = compiled.interpreted();
+    let names = ModelNames::of_interpreted(&model);
+    let scenario_path = match &options.scenario {
+        Some(p) => Some(p.clone()),
+        None => find_scenario(&options.spec)?,
+    };
+    let settings = settings(&options);
     let scenario = match &scenario_path {
         Some(path) => Scenario::load(path, &names, &settings),
         None => Scenario::defaults(&names, &settings),
@@ -90,21 +78,14 @@ pub fn run(options: SimulateOptions) -> Result<String, Failure> {
         .map_or("default scenario (no scenario file)".to_string(), |p| {
             p.display().to_string()
         });
-    let stem = options
-        .spec
-        .file_stem()
-        .map_or("model".into(), |s| s.to_string_lossy().into_owned());
-    let out = options
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("lpm-out").join(&stem));
+    let out = out_dir(options.out.clone(), &options.spec, "");
     write_outputs(&out, &result, &model, &scenario, &scenario_name)?;
     let mut text = text_summary(&result, &scenario_name);
     text.push_str(&format!(
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
         out.display()
     ));
-    Ok(text)
+    Ok(Outcome::success(text))
 }
 
 /// `simulate` on the model at its dimension.
@@ -124,7 +105,7 @@ impl WithDimension for Simulate<'_> {
 fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, Failure> {
     model
         .with_dimension(Simulate { scenario })
-        .map_err(|e| Failure::usage(format!("error: {e}")))?
+        .map_err(|e| Failure::usage(e.to_string()))?
 }
 
 fn write_outputs(
@@ -135,7 +116,7 @@ fn write_outputs(
     scenario_name: &str,
 ) -> Result<(), Failure> {
     std::fs::create_dir_all(out)
-        .map_err(|e| Failure::io(format!("error: cannot create {}: {e}", out.display())))?;
+        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
     let input_units = result
         .input_columns
         .iter()
@@ -165,8 +146,8 @@ fn write_outputs(
         g: result.g,
         title: format!("{} — {}", result.model, scenario_name),
     };
-    let svg = figure_svg(result, &setup)
-        .map_err(|e| Failure::io(format!("error: plotting failed: {e}")))?;
+    let svg =
+        figure_svg(result, &setup).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
     let files = [
         ("trajectory.csv", trajectory_csv(result, &units)),
         ("summary.json", summary_json(result)),
@@ -175,7 +156,7 @@ fn write_outputs(
     for (name, contents) in files {
         let path = out.join(name);
         write_atomically(&path, contents.as_bytes())
-            .map_err(|e| Failure::io(format!("error: cannot write {}: {e}", path.display())))?;
+            .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(())
 }

@@ -1,10 +1,12 @@
 //! `lpm sweep`: run a scenario many times with values varied, in parallel,
 //! and write one row of summary metrics per run (CSV or Parquet).
 
-use crate::commands::{Failure, compile, status};
+use crate::failure::{Failure, Outcome};
+use crate::spec::compile;
+use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, WithDimension};
-use lagrangian_sim::scenario::{BaseScenario, ModelNames};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
     Design, Journal, Plan, Row, Settings, Shard, journal_path, read_groups, run_scenario,
     stream_sweep, write_parquet,
@@ -15,54 +17,102 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// Options of `lpm sweep`.
-pub struct SweepOptions {
-    pub scenario: PathBuf,
-    pub spec: Option<PathBuf>,
-    pub grid: Vec<String>,
-    pub samples: Option<usize>,
-    pub vary: Vec<String>,
-    pub design: Design,
-    pub seed: u64,
-    pub settings: Vec<String>,
-    pub out: PathBuf,
-    pub parquet: Option<bool>,
-    pub shard: Option<String>,
-    pub threads: usize,
-    pub quiet: bool,
-    pub resume: bool,
+#[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("plan").required(true).args(["grid", "samples"])))]
+pub struct Args {
+    /// The scenario (TOML); its `spec` key names the model.
+    scenario: PathBuf,
+    /// The spec, if not the one the scenario names.
+    #[arg(long)]
+    spec: Option<PathBuf>,
+    /// A grid axis: KEY=a,b,c or KEY=low:high:count; every combination of
+    /// the axes is run, the last varying fastest.
+    #[arg(long, value_name = "KEY=VALUES")]
+    grid: Vec<String>,
+    /// Number of sampled runs (with --vary).
+    #[arg(long, requires = "vary")]
+    samples: Option<usize>,
+    /// A sampled axis: KEY=low:high (uniform) or KEY=low:high:log.
+    #[arg(long, value_name = "KEY=LOW:HIGH", requires = "samples")]
+    vary: Vec<String>,
+    /// How samples are placed.
+    #[arg(long, value_enum, default_value = "latin-hypercube")]
+    design: DesignArg,
+    /// Seed of the sampled design (run i's values depend only on seed and i).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// A setting for every run, as in `lpm simulate --set`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Output table: .csv or .parquet.
+    #[arg(long)]
+    out: PathBuf,
+    /// Output format (default: from the --out extension).
+    #[arg(long, value_parser = ["csv", "parquet"])]
+    format: Option<String>,
+    /// Run only block i of n of the runs (1 ≤ i ≤ n), e.g. a Slurm array
+    /// task: `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
+    /// Worker threads (default: one per core).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+    /// Continue an interrupted sweep from its journal (`OUT.partial`):
+    /// the same command line with --resume runs only the missing runs.
+    #[arg(long)]
+    resume: bool,
+}
+
+/// How a sampled design places its runs.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum DesignArg {
+    /// One run in each of N equal strata of every axis.
+    LatinHypercube,
+    /// Independent uniform draws.
+    Random,
 }
 
 /// The spec a scenario names with its `spec` key (relative to the scenario).
 fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, Failure> {
-    let table: toml::Table = text
-        .parse()
-        .map_err(|e| Failure::usage(format!("error: {}: {e}", scenario.display())))?;
-    let spec = table.get("spec").and_then(|s| s.as_str()).ok_or_else(|| {
-        Failure::usage(format!(
-            "error: {} has no `spec = \"…\"` entry; name the spec with --spec",
-            scenario.display()
-        ))
-    })?;
-    Ok(scenario.parent().unwrap_or(Path::new(".")).join(spec))
+    spec_named_by(scenario, text)
+        .map_err(Failure::usage)?
+        .ok_or_else(|| {
+            Failure::usage(format!(
+                "{} has no `spec = \"…\"` entry; name the spec with --spec",
+                scenario.display()
+            ))
+        })
 }
 
-pub fn run(options: SweepOptions) -> Result<String, Failure> {
-    let usage = |m: String| Failure::usage(format!("error: {m}"));
-    let plan = match (options.grid.is_empty(), options.samples) {
+/// The plan of the command line: a grid or a sampled design.
+fn plan(options: &Args) -> Result<Plan, String> {
+    let design = match options.design {
+        DesignArg::LatinHypercube => Design::LatinHypercube,
+        DesignArg::Random => Design::Random,
+    };
+    match (options.grid.is_empty(), options.samples) {
         (false, None) if options.vary.is_empty() => Plan::grid(&options.grid),
-        (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, options.design),
+        (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, design),
         (true, None) => {
             Err("give --grid KEY=VALUES or --samples N with --vary KEY=LOW:HIGH".into())
         }
         _ => Err("--grid cannot be combined with --samples/--vary".into()),
     }
-    .map_err(usage)?;
+}
+
+/// Runs `lpm sweep`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let usage = |m: String| Failure::usage(m);
+    let plan = plan(&options).map_err(usage)?;
     let shard = match &options.shard {
         Some(text) => Shard::parse(text).map_err(usage)?,
         None => Shard::ALL,
     };
-    let parquet = match options.parquet {
-        Some(p) => p,
+    let parquet = match options.format.as_deref() {
+        Some(format) => format == "parquet",
         None => match options.out.extension().and_then(|e| e.to_str()) {
             Some("parquet") => true,
             Some("csv") => false,
@@ -74,12 +124,8 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
             }
         },
     };
-    let text = std::fs::read_to_string(&options.scenario).map_err(|e| {
-        Failure::io(format!(
-            "error: cannot read {}: {e}",
-            options.scenario.display()
-        ))
-    })?;
+    let text = std::fs::read_to_string(&options.scenario)
+        .map_err(|e| Failure::io(format!("cannot read {}: {e}", options.scenario.display())))?;
     let spec = match &options.spec {
         Some(spec) => spec.clone(),
         None => spec_of(&options.scenario, &text)?,
@@ -89,7 +135,7 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
         text,
         file: Some(options.scenario.clone()),
         names: ModelNames::of_interpreted(&model),
-        settings: options.settings.clone(),
+        settings: options.set.clone(),
     };
     let settings = Settings::new(&plan, &base, model.parameters()).map_err(usage)?;
     // A key the scenario does not know fails here, before any run starts.
@@ -143,14 +189,14 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
     };
     let finished = model
         .with_dimension(sweep)
-        .map_err(|e| Failure::usage(format!("error: {e}")))??;
+        .map_err(|e| Failure::usage(e.to_string()))??;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     drop(journal);
     let rate = finished as f64 / elapsed.max(1e-9);
     if finished < remaining.len() {
-        return Err(Failure::new(
-            status::INTERRUPTED,
+        return Err(Failure::rendered(
+            ExitStatus::Interrupted,
             format!(
                 "stopped: {} of {} runs are done and kept in {}; run the same command with --resume to finish",
                 done + finished,
@@ -187,17 +233,17 @@ pub fn run(options: SweepOptions) -> Result<String, Failure> {
     }
     if !runs.is_empty() && ok == 0 && done == 0 {
         return Err(Failure::new(
-            status::EVERY_RUN_FAILED,
-            format!("error: every run failed\n{text}"),
+            ExitStatus::EveryRunFailed,
+            format!("every run failed\n{text}"),
         ));
     }
-    Ok(text)
+    Ok(Outcome::success(text))
 }
 
 /// The journal to append to: a new one, or with `--resume` the one an
 /// interrupted run of the same sweep left (with the number of runs in it).
 fn open_journal(
-    options: &SweepOptions,
+    options: &Args,
     path: &Path,
     axes: &[String],
     plan: &Plan,
@@ -207,19 +253,19 @@ fn open_journal(
     let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
     match (options.resume, resumable) {
         (true, true) => Journal::resume(path, axes, plan, runs)
-            .map_err(|e| Failure::new(status::DATA_FILE, format!("error: --resume: {e}"))),
+            .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}"))),
         (true, false) if options.out.exists() => Err(Failure::usage(format!(
-            "error: --resume: {} is complete and there is no {} to resume",
+            "--resume: {} is complete and there is no {} to resume",
             options.out.display(),
             path.display()
         ))),
         (false, true) => Err(Failure::usage(format!(
-            "error: {} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
+            "{} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
             path.display()
         ))),
         _ => Journal::create(path, axes)
             .map(|j| (j, 0))
-            .map_err(|e| Failure::io(format!("error: {e}"))),
+            .map_err(Failure::io),
     }
 }
 
@@ -231,7 +277,7 @@ fn finish_output(
     axes: &[String],
     parquet: bool,
 ) -> Result<(), Failure> {
-    let io = |e: String| Failure::io(format!("error: {e}"));
+    let io = |e: String| Failure::io(e);
     if parquet {
         let groups = read_groups(journal, axes.len(), PARQUET_GROUP_ROWS).map_err(io)?;
         let temporary = temporary_beside(out);
@@ -270,7 +316,7 @@ fn stop_on_signal() -> Arc<AtomicBool> {
     // Fails only if a handler is already installed (not in this program).
     let _ = ctrlc::set_handler(move || {
         if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(i32::from(status::INTERRUPTED));
+            std::process::exit(i32::from(ExitStatus::Interrupted.code()));
         }
         eprintln!("\nstopping: finishing the runs under way (again to stop at once)");
     });
@@ -301,7 +347,6 @@ impl WithDimension for Sweep<'_> {
             stop,
             sink,
         } = self;
-        stream_sweep(&system, base, plan, settings, runs, threads, stop, sink)
-            .map_err(|e| Failure::io(format!("error: {e}")))
+        stream_sweep(&system, base, plan, settings, runs, threads, stop, sink).map_err(Failure::io)
     }
 }

@@ -2,10 +2,11 @@
 //! files): each case of `cases.toml` must fail with its exit status and
 //! exactly its message, and write nothing.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+use common::{ROOT, lpm};
+
+use std::path::Path;
 
 #[test]
 fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
@@ -24,11 +25,7 @@ fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
             .iter()
             .map(|a| a.as_str().unwrap().replace("{out}", out.to_str().unwrap()))
             .collect();
-        let o = Command::new(env!("CARGO_BIN_EXE_lpm"))
-            .args(&args)
-            .current_dir(ROOT)
-            .output()
-            .unwrap();
+        let o = lpm(&args);
         let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
         let expected_status = case["status"].as_integer().unwrap() as i32;
         let text = |key: &str| {

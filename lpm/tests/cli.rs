@@ -1,22 +1,8 @@
 //! The `lpm` binary: derive, eval and chain, their output and exit codes.
 
-use std::process::{Command, Output};
+mod common;
 
-fn lpm(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lpm"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("lpm runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{lpm, stderr, stdout};
 
 #[test]
 fn derive_prints_the_compact_paper_mass_matrix() {

@@ -1,26 +1,11 @@
 //! `lpm fit`: from a pulse the tool simulated itself to a fitted scenario
 //! that `lpm simulate --scenario` runs, and its errors.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn lpm(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lpm"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("lpm runs")
-}
+use common::{lpm, stderr, temporary};
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn temporary(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lpm-fit-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use std::path::Path;
 
 /// `t [ms], deceleration [g]` up to 100 ms from a trajectory.csv.
 fn target_from(trajectory: &Path, target: &Path) {

@@ -1,16 +1,11 @@
 //! `lpm metrics`: a half-sine pulse written with units other than SI, against
 //! the closed-form OLC and ASI of the same pulse.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::lpm;
 
 const G: f64 = 9.80665;
-
-fn lpm(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lpm"))
-        .args(args)
-        .output()
-        .expect("lpm runs")
-}
 
 /// Bisection on a closed-form function.
 fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {

@@ -1,27 +1,13 @@
 //! `lpm sweep`: the runs it makes, its tables, shards, and its errors.
 
+mod common;
+
+use common::{ROOT, lpm, stderr, temporary};
+use std::process::Command;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
 const SCENARIO: &str = "specs/scenarios/yaris_full_frontal.toml";
-
-fn lpm(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lpm"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("lpm runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn temporary(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lpm-sweep-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// The rows of a CSV file as maps from column to cell.
 fn read_csv(path: &PathBuf) -> (Vec<String>, Vec<Vec<String>>) {
@@ -286,16 +272,11 @@ fn long_sweep(out: &std::path::Path, runs: usize) -> Vec<String> {
     .collect()
 }
 
-fn lpm_owned(args: &[String]) -> Output {
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    lpm(&args)
-}
-
 #[test]
 fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
     let dir = temporary("resume");
     let full = dir.join("full.csv");
-    let o = lpm_owned(&long_sweep(&full, 40));
+    let o = lpm(&long_sweep(&full, 40));
     assert!(o.status.success(), "{}", stderr(&o));
     let complete = std::fs::read_to_string(&full).unwrap();
     // What a kill leaves: the header, some rows, half of the next row.
@@ -306,7 +287,7 @@ fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
     cut.push_str(&lines[14][..lines[14].len() / 2]);
     std::fs::write(&journal, &cut).unwrap();
     // Without --resume the journal is not overwritten.
-    let refused = lpm_owned(&long_sweep(&out, 40));
+    let refused = lpm(&long_sweep(&out, 40));
     assert_eq!(refused.status.code(), Some(2));
     assert!(
         stderr(&refused).contains("--resume"),
@@ -316,7 +297,7 @@ fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
     assert_eq!(std::fs::read_to_string(&journal).unwrap(), cut);
     let mut resume = long_sweep(&out, 40);
     resume.push("--resume".into());
-    let o = lpm_owned(&resume);
+    let o = lpm(&resume);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         String::from_utf8_lossy(&o.stdout).contains("(13 from the journal, 27 now)"),
@@ -326,7 +307,7 @@ fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), complete);
     assert!(!journal.exists());
     // Nothing left to resume.
-    let o = lpm_owned(&resume);
+    let o = lpm(&resume);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("is complete"), "{}", stderr(&o));
 }
@@ -335,14 +316,14 @@ fn a_journal_cut_anywhere_resumes_to_the_uninterrupted_table() {
 fn a_journal_of_another_sweep_is_not_resumed() {
     let dir = temporary("other");
     let first = dir.join("a.csv");
-    assert!(lpm_owned(&long_sweep(&first, 6)).status.success());
+    assert!(lpm(&long_sweep(&first, 6)).status.success());
     let text = std::fs::read_to_string(&first).unwrap();
     let out = dir.join("b.csv");
     std::fs::write(dir.join("b.csv.partial"), &text).unwrap();
     // Same columns, other values (7 runs instead of 6 along k1).
     let mut resume = long_sweep(&out, 7);
     resume.push("--resume".into());
-    let o = lpm_owned(&resume);
+    let o = lpm(&resume);
     assert_eq!(o.status.code(), Some(7), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("b.csv.partial:3: run 1 with values [32000.0] is not run 1 of this sweep (values [30000.0])"),
@@ -361,7 +342,7 @@ fn sigterm_stops_a_sweep_that_resume_then_finishes() {
     let args = long_sweep(&out, 600);
     let child = Command::new(env!("CARGO_BIN_EXE_lpm"))
         .args(&args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .current_dir(ROOT)
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
@@ -388,9 +369,9 @@ fn sigterm_stops_a_sweep_that_resume_then_finishes() {
     assert!((19..600).contains(&kept), "{kept} rows kept");
     let mut resume = args.clone();
     resume.push("--resume".into());
-    let o = lpm_owned(&resume);
+    let o = lpm(&resume);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(lpm_owned(&long_sweep(&full, 600)).status.success());
+    assert!(lpm(&long_sweep(&full, 600)).status.success());
     assert_eq!(
         std::fs::read_to_string(&out).unwrap(),
         std::fs::read_to_string(&full).unwrap()

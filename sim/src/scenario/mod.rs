@@ -19,6 +19,7 @@
 
 mod base;
 mod bind;
+mod discover;
 mod file;
 mod overrides;
 mod resolve;
@@ -28,10 +29,11 @@ use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
 pub use base::BaseScenario;
+pub use discover::{scenarios_for, spec_named_by};
 use file::File;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};
 use overrides::apply_setting;
-pub use overrides::{setting_number, split_setting};
+pub use overrides::{Setting, setting_number, split_setting};
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;

@@ -19,41 +19,99 @@ pub fn setting_number(name: &str, value: &str) -> Result<f64, String> {
         .map_err(|_| format!("--set {name}: `{value}` is not a number"))
 }
 
-/// Applies one `--set key=value` to the document.
-pub(super) fn apply_setting(
-    document: &mut toml::Table,
-    setting: &str,
-    names: &ModelNames,
-    constants: &mut BTreeMap<String, f64>,
-) -> Result<(), String> {
-    let (key, value) = split_setting(setting)?;
-    if !key.contains('.') {
+/// What one `--set key=value` sets.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Setting {
+    /// A spec parameter.
+    Parameter {
+        /// Its name.
+        name: String,
+        /// The value.
+        value: f64,
+    },
+    /// An input function, given a constant value.
+    InputConstant {
+        /// Its name.
+        name: String,
+        /// The value.
+        value: f64,
+    },
+    /// An entry of the scenario file, by its dotted key.
+    Entry {
+        /// The key, e.g. `simulation.t_end`.
+        key: String,
+        /// The value as TOML reads it (a bare word is a string).
+        value: toml::Value,
+    },
+}
+
+impl Setting {
+    /// Reads `key=value`: a plain key names a parameter or an input of
+    /// `names` (an error, with a suggestion, if neither), a dotted key a
+    /// scenario entry.
+    pub fn parse(setting: &str, names: &ModelNames) -> Result<Setting, String> {
+        let (key, value) = split_setting(setting)?;
+        if key.contains('.') {
+            let value = format!("v = {value}")
+                .parse::<toml::Table>()
+                .ok()
+                .and_then(|mut t| t.remove("v"))
+                .unwrap_or_else(|| toml::Value::String(value.to_string()));
+            return Ok(Setting::Entry {
+                key: key.to_string(),
+                value,
+            });
+        }
         let number = setting_number(key, value)?;
+        let name = key.to_string();
         if names.parameters.iter().any(|p| p == key) {
-            let parameters = document
-                .entry("parameters")
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if let toml::Value::Table(t) = parameters {
-                t.insert(key.to_string(), toml::Value::Float(number));
-            }
-            return Ok(());
+            return Ok(Setting::Parameter {
+                name,
+                value: number,
+            });
         }
         if names.inputs.iter().any(|i| i == key) {
-            constants.insert(key.to_string(), number);
-            return Ok(());
+            return Ok(Setting::InputConstant {
+                name,
+                value: number,
+            });
         }
         let known = names
             .parameters
             .iter()
             .chain(&names.inputs)
             .map(String::as_str);
-        return Err(unknown("--set: parameter or input", key, known));
+        Err(unknown("--set: parameter or input", key, known))
     }
-    let parsed: toml::Value = format!("v = {value}")
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|mut t| t.remove("v"))
-        .unwrap_or_else(|| toml::Value::String(value.to_string()));
+}
+
+/// Applies one `--set key=value` to the document (input constants go to
+/// `constants`, which are not part of it).
+pub(super) fn apply_setting(
+    document: &mut toml::Table,
+    setting: &str,
+    names: &ModelNames,
+    constants: &mut BTreeMap<String, f64>,
+) -> Result<(), String> {
+    match Setting::parse(setting, names)? {
+        Setting::Parameter { name, value } => {
+            let parameters = document
+                .entry("parameters")
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let toml::Value::Table(t) = parameters {
+                t.insert(name, toml::Value::Float(value));
+            }
+        }
+        Setting::InputConstant { name, value } => {
+            constants.insert(name, value);
+        }
+        Setting::Entry { key, value } => set_entry(document, &key, value)?,
+    }
+    Ok(())
+}
+
+/// Sets the entry at dotted `key`, making the tables on the way.
+fn set_entry(document: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
     let mut table = document;
     let parts: Vec<&str> = key.split('.').collect();
     for part in &parts[..parts.len() - 1] {
@@ -65,6 +123,6 @@ pub(super) fn apply_setting(
             _ => return Err(format!("--set {key}: `{part}` is not a table")),
         };
     }
-    table.insert(parts[parts.len() - 1].to_string(), parsed);
+    table.insert(parts[parts.len() - 1].to_string(), value);
     Ok(())
 }

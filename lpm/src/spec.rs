@@ -1,0 +1,49 @@
+//! What several subcommands do with a spec file: compile it, find its
+//! scenario, name an output folder after it.
+
+use crate::failure::Failure;
+use crate::status::ExitStatus;
+use lagrangian_core::Compiled;
+use lagrangian_sim::scenario::scenarios_for;
+use std::path::{Path, PathBuf};
+
+/// Reads and compiles a spec, rendering errors as `file:line:col` snippets.
+pub fn compile(path: &Path) -> Result<Compiled, Failure> {
+    let source = std::fs::read_to_string(path)
+        .map_err(|e| Failure::io(format!("cannot read {}: {e}", path.display())))?;
+    Compiled::from_source(&source).map_err(|e| {
+        Failure::rendered(
+            ExitStatus::Spec,
+            e.render(&path.display().to_string(), &source),
+        )
+    })
+}
+
+/// The scenario beside a spec (`<spec dir>/scenarios/*.toml` whose `spec`
+/// key names it); `None` when there is none, a failure when there are several.
+pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
+    let mut found = scenarios_for(spec);
+    match found.len() {
+        0 => Ok(None),
+        1 => Ok(found.pop()),
+        _ => Err(Failure::usage(format!(
+            "several scenarios name {}: {}; choose one with --scenario",
+            spec.display(),
+            found
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))),
+    }
+}
+
+/// `out` if given, else `lpm-out/<spec name><suffix>`.
+pub fn out_dir(out: Option<PathBuf>, spec: &Path, suffix: &str) -> PathBuf {
+    out.unwrap_or_else(|| {
+        let stem = spec
+            .file_stem()
+            .map_or("model".into(), |s| s.to_string_lossy().into_owned());
+        Path::new("lpm-out").join(format!("{stem}{suffix}"))
+    })
+}

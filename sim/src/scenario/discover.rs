@@ -1,0 +1,43 @@
+//! Which scenario goes with a spec, and which spec with a scenario: the
+//! `spec = "…"` key of a scenario file, relative to the file.
+
+use std::path::{Path, PathBuf};
+
+/// The spec a scenario's text names with its `spec` key, relative to the
+/// scenario file `path`; `None` without the key.
+pub fn spec_named_by(path: &Path, text: &str) -> Result<Option<PathBuf>, String> {
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    Ok(table
+        .get("spec")
+        .and_then(|s| s.as_str())
+        .map(|spec| base.join(spec)))
+}
+
+/// The scenarios beside a spec, `<spec dir>/scenarios/*.toml`, whose `spec`
+/// key names it, sorted (none when the folder does not exist).
+pub fn scenarios_for(spec: &Path) -> Vec<PathBuf> {
+    let Some(dir) = spec.parent().map(|d| d.join("scenarios")) else {
+        return Vec::new();
+    };
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return Vec::new();
+    };
+    let target = std::fs::canonicalize(spec).ok();
+    let mut found: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| {
+            let named = std::fs::read_to_string(p)
+                .ok()
+                .and_then(|text| spec_named_by(p, &text).ok().flatten());
+            named
+                .and_then(|n| std::fs::canonicalize(n).ok())
+                .is_some_and(|n| Some(n) == target)
+        })
+        .collect();
+    found.sort();
+    found
+}
