@@ -93,7 +93,6 @@ pub enum Item {
     },
     /// `force at (x, z) = (Fx, Fz);` — a force applied at a point.
     PointForce {
-        keyword: Span,
         point: Vec<Expr>,
         point_span: Span,
         components: Vec<Expr>,
