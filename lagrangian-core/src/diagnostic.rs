@@ -3,7 +3,6 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, quote_spanned};
-use std::fmt;
 
 /// The source range from the first to the last token of a construct.
 ///
@@ -176,7 +175,11 @@ fn snippet(file: &str, source: &str, span: SpanRange) -> String {
 }
 
 /// All problems found in one spec (at least one).
-#[derive(Clone, Debug)]
+///
+/// It displays as the diagnostics' messages with their notes and help
+/// ([`Diagnostic::full_message`]), one after the other, a line apart.
+#[derive(Clone, Debug, thiserror::Error)]
+#[error("{}", full_messages(.diagnostics))]
 pub struct SpecErrors {
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -227,25 +230,32 @@ impl From<Diagnostic> for SpecErrors {
     }
 }
 
-impl fmt::Display for SpecErrors {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, d) in self.diagnostics.iter().enumerate() {
-            if i > 0 {
-                writeln!(f)?;
-            }
-            write!(f, "{}", d.full_message())?;
-        }
-        Ok(())
-    }
+/// Every diagnostic's full message, one after the other, a line apart.
+fn full_messages(diagnostics: &[Diagnostic]) -> String {
+    let messages: Vec<String> = diagnostics.iter().map(Diagnostic::full_message).collect();
+    messages.join("\n")
 }
-
-impl std::error::Error for SpecErrors {}
 
 pub use lagrangian_model::names::closest;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spec_errors_display_every_message_a_line_apart() {
+        let errors = SpecErrors {
+            diagnostics: vec![
+                Diagnostic::new(Span::call_site(), "first").with_help("fix it"),
+                Diagnostic::new(Span::call_site(), "second")
+                    .with_note("declared here", Span::call_site()),
+            ],
+        };
+        assert_eq!(
+            errors.to_string(),
+            "first\nhelp: fix it\nsecond\nnote: declared here (line 1, column 1)"
+        );
+    }
 
     #[test]
     fn renders_file_line_column_with_caret() {
