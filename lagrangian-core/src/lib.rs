@@ -17,6 +17,7 @@ pub mod expr;
 pub mod generate;
 pub mod optimize;
 pub mod program;
+pub mod random;
 pub mod rational;
 pub mod spec;
 pub mod tape;

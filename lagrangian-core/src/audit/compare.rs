@@ -3,6 +3,7 @@
 use super::small_angle;
 use crate::emit::{Notation, Printer};
 use crate::expr::{Evaluator, ExprId, Node, Store, SymbolKind};
+use crate::random::Lcg;
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
@@ -255,13 +256,8 @@ fn term_findings(store: &mut Store, derived: ExprId, hand: ExprId) -> Vec<Findin
 /// Random symbol values: coordinates within ±0.1 (the small-angle regime),
 /// velocities within ±1, accelerations within ±10, default parameters.
 pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
-    let mut seed = 0x5eed_u64;
-    let mut uniform = move |a: f64, b: f64| {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut random = Lcg::new(0x5eed);
+    let mut uniform = |low, high| random.uniform(low, high);
     (0..count)
         .map(|_| {
             model
@@ -287,13 +283,8 @@ pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
 /// parameter in [0.5, 2] (an identity holds for all values, and defaults of
 /// 0 would hide the terms they multiply).
 fn identity_states(store: &Store, count: usize) -> Vec<Vec<f64>> {
-    let mut seed = 0x1de7_u64;
-    let mut uniform = move |a: f64, b: f64| {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut random = Lcg::new(0x1de7);
+    let mut uniform = |low, high| random.uniform(low, high);
     (0..count)
         .map(|_| {
             store
