@@ -19,20 +19,29 @@
 //! `sin u`); and a sum that is the linearized `c · sinᵏu · cosˡu` raised to a
 //! negative power becomes those atoms (module `laurent`).
 //!
-//! The form is *canonical* — equal expressions are the same node — for
-//! polynomials in the sines and cosines of rational combinations of the
-//! symbols, whatever else multiplies them: the cross terms of a kinetic
-//! energy cancel exactly and `sin² + cos²` folds to 1. It stays canonical
-//! with negative powers of `sin u` and `cos u` for one argument `u` per
-//! monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
-//! is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`. It is **not** canonical,
-//! and equal expressions may be different nodes, when a negative power sits
-//! next to a sine or cosine of an unrelated argument (`sin(θ₁ − θ₂) / sin θ₁`),
-//! for negative powers of both `sin u` and `sin 2u`, for sums under
-//! fractional powers or divided by a sum that is not a sine–cosine monomial
-//! (`1 / (1 + cos θ)`), for `exp`/`ln` identities, and for `π` inside an
-//! argument (a symbol here: `sin(θ + π)` is not `−sin θ`). The audit
-//! compares numerically where the symbolic comparison is inconclusive.
+//! The form is *canonical* when equal expressions are the same node. It is
+//! canonical for:
+//!
+//! * polynomials in the sines and cosines of rational combinations of the
+//!   symbols, whatever else multiplies them: the cross terms of a kinetic
+//!   energy cancel exactly and `sin² + cos²` folds to 1;
+//! * negative powers of `sin u` and `cos u` for one argument `u` per
+//!   monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
+//!   is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`.
+//!
+//! It is **not** canonical, and equal expressions may be different nodes,
+//! for:
+//!
+//! * a negative power next to a sine or cosine of an unrelated argument
+//!   (`sin(θ₁ − θ₂) / sin θ₁`);
+//! * negative powers of both `sin u` and `sin 2u`;
+//! * sums under fractional powers, or divided by a sum that is not a
+//!   sine–cosine monomial (`1 / (1 + cos θ)`);
+//! * `exp`/`ln` identities;
+//! * `π` inside an argument (a symbol here: `sin(θ + π)` is not `−sin θ`).
+//!
+//! The audit compares numerically where the symbolic comparison is
+//! inconclusive.
 //!
 //! Nodes are interned, so structurally equal expressions share one [`ExprId`]
 //! and comparing expressions is comparing integers.
@@ -193,13 +202,14 @@ pub const MAX_EXPONENT: i128 = 1024;
 pub const MAX_EXPANDED_TERMS: usize = 4096;
 
 /// The most terms the product of two sums may expand to before any cancel
-/// ([`EngineError::ProductTooLarge`] beyond); the shipped specs and the
-/// 40-link pendulum chain stay below it.
+/// ([`EngineError::ProductTooLarge`] beyond); well above what the shipped
+/// specs and the pendulum chains of the benchmarks need.
 pub const MAX_PRODUCT_TERMS: usize = 1 << 16;
 
-/// The most distinct expression nodes one model may create: the 40-link
-/// pendulum chain, far beyond the models this tool is for, needs 184 362
-/// (10× fewer). A derivation that would exceed it stops with an error.
+/// The most distinct expression nodes one model may create, well above what
+/// the 40-link pendulum chain of BENCHMARKS.md needs (a model far beyond
+/// those this tool is for). A derivation that would exceed it stops with an
+/// error instead of exhausting memory.
 pub const MAX_NODES: usize = 2_000_000;
 
 /// Owner of all nodes, symbols and input functions of one model.
