@@ -20,6 +20,7 @@ use proc_macro2::Span;
 /// The derived equations of motion and energy bookkeeping of a model.
 #[derive(Clone, Debug)]
 pub struct Derivation {
+    /// `n`, the number of generalized coordinates.
     pub dimension: usize,
     /// `M`, row-major `n × n`, symmetric.
     pub mass_matrix: Vec<ExprId>,
@@ -27,13 +28,17 @@ pub struct Derivation {
     pub forcing: Vec<ExprId>,
     /// `Q_i` from the force statements (without the dissipation function).
     pub generalized_forces: Vec<ExprId>,
+    /// `T`, the kinetic energy.
     pub kinetic: ExprId,
+    /// `V`, the potential energy (0 when the spec has none).
     pub potential: ExprId,
+    /// `D`, the Rayleigh dissipation function (0 when the spec has none).
     pub dissipation: ExprId,
     /// `Σ_i ∂D/∂q̇_i q̇_i`, the power drawn by the dissipation function.
     pub damping_power: ExprId,
     /// `Σ_i Q_i q̇_i`, the power of the generalized forces.
     pub external_power: ExprId,
+    /// The Jacobians, when the spec asks for them (`jacobians;`).
     pub jacobians: Option<Jacobians>,
 }
 
@@ -49,6 +54,7 @@ pub struct Jacobians {
 }
 
 impl Derivation {
+    /// `M_ij`.
     pub fn mass(&self, i: usize, j: usize) -> ExprId {
         self.mass_matrix[i * self.dimension + j]
     }

@@ -10,7 +10,9 @@ use quote::{ToTokens, quote_spanned};
 /// range is kept as its two ends; `syn::Error::new_spanned` underlines both.
 #[derive(Clone, Copy, Debug)]
 pub struct SpanRange {
+    /// The span of the first token.
     pub start: Span,
+    /// The span of the last token.
     pub end: Span,
 }
 
@@ -53,7 +55,9 @@ impl ToTokens for SpanRange {
 /// One problem in a spec, located at a range of its source.
 #[derive(Clone, Debug)]
 pub struct Diagnostic {
+    /// What is wrong: the first line of the error.
     pub message: String,
+    /// Where: the construct at fault.
     pub span: SpanRange,
     /// How to fix it, when we can say.
     pub help: Option<String>,
@@ -65,6 +69,7 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
+    /// A diagnostic at `span` without help or note.
     pub fn new(span: impl Into<SpanRange>, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             message: message.into(),
@@ -88,11 +93,13 @@ impl Diagnostic {
         self.follows_earlier
     }
 
+    /// Adds how to fix the problem.
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
         self.help = Some(help.into());
         self
     }
 
+    /// Adds a second location that explains the first.
     pub fn with_note(mut self, note: impl Into<String>, span: impl Into<SpanRange>) -> Diagnostic {
         self.note = Some(Box::new((note.into(), span.into())));
         self
@@ -120,6 +127,7 @@ impl Diagnostic {
         text
     }
 
+    /// The diagnostic as a `syn::Error` at its span (for `compile_error!`).
     pub fn to_syn_error(&self) -> syn::Error {
         syn::Error::new_spanned(self.span, self.full_message())
     }
@@ -181,10 +189,12 @@ fn snippet(file: &str, source: &str, span: SpanRange) -> String {
 #[derive(Clone, Debug, thiserror::Error)]
 #[error("{}", full_messages(.diagnostics))]
 pub struct SpecErrors {
+    /// The problems, in the order they were found.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl SpecErrors {
+    /// One problem.
     pub fn single(d: Diagnostic) -> SpecErrors {
         SpecErrors {
             diagnostics: vec![d],
@@ -204,6 +214,8 @@ impl SpecErrors {
         error
     }
 
+    /// Every diagnostic rendered as [`Diagnostic::render`] does, a blank line
+    /// apart.
     pub fn render(&self, file: &str, source: &str) -> String {
         self.diagnostics
             .iter()

@@ -31,27 +31,40 @@ pub enum GroupVerdict {
 pub enum Finding {
     /// Terms of the derivation that the hand derivation lacks.
     Missing {
+        /// The missing terms combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the hand derivation that the derivation lacks.
     Extra {
+        /// The extra terms combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the derivation that the hand derivation has with the opposite sign.
     Sign {
+        /// The derivation's terms of opposite sign, combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the derivation that the hand derivation has `ratio` times.
     Scaled {
+        /// The derivation's terms scaled by `ratio` by hand, combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
+        /// The hand coefficient over the derived one.
         ratio: Rational,
     },
 }
@@ -83,17 +96,26 @@ impl Finding {
 pub struct GroupAudit {
     /// What the terms multiply (a monomial of velocities, accelerations and inputs).
     pub motion_expr: ExprId,
-    /// The coefficients on both sides, in the store.
+    /// The derivation's coefficient (0 when it has none here), in the store.
     pub derived_expr: ExprId,
+    /// The hand derivation's coefficient (0 when it has none here), in the store.
     pub hand_expr: ExprId,
     /// What the terms multiply, e.g. `dot(r)*dot(theta1)`; `1` for none.
     pub motion: String,
+    /// What the terms multiply, as LaTeX.
     pub motion_latex: String,
+    /// The derived coefficient, as text.
     pub derived: String,
+    /// The derived coefficient, as LaTeX.
     pub derived_latex: String,
+    /// The hand coefficient, as text.
     pub hand: String,
+    /// The hand coefficient, as LaTeX.
     pub hand_latex: String,
+    /// How the two coefficients compare.
     pub verdict: GroupVerdict,
+    /// The term-level differences, when the group does not match even under
+    /// the small-angle approximation.
     pub findings: Vec<Finding>,
 }
 

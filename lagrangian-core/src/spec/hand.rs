@@ -19,8 +19,10 @@ pub enum Convention {
 }
 
 impl Convention {
+    /// The names `convention = …;` accepts, as listed in errors.
     pub const NAMES: &'static str = "euler_lagrange";
 
+    /// What the hand-derived equations are, in words (for the report).
     pub fn description(self) -> &'static str {
         match self {
             Convention::EulerLagrange => {
@@ -44,23 +46,31 @@ pub enum Assumed {
 pub struct HandTerm {
     /// The term's value (with its sign).
     pub value: ExprId,
+    /// Where the term is written.
     pub span: SpanRange,
     /// Its dimension, when every name in it has a unit.
     pub dimension: Option<Dimension>,
 }
 
+/// A hand-derived equation or generalized force of one coordinate, `q = …;`.
 #[derive(Clone, Debug)]
 pub struct HandEquation {
+    /// The coordinate's index.
     pub coordinate: usize,
+    /// The sum of the terms.
     pub value: ExprId,
+    /// Where the right-hand side is written.
     pub span: SpanRange,
+    /// Its terms as written, in order.
     pub terms: Vec<HandTerm>,
 }
 
 /// The `hand_derived` section of a spec.
 #[derive(Clone, Debug)]
 pub struct HandDerived {
+    /// The section's doc lines.
     pub doc: Vec<String>,
+    /// How the equations relate to the derivation.
     pub convention: Convention,
     /// Order of the Taylor polynomials that stand for sin and cos of angles
     /// in the small-angle comparison (1: sin θ ≈ θ, cos θ ≈ 1).
@@ -69,7 +79,9 @@ pub struct HandDerived {
     pub symbols: Vec<(String, ExprId)>,
     /// Values assumed for inputs or parameters the hand model does not have.
     pub assumptions: Vec<(Assumed, ExprId)>,
+    /// The equations, in the section's order, at most one per coordinate.
     pub equations: Vec<HandEquation>,
+    /// The generalized forces (`force q = …;`), likewise.
     pub forces: Vec<HandEquation>,
 }
 
