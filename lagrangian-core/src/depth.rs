@@ -5,21 +5,29 @@
 //! or a deep nest of brackets would overflow the stack and abort the process,
 //! or, inside `lagrangian!`, the compiler. Two defences:
 //!
+//! A large stack:
+//!
 //! * every entry point of the compiler runs its work through
 //!   [`with_large_stack`], which moves it to a 256 MiB stack segment when
-//!   less than 64 MiB of the current one is left, and parsing and lowering
-//!   through [`with_stack_for_tokens`], which sizes the segment by the
-//!   number of tokens (virtual memory: only the pages used are committed).
-//!   It stays on the same thread, so it works inside a procedural macro,
-//!   where the compiler's tokens and spans cannot leave the thread;
-//! * before `syn` parses anything, [`check_tokens`] rejects input whose
-//!   recursion depth even that stack could not hold: brackets nested deeper
-//!   than [`MAX_NESTING`] or a longer chain of method calls (each call
-//!   nests its receiver), more than [`MAX_OPERATOR_RUN`] operators in a row
-//!   (`- - - x` nests a unary expression per sign), or more than
-//!   [`MAX_TOKENS`] tokens, with an error at the offending token. A long
-//!   sum or product is fine: its tree is as deep as it is long, but the
-//!   compiler walks such chains with loops.
+//!   less than 64 MiB of the current one is left;
+//! * parsing and lowering run through [`with_stack_for_tokens`], which sizes
+//!   the segment by the number of tokens;
+//! * the segment is virtual memory: only the pages used are committed;
+//! * it stays on the same thread, so it works inside a procedural macro,
+//!   where the compiler's tokens and spans cannot leave the thread.
+//!
+//! Limits checked before `syn` parses anything: [`check_tokens`] rejects
+//! input whose recursion depth even that stack could not hold, with an error
+//! at the offending token:
+//!
+//! * brackets nested deeper than [`MAX_NESTING`], or a longer chain of
+//!   method calls (each call nests its receiver);
+//! * more than [`MAX_OPERATOR_RUN`] operators in a row (`- - - x` nests a
+//!   unary expression per sign);
+//! * more than [`MAX_TOKENS`] tokens.
+//!
+//! A long sum or product is fine: its tree is as deep as it is long, but the
+//! compiler walks such chains with loops.
 
 use crate::diagnostic::Diagnostic;
 use proc_macro2::{TokenStream, TokenTree};
@@ -42,8 +50,8 @@ const STACK_SIZE: usize = 256 << 20;
 
 /// Stack reserved per token for parsing and lowering: `syn` parses some
 /// shapes by recursion per operator (`a = b = c …`, right-associative),
-/// measured at about 4 KiB of stack per token in a debug build (a
-/// procedural macro's usual build); 16 KiB leaves a margin of 4.
+/// which takes a few KiB of stack per token in a debug build (a procedural
+/// macro's usual build); 16 KiB leaves a wide margin.
 const STACK_PER_TOKEN: usize = 16 << 10;
 
 /// Runs `f` on a 256 MiB stack segment when less than 64 MiB of stack is

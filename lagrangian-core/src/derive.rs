@@ -13,12 +13,14 @@
 //! analyses need.
 
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
-use crate::expr::{Evaluator, ExprId, Store, SymbolKind};
-use crate::spec::{Model, Statement};
+use crate::expr::{CoordinateSymbols, EngineError, Evaluator, ExprId, Store, SymbolId, SymbolKind};
+use crate::spec::{ForceStatement, Input, Model, Statement, engine_diagnostic};
+use proc_macro2::Span;
 
 /// The derived equations of motion and energy bookkeeping of a model.
 #[derive(Clone, Debug)]
 pub struct Derivation {
+    /// `n`, the number of generalized coordinates.
     pub dimension: usize,
     /// `M`, row-major `n × n`, symmetric.
     pub mass_matrix: Vec<ExprId>,
@@ -26,13 +28,17 @@ pub struct Derivation {
     pub forcing: Vec<ExprId>,
     /// `Q_i` from the force statements (without the dissipation function).
     pub generalized_forces: Vec<ExprId>,
+    /// `T`, the kinetic energy.
     pub kinetic: ExprId,
+    /// `V`, the potential energy (0 when the spec has none).
     pub potential: ExprId,
+    /// `D`, the Rayleigh dissipation function (0 when the spec has none).
     pub dissipation: ExprId,
     /// `Σ_i ∂D/∂q̇_i q̇_i`, the power drawn by the dissipation function.
     pub damping_power: ExprId,
     /// `Σ_i Q_i q̇_i`, the power of the generalized forces.
     pub external_power: ExprId,
+    /// The Jacobians, when the spec asks for them (`jacobians;`).
     pub jacobians: Option<Jacobians>,
 }
 
@@ -48,6 +54,7 @@ pub struct Jacobians {
 }
 
 impl Derivation {
+    /// `M_ij`.
     pub fn mass(&self, i: usize, j: usize) -> ExprId {
         self.mass_matrix[i * self.dimension + j]
     }
@@ -55,187 +62,247 @@ impl Derivation {
 
 /// Derives the equations of motion of `model`.
 pub fn derive(model: &mut Model) -> Result<Derivation, SpecErrors> {
-    let n = model.dimension();
-    let coordinates = model.coordinate_symbols();
-    let time = model.time;
-    let kinetic = model.kinetic.value;
-    let potential = model.potential.as_ref().map_or(Store::ZERO, |s| s.value);
-    let dissipation = model.dissipation.as_ref().map_or(Store::ZERO, |s| s.value);
-
-    let mut momenta = Vec::with_capacity(n);
-    for c in &coordinates {
-        let dt = model.store.diff(kinetic, c.velocity);
-        check(model, Some(&model.kinetic.clone()), "the kinetic energy")?;
-        let dv = model.store.diff(potential, c.velocity);
-        check(
-            model,
-            model.potential.clone().as_ref(),
-            "the potential energy",
-        )?;
-        momenta.push(model.store.sub(dt, dv));
+    let mut derivation = Deriver::new(model).equations()?;
+    check_positive_definite(model, &derivation.mass_matrix)?;
+    if model.jacobians {
+        let (mass, forcing) = (&derivation.mass_matrix, &derivation.forcing);
+        derivation.jacobians = Some(Deriver::new(model).jacobians(mass, forcing)?);
     }
-
-    let mut mass_matrix = vec![Store::ZERO; n * n];
-    for i in 0..n {
-        for j in i..n {
-            let m = model.store.diff(momenta[i], coordinates[j].velocity);
-            mass_matrix[i * n + j] = m;
-            mass_matrix[j * n + i] = m;
-        }
-    }
-    check(model, Some(&model.kinetic.clone()), "the mass matrix")?;
-
-    let mut generalized_forces = vec![Store::ZERO; n];
-    for force in model.forces.clone() {
-        for (i, q) in force.generalized {
-            generalized_forces[i] = model.store.add(generalized_forces[i], q);
-        }
-    }
-
-    let mut forcing = Vec::with_capacity(n);
-    for (i, c) in coordinates.iter().enumerate() {
-        let mut terms = Vec::with_capacity(n + 5);
-        terms.push(model.store.diff(kinetic, c.position));
-        check(model, Some(&model.kinetic.clone()), "the kinetic energy")?;
-        let dv = model.store.diff(potential, c.position);
-        check(
-            model,
-            model.potential.clone().as_ref(),
-            "the potential energy",
-        )?;
-        terms.push(model.store.neg(dv));
-        for cj in &coordinates {
-            let dp = model.store.diff(momenta[i], cj.position);
-            let term = model.store.mul(dp, cj.velocity_expr);
-            terms.push(model.store.neg(term));
-        }
-        let dp_dt = model.store.diff(momenta[i], time);
-        terms.push(model.store.neg(dp_dt));
-        check(model, Some(&model.kinetic.clone()), "the kinetic energy")?;
-        let dd = model.store.diff(dissipation, c.velocity);
-        check(
-            model,
-            model.dissipation.clone().as_ref(),
-            "the dissipation function",
-        )?;
-        terms.push(model.store.neg(dd));
-        terms.push(generalized_forces[i]);
-        forcing.push(model.store.sum(&terms));
-    }
-
-    let mut damping_terms = Vec::with_capacity(n);
-    let mut power_terms = Vec::with_capacity(n);
-    for (i, c) in coordinates.iter().enumerate() {
-        let dd = model.store.diff(dissipation, c.velocity);
-        damping_terms.push(model.store.mul(dd, c.velocity_expr));
-        power_terms.push(model.store.mul(generalized_forces[i], c.velocity_expr));
-    }
-    let damping_power = model.store.sum(&damping_terms);
-    let external_power = model.store.sum(&power_terms);
-
-    check_positive_definite(model, &mass_matrix)?;
-
-    let jacobians = if model.jacobians {
-        Some(derive_jacobians(model, &mass_matrix, &forcing)?)
-    } else {
-        None
-    };
-
-    Ok(Derivation {
-        dimension: n,
-        mass_matrix,
-        forcing,
-        generalized_forces,
-        kinetic,
-        potential,
-        dissipation,
-        damping_power,
-        external_power,
-        jacobians,
-    })
+    Ok(derivation)
 }
 
-fn derive_jacobians(
-    model: &mut Model,
-    mass: &[ExprId],
-    forcing: &[ExprId],
-) -> Result<Jacobians, SpecErrors> {
-    let n = model.dimension();
-    let coordinates = model.coordinate_symbols();
-    let mut forcing_q = Vec::with_capacity(n * n);
-    let mut forcing_qd = Vec::with_capacity(n * n);
-    let mut mass_times_acceleration_q = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for ck in &coordinates {
-            forcing_q.push(model.store.diff(forcing[i], ck.position));
-            forcing_qd.push(model.store.diff(forcing[i], ck.velocity));
-            let mut terms = Vec::with_capacity(n);
-            for (j, cj) in coordinates.iter().enumerate() {
-                let dm = model.store.diff(mass[i * n + j], ck.position);
-                terms.push(model.store.mul(dm, cj.acceleration_expr));
+/// The derivation's working state: the model's store, which it writes, and
+/// the rest of the model, which it reads (the statements that engine errors
+/// are reported against), borrowed apart.
+struct Deriver<'a> {
+    store: &'a mut Store,
+    sources: Sources<'a>,
+    coordinates: Vec<CoordinateSymbols>,
+    time: SymbolId,
+}
+
+/// The statements and spans of a model that locate an engine error.
+struct Sources<'a> {
+    kinetic: &'a Statement,
+    potential: Option<&'a Statement>,
+    dissipation: Option<&'a Statement>,
+    forces: &'a [ForceStatement],
+    inputs: &'a [Input],
+    jacobians_span: Option<Span>,
+    name_span: Span,
+}
+
+impl<'a> Deriver<'a> {
+    fn new(model: &'a mut Model) -> Deriver<'a> {
+        let coordinates = model.coordinate_symbols();
+        let Model {
+            store,
+            kinetic,
+            potential,
+            dissipation,
+            forces,
+            inputs,
+            jacobians_span,
+            name_span,
+            time,
+            ..
+        } = model;
+        Deriver {
+            store,
+            sources: Sources {
+                kinetic,
+                potential: potential.as_ref(),
+                dissipation: dissipation.as_ref(),
+                forces,
+                inputs,
+                jacobians_span: *jacobians_span,
+                name_span: *name_span,
+            },
+            coordinates,
+            time: *time,
+        }
+    }
+
+    /// `M`, `f`, `Q`, the energies and the powers (no Jacobians).
+    fn equations(mut self) -> Result<Derivation, SpecErrors> {
+        let n = self.coordinates.len();
+        let kinetic = self.sources.kinetic.value;
+        let potential = self.sources.potential.map_or(Store::ZERO, |s| s.value);
+        let dissipation = self.sources.dissipation.map_or(Store::ZERO, |s| s.value);
+        let momenta = self.momenta(kinetic, potential)?;
+        let mass_matrix = self.mass_matrix(&momenta)?;
+        let generalized_forces = self.generalized_forces();
+        let mut forcing = Vec::with_capacity(n);
+        for (i, &q) in generalized_forces.iter().enumerate() {
+            let energies = [kinetic, potential, dissipation];
+            forcing.push(self.forcing(i, energies, &momenta, q)?);
+        }
+        let (damping_power, external_power) = self.powers(dissipation, &generalized_forces);
+        Ok(Derivation {
+            dimension: n,
+            mass_matrix,
+            forcing,
+            generalized_forces,
+            kinetic,
+            potential,
+            dissipation,
+            damping_power,
+            external_power,
+            jacobians: None,
+        })
+    }
+
+    /// `p_i = ∂L/∂q̇_i = ∂T/∂q̇_i − ∂V/∂q̇_i`.
+    fn momenta(&mut self, kinetic: ExprId, potential: ExprId) -> Result<Vec<ExprId>, SpecErrors> {
+        let mut momenta = Vec::with_capacity(self.coordinates.len());
+        for i in 0..self.coordinates.len() {
+            let velocity = self.coordinates[i].velocity;
+            let dt = self.store.diff(kinetic, velocity);
+            self.check(Some(self.sources.kinetic), "the kinetic energy")?;
+            let dv = self.store.diff(potential, velocity);
+            self.check(self.sources.potential, "the potential energy")?;
+            momenta.push(self.store.sub(dt, dv));
+        }
+        Ok(momenta)
+    }
+
+    /// `M_ij = ∂p_i/∂q̇_j`, row-major, symmetric.
+    fn mass_matrix(&mut self, momenta: &[ExprId]) -> Result<Vec<ExprId>, SpecErrors> {
+        let n = self.coordinates.len();
+        let mut mass_matrix = vec![Store::ZERO; n * n];
+        for i in 0..n {
+            for j in i..n {
+                let m = self.store.diff(momenta[i], self.coordinates[j].velocity);
+                mass_matrix[i * n + j] = m;
+                mass_matrix[j * n + i] = m;
             }
-            mass_times_acceleration_q.push(model.store.sum(&terms));
         }
+        self.check(Some(self.sources.kinetic), "the mass matrix")?;
+        Ok(mass_matrix)
     }
-    check(model, None, "the Jacobians (requested by `jacobians;`)")?;
-    Ok(Jacobians {
-        forcing_q,
-        forcing_qd,
-        mass_times_acceleration_q,
-    })
-}
 
-/// Turns engine errors into a diagnostic pointing into `statement`, or at the
-/// input call that caused them.
-fn check(model: &mut Model, statement: Option<&Statement>, what: &str) -> Result<(), SpecErrors> {
-    let Some(error) = model.store.take_errors().into_iter().next() else {
-        return Ok(());
-    };
-    let input_names: Vec<String> = model.inputs.iter().map(|i| i.name.clone()).collect();
-    let span = match &error {
-        crate::expr::EngineError::MissingDerivative { input, .. } => {
-            locate_input_call(model, statement, *input)
+    /// `Q_i`, the sum of the force statements' generalized forces.
+    fn generalized_forces(&mut self) -> Vec<ExprId> {
+        let mut generalized_forces = vec![Store::ZERO; self.coordinates.len()];
+        for force in self.sources.forces {
+            for &(i, q) in &force.generalized {
+                generalized_forces[i] = self.store.add(generalized_forces[i], q);
+            }
         }
-        _ => None,
+        generalized_forces
     }
-    .or(statement.map(|s| s.span))
-    .or(model.jacobians_span.map(SpanRange::from))
-    .unwrap_or(model.name_span.into());
-    let mut diagnostic = expression_diagnostic(model, &input_names, error, span, what);
-    if statement.is_none()
-        && let Some(j) = model.jacobians_span
-    {
-        diagnostic = diagnostic.with_note("the Jacobians are requested here", j);
+
+    /// `f_i = ∂L/∂q_i − Σ_j (∂p_i/∂q_j) q̇_j − ∂p_i/∂t − ∂D/∂q̇_i + Q_i`,
+    /// `energies` being `[T, V, D]`.
+    fn forcing(
+        &mut self,
+        i: usize,
+        [kinetic, potential, dissipation]: [ExprId; 3],
+        momenta: &[ExprId],
+        generalized_force: ExprId,
+    ) -> Result<ExprId, SpecErrors> {
+        let (position, velocity) = (self.coordinates[i].position, self.coordinates[i].velocity);
+        let mut terms = Vec::with_capacity(momenta.len() + 5);
+        terms.push(self.store.diff(kinetic, position));
+        self.check(Some(self.sources.kinetic), "the kinetic energy")?;
+        let dv = self.store.diff(potential, position);
+        self.check(self.sources.potential, "the potential energy")?;
+        terms.push(self.store.neg(dv));
+        for cj in &self.coordinates {
+            let dp = self.store.diff(momenta[i], cj.position);
+            let term = self.store.mul(dp, cj.velocity_expr);
+            terms.push(self.store.neg(term));
+        }
+        let dp_dt = self.store.diff(momenta[i], self.time);
+        terms.push(self.store.neg(dp_dt));
+        self.check(Some(self.sources.kinetic), "the kinetic energy")?;
+        let dd = self.store.diff(dissipation, velocity);
+        self.check(self.sources.dissipation, "the dissipation function")?;
+        terms.push(self.store.neg(dd));
+        terms.push(generalized_force);
+        Ok(self.store.sum(&terms))
     }
-    Err(diagnostic.into())
+
+    /// `(Σ_i ∂D/∂q̇_i q̇_i, Σ_i Q_i q̇_i)`: the damping and external powers.
+    fn powers(&mut self, dissipation: ExprId, generalized_forces: &[ExprId]) -> (ExprId, ExprId) {
+        let n = self.coordinates.len();
+        let mut damping_terms = Vec::with_capacity(n);
+        let mut power_terms = Vec::with_capacity(n);
+        for (c, &q) in self.coordinates.iter().zip(generalized_forces) {
+            let dd = self.store.diff(dissipation, c.velocity);
+            damping_terms.push(self.store.mul(dd, c.velocity_expr));
+            power_terms.push(self.store.mul(q, c.velocity_expr));
+        }
+        (self.store.sum(&damping_terms), self.store.sum(&power_terms))
+    }
+
+    /// `∂f/∂q`, `∂f/∂q̇` and `∂(M a)/∂q`.
+    fn jacobians(mut self, mass: &[ExprId], forcing: &[ExprId]) -> Result<Jacobians, SpecErrors> {
+        let n = self.coordinates.len();
+        let mut forcing_q = Vec::with_capacity(n * n);
+        let mut forcing_qd = Vec::with_capacity(n * n);
+        let mut mass_times_acceleration_q = Vec::with_capacity(n * n);
+        for i in 0..n {
+            for ck in &self.coordinates {
+                forcing_q.push(self.store.diff(forcing[i], ck.position));
+                forcing_qd.push(self.store.diff(forcing[i], ck.velocity));
+                let mut terms = Vec::with_capacity(n);
+                for (j, cj) in self.coordinates.iter().enumerate() {
+                    let dm = self.store.diff(mass[i * n + j], ck.position);
+                    terms.push(self.store.mul(dm, cj.acceleration_expr));
+                }
+                mass_times_acceleration_q.push(self.store.sum(&terms));
+            }
+        }
+        self.check(None, "the Jacobians (requested by `jacobians;`)")?;
+        Ok(Jacobians {
+            forcing_q,
+            forcing_qd,
+            mass_times_acceleration_q,
+        })
+    }
+
+    /// Turns engine errors into a diagnostic pointing into `statement`, or at
+    /// the input call that caused them.
+    fn check(&mut self, statement: Option<&Statement>, what: &str) -> Result<(), SpecErrors> {
+        let Some(error) = self.store.take_errors().into_iter().next() else {
+            return Ok(());
+        };
+        let sources = &self.sources;
+        let span = match &error {
+            EngineError::MissingDerivative { input, .. } => {
+                sources.locate_input_call(statement, *input)
+            }
+            _ => None,
+        }
+        .or(statement.map(|s| s.span))
+        .or(sources.jacobians_span.map(SpanRange::from))
+        .unwrap_or(sources.name_span.into());
+        let input_names: Vec<String> = sources.inputs.iter().map(|i| i.name.clone()).collect();
+        let mut diagnostic = engine_diagnostic(self.store, &input_names, error, span, what);
+        if statement.is_none()
+            && let Some(j) = sources.jacobians_span
+        {
+            diagnostic = diagnostic.with_note("the Jacobians are requested here", j);
+        }
+        Err(diagnostic.into())
+    }
 }
 
-fn expression_diagnostic(
-    model: &Model,
-    input_names: &[String],
-    error: crate::expr::EngineError,
-    span: SpanRange,
-    what: &str,
-) -> Diagnostic {
-    crate::spec::engine_diagnostic(&model.store, input_names, error, span, what)
-}
-
-/// Where `input` is called: inside `statement` if it is, else anywhere.
-fn locate_input_call(
-    model: &Model,
-    statement: Option<&Statement>,
-    input: usize,
-) -> Option<SpanRange> {
-    let in_statement = statement.and_then(|s| s.input_calls.iter().find(|(i, _)| *i == input));
-    let anywhere = || {
-        std::iter::once(&model.kinetic)
-            .chain(model.potential.iter())
-            .chain(model.dissipation.iter())
-            .flat_map(|s| s.input_calls.iter())
-            .chain(model.forces.iter().flat_map(|f| f.input_calls.iter()))
-            .find(|(i, _)| *i == input)
-    };
-    in_statement.or_else(anywhere).map(|(_, span)| *span)
+impl Sources<'_> {
+    /// Where `input` is called: inside `statement` if it is, else anywhere.
+    fn locate_input_call(&self, statement: Option<&Statement>, input: usize) -> Option<SpanRange> {
+        let in_statement = statement.and_then(|s| s.input_calls.iter().find(|(i, _)| *i == input));
+        let anywhere = || {
+            std::iter::once(self.kinetic)
+                .chain(self.potential)
+                .chain(self.dissipation)
+                .flat_map(|s| s.input_calls.iter())
+                .chain(self.forces.iter().flat_map(|f| f.input_calls.iter()))
+                .find(|(i, _)| *i == input)
+        };
+        in_statement.or_else(anywhere).map(|(_, span)| *span)
+    }
 }
 
 /// A deterministic state away from symmetric configurations, used for checks:

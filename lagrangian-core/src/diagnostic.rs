@@ -3,7 +3,6 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, quote_spanned};
-use std::fmt;
 
 /// The source range from the first to the last token of a construct.
 ///
@@ -11,7 +10,9 @@ use std::fmt;
 /// range is kept as its two ends; `syn::Error::new_spanned` underlines both.
 #[derive(Clone, Copy, Debug)]
 pub struct SpanRange {
+    /// The span of the first token.
     pub start: Span,
+    /// The span of the last token.
     pub end: Span,
 }
 
@@ -54,7 +55,9 @@ impl ToTokens for SpanRange {
 /// One problem in a spec, located at a range of its source.
 #[derive(Clone, Debug)]
 pub struct Diagnostic {
+    /// What is wrong: the first line of the error.
     pub message: String,
+    /// Where: the construct at fault.
     pub span: SpanRange,
     /// How to fix it, when we can say.
     pub help: Option<String>,
@@ -66,6 +69,7 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
+    /// A diagnostic at `span` without help or note.
     pub fn new(span: impl Into<SpanRange>, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             message: message.into(),
@@ -89,11 +93,13 @@ impl Diagnostic {
         self.follows_earlier
     }
 
+    /// Adds how to fix the problem.
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
         self.help = Some(help.into());
         self
     }
 
+    /// Adds a second location that explains the first.
     pub fn with_note(mut self, note: impl Into<String>, span: impl Into<SpanRange>) -> Diagnostic {
         self.note = Some(Box::new((note.into(), span.into())));
         self
@@ -121,6 +127,7 @@ impl Diagnostic {
         text
     }
 
+    /// The diagnostic as a `syn::Error` at its span (for `compile_error!`).
     pub fn to_syn_error(&self) -> syn::Error {
         syn::Error::new_spanned(self.span, self.full_message())
     }
@@ -176,12 +183,18 @@ fn snippet(file: &str, source: &str, span: SpanRange) -> String {
 }
 
 /// All problems found in one spec (at least one).
-#[derive(Clone, Debug)]
+///
+/// It displays as the diagnostics' messages with their notes and help
+/// ([`Diagnostic::full_message`]), one after the other, a line apart.
+#[derive(Clone, Debug, thiserror::Error)]
+#[error("{}", full_messages(.diagnostics))]
 pub struct SpecErrors {
+    /// The problems, in the order they were found.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl SpecErrors {
+    /// One problem.
     pub fn single(d: Diagnostic) -> SpecErrors {
         SpecErrors {
             diagnostics: vec![d],
@@ -201,6 +214,8 @@ impl SpecErrors {
         error
     }
 
+    /// Every diagnostic rendered as [`Diagnostic::render`] does, a blank line
+    /// apart.
     pub fn render(&self, file: &str, source: &str) -> String {
         self.diagnostics
             .iter()
@@ -227,25 +242,32 @@ impl From<Diagnostic> for SpecErrors {
     }
 }
 
-impl fmt::Display for SpecErrors {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, d) in self.diagnostics.iter().enumerate() {
-            if i > 0 {
-                writeln!(f)?;
-            }
-            write!(f, "{}", d.full_message())?;
-        }
-        Ok(())
-    }
+/// Every diagnostic's full message, one after the other, a line apart.
+fn full_messages(diagnostics: &[Diagnostic]) -> String {
+    let messages: Vec<String> = diagnostics.iter().map(Diagnostic::full_message).collect();
+    messages.join("\n")
 }
-
-impl std::error::Error for SpecErrors {}
 
 pub use lagrangian_model::names::closest;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spec_errors_display_every_message_a_line_apart() {
+        let errors = SpecErrors {
+            diagnostics: vec![
+                Diagnostic::new(Span::call_site(), "first").with_help("fix it"),
+                Diagnostic::new(Span::call_site(), "second")
+                    .with_note("declared here", Span::call_site()),
+            ],
+        };
+        assert_eq!(
+            errors.to_string(),
+            "first\nhelp: fix it\nsecond\nnote: declared here (line 1, column 1)"
+        );
+    }
 
     #[test]
     fn renders_file_line_column_with_caret() {

@@ -10,7 +10,9 @@ use std::path::{Path, PathBuf};
 /// A file to write, relative to the workspace root.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GeneratedFile {
+    /// Where the file goes, relative to the workspace root.
     pub path: PathBuf,
+    /// Its full text.
     pub contents: String,
 }
 

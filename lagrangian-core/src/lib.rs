@@ -6,6 +6,8 @@
 //! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
 //! [`tape::lower`]).
 
+#![warn(missing_docs)]
+
 pub mod audit;
 pub mod depth;
 pub mod derive;
@@ -17,6 +19,7 @@ pub mod expr;
 pub mod generate;
 pub mod optimize;
 pub mod program;
+pub mod random;
 pub mod rational;
 pub mod spec;
 pub mod tape;
@@ -31,8 +34,11 @@ use program::Program;
 
 /// A model with its derived equations and optimized program.
 pub struct Compiled {
+    /// The resolved spec, whose store holds every expression below.
     pub model: Model,
+    /// `M q̈ = f`, the energies and powers, and the Jacobians if asked for.
     pub derivation: Derivation,
+    /// Every output of the derivation as optimized straight-line code.
     pub program: Program,
 }
 

@@ -72,7 +72,6 @@ struct Builder<'a> {
 
 /// Builds the program for all outputs of `derivation`.
 pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
-    let n = derivation.dimension;
     let mut b = Builder {
         store,
         ops: Vec::new(),
@@ -84,45 +83,7 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
         var_regs: FxHashMap::default(),
         shifted_vars: Default::default(),
     };
-    let mut dynamics: Vec<Reg> = mass_entries(n)
-        .map(|(i, j)| b.output(derivation.mass(i, j)))
-        .collect();
-    for &f in &derivation.forcing {
-        dynamics.push(b.output(f));
-    }
-    let dynamics_and_powers = dynamics
-        .iter()
-        .copied()
-        .chain([
-            b.output(derivation.damping_power),
-            b.output(derivation.external_power),
-        ])
-        .collect();
-    let energies = [
-        derivation.kinetic,
-        derivation.potential,
-        derivation.dissipation,
-        derivation.damping_power,
-        derivation.external_power,
-    ]
-    .into_iter()
-    .map(|e| b.output(e))
-    .collect();
-    let mut outputs = vec![
-        (RoutineKind::Dynamics, dynamics),
-        (RoutineKind::Energies, energies),
-        (RoutineKind::DynamicsAndPowers, dynamics_and_powers),
-    ];
-    if let Some(j) = &derivation.jacobians {
-        let regs = j
-            .forcing_q
-            .iter()
-            .chain(&j.forcing_qd)
-            .chain(&j.mass_times_acceleration_q)
-            .map(|&e| b.output(e))
-            .collect();
-        outputs.push((RoutineKind::Jacobians, regs));
-    }
+    let outputs = b.routine_outputs(derivation);
     let mut routines: Vec<Routine> = outputs
         .into_iter()
         .map(|(kind, outputs)| Routine {
@@ -131,30 +92,38 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
             outputs,
         })
         .collect();
-    // The arguments of each input call of the dynamics, for event functions
-    // and diagnostics that need them without evaluating the whole model.
-    let mut calls: Vec<(u32, Vec<Reg>)> = routines[0]
+    let (arguments, input_sites) = input_arguments(&b.ops, &routines[0]);
+    routines.push(arguments);
+    Program {
+        dimension: derivation.dimension,
+        ops: b.ops,
+        routines,
+        input_sites,
+    }
+}
+
+/// The input calls of the dynamics routine: the routine that computes their
+/// arguments, for event functions and diagnostics that need them without
+/// evaluating the whole model, and `(input index, argument count)` of each
+/// call, by input index.
+fn input_arguments(ops: &[Op], dynamics: &Routine) -> (Routine, Vec<(usize, usize)>) {
+    let mut calls: Vec<(u32, Vec<Reg>)> = dynamics
         .ops
         .iter()
-        .filter_map(|&r| match &b.ops[r as usize] {
+        .filter_map(|&r| match &ops[r as usize] {
             Op::Input { index, args } => Some((*index, args.to_vec())),
             _ => None,
         })
         .collect();
     calls.sort_by_key(|(index, _)| *index);
     let input_sites = calls.iter().map(|(i, a)| (*i as usize, a.len())).collect();
-    let argument_outputs: Vec<Reg> = calls.into_iter().flat_map(|(_, a)| a).collect();
-    routines.push(Routine {
+    let outputs: Vec<Reg> = calls.into_iter().flat_map(|(_, a)| a).collect();
+    let routine = Routine {
         kind: RoutineKind::InputArguments,
-        ops: dependency_closure(&b.ops, &argument_outputs),
-        outputs: argument_outputs,
-    });
-    Program {
-        dimension: n,
-        ops: b.ops,
-        routines,
-        input_sites,
-    }
+        ops: dependency_closure(ops, &outputs),
+        outputs,
+    };
+    (routine, input_sites)
 }
 
 /// The operations `outputs` depend on, in program order.
@@ -173,6 +142,52 @@ fn dependency_closure(ops: &[Op], outputs: &[Reg]) -> Vec<Reg> {
 }
 
 impl Builder<'_> {
+    /// The output registers of each routine but the input arguments, the
+    /// dynamics first, in the order of the runtime's layout.
+    fn routine_outputs(&mut self, derivation: &Derivation) -> Vec<(RoutineKind, Vec<Reg>)> {
+        let n = derivation.dimension;
+        let mut dynamics: Vec<Reg> = mass_entries(n)
+            .map(|(i, j)| self.output(derivation.mass(i, j)))
+            .collect();
+        for &f in &derivation.forcing {
+            dynamics.push(self.output(f));
+        }
+        let dynamics_and_powers = dynamics
+            .iter()
+            .copied()
+            .chain([
+                self.output(derivation.damping_power),
+                self.output(derivation.external_power),
+            ])
+            .collect();
+        let energies = [
+            derivation.kinetic,
+            derivation.potential,
+            derivation.dissipation,
+            derivation.damping_power,
+            derivation.external_power,
+        ]
+        .into_iter()
+        .map(|e| self.output(e))
+        .collect();
+        let mut outputs = vec![
+            (RoutineKind::Dynamics, dynamics),
+            (RoutineKind::Energies, energies),
+            (RoutineKind::DynamicsAndPowers, dynamics_and_powers),
+        ];
+        if let Some(j) = &derivation.jacobians {
+            let regs = j
+                .forcing_q
+                .iter()
+                .chain(&j.forcing_qd)
+                .chain(&j.mass_times_acceleration_q)
+                .map(|&e| self.output(e))
+                .collect();
+            outputs.push((RoutineKind::Jacobians, regs));
+        }
+        outputs
+    }
+
     fn op(&mut self, op: Op) -> Reg {
         let op = match op {
             Op::Add(a, b) if b < a => Op::Add(b, a),

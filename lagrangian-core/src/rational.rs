@@ -35,9 +35,13 @@ impl Default for Rational {
 }
 
 impl Rational {
+    /// 0.
     pub const ZERO: Rational = Rational { num: 0, den: 1 };
+    /// 1.
     pub const ONE: Rational = Rational { num: 1, den: 1 };
+    /// −1.
     pub const MINUS_ONE: Rational = Rational { num: -1, den: 1 };
+    /// ½ (the exponent of a square root).
     pub const HALF: Rational = Rational { num: 1, den: 2 };
 
     /// `num / den`, normalized; `None` when `den == 0` or on overflow.
@@ -61,6 +65,7 @@ impl Rational {
         Some(Rational { num: n, den: d })
     }
 
+    /// The integer `n` (exact: every `i64` fits).
     pub const fn integer(n: i64) -> Rational {
         Rational {
             num: n as i128,
@@ -68,26 +73,32 @@ impl Rational {
         }
     }
 
+    /// The numerator, which carries the sign.
     pub fn numer(self) -> i128 {
         self.num
     }
 
+    /// The denominator, positive and coprime to the numerator.
     pub fn denom(self) -> i128 {
         self.den
     }
 
+    /// Whether the value is 0.
     pub fn is_zero(self) -> bool {
         self.num == 0
     }
 
+    /// Whether the value is 1.
     pub fn is_one(self) -> bool {
         self.num == 1 && self.den == 1
     }
 
+    /// Whether the denominator is 1.
     pub fn is_integer(self) -> bool {
         self.den == 1
     }
 
+    /// Whether the value is below 0.
     pub fn is_negative(self) -> bool {
         self.num < 0
     }
@@ -106,6 +117,7 @@ impl Rational {
         self.num as f64 / self.den as f64
     }
 
+    /// `self + o`; `None` on overflow.
     pub fn checked_add(self, o: Rational) -> Option<Rational> {
         if self.den == o.den {
             return Rational::new(self.num.checked_add(o.num)?, self.den);
@@ -117,10 +129,12 @@ impl Rational {
         Rational::new(lhs.checked_add(rhs)?, self.den.checked_mul(o.den / g)?)
     }
 
+    /// `self − o`; `None` on overflow.
     pub fn checked_sub(self, o: Rational) -> Option<Rational> {
         self.checked_add(o.checked_neg()?)
     }
 
+    /// `self · o`; `None` on overflow.
     pub fn checked_mul(self, o: Rational) -> Option<Rational> {
         // At most the positive denominator, so it fits; 1 when a numerator is 0.
         let g1 = (gcd(self.num, o.den) as i128).max(1);
@@ -130,10 +144,12 @@ impl Rational {
         Rational::new(n, d)
     }
 
+    /// `self / o`; `None` when `o` is 0 or on overflow.
     pub fn checked_div(self, o: Rational) -> Option<Rational> {
         self.checked_mul(o.checked_recip()?)
     }
 
+    /// `−self`; `None` for a numerator of `i128::MIN`.
     pub fn checked_neg(self) -> Option<Rational> {
         Some(Rational {
             num: self.num.checked_neg()?,
@@ -141,6 +157,7 @@ impl Rational {
         })
     }
 
+    /// `1 / self`; `None` for 0 or on overflow.
     pub fn checked_recip(self) -> Option<Rational> {
         Rational::new(self.den, self.num)
     }

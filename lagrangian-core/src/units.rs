@@ -11,8 +11,11 @@ use std::fmt;
 /// `kg^mass · m^length · s^time`.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub struct Dimension {
+    /// The exponent of the kilogram.
     pub mass: Rational,
+    /// The exponent of the metre.
     pub length: Rational,
+    /// The exponent of the second.
     pub time: Rational,
 }
 
@@ -25,12 +28,19 @@ const fn dim(mass: i64, length: i64, time: i64) -> Dimension {
 }
 
 impl Dimension {
+    /// Dimensionless: ratios and angles (rad).
     pub const NONE: Dimension = dim(0, 0, 0);
+    /// kg.
     pub const MASS: Dimension = dim(1, 0, 0);
+    /// m.
     pub const LENGTH: Dimension = dim(0, 1, 0);
+    /// s.
     pub const TIME: Dimension = dim(0, 0, 1);
+    /// N = kg·m·s⁻².
     pub const FORCE: Dimension = dim(1, 1, -2);
+    /// J = N·m, that of `T` and `V`.
     pub const ENERGY: Dimension = dim(1, 2, -2);
+    /// W = J/s, that of the dissipation function `D`.
     pub const POWER: Dimension = dim(1, 2, -3);
 
     /// `self · o^sign`; `None` when an exponent leaves exact 128-bit fractions.
@@ -62,6 +72,7 @@ impl Dimension {
         })
     }
 
+    /// Whether it is dimensionless.
     pub fn is_none(self) -> bool {
         self == Dimension::NONE
     }

@@ -1,6 +1,7 @@
 //! Dimensional analysis catches inconsistent terms and names them.
 
 use lagrangian_core::Compiled;
+use lagrangian_core::units::Dimension;
 
 const HEADER: &str = "model Cart;
 coordinates { x [m], theta [rad] }
@@ -17,16 +18,62 @@ fn error_of(body: &str) -> String {
     }
 }
 
+/// Statements whose dimensions agree with the units of [`HEADER`].
+const CONSISTENT: [&str; 5] = [
+    "potential = 0.5 * k * pow(x, 2) + 0.5 * kt * pow(theta, 2) + m * g * l * (1.0 - cos(theta));",
+    "dissipation = 0.5 * c * pow(dot(x), 2);",
+    "force x = push(t);",
+    "force theta = torque(theta);",
+    "force at (x + l * sin(theta)) = (push(t));",
+];
+
 #[test]
 fn a_consistent_spec_with_units_compiles() {
     let source = format!(
-        "{HEADER}potential = 0.5 * k * pow(x, 2) + 0.5 * kt * pow(theta, 2) + m * g * l * (1.0 - cos(theta));
-dissipation = 0.5 * c * pow(dot(x), 2);
-force x = push(t);
-force theta = torque(theta);
-force at (x + l * sin(theta)) = (push(t));"
+        "{HEADER}{}\nhand_derived {{ x = m * ddot(x) + k * x; theta = m * pow(l, 2) * ddot(theta) + kt * theta; }}",
+        CONSISTENT.join("\n")
     );
-    Compiled::from_source(&source).unwrap();
+    let compiled = Compiled::from_source(&source).unwrap();
+    let model = &compiled.model;
+    assert_eq!(
+        model.coordinate_dimensions,
+        vec![Some(Dimension::LENGTH), Some(Dimension::NONE)]
+    );
+    // The dimensions inferred for the terms as written: forces in the
+    // equation of x, torques (N·m = J) in that of theta.
+    let hand = model.hand_derived.as_ref().unwrap();
+    let inferred: Vec<Vec<Option<Dimension>>> = hand
+        .equations
+        .iter()
+        .map(|e| e.terms.iter().map(|t| t.dimension).collect())
+        .collect();
+    let (force, torque) = (Some(Dimension::FORCE), Some(Dimension::ENERGY));
+    assert_eq!(inferred, vec![vec![force, force], vec![torque, torque]]);
+}
+
+#[test]
+fn every_statement_of_the_consistent_spec_is_checked() {
+    // Each statement times a length no longer has its dimension.
+    let messages = [
+        "the potential energy has dimension kg·m^3·s^-2, but must have J",
+        "the dissipation function has dimension kg·m^3·s^-3, but must have W",
+        "the generalized force on `x` has dimension J, but must have N",
+        "the generalized force on `theta` has dimension kg·m^3·s^-2, but must have J",
+        "this force component (× its point coordinate must be an energy) has dimension J, but must have N",
+    ];
+    for (k, message) in messages.iter().enumerate() {
+        let mut statements = CONSISTENT.map(String::from);
+        let statement = statements[k].trim_end_matches(';');
+        statements[k] = match statement.strip_suffix(')') {
+            Some(point_force) if k == 4 => format!("{point_force} * l);"),
+            _ => {
+                let (head, value) = statement.split_once(" = ").unwrap();
+                format!("{head} = ({value}) * l;")
+            }
+        };
+        let text = error_of(&statements.join("\n"));
+        assert!(text.contains(message), "{}: {text}", statements[k]);
+    }
 }
 
 #[test]
@@ -91,8 +138,32 @@ fn unknown_units_are_reported_at_the_unit() {
 
 #[test]
 fn specs_without_units_are_not_checked() {
-    let source = "model A; coordinates { x } parameters { m = 1.0, k = 2.0 } kinetic = 0.5 * m * pow(dot(x), 2); potential = k * x + m;";
-    Compiled::from_source(source).unwrap();
+    // `k * x + m` adds an energy to a mass, once units are declared.
+    let body = "kinetic = 0.5 * m * pow(dot(x), 2); potential = k * x + m;";
+    let with_units = format!(
+        "model A; coordinates {{ x [m] }} parameters {{ m [kg] = 1.0, k [N] = 2.0 }} {body}"
+    );
+    let text = Compiled::from_source(&with_units)
+        .err()
+        .unwrap()
+        .render("a.lpm", &with_units);
+    assert!(
+        text.contains("this term has dimension kg, but the other terms of the sum have J"),
+        "{text}"
+    );
+    // Without units nothing has a dimension, and the same spec compiles.
+    let without = format!("model A; coordinates {{ x }} parameters {{ m = 1.0, k = 2.0 }} {body}");
+    let compiled = Compiled::from_source(&without).unwrap();
+    assert_eq!(compiled.model.coordinate_dimensions, vec![None]);
+    // A name without a unit makes the terms that use it unknown, and only
+    // they go unchecked: `k * x` is unknown, `m` alone is no mismatch.
+    let partly =
+        format!("model A; coordinates {{ x [m] }} parameters {{ m [kg] = 1.0, k = 2.0 }} {body}");
+    let compiled = Compiled::from_source(&partly).unwrap();
+    assert_eq!(
+        compiled.model.coordinate_dimensions,
+        vec![Some(Dimension::LENGTH)]
+    );
 }
 
 #[test]

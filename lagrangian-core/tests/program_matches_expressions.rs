@@ -1,8 +1,9 @@
 //! The optimized program must compute exactly the derived expressions.
 
 use lagrangian_core::Compiled;
-use lagrangian_core::expr::{Evaluator, SymbolKind};
+use lagrangian_core::expr::{Evaluator, ExprId, SymbolKind};
 use lagrangian_core::program::{EvalContext, RoutineKind};
+use lagrangian_core::random::Lcg;
 
 /// Input function `k` evaluates to a smooth function of its arguments.
 fn smooth_inputs(input: usize, args: &[f64]) -> f64 {
@@ -13,11 +14,56 @@ fn smooth_inputs(input: usize, args: &[f64]) -> f64 {
         })
 }
 
-fn lcg(seed: &mut u64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+/// The routines to check and the expressions each must compute, in order.
+fn expected_outputs(compiled: &Compiled) -> Vec<(RoutineKind, Vec<ExprId>)> {
+    let d = &compiled.derivation;
+    let n = d.dimension;
+    let mut expected = Vec::new();
+    for i in 0..n {
+        for j in i..n {
+            expected.push(d.mass(i, j));
+        }
+    }
+    expected.extend(&d.forcing);
+    let mut cases = vec![(RoutineKind::Dynamics, expected)];
+    cases.push((
+        RoutineKind::Energies,
+        vec![
+            d.kinetic,
+            d.potential,
+            d.dissipation,
+            d.damping_power,
+            d.external_power,
+        ],
+    ));
+    if let Some(j) = &d.jacobians {
+        let all = j
+            .forcing_q
+            .iter()
+            .chain(&j.forcing_qd)
+            .chain(&j.mass_times_acceleration_q)
+            .copied()
+            .collect();
+        cases.push((RoutineKind::Jacobians, all));
+    }
+    cases
+}
+
+/// The value of every symbol of the store in the state of `ctx`.
+fn symbol_values(compiled: &Compiled, ctx: &EvalContext) -> Vec<f64> {
+    let store = &compiled.model.store;
+    let mut values = vec![0.0; store.symbols().len()];
+    for (i, s) in store.symbols().iter().enumerate() {
+        values[i] = match s.kind {
+            SymbolKind::Coordinate(k) => ctx.q[k],
+            SymbolKind::Velocity(k) => ctx.qd[k],
+            SymbolKind::Acceleration(k) => ctx.qdd[k],
+            SymbolKind::Parameter(k) => ctx.parameters[k],
+            SymbolKind::Time => ctx.t,
+            _ => 0.0,
+        };
+    }
+    values
 }
 
 fn check_spec(path: &str) {
@@ -25,30 +71,17 @@ fn check_spec(path: &str) {
     let compiled =
         Compiled::from_source(&source).unwrap_or_else(|e| panic!("{}", e.render(path, &source)));
     let n = compiled.derivation.dimension;
-    let mut seed = 42u64;
+    let mut random = Lcg::new(42);
     for _ in 0..20 {
-        let q: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-        let qd: Vec<f64> = (0..n).map(|_| 2.0 * lcg(&mut seed)).collect();
-        let qdd: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+        let q: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();
+        let qd: Vec<f64> = (0..n).map(|_| 2.0 * random.symmetric()).collect();
+        let qdd: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();
         let params: Vec<f64> = compiled
             .default_parameters()
             .iter()
-            .map(|p| p * (1.0 + 0.1 * lcg(&mut seed)))
+            .map(|p| p * (1.0 + 0.1 * random.symmetric()))
             .collect();
-        let t = lcg(&mut seed).abs();
-        let store = &compiled.model.store;
-        let mut values = vec![0.0; store.symbols().len()];
-        for (i, s) in store.symbols().iter().enumerate() {
-            values[i] = match s.kind {
-                SymbolKind::Coordinate(k) => q[k],
-                SymbolKind::Velocity(k) => qd[k],
-                SymbolKind::Acceleration(k) => qdd[k],
-                SymbolKind::Parameter(k) => params[k],
-                SymbolKind::Time => t,
-                _ => 0.0,
-            };
-        }
-        let mut ev = Evaluator::new(store, values, &smooth_inputs);
+        let t = random.symmetric().abs();
         let ctx = EvalContext {
             t,
             q: &q,
@@ -57,37 +90,10 @@ fn check_spec(path: &str) {
             parameters: &params,
             inputs: &smooth_inputs,
         };
+        let values = symbol_values(&compiled, &ctx);
+        let mut ev = Evaluator::new(&compiled.model.store, values, &smooth_inputs);
         let mut regs = compiled.program.registers();
-        let d = &compiled.derivation;
-        let mut expected = Vec::new();
-        for i in 0..n {
-            for j in i..n {
-                expected.push(d.mass(i, j));
-            }
-        }
-        expected.extend(&d.forcing);
-        let mut cases = vec![(RoutineKind::Dynamics, expected)];
-        cases.push((
-            RoutineKind::Energies,
-            vec![
-                d.kinetic,
-                d.potential,
-                d.dissipation,
-                d.damping_power,
-                d.external_power,
-            ],
-        ));
-        if let Some(j) = &d.jacobians {
-            let all = j
-                .forcing_q
-                .iter()
-                .chain(&j.forcing_qd)
-                .chain(&j.mass_times_acceleration_q)
-                .copied()
-                .collect();
-            cases.push((RoutineKind::Jacobians, all));
-        }
-        for (kind, exprs) in cases {
+        for (kind, exprs) in expected_outputs(&compiled) {
             let routine = compiled.program.routine(kind).unwrap();
             let mut out = vec![0.0; routine.outputs.len()];
             compiled.program.run(routine, &ctx, &mut regs, &mut out);

@@ -3,6 +3,7 @@
 use super::small_angle;
 use crate::emit::{Notation, Printer};
 use crate::expr::{Evaluator, ExprId, Node, Store, SymbolKind};
+use crate::random::Lcg;
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
 
@@ -30,27 +31,40 @@ pub enum GroupVerdict {
 pub enum Finding {
     /// Terms of the derivation that the hand derivation lacks.
     Missing {
+        /// The missing terms combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the hand derivation that the derivation lacks.
     Extra {
+        /// The extra terms combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the derivation that the hand derivation has with the opposite sign.
     Sign {
+        /// The derivation's terms of opposite sign, combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
     },
     /// Terms of the derivation that the hand derivation has `ratio` times.
     Scaled {
+        /// The derivation's terms scaled by `ratio` by hand, combined, in the store.
         expr: ExprId,
+        /// The same, as text.
         term: String,
+        /// The same, as LaTeX.
         latex: String,
+        /// The hand coefficient over the derived one.
         ratio: Rational,
     },
 }
@@ -82,17 +96,26 @@ impl Finding {
 pub struct GroupAudit {
     /// What the terms multiply (a monomial of velocities, accelerations and inputs).
     pub motion_expr: ExprId,
-    /// The coefficients on both sides, in the store.
+    /// The derivation's coefficient (0 when it has none here), in the store.
     pub derived_expr: ExprId,
+    /// The hand derivation's coefficient (0 when it has none here), in the store.
     pub hand_expr: ExprId,
     /// What the terms multiply, e.g. `dot(r)*dot(theta1)`; `1` for none.
     pub motion: String,
+    /// What the terms multiply, as LaTeX.
     pub motion_latex: String,
+    /// The derived coefficient, as text.
     pub derived: String,
+    /// The derived coefficient, as LaTeX.
     pub derived_latex: String,
+    /// The hand coefficient, as text.
     pub hand: String,
+    /// The hand coefficient, as LaTeX.
     pub hand_latex: String,
+    /// How the two coefficients compare.
     pub verdict: GroupVerdict,
+    /// The term-level differences, when the group does not match even under
+    /// the small-angle approximation.
     pub findings: Vec<Finding>,
 }
 
@@ -255,13 +278,8 @@ fn term_findings(store: &mut Store, derived: ExprId, hand: ExprId) -> Vec<Findin
 /// Random symbol values: coordinates within ±0.1 (the small-angle regime),
 /// velocities within ±1, accelerations within ±10, default parameters.
 pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
-    let mut seed = 0x5eed_u64;
-    let mut uniform = move |a: f64, b: f64| {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut random = Lcg::new(0x5eed);
+    let mut uniform = |low, high| random.uniform(low, high);
     (0..count)
         .map(|_| {
             model
@@ -287,13 +305,8 @@ pub fn sample_states(model: &crate::Model, count: usize) -> Vec<Vec<f64>> {
 /// parameter in [0.5, 2] (an identity holds for all values, and defaults of
 /// 0 would hide the terms they multiply).
 fn identity_states(store: &Store, count: usize) -> Vec<Vec<f64>> {
-    let mut seed = 0x1de7_u64;
-    let mut uniform = move |a: f64, b: f64| {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        a + (b - a) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut random = Lcg::new(0x1de7);
+    let mut uniform = |low, high| random.uniform(low, high);
     (0..count)
         .map(|_| {
             store

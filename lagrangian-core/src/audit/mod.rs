@@ -45,7 +45,10 @@ pub enum Verdict {
     /// Equal, established numerically: the symbolic difference does not
     /// simplify to 0, but vanishes to round-off at random states.
     Numerical,
+    /// Equal once the sines and cosines of the coordinates are replaced by
+    /// their Taylor polynomials of the section's `small_angle_order`.
     SmallAngle,
+    /// Different even under the small-angle approximation.
     Disagrees,
 }
 
@@ -56,17 +59,25 @@ pub struct DimensionFinding {
     pub term: String,
     /// The source line, when known.
     pub line: Option<usize>,
+    /// The dimension the term has as written.
     pub found: Dimension,
+    /// The dimension every term of the equation must have: energy per unit of
+    /// its coordinate.
     pub expected: Dimension,
 }
 
 /// The audit of one equation or generalized force.
 #[derive(Clone, Debug)]
 pub struct EquationAudit {
+    /// Whether this is an equation or a generalized force.
     pub part: Part,
+    /// The coordinate the equation or force belongs to.
     pub coordinate: String,
+    /// How the two sides compare overall.
     pub verdict: Verdict,
+    /// The terms of both sides, grouped by what they multiply.
     pub groups: Vec<GroupAudit>,
+    /// Terms of the hand side written with the wrong dimension.
     pub dimension_findings: Vec<DimensionFinding>,
     /// Largest `|derived − hand| / Σ|terms|` over the sampled states.
     pub max_residual: f64,
@@ -77,12 +88,17 @@ pub struct EquationAudit {
 /// The audit of a spec's `hand_derived` section.
 #[derive(Clone, Debug)]
 pub struct AuditReport {
+    /// The model's name.
     pub model: String,
+    /// The `hand_derived` section's doc lines.
     pub doc: Vec<String>,
+    /// What the hand-derived equations are, in words ([`crate::spec::Convention::description`]).
     pub convention: String,
+    /// Order of the Taylor polynomials of the small-angle comparison.
     pub small_angle_order: u32,
     /// `(name, value)` of each assumption, as text.
     pub assumptions: Vec<(String, String)>,
+    /// Every equation, then every generalized force, in the section's order.
     pub audits: Vec<EquationAudit>,
     /// Number of random states of the residuals.
     pub states: usize,
@@ -94,6 +110,8 @@ impl AuditReport {
         self.audits.iter().any(|a| a.verdict == Verdict::Disagrees)
     }
 
+    /// The audit of the equation (or generalized force) of `coordinate`, if
+    /// the section gives one.
     pub fn audit(&self, part: Part, coordinate: &str) -> Option<&EquationAudit> {
         self.audits
             .iter()

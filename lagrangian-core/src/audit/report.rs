@@ -53,9 +53,19 @@ fn finding_text(f: &Finding) -> String {
     }
 }
 
-/// The report as Markdown.
+/// The report as Markdown; `spec` is the path of the spec file it names.
 pub fn markdown(report: &AuditReport, spec: &str) -> String {
     let mut out = String::new();
+    introduction(&mut out, report, spec);
+    summary(&mut out, report);
+    for a in &report.audits {
+        section(&mut out, a, report.small_angle_order);
+    }
+    out
+}
+
+/// The title, the section's documentation and how the comparison is made.
+fn introduction(out: &mut String, report: &AuditReport, spec: &str) {
     let _ = writeln!(
         out,
         "# Audit of the hand-derived equations of `{}`\n",
@@ -94,6 +104,10 @@ pub fn markdown(report: &AuditReport, spec: &str) -> String {
         "* Residual: $|\\text{{derived}} - \\text{{hand}}| / \\sum|\\text{{terms}}|$ at {} random states (coordinates within ±0.1, velocities ±1, accelerations ±10, default parameters).\n",
         report.states
     );
+}
+
+/// One table row per audited equation or force.
+fn summary(out: &mut String, report: &AuditReport) {
     let _ = writeln!(
         out,
         "| part | verdict | groups matching / small-angle / differing | terms with wrong dimension | max residual |"
@@ -117,55 +131,62 @@ pub fn markdown(report: &AuditReport, spec: &str) -> String {
             a.max_residual
         );
     }
-    for a in &report.audits {
-        let _ = writeln!(out, "\n## {}\n", title(a));
+}
+
+/// The section of one equation or force: verdict, dimension findings, the
+/// groups of terms and their differences.
+fn section(out: &mut String, a: &EquationAudit, order: u32) {
+    let _ = writeln!(out, "\n## {}\n", title(a));
+    let _ = writeln!(
+        out,
+        "Verdict: {}. Relative residual: max {:.2e}, median {:.2e}.\n",
+        verdict_text(a.verdict, order),
+        a.max_residual,
+        a.median_residual
+    );
+    if a.verdict == Verdict::Numerical {
         let _ = writeln!(
             out,
-            "Verdict: {}. Relative residual: max {:.2e}, median {:.2e}.\n",
-            verdict_text(a.verdict, report.small_angle_order),
-            a.max_residual,
-            a.median_residual
+            "The difference of the two sides does not simplify to 0 symbolically (the canonical form is not canonical for every expression), but it vanishes to round-off, relative to the size of the terms, at random states with large angles and random parameters.\n"
         );
-        if a.verdict == Verdict::Numerical {
+    }
+    if !a.dimension_findings.is_empty() {
+        let _ = writeln!(out, "Terms written with the wrong dimension:\n");
+        for f in &a.dimension_findings {
+            let line = f.line.map_or(String::new(), |l| format!(" (line {l})"));
             let _ = writeln!(
                 out,
-                "The difference of the two sides does not simplify to 0 symbolically (the canonical form is not canonical for every expression), but it vanishes to round-off, relative to the size of the terms, at random states with large angles and random parameters.\n"
+                "* `{}`{line}: {}, expected {}",
+                f.term, f.found, f.expected
             );
         }
-        if !a.dimension_findings.is_empty() {
-            let _ = writeln!(out, "Terms written with the wrong dimension:\n");
-            for f in &a.dimension_findings {
-                let line = f.line.map_or(String::new(), |l| format!(" (line {l})"));
-                let _ = writeln!(
-                    out,
-                    "* `{}`{line}: {}, expected {}",
-                    f.term, f.found, f.expected
-                );
-            }
-            out.push('\n');
-        }
-        let _ = writeln!(out, "| multiplies | derived | by hand | comparison |");
-        let _ = writeln!(out, "|---|---|---|---|");
-        for g in &a.groups {
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} |",
-                math(&g.motion_latex),
-                math(&g.derived_latex),
-                math(&g.hand_latex),
-                group_text(g.verdict)
-            );
-        }
-        let with_findings: Vec<_> = a.groups.iter().filter(|g| !g.findings.is_empty()).collect();
-        if !with_findings.is_empty() {
-            let _ = writeln!(out, "\nDifferences after the small-angle approximation:\n");
-            for g in with_findings {
-                let _ = writeln!(out, "* multiplying {}:", math(&g.motion_latex));
-                for f in &g.findings {
-                    let _ = writeln!(out, "  * {}", finding_text(f));
-                }
+        out.push('\n');
+    }
+    groups(out, a);
+}
+
+/// The table of groups of terms, then the differences found in them.
+fn groups(out: &mut String, a: &EquationAudit) {
+    let _ = writeln!(out, "| multiplies | derived | by hand | comparison |");
+    let _ = writeln!(out, "|---|---|---|---|");
+    for g in &a.groups {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} |",
+            math(&g.motion_latex),
+            math(&g.derived_latex),
+            math(&g.hand_latex),
+            group_text(g.verdict)
+        );
+    }
+    let with_findings: Vec<_> = a.groups.iter().filter(|g| !g.findings.is_empty()).collect();
+    if !with_findings.is_empty() {
+        let _ = writeln!(out, "\nDifferences after the small-angle approximation:\n");
+        for g in with_findings {
+            let _ = writeln!(out, "* multiplying {}:", math(&g.motion_latex));
+            for f in &g.findings {
+                let _ = writeln!(out, "  * {}", finding_text(f));
             }
         }
     }
-    out
 }

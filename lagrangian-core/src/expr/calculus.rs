@@ -8,9 +8,13 @@ use rustc_hash::FxHashMap;
 /// The generalized coordinates of a model as symbol triples, for [`Store::time_derivative`].
 #[derive(Clone, Debug)]
 pub struct CoordinateSymbols {
+    /// `q`.
     pub position: SymbolId,
+    /// `q̇`, the symbol `dot(q)`.
     pub velocity: SymbolId,
+    /// `q̇` as an expression, which `d/dt` turns `q` into.
     pub velocity_expr: ExprId,
+    /// `q̈` as an expression, the symbol `ddot(q)`, which `d/dt` turns `q̇` into.
     pub acceleration_expr: ExprId,
 }
 

@@ -11,6 +11,7 @@ pub struct DisplayExpr<'a> {
 }
 
 impl Store {
+    /// `expr` as plain text when formatted, terms in canonical order.
     pub fn display(&self, expr: ExprId) -> DisplayExpr<'_> {
         DisplayExpr { store: self, expr }
     }

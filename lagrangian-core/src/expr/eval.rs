@@ -38,6 +38,8 @@ impl<'a> Evaluator<'a> {
         }
     }
 
+    /// The value of `e`, computed in `f64` (so `ln` of a negative number is
+    /// NaN); nodes shared between calls are computed once.
     pub fn eval(&mut self, e: ExprId) -> f64 {
         if let Some(&v) = self.cache.get(&e) {
             return v;

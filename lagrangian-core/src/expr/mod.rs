@@ -19,20 +19,29 @@
 //! `sin u`); and a sum that is the linearized `c · sinᵏu · cosˡu` raised to a
 //! negative power becomes those atoms (module `laurent`).
 //!
-//! The form is *canonical* — equal expressions are the same node — for
-//! polynomials in the sines and cosines of rational combinations of the
-//! symbols, whatever else multiplies them: the cross terms of a kinetic
-//! energy cancel exactly and `sin² + cos²` folds to 1. It stays canonical
-//! with negative powers of `sin u` and `cos u` for one argument `u` per
-//! monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
-//! is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`. It is **not** canonical,
-//! and equal expressions may be different nodes, when a negative power sits
-//! next to a sine or cosine of an unrelated argument (`sin(θ₁ − θ₂) / sin θ₁`),
-//! for negative powers of both `sin u` and `sin 2u`, for sums under
-//! fractional powers or divided by a sum that is not a sine–cosine monomial
-//! (`1 / (1 + cos θ)`), for `exp`/`ln` identities, and for `π` inside an
-//! argument (a symbol here: `sin(θ + π)` is not `−sin θ`). The audit
-//! compares numerically where the symbolic comparison is inconclusive.
+//! The form is *canonical* when equal expressions are the same node. It is
+//! canonical for:
+//!
+//! * polynomials in the sines and cosines of rational combinations of the
+//!   symbols, whatever else multiplies them: the cross terms of a kinetic
+//!   energy cancel exactly and `sin² + cos²` folds to 1;
+//! * negative powers of `sin u` and `cos u` for one argument `u` per
+//!   monomial, next to sines and cosines of multiples of `u`: `sin²θ / sin θ`
+//!   is `sin θ`, `tan θ · cos²θ` is `sin θ cos θ`.
+//!
+//! It is **not** canonical, and equal expressions may be different nodes,
+//! for:
+//!
+//! * a negative power next to a sine or cosine of an unrelated argument
+//!   (`sin(θ₁ − θ₂) / sin θ₁`);
+//! * negative powers of both `sin u` and `sin 2u`;
+//! * sums under fractional powers, or divided by a sum that is not a
+//!   sine–cosine monomial (`1 / (1 + cos θ)`);
+//! * `exp`/`ln` identities;
+//! * `π` inside an argument (a symbol here: `sin(θ + π)` is not `−sin θ`).
+//!
+//! The audit compares numerically where the symbolic comparison is
+//! inconclusive.
 //!
 //! Nodes are interned, so structurally equal expressions share one [`ExprId`]
 //! and comparing expressions is comparing integers.
@@ -56,6 +65,7 @@ use rustc_hash::FxHashMap;
 pub struct ExprId(u32);
 
 impl ExprId {
+    /// The node's position in its store, for tables indexed by expression.
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -66,6 +76,8 @@ impl ExprId {
 pub struct SymbolId(u32);
 
 impl SymbolId {
+    /// The symbol's position in its store: its index in [`Store::symbols`]
+    /// and in an [`Evaluator`]'s values.
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -86,26 +98,41 @@ pub enum SymbolKind {
     Time,
     /// The constant π.
     Pi,
-    /// Formal argument `i` of input function `input` (used in declared derivatives).
-    InputArgument { input: usize, position: usize },
+    /// A formal argument of an input function (used in declared derivatives).
+    InputArgument {
+        /// The input function's index.
+        input: usize,
+        /// The argument's position in its declaration.
+        position: usize,
+    },
 }
 
+/// A symbol of a store: the name it prints as and what it stands for.
 #[derive(Clone, Debug)]
 pub struct Symbol {
+    /// The name as written in the spec (`dot(x)` for a velocity, `ddot(x)`
+    /// for an acceleration).
     pub name: String,
+    /// What the symbol stands for.
     pub kind: SymbolKind,
 }
 
 /// Elementary functions kept as atoms.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
 pub enum Func {
+    /// The sine, of an argument in radians.
     Sin,
+    /// The cosine, of an argument in radians.
     Cos,
+    /// The exponential.
     Exp,
+    /// The natural logarithm.
     Ln,
 }
 
 impl Func {
+    /// The name in the spec language and in emitted code (`sin`, `cos`,
+    /// `exp`, `ln`).
     pub fn name(self) -> &'static str {
         match self {
             Func::Sin => "sin",
@@ -119,12 +146,16 @@ impl Func {
 /// An interned node. See the module documentation for the invariants.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub enum Node {
+    /// A rational constant (0 and 1 are always [`Store::ZERO`] and
+    /// [`Store::ONE`]).
     Num(Rational),
+    /// A symbol.
     Sym(SymbolId),
     /// `Σ c_k · term_k`, sorted by term id; the constant term uses [`Store::ONE`].
     Add(Box<[(ExprId, Rational)]>),
     /// `Π base_k ^ e_k`, sorted by base id, with no numeric coefficient.
     Mul(Box<[(ExprId, Rational)]>),
+    /// An elementary function of an expression.
     Func(Func, ExprId),
     /// A call of a run-time input function.
     Input(u32, Box<[ExprId]>),
@@ -148,6 +179,7 @@ impl Node {
 /// A run-time input function: its name, arity and declared partial derivatives.
 #[derive(Clone, Debug)]
 pub struct InputFunction {
+    /// The name declared in the spec's `inputs` block.
     pub name: String,
     /// Formal arguments, as symbols of kind [`SymbolKind::InputArgument`].
     pub arguments: Vec<SymbolId>,
@@ -164,17 +196,27 @@ pub enum EngineError {
     DivisionByZero,
     /// An input function had to be differentiated with respect to an argument
     /// whose derivative was not declared.
-    MissingDerivative { input: usize, argument: usize },
+    MissingDerivative {
+        /// The input function's index.
+        input: usize,
+        /// The position of the argument.
+        argument: usize,
+    },
     /// An exponent beyond [`MAX_EXPONENT`] (numerator or denominator).
     ExponentTooLarge(Rational),
     /// A power of a sum whose expansion would exceed [`MAX_EXPANDED_TERMS`].
     ExpansionTooLarge {
+        /// The exponent.
         exponent: Rational,
+        /// The number of terms of the sum.
         sum_terms: usize,
     },
     /// A product of two sums whose expansion would have more than
-    /// [`MAX_PRODUCT_TERMS`] terms (the two sums' numbers of terms).
-    ProductTooLarge { terms: (usize, usize) },
+    /// [`MAX_PRODUCT_TERMS`] terms.
+    ProductTooLarge {
+        /// The two sums' numbers of terms.
+        terms: (usize, usize),
+    },
     /// The model needs more than [`MAX_NODES`] distinct expressions.
     ModelTooLarge,
 }
@@ -193,13 +235,14 @@ pub const MAX_EXPONENT: i128 = 1024;
 pub const MAX_EXPANDED_TERMS: usize = 4096;
 
 /// The most terms the product of two sums may expand to before any cancel
-/// ([`EngineError::ProductTooLarge`] beyond); the shipped specs and the
-/// 40-link pendulum chain stay below it.
+/// ([`EngineError::ProductTooLarge`] beyond); well above what the shipped
+/// specs and the pendulum chains of the benchmarks need.
 pub const MAX_PRODUCT_TERMS: usize = 1 << 16;
 
-/// The most distinct expression nodes one model may create: the 40-link
-/// pendulum chain, far beyond the models this tool is for, needs 184 362
-/// (10× fewer). A derivation that would exceed it stops with an error.
+/// The most distinct expression nodes one model may create, well above what
+/// the 40-link pendulum chain of BENCHMARKS.md needs (a model far beyond
+/// those this tool is for). A derivation that would exceed it stops with an
+/// error instead of exhausting memory.
 pub const MAX_NODES: usize = 2_000_000;
 
 /// Owner of all nodes, symbols and input functions of one model.
@@ -227,6 +270,7 @@ impl Store {
     /// The constant 1; always the second node. Also the "term" of constants in sums.
     pub const ONE: ExprId = ExprId(1);
 
+    /// An empty store: the constants 0 and 1, no symbol, no input function.
     pub fn new() -> Store {
         let mut store = Store {
             nodes: Vec::new(),
@@ -283,6 +327,7 @@ impl Store {
         self.inputs[input].derivatives[argument] = Some(derivative);
     }
 
+    /// Every symbol, indexed by [`SymbolId::index`], in declaration order.
     pub fn symbols(&self) -> &[Symbol] {
         &self.symbols
     }
@@ -295,22 +340,27 @@ impl Store {
             .map(|i| SymbolId(i as u32))
     }
 
+    /// The name and kind of symbol `s`.
     pub fn symbol_info(&self, s: SymbolId) -> &Symbol {
         &self.symbols[s.index()]
     }
 
+    /// Every input function, by index, in declaration order.
     pub fn inputs(&self) -> &[InputFunction] {
         &self.inputs
     }
 
+    /// The node of expression `e`.
     pub fn node(&self, e: ExprId) -> &Node {
         &self.nodes[e.index()]
     }
 
+    /// The number of distinct expression nodes (at most [`MAX_NODES`]).
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
 
+    /// Never true for a store made by [`Store::new`], which holds 0 and 1.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
     }
@@ -341,6 +391,7 @@ impl Store {
         }
     }
 
+    /// An integer constant.
     pub fn int(&mut self, value: i64) -> ExprId {
         self.num(Rational::integer(value))
     }
@@ -353,6 +404,7 @@ impl Store {
         }
     }
 
+    /// The symbol `e` is, when it is a bare symbol.
     pub fn as_symbol(&self, e: ExprId) -> Option<SymbolId> {
         match self.node(e) {
             Node::Sym(s) => Some(*s),

@@ -255,10 +255,14 @@ fn exponents_beyond_the_limit_are_reported() {
 
 #[test]
 fn zero_to_the_zero_is_one_as_for_f64() {
-    let (mut s, _) = setup();
+    let (mut s, v) = setup();
     assert_eq!(s.pow(Store::ZERO, Rational::ZERO), Store::ONE);
     assert!(s.take_errors().is_empty(), "0⁰ was a 'division by zero'");
-    assert_eq!(0.0f64.powi(0), 1.0);
+    // x⁰ is 1 for every x, so it evaluates to 1 at x = 0, as `powi` does.
+    let x0 = s.pow(v[0], Rational::ZERO);
+    assert_eq!(x0, Store::ONE);
+    let mut ev = Evaluator::new(&s, vec![0.0; 4], &no_inputs);
+    assert_eq!(ev.eval(x0), 1.0);
 }
 
 #[test]

@@ -13,7 +13,9 @@ pub struct SpecAst {
 /// A physical unit as written between brackets, e.g. `[N*s/m]`.
 #[derive(Clone, Debug)]
 pub struct UnitText {
+    /// The unit between the brackets, e.g. `N*s/m`.
     pub text: String,
+    /// Where it is written, for errors about it.
     pub span: Span,
 }
 
@@ -36,14 +38,19 @@ pub struct InputDecl {
     pub derivatives: Vec<(Ident, Expr)>,
 }
 
+/// The three scalar functions a spec may give, each at most once.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum EnergyKind {
+    /// `kinetic = …;`, the kinetic energy `T` (required).
     Kinetic,
+    /// `potential = …;`, the potential energy `V`.
     Potential,
+    /// `dissipation = …;`, the Rayleigh dissipation function `D`, a power.
     Dissipation,
 }
 
 impl EnergyKind {
+    /// The keyword that introduces it in a spec.
     pub fn keyword(self) -> &'static str {
         match self {
             EnergyKind::Kinetic => "kinetic",
@@ -52,6 +59,7 @@ impl EnergyKind {
         }
     }
 
+    /// Its name in messages, e.g. `kinetic energy`.
     pub fn description(self) -> &'static str {
         match self {
             EnergyKind::Kinetic => "kinetic energy",
@@ -93,7 +101,6 @@ pub enum Item {
     },
     /// `force at (x, z) = (Fx, Fz);` — a force applied at a point.
     PointForce {
-        keyword: Span,
         point: Vec<Expr>,
         point_span: Span,
         components: Vec<Expr>,

@@ -20,32 +20,54 @@ use proc_macro2::{Span, TokenStream};
 /// A generalized coordinate with its velocity and acceleration symbols.
 #[derive(Clone, Debug)]
 pub struct Coordinate {
+    /// The name, as declared.
     pub name: String,
+    /// Its `///` doc lines.
     pub doc: Vec<String>,
+    /// Its unit, when declared (`x [m]`).
     pub unit: Option<UnitText>,
+    /// Where it is declared.
     pub span: Span,
+    /// `q` as an expression.
     pub position_expr: ExprId,
+    /// The symbols of `q` and `q̇`, and the expressions of `q̇` and `q̈`.
     pub symbols: CoordinateSymbols,
+    /// The symbol `ddot(q)`.
     pub acceleration: SymbolId,
 }
 
+/// A parameter: a named constant of the model, settable at run time.
 #[derive(Clone, Debug)]
 pub struct Parameter {
+    /// The name, as declared.
     pub name: String,
+    /// Its `///` doc lines.
     pub doc: Vec<String>,
+    /// Its unit, when declared (`m [kg] = 1.0`).
     pub unit: Option<UnitText>,
+    /// Where it is declared.
     pub span: Span,
+    /// The default value, evaluated from its constant expression.
     pub default: f64,
+    /// Its symbol.
     pub symbol: SymbolId,
+    /// Its symbol as an expression.
     pub expr: ExprId,
 }
 
+/// An input function: a value supplied at run time as a function of its
+/// arguments (e.g. a measured force as a function of a deflection).
 #[derive(Clone, Debug)]
 pub struct Input {
+    /// The name, as declared.
     pub name: String,
+    /// Its `///` doc lines.
     pub doc: Vec<String>,
+    /// The unit of its value, when declared.
     pub unit: Option<UnitText>,
+    /// Where it is declared.
     pub span: Span,
+    /// The formal arguments' names and units, in order.
     pub arguments: Vec<(String, Option<UnitText>)>,
     /// The span of each declared derivative `d(arg) = …`, by argument.
     pub derivative_spans: Vec<Option<Span>>,
@@ -54,7 +76,9 @@ pub struct Input {
 /// A lowered expression with where it was written and which inputs it calls.
 #[derive(Clone, Debug)]
 pub struct Statement {
+    /// The value, in canonical form.
     pub value: ExprId,
+    /// The right-hand side as written.
     pub span: SpanRange,
     /// `(input index, span of a call)` for every input the statement calls,
     /// directly or through `let` definitions.
@@ -64,29 +88,46 @@ pub struct Statement {
 /// A force statement turned into generalized forces `Q_i`, by coordinate.
 #[derive(Clone, Debug)]
 pub struct ForceStatement {
+    /// The statement's value (for a point force, from point to components).
     pub span: SpanRange,
+    /// `(coordinate index, Q_i)` for every coordinate the force acts on.
     pub generalized: Vec<(usize, ExprId)>,
+    /// `(input index, span of a call)` for every input the statement calls.
     pub input_calls: Vec<(usize, SpanRange)>,
 }
 
 /// A resolved model: symbols and expressions ready for derivation.
 pub struct Model {
+    /// The name given by `model Name;`, the emitted type's name.
     pub name: String,
+    /// Where it is given.
     pub name_span: Span,
+    /// The spec file's `//!` lines, then the `///` lines on `model Name;`.
     pub doc: Vec<String>,
+    /// Every symbol and expression of the model.
     pub store: Store,
+    /// The generalized coordinates, in declaration order.
     pub coordinates: Vec<Coordinate>,
+    /// The parameters, in declaration order (the order of the runtime's
+    /// parameter vector).
     pub parameters: Vec<Parameter>,
+    /// The input functions, in declaration order.
     pub inputs: Vec<Input>,
+    /// The symbol `t`.
     pub time: SymbolId,
+    /// The kinetic energy `T`.
     pub kinetic: Statement,
+    /// The potential energy `V`, when given.
     pub potential: Option<Statement>,
+    /// The Rayleigh dissipation function `D`, when given.
     pub dissipation: Option<Statement>,
+    /// The force statements, in order.
     pub forces: Vec<ForceStatement>,
     /// `let` definitions, in order, for documentation.
     pub definitions: Vec<(String, ExprId)>,
     /// Whether the spec asks for the Jacobians (`jacobians;`).
     pub jacobians: bool,
+    /// Where they are asked for.
     pub jacobians_span: Option<Span>,
     /// Hand-derived equations to audit (`hand_derived { … }`).
     pub hand_derived: Option<HandDerived>,
@@ -114,10 +155,12 @@ impl Model {
         Model::from_tokens(tokens)
     }
 
+    /// The number of generalized coordinates.
     pub fn dimension(&self) -> usize {
         self.coordinates.len()
     }
 
+    /// The symbols of every coordinate, in order.
     pub fn coordinate_symbols(&self) -> Vec<CoordinateSymbols> {
         self.coordinates.iter().map(|c| c.symbols.clone()).collect()
     }

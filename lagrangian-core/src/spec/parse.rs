@@ -159,7 +159,6 @@ fn parse_force(input: ParseStream) -> syn::Result<Item> {
             ));
         }
         Ok(Item::PointForce {
-            keyword,
             point,
             point_span,
             components,

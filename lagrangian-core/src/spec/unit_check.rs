@@ -69,17 +69,55 @@ pub(super) fn check(
     inputs: &[InputDecl],
     coordinates: &[Coordinate],
 ) -> Vec<Diagnostic> {
-    let mut problems = Vec::new();
-    let mut take =
-        |r: Result<Option<Dimension>, Diagnostic>| r.map_err(|d| problems.push(d)).ok().flatten();
-    // Declared derivatives: value / argument.
+    let mut checker = Checker {
+        scope,
+        problems: Vec::new(),
+    };
     for input in inputs {
-        let dims = scope.inputs.get(&input.decl.name.to_string()).cloned();
-        let Some(dims) = dims else { continue };
+        checker.derivatives(input);
+    }
+    for item in statements {
+        if let Item::Let { name, value } = item {
+            checker.definition(name, value);
+        }
+    }
+    let coordinate_dimensions: Vec<(String, Option<Dimension>)> = coordinates
+        .iter()
+        .map(|c| {
+            (
+                c.name.clone(),
+                checker.scope.names.get(&c.name).copied().flatten(),
+            )
+        })
+        .collect();
+    for item in statements {
+        checker.statement(item, &coordinate_dimensions);
+    }
+    checker.problems
+}
+
+/// The dimensions of the names, and the problems found so far.
+struct Checker<'a> {
+    scope: &'a mut DimensionScope,
+    problems: Vec<Diagnostic>,
+}
+
+impl Checker<'_> {
+    /// The dimension of a checked expression, or `None` with its problem
+    /// recorded.
+    fn take(&mut self, r: Result<Option<Dimension>, Diagnostic>) -> Option<Dimension> {
+        r.map_err(|d| self.problems.push(d)).ok().flatten()
+    }
+
+    /// An input's declared derivatives: the value's dimension over the
+    /// argument's.
+    fn derivatives(&mut self, input: &InputDecl) {
+        let dims = self.scope.inputs.get(&input.decl.name.to_string()).cloned();
+        let Some(dims) = dims else { return };
         let mut local = DimensionScope {
-            names: scope.names.clone(),
-            inputs: scope.inputs.clone(),
-            constants: scope.constants.clone(),
+            names: self.scope.names.clone(),
+            inputs: self.scope.inputs.clone(),
+            constants: self.scope.constants.clone(),
         };
         for (arg, d) in input.arguments.iter().zip(&dims.arguments) {
             local.names.insert(arg.name.to_string(), *d);
@@ -90,73 +128,64 @@ pub(super) fn check(
                 .and_then(|p| dims.arguments[p])
                 .zip(dims.value)
                 .and_then(|(a, v)| v.checked_div(a));
-            take(local.check(
-                expr,
-                expected,
-                &format!(
-                    "the derivative of `{}` with respect to `{arg}`",
-                    input.decl.name
-                ),
-            ));
+            let what = format!(
+                "the derivative of `{}` with respect to `{arg}`",
+                input.decl.name
+            );
+            self.take(local.check(expr, expected, &what));
         }
     }
-    let coordinate_dimensions: Vec<(String, Option<Dimension>)> = coordinates
-        .iter()
-        .map(|c| (c.name.clone(), scope.names.get(&c.name).copied().flatten()))
-        .collect();
-    let coordinate_dimension = |name: &str| {
-        coordinate_dimensions
-            .iter()
-            .find(|(n, _)| n == name)
-            .and_then(|(_, d)| *d)
-    };
-    for item in statements {
-        if let Item::Let { name, value } = item {
-            let d = take(scope.infer(value));
-            scope.names.insert(name.to_string(), d);
-            if let Ok(Some(c)) = super::constant::evaluate(value, &scope.constants) {
-                scope.constants.insert(name.to_string(), c);
-            }
+
+    /// `let name = value;`: its dimension, and its value when constant.
+    fn definition(&mut self, name: &syn::Ident, value: &syn::Expr) {
+        let d = self.take(self.scope.infer(value));
+        self.scope.names.insert(name.to_string(), d);
+        if let Ok(Some(c)) = super::constant::evaluate(value, &self.scope.constants) {
+            self.scope.constants.insert(name.to_string(), c);
         }
     }
-    for item in statements {
+
+    /// An energy or force statement against the dimension it must have
+    /// (`coordinates`: each coordinate's name and dimension).
+    fn statement(&mut self, item: &Item, coordinates: &[(String, Option<Dimension>)]) {
         match item {
             Item::Energy { kind, value, .. } => {
                 let expected = match kind {
                     EnergyKind::Kinetic | EnergyKind::Potential => Dimension::ENERGY,
                     EnergyKind::Dissipation => Dimension::POWER,
                 };
-                take(scope.check(
-                    value,
-                    Some(expected),
-                    &format!("the {}", kind.description()),
-                ));
+                let what = format!("the {}", kind.description());
+                self.take(self.scope.check(value, Some(expected), &what));
             }
             Item::GeneralizedForce {
                 coordinate, value, ..
             } => {
-                let expected = coordinate_dimension(&coordinate.to_string()).and_then(per_unit_of);
-                take(scope.check(
-                    value,
-                    expected,
-                    &format!("the generalized force on `{coordinate}`"),
-                ));
+                let name = coordinate.to_string();
+                let expected = coordinates
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .and_then(|(_, d)| *d)
+                    .and_then(per_unit_of);
+                let what = format!("the generalized force on `{coordinate}`");
+                self.take(self.scope.check(value, expected, &what));
             }
             Item::PointForce {
                 point, components, ..
             } => {
                 for (p, f) in point.iter().zip(components) {
-                    let position = take(scope.infer(p));
+                    let position = self.take(self.scope.infer(p));
                     let expected = position.and_then(per_unit_of);
-                    take(scope.check(
-                        f,
-                        expected,
-                        "this force component (× its point coordinate must be an energy)",
-                    ));
+                    let what = "this force component (× its point coordinate must be an energy)";
+                    self.take(self.scope.check(f, expected, what));
                 }
             }
-            _ => {}
+            Item::Let { .. }
+            | Item::Jacobians { .. }
+            | Item::HandDerived(_)
+            | Item::Model { .. }
+            | Item::Coordinates { .. }
+            | Item::Parameters { .. }
+            | Item::Inputs { .. } => {}
         }
     }
-    problems
 }

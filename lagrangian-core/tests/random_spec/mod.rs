@@ -137,7 +137,19 @@ fn value(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
 /// (`pick % count`), so every combination is well formed and shrinks.
 type Pick = u8;
 
-fn link() -> impl Strategy<Value = (f64, Pick, Pick, Pick, i8, f64, bool)> {
+/// A link as drawn: length, angle coordinates `a` and `b`, stretch
+/// coordinate, `k`, fixed angle, elastic.
+type RawLink = (f64, Pick, Pick, Pick, i8, f64, bool);
+/// A body as drawn: mass, parent, links.
+type RawBody = (f64, Option<Pick>, Vec<RawLink>);
+/// A spring as drawn: kind, what it acts on, stiffness, rest, anchor x, z.
+type RawSpring = (u8, Pick, f64, f64, f64, f64);
+/// A damper as drawn: kind, what it acts on, coefficient.
+type RawDamper = (u8, Pick, f64);
+/// A force as drawn: kind, where it acts, three values.
+type RawForce = (u8, Pick, f64, f64, f64);
+
+fn link() -> impl Strategy<Value = RawLink> {
     (
         value(0.3, 1.5),
         any::<Pick>(),
@@ -151,12 +163,12 @@ fn link() -> impl Strategy<Value = (f64, Pick, Pick, Pick, i8, f64, bool)> {
 
 prop_compose! {
     fn body()(mass in value(0.5, 3.0), parent in prop::option::of(any::<Pick>()),
-              links in prop::collection::vec(link(), 1..=2)) -> (f64, Option<Pick>, Vec<(f64, Pick, Pick, Pick, i8, f64, bool)>) {
+              links in prop::collection::vec(link(), 1..=2)) -> RawBody {
         (mass, parent, links)
     }
 }
 
-fn spring() -> impl Strategy<Value = (u8, Pick, f64, f64, f64, f64)> {
+fn spring() -> impl Strategy<Value = RawSpring> {
     (
         0u8..3,
         any::<Pick>(),
@@ -167,11 +179,11 @@ fn spring() -> impl Strategy<Value = (u8, Pick, f64, f64, f64, f64)> {
     )
 }
 
-fn damper() -> impl Strategy<Value = (u8, Pick, f64)> {
+fn damper() -> impl Strategy<Value = RawDamper> {
     (0u8..3, any::<Pick>(), value(0.1, 5.0))
 }
 
-fn force() -> impl Strategy<Value = (u8, Pick, f64, f64, f64)> {
+fn force() -> impl Strategy<Value = RawForce> {
     (
         0u8..4,
         any::<Pick>(),
@@ -198,107 +210,11 @@ pub fn model() -> impl Strategy<Value = Model> {
                     .iter()
                     .map(|&a| if a { Kind::Angle } else { Kind::Length })
                     .collect();
-                let of_kind = |kind| -> Vec<usize> {
-                    (0..kinds.len()).filter(|&i| kinds[i] == kind).collect()
-                };
-                let (angle_coordinates, length_coordinates) =
-                    (of_kind(Kind::Angle), of_kind(Kind::Length));
-                let pick = |set: &[usize], p: Pick| set[p as usize % set.len()];
-                let bodies: Vec<Body> = bodies
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, (mass, parent, links))| Body {
-                        mass,
-                        parent: parent.filter(|_| i > 0).map(|p| p as usize % i),
-                        links: links
-                            .into_iter()
-                            .map(|(length, a, b, s, k, fixed, elastic)| Link {
-                                length,
-                                stretch: (elastic && !length_coordinates.is_empty())
-                                    .then(|| pick(&length_coordinates, s)),
-                                angle: if angle_coordinates.is_empty() {
-                                    Angle::Fixed(fixed)
-                                } else {
-                                    Angle::Coordinates {
-                                        a: pick(&angle_coordinates, a),
-                                        k,
-                                        b: pick(&angle_coordinates, b),
-                                    }
-                                },
-                            })
-                            .collect(),
-                    })
-                    .collect();
                 let n = kinds.len();
+                let bodies = resolve_bodies(&kinds, bodies);
                 let body_count = bodies.len();
-                let springs: Vec<Spring> = springs
-                    .into_iter()
-                    .map(|(kind, p, k, rest, x, z)| match kind {
-                        0 => Spring::Linear {
-                            coordinate: p as usize % n,
-                            k,
-                            rest,
-                        },
-                        1 => Spring::Quartic {
-                            coordinate: p as usize % n,
-                            k,
-                        },
-                        _ => Spring::Anchor {
-                            body: p as usize % body_count,
-                            k,
-                            rest: z - 1.0,
-                            x,
-                            z,
-                        },
-                    })
-                    .collect();
-                let anchors: Vec<usize> = (0..springs.len())
-                    .filter(|&s| matches!(springs[s], Spring::Anchor { .. }))
-                    .collect();
-                let dampers = dampers
-                    .into_iter()
-                    .map(|(kind, p, c)| match kind {
-                        0 => Damper::Coordinate {
-                            coordinate: p as usize % n,
-                            c,
-                        },
-                        1 => Damper::Body {
-                            body: p as usize % body_count,
-                            c,
-                        },
-                        _ if anchors.is_empty() => Damper::Coordinate {
-                            coordinate: p as usize % n,
-                            c,
-                        },
-                        _ => Damper::Anchor {
-                            spring: pick(&anchors, p),
-                            c,
-                        },
-                    })
-                    .collect();
-                let forces = forces
-                    .into_iter()
-                    .map(|(kind, p, a, b, c)| match kind {
-                        0 => Force::Harmonic {
-                            coordinate: p as usize % n,
-                            amplitude: a,
-                            omega: c,
-                        },
-                        1 => Force::Pulse {
-                            body: p as usize % body_count,
-                            x: a,
-                            z: b,
-                            tau: c,
-                        },
-                        2 => Force::Drag {
-                            body: p as usize % body_count,
-                            c,
-                        },
-                        _ => Force::Input {
-                            body: p as usize % body_count,
-                        },
-                    })
-                    .collect();
+                let springs = resolve_springs(n, body_count, springs);
+                let dampers = resolve_dampers(n, body_count, &springs, dampers);
                 Model {
                     inertia: inertia[..n].to_vec(),
                     kinds,
@@ -307,10 +223,131 @@ pub fn model() -> impl Strategy<Value = Model> {
                     bodies,
                     springs,
                     dampers,
-                    forces,
+                    forces: resolve_forces(n, body_count, forces),
                 }
             },
         )
+}
+
+/// `set[pick % len]`.
+fn pick(set: &[usize], p: Pick) -> usize {
+    set[p as usize % set.len()]
+}
+
+/// The bodies, each hanging off an earlier one or the pivot; links turn on
+/// angle coordinates (fixed angles without any) and stretch with length
+/// coordinates.
+fn resolve_bodies(kinds: &[Kind], bodies: Vec<RawBody>) -> Vec<Body> {
+    let of_kind = |kind| -> Vec<usize> { (0..kinds.len()).filter(|&i| kinds[i] == kind).collect() };
+    let (angle_coordinates, length_coordinates) = (of_kind(Kind::Angle), of_kind(Kind::Length));
+    let link = |(length, a, b, s, k, fixed, elastic): RawLink| Link {
+        length,
+        stretch: (elastic && !length_coordinates.is_empty()).then(|| pick(&length_coordinates, s)),
+        angle: if angle_coordinates.is_empty() {
+            Angle::Fixed(fixed)
+        } else {
+            Angle::Coordinates {
+                a: pick(&angle_coordinates, a),
+                k,
+                b: pick(&angle_coordinates, b),
+            }
+        },
+    };
+    bodies
+        .into_iter()
+        .enumerate()
+        .map(|(i, (mass, parent, links))| Body {
+            mass,
+            parent: parent.filter(|_| i > 0).map(|p| p as usize % i),
+            links: links.into_iter().map(link).collect(),
+        })
+        .collect()
+}
+
+/// The springs, on `n` coordinates and `body_count` bodies.
+fn resolve_springs(n: usize, body_count: usize, springs: Vec<RawSpring>) -> Vec<Spring> {
+    springs
+        .into_iter()
+        .map(|(kind, p, k, rest, x, z)| match kind {
+            0 => Spring::Linear {
+                coordinate: p as usize % n,
+                k,
+                rest,
+            },
+            1 => Spring::Quartic {
+                coordinate: p as usize % n,
+                k,
+            },
+            _ => Spring::Anchor {
+                body: p as usize % body_count,
+                k,
+                rest: z - 1.0,
+                x,
+                z,
+            },
+        })
+        .collect()
+}
+
+/// The dampers; one drawn on an anchor spring acts on a coordinate when
+/// there is no anchor spring.
+fn resolve_dampers(
+    n: usize,
+    body_count: usize,
+    springs: &[Spring],
+    dampers: Vec<RawDamper>,
+) -> Vec<Damper> {
+    let anchors: Vec<usize> = (0..springs.len())
+        .filter(|&s| matches!(springs[s], Spring::Anchor { .. }))
+        .collect();
+    dampers
+        .into_iter()
+        .map(|(kind, p, c)| match kind {
+            0 => Damper::Coordinate {
+                coordinate: p as usize % n,
+                c,
+            },
+            1 => Damper::Body {
+                body: p as usize % body_count,
+                c,
+            },
+            _ if anchors.is_empty() => Damper::Coordinate {
+                coordinate: p as usize % n,
+                c,
+            },
+            _ => Damper::Anchor {
+                spring: pick(&anchors, p),
+                c,
+            },
+        })
+        .collect()
+}
+
+/// The forces, on `n` coordinates and `body_count` bodies.
+fn resolve_forces(n: usize, body_count: usize, forces: Vec<RawForce>) -> Vec<Force> {
+    forces
+        .into_iter()
+        .map(|(kind, p, a, b, c)| match kind {
+            0 => Force::Harmonic {
+                coordinate: p as usize % n,
+                amplitude: a,
+                omega: c,
+            },
+            1 => Force::Pulse {
+                body: p as usize % body_count,
+                x: a,
+                z: b,
+                tau: c,
+            },
+            2 => Force::Drag {
+                body: p as usize % body_count,
+                c,
+            },
+            _ => Force::Input {
+                body: p as usize % body_count,
+            },
+        })
+        .collect()
 }
 
 mod numeric;
