@@ -6,6 +6,7 @@ mod names;
 mod notation;
 pub mod pretty;
 mod rust;
+pub mod schedule;
 
 pub use equations::render_equations;
 pub use markdown::render_markdown;
