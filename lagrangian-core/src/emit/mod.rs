@@ -1,5 +1,6 @@
 //! Emitters: Rust source for the macro and `generated/`, equations as text or LaTeX.
 
+pub mod backend;
 mod equations;
 mod markdown;
 mod names;

@@ -45,7 +45,7 @@ mod laurent;
 mod trig;
 
 pub use calculus::CoordinateSymbols;
-pub use display::DisplayExpr;
+pub use display::{DisplayExpr, Precedence};
 pub use eval::{Evaluator, Inputs, no_inputs};
 
 use crate::rational::Rational;
