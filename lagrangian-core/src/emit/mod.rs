@@ -13,7 +13,6 @@ mod equations;
 mod markdown;
 mod names;
 mod notation;
-pub mod pretty;
 mod rust;
 pub mod schedule;
 

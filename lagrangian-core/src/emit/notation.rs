@@ -1,6 +1,6 @@
 //! Printing display trees as plain text or LaTeX.
 
-use super::pretty::Tree;
+use crate::expr::pretty::{Tree, pretty};
 use crate::expr::{ExprId, Func, Node, Precedence, Store, SymbolKind};
 use crate::rational::Rational;
 
@@ -57,14 +57,14 @@ pub struct Printer<'a> {
 
 impl Printer<'_> {
     pub fn expr(&mut self, e: ExprId) -> String {
-        let tree = super::pretty::pretty(self.store, e);
+        let tree = pretty(self.store, e);
         self.tree(&tree, Precedence::Sum)
     }
 
     /// The top-level terms of the display form, each with its sign, for
     /// breaking a long equation over lines.
     pub fn terms(&mut self, e: ExprId) -> Vec<(bool, String)> {
-        match super::pretty::pretty(self.store, e) {
+        match pretty(self.store, e) {
             Tree::Add(parts) => parts
                 .iter()
                 .map(|(negated, t)| (*negated, self.tree(t, Precedence::Product)))
@@ -201,7 +201,7 @@ impl Printer<'_> {
                 }
             }
             _ => {
-                let tree = super::pretty::pretty(self.store, e);
+                let tree = pretty(self.store, e);
                 self.tree(&tree, Precedence::Power)
             }
         }
