@@ -314,7 +314,7 @@ impl Builder {
         let call =
             |b: &mut Builder, f: Function, x: &Reg| Expression::Call(f, Box::new(b.operand(*x)));
         match op {
-            Op::Const(v) => Expression::Constant(*v),
+            Op::Const(v) => Expression::Constant(v.value()),
             Op::Time => Expression::Time,
             Op::Input { index, args } => Expression::Input {
                 index: *index,
@@ -331,7 +331,7 @@ impl Builder {
             Op::Ln(a) => call(self, Function::Ln, a),
             Op::Sqrt(a) => call(self, Function::Sqrt, a),
             Op::Powi(a, k) => call(self, Function::Powi(*k), a),
-            Op::Powf(a, x) => call(self, Function::Powf(*x), a),
+            Op::Powf(a, x) => call(self, Function::Powf(x.value()), a),
             // Loads are handled by the caller; a load here would be read
             // from its argument like any other.
             Op::Parameter(_) | Op::Coordinate(_) | Op::Velocity(_) | Op::Acceleration(_) => {
@@ -380,7 +380,7 @@ mod tests {
                 Op::Mul(0, 1),     // 2: used twice
                 Op::Add(2, 2),     // 3: used once
                 Op::Sqrt(3),       // 4: output
-                Op::Const(2.0),    // 5: a constant, used twice
+                Op::constant(2.0), // 5: a constant, used twice
                 Op::Sub(5, 5),     // 6: output
             ],
             vec![4, 6],
