@@ -111,7 +111,12 @@ impl Op {
             | Op::Powi(a, _)
             | Op::Powf(a, _) => vec![*a],
             Op::Input { args, .. } => args.to_vec(),
-            _ => Vec::new(),
+            Op::Const(_)
+            | Op::Parameter(_)
+            | Op::Coordinate(_)
+            | Op::Velocity(_)
+            | Op::Acceleration(_)
+            | Op::Time => Vec::new(),
         }
     }
 
@@ -134,21 +139,32 @@ pub use lagrangian_model::layout::RoutineKind;
 /// A group of outputs and the operations needed to compute them, in order.
 #[derive(Clone, Debug)]
 pub struct Routine {
+    /// Which outputs it computes.
     pub kind: RoutineKind,
+    /// The registers of its outputs, in the order of the kind's layout
+    /// ([`RoutineKind::output_slot`]).
     pub outputs: Vec<Reg>,
+    /// The operations it runs, in program order: every operation its
+    /// outputs depend on.
     pub ops: Vec<Reg>,
 }
 
 /// Number of operations by kind (loads excluded).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OpCounts {
+    /// Additions and subtractions.
     pub add: usize,
+    /// Multiplications.
     pub mul: usize,
+    /// Divisions.
     pub div: usize,
+    /// Negations.
     pub neg: usize,
     /// sin, cos, exp, ln, sqrt.
     pub transcendental: usize,
+    /// Integer and fractional powers.
     pub pow: usize,
+    /// Input-function calls.
     pub input_calls: usize,
 }
 
@@ -161,20 +177,28 @@ impl OpCounts {
 
 /// The values a routine reads: time, state, parameters and input functions.
 pub struct EvalContext<'a> {
+    /// The time.
     pub t: f64,
+    /// The coordinates.
     pub q: &'a [f64],
+    /// The velocities.
     pub qd: &'a [f64],
     /// Accelerations (only the Jacobians routine reads them).
     pub qdd: &'a [f64],
+    /// The parameters, in declaration order.
     pub parameters: &'a [f64],
+    /// The input functions.
     pub inputs: Inputs<'a>,
 }
 
 /// An optimized straight-line program for all outputs of a model.
 #[derive(Clone, Debug)]
 pub struct Program {
+    /// The number of coordinates.
     pub dimension: usize,
+    /// The operations; operation `i` defines register `i`.
     pub ops: Vec<Op>,
+    /// The routines, each running the operations its outputs need.
     pub routines: Vec<Routine>,
     /// Every distinct input-function call of the dynamics routine, as
     /// `(input index, number of arguments)`, ordered by input index.
@@ -182,6 +206,8 @@ pub struct Program {
 }
 
 impl Program {
+    /// The routine of one kind (the Jacobians only when the spec asks for
+    /// them).
     pub fn routine(&self, kind: RoutineKind) -> Option<&Routine> {
         self.routines.iter().find(|r| r.kind == kind)
     }
@@ -200,7 +226,12 @@ impl Program {
                 }
                 Op::Powi(..) | Op::Powf(..) => c.pow += 1,
                 Op::Input { .. } => c.input_calls += 1,
-                _ => {}
+                Op::Const(_)
+                | Op::Parameter(_)
+                | Op::Coordinate(_)
+                | Op::Velocity(_)
+                | Op::Acceleration(_)
+                | Op::Time => {}
             }
         }
         c

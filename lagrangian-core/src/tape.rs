@@ -110,7 +110,12 @@ fn translate(
                 count: args.len() as u32,
             }
         }
-        _ => return None,
+        Op::Const(_)
+        | Op::Parameter(_)
+        | Op::Coordinate(_)
+        | Op::Velocity(_)
+        | Op::Acceleration(_)
+        | Op::Time => return None,
     })
 }
 #[cfg(test)]

@@ -51,11 +51,14 @@ pub fn latex_name(name: &str) -> String {
 
 /// Renders display trees in one notation.
 pub struct Printer<'a> {
+    /// The store of the expressions (regrouping builds new expressions).
     pub store: &'a mut Store,
+    /// Text or LaTeX.
     pub notation: Notation,
 }
 
 impl Printer<'_> {
+    /// `e` in its regrouped display form ([`crate::expr::pretty`]).
     pub fn expr(&mut self, e: ExprId) -> String {
         let tree = pretty(self.store, e);
         self.tree(&tree, Precedence::Sum)
