@@ -204,7 +204,7 @@ impl Builder<'_> {
     }
 
     fn constant(&mut self, value: f64) -> Reg {
-        self.op(Op::Const(value))
+        self.op(Op::constant(value))
     }
 
     /// A register holding exactly the value of `e` (negation materialized).
@@ -237,10 +237,10 @@ impl Builder<'_> {
                     SymbolKind::Acceleration(i) => Op::Acceleration(i as u32),
                     SymbolKind::Parameter(i) => Op::Parameter(i as u32),
                     SymbolKind::Time => Op::Time,
-                    SymbolKind::Pi => Op::Const(std::f64::consts::PI),
+                    SymbolKind::Pi => Op::constant(std::f64::consts::PI),
                     // Formal arguments only occur inside declared derivative templates,
                     // which are substituted before anything is emitted.
-                    SymbolKind::InputArgument { .. } => Op::Const(f64::NAN),
+                    SymbolKind::InputArgument { .. } => Op::constant(f64::NAN),
                 };
                 Signed::plus(self.op(op))
             }
@@ -402,7 +402,7 @@ impl Builder<'_> {
             let root = if unit.denom() == 2 {
                 self.op(Op::Sqrt(b))
             } else {
-                self.op(Op::Powf(b, 1.0 / unit.denom() as f64))
+                self.op(Op::powf(b, 1.0 / unit.denom() as f64))
             };
             if unit.is_negative() {
                 let one = self.constant(1.0);

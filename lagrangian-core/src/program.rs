@@ -8,106 +8,96 @@
 //! operations in the same order.
 
 use crate::expr::Inputs;
-use std::hash::{Hash, Hasher};
 
 /// Register index: the result of operation number `Reg`.
 pub type Reg = u32;
 
-/// One operation of the program.
-#[derive(Clone, Debug)]
+/// A floating-point number compared and hashed by its bits, so that
+/// operations holding one are equal exactly when they compute the same
+/// thing (`0.0` and `-0.0` differ, a NaN equals itself) and [`Op`] can
+/// derive `Eq` and `Hash` for common-subexpression elimination.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FloatBits(u64);
+
+impl FloatBits {
+    /// The number.
+    pub fn value(self) -> f64 {
+        f64::from_bits(self.0)
+    }
+}
+
+impl From<f64> for FloatBits {
+    fn from(value: f64) -> FloatBits {
+        FloatBits(value.to_bits())
+    }
+}
+
+impl std::fmt::Debug for FloatBits {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.value().fmt(f)
+    }
+}
+
+/// One operation of the program; operands are registers of earlier
+/// operations.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Op {
-    Const(f64),
+    /// A constant.
+    Const(FloatBits),
+    /// Parameter `i`, in declaration order.
     Parameter(u32),
+    /// Coordinate `q[i]`.
     Coordinate(u32),
+    /// Velocity `q̇[i]`.
     Velocity(u32),
+    /// Acceleration `q̈[i]`.
     Acceleration(u32),
+    /// The time `t`.
     Time,
     /// Value of input function `index` at the argument registers.
     Input {
+        /// The input function, in declaration order.
         index: u32,
+        /// The registers of its arguments.
         args: Box<[Reg]>,
     },
+    /// `a + b`.
     Add(Reg, Reg),
+    /// `a - b`.
     Sub(Reg, Reg),
+    /// `a * b`.
     Mul(Reg, Reg),
+    /// `a / b`.
     Div(Reg, Reg),
+    /// `-a`.
     Neg(Reg),
+    /// `sin a`.
     Sin(Reg),
+    /// `cos a`.
     Cos(Reg),
+    /// `exp a`.
     Exp(Reg),
+    /// `ln a`.
     Ln(Reg),
+    /// `√a`.
     Sqrt(Reg),
+    /// `aⁿ` by `powi`.
     Powi(Reg, i32),
-    Powf(Reg, f64),
-}
-
-impl PartialEq for Op {
-    fn eq(&self, other: &Self) -> bool {
-        use Op::*;
-        match (self, other) {
-            (Const(a), Const(b)) => a.to_bits() == b.to_bits(),
-            (Powf(a, x), Powf(b, y)) => a == b && x.to_bits() == y.to_bits(),
-            (Parameter(a), Parameter(b))
-            | (Coordinate(a), Coordinate(b))
-            | (Velocity(a), Velocity(b))
-            | (Acceleration(a), Acceleration(b))
-            | (Neg(a), Neg(b))
-            | (Sin(a), Sin(b))
-            | (Cos(a), Cos(b))
-            | (Exp(a), Exp(b))
-            | (Ln(a), Ln(b))
-            | (Sqrt(a), Sqrt(b)) => a == b,
-            (Time, Time) => true,
-            (Input { index: i, args: a }, Input { index: j, args: b }) => i == j && a == b,
-            (Add(a, b), Add(c, d))
-            | (Sub(a, b), Sub(c, d))
-            | (Mul(a, b), Mul(c, d))
-            | (Div(a, b), Div(c, d)) => a == c && b == d,
-            (Powi(a, n), Powi(b, m)) => a == b && n == m,
-            _ => false,
-        }
-    }
-}
-
-impl Eq for Op {}
-
-impl Hash for Op {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        std::mem::discriminant(self).hash(state);
-        match self {
-            Op::Const(v) => v.to_bits().hash(state),
-            Op::Powf(a, x) => {
-                a.hash(state);
-                x.to_bits().hash(state);
-            }
-            Op::Parameter(a)
-            | Op::Coordinate(a)
-            | Op::Velocity(a)
-            | Op::Acceleration(a)
-            | Op::Neg(a)
-            | Op::Sin(a)
-            | Op::Cos(a)
-            | Op::Exp(a)
-            | Op::Ln(a)
-            | Op::Sqrt(a) => a.hash(state),
-            Op::Time => {}
-            Op::Input { index, args } => {
-                index.hash(state);
-                args.hash(state);
-            }
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => {
-                a.hash(state);
-                b.hash(state);
-            }
-            Op::Powi(a, n) => {
-                a.hash(state);
-                n.hash(state);
-            }
-        }
-    }
+    /// `aˣ` by `powf`, for a constant `x`.
+    Powf(Reg, FloatBits),
 }
 
 impl Op {
+    /// The constant `value`.
+    pub fn constant(value: f64) -> Op {
+        Op::Const(value.into())
+    }
+
+    /// `a` to the constant power `x`.
+    pub fn powf(a: Reg, x: f64) -> Op {
+        Op::Powf(a, x.into())
+    }
+
     /// Registers this operation reads.
     pub fn operands(&self) -> Vec<Reg> {
         match self {
@@ -121,7 +111,12 @@ impl Op {
             | Op::Powi(a, _)
             | Op::Powf(a, _) => vec![*a],
             Op::Input { args, .. } => args.to_vec(),
-            _ => Vec::new(),
+            Op::Const(_)
+            | Op::Parameter(_)
+            | Op::Coordinate(_)
+            | Op::Velocity(_)
+            | Op::Acceleration(_)
+            | Op::Time => Vec::new(),
         }
     }
 
@@ -144,21 +139,32 @@ pub use lagrangian_model::layout::RoutineKind;
 /// A group of outputs and the operations needed to compute them, in order.
 #[derive(Clone, Debug)]
 pub struct Routine {
+    /// Which outputs it computes.
     pub kind: RoutineKind,
+    /// The registers of its outputs, in the order of the kind's layout
+    /// ([`RoutineKind::output_slot`]).
     pub outputs: Vec<Reg>,
+    /// The operations it runs, in program order: every operation its
+    /// outputs depend on.
     pub ops: Vec<Reg>,
 }
 
 /// Number of operations by kind (loads excluded).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OpCounts {
+    /// Additions and subtractions.
     pub add: usize,
+    /// Multiplications.
     pub mul: usize,
+    /// Divisions.
     pub div: usize,
+    /// Negations.
     pub neg: usize,
     /// sin, cos, exp, ln, sqrt.
     pub transcendental: usize,
+    /// Integer and fractional powers.
     pub pow: usize,
+    /// Input-function calls.
     pub input_calls: usize,
 }
 
@@ -171,20 +177,28 @@ impl OpCounts {
 
 /// The values a routine reads: time, state, parameters and input functions.
 pub struct EvalContext<'a> {
+    /// The time.
     pub t: f64,
+    /// The coordinates.
     pub q: &'a [f64],
+    /// The velocities.
     pub qd: &'a [f64],
     /// Accelerations (only the Jacobians routine reads them).
     pub qdd: &'a [f64],
+    /// The parameters, in declaration order.
     pub parameters: &'a [f64],
+    /// The input functions.
     pub inputs: Inputs<'a>,
 }
 
 /// An optimized straight-line program for all outputs of a model.
 #[derive(Clone, Debug)]
 pub struct Program {
+    /// The number of coordinates.
     pub dimension: usize,
+    /// The operations; operation `i` defines register `i`.
     pub ops: Vec<Op>,
+    /// The routines, each running the operations its outputs need.
     pub routines: Vec<Routine>,
     /// Every distinct input-function call of the dynamics routine, as
     /// `(input index, number of arguments)`, ordered by input index.
@@ -192,6 +206,8 @@ pub struct Program {
 }
 
 impl Program {
+    /// The routine of one kind (the Jacobians only when the spec asks for
+    /// them).
     pub fn routine(&self, kind: RoutineKind) -> Option<&Routine> {
         self.routines.iter().find(|r| r.kind == kind)
     }
@@ -210,7 +226,12 @@ impl Program {
                 }
                 Op::Powi(..) | Op::Powf(..) => c.pow += 1,
                 Op::Input { .. } => c.input_calls += 1,
-                _ => {}
+                Op::Const(_)
+                | Op::Parameter(_)
+                | Op::Coordinate(_)
+                | Op::Velocity(_)
+                | Op::Acceleration(_)
+                | Op::Time => {}
             }
         }
         c
@@ -236,7 +257,7 @@ impl Program {
         for &r in &routine.ops {
             let reg = |i: &Reg| registers[*i as usize];
             let value = match &self.ops[r as usize] {
-                Op::Const(v) => *v,
+                Op::Const(v) => v.value(),
                 Op::Parameter(i) => ctx.parameters[*i as usize],
                 Op::Coordinate(i) => ctx.q[*i as usize],
                 Op::Velocity(i) => ctx.qd[*i as usize],
@@ -264,7 +285,7 @@ impl Program {
                 Op::Ln(a) => reg(a).ln(),
                 Op::Sqrt(a) => reg(a).sqrt(),
                 Op::Powi(a, n) => reg(a).powi(*n),
-                Op::Powf(a, x) => reg(a).powf(*x),
+                Op::Powf(a, x) => reg(a).powf(x.value()),
             };
             registers[r as usize] = value;
         }

@@ -41,7 +41,7 @@ fn lay_out(program: &Program, parameters: usize) -> (RegisterLayout, Vec<u32>, V
     for (r, op) in ops.iter().enumerate() {
         if let Op::Const(v) = op {
             slot[r] = constants.len() as u32;
-            constants.push(*v);
+            constants.push(v.value());
         }
     }
     // Powf exponents live in registers too.
@@ -49,7 +49,7 @@ fn lay_out(program: &Program, parameters: usize) -> (RegisterLayout, Vec<u32>, V
     for (r, op) in ops.iter().enumerate() {
         if let Op::Powf(_, x) = op {
             exponent_slot[r] = constants.len() as u32;
-            constants.push(*x);
+            constants.push(x.value());
         }
     }
     let temporaries = ops.iter().filter(|op| !op.is_load()).count();
@@ -110,7 +110,12 @@ fn translate(
                 count: args.len() as u32,
             }
         }
-        _ => return None,
+        Op::Const(_)
+        | Op::Parameter(_)
+        | Op::Coordinate(_)
+        | Op::Velocity(_)
+        | Op::Acceleration(_)
+        | Op::Time => return None,
     })
 }
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! The display factoring of equation documents never changes a value.
 
 use lagrangian_core::Compiled;
-use lagrangian_core::emit::pretty::{Tree, pretty, rebuild};
+use lagrangian_core::expr::pretty::{Tree, pretty, rebuild};
 
 #[test]
 fn every_displayed_equation_rebuilds_to_the_derived_one() {

@@ -97,6 +97,157 @@ impl Energies {
     }
 }
 
+/// What one output of a routine is: the place it has in the runtime's
+/// types. Emitters write each output to its slot instead of re-deriving the
+/// order of a routine's outputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OutputSlot {
+    /// Entry `(row, column)`, `row ≤ column`, of the mass matrix `M`; `M` is
+    /// symmetric, so it is entry `(column, row)` too.
+    Mass {
+        /// The row, `≤ column`.
+        row: usize,
+        /// The column.
+        column: usize,
+    },
+    /// Component `i` of the forcing `f`.
+    Forcing(usize),
+    /// One of the energies or powers of [`Energies`].
+    Energy(Energy),
+    /// Entry `(row, column)` of one of the Jacobian blocks.
+    Jacobian {
+        /// Which block.
+        block: JacobianBlock,
+        /// The equation.
+        row: usize,
+        /// The coordinate or velocity differentiated by.
+        column: usize,
+    },
+    /// Value `k` of the concatenated arguments of the input calls
+    /// ([`RoutineKind::InputArguments`]).
+    InputArgument(usize),
+}
+
+/// One field of [`Energies`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Energy {
+    /// Kinetic energy `T`.
+    Kinetic,
+    /// Potential energy `V`.
+    Potential,
+    /// Rayleigh dissipation function `D`.
+    Dissipation,
+    /// `Σ ∂D/∂q̇·q̇`.
+    DampingPower,
+    /// `Σ Q·q̇`.
+    ExternalPower,
+}
+
+impl Energy {
+    /// All of them, in the order of [`Energies::FIELDS`].
+    pub const ALL: [Energy; 5] = [
+        Energy::Kinetic,
+        Energy::Potential,
+        Energy::Dissipation,
+        Energy::DampingPower,
+        Energy::ExternalPower,
+    ];
+
+    /// The position in [`Energies::FIELDS`] (and among the energies outputs).
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The field name in [`Energies`].
+    pub fn field(self) -> &'static str {
+        Energies::FIELDS[self.index()]
+    }
+}
+
+/// One of the Jacobian blocks, in output order ([`JACOBIAN_BLOCKS`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JacobianBlock {
+    /// `∂f/∂q`.
+    ForcingQ,
+    /// `∂f/∂q̇`.
+    ForcingQd,
+    /// `∂(M a)/∂q`.
+    MassTimesAccelerationQ,
+}
+
+impl JacobianBlock {
+    /// All of them, in output order.
+    pub const ALL: [JacobianBlock; 3] = [
+        JacobianBlock::ForcingQ,
+        JacobianBlock::ForcingQd,
+        JacobianBlock::MassTimesAccelerationQ,
+    ];
+
+    /// The position among the blocks.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The field name in `Jacobians` ([`JACOBIAN_BLOCKS`]).
+    pub fn field(self) -> &'static str {
+        JACOBIAN_BLOCKS[self.index()]
+    }
+}
+
+impl RoutineKind {
+    /// The number of outputs of the routine for a model with `n`
+    /// coordinates; `None` for [`RoutineKind::InputArguments`], whose count
+    /// depends on the model's input calls.
+    pub fn output_count(self, n: usize) -> Option<usize> {
+        let mass = n * (n + 1) / 2;
+        match self {
+            RoutineKind::Dynamics => Some(mass + n),
+            RoutineKind::DynamicsAndPowers => Some(mass + n + 2),
+            RoutineKind::Energies => Some(Energy::ALL.len()),
+            RoutineKind::Jacobians => Some(JacobianBlock::ALL.len() * n * n),
+            RoutineKind::InputArguments => None,
+        }
+    }
+
+    /// What output `k` of the routine is, for a model with `n` coordinates;
+    /// `None` beyond [`RoutineKind::output_count`].
+    pub fn output_slot(self, n: usize, k: usize) -> Option<OutputSlot> {
+        if self.output_count(n).is_some_and(|count| k >= count) {
+            return None;
+        }
+        let mass = n * (n + 1) / 2;
+        Some(match self {
+            RoutineKind::Dynamics | RoutineKind::DynamicsAndPowers if k < mass => {
+                let (row, column) = mass_entry(n, k);
+                OutputSlot::Mass { row, column }
+            }
+            RoutineKind::Dynamics | RoutineKind::DynamicsAndPowers if k < mass + n => {
+                OutputSlot::Forcing(k - mass)
+            }
+            RoutineKind::Dynamics | RoutineKind::DynamicsAndPowers => {
+                OutputSlot::Energy(Energy::ALL[Energy::DampingPower.index() + k - mass - n])
+            }
+            RoutineKind::Energies => OutputSlot::Energy(Energy::ALL[k]),
+            RoutineKind::Jacobians => OutputSlot::Jacobian {
+                block: JacobianBlock::ALL[k / (n * n)],
+                row: k % (n * n) / n,
+                column: k % n,
+            },
+            RoutineKind::InputArguments => OutputSlot::InputArgument(k),
+        })
+    }
+}
+
+/// Entry `k` of [`mass_entries`]`(n)`.
+fn mass_entry(n: usize, mut k: usize) -> (usize, usize) {
+    let mut row = 0;
+    while k >= n - row {
+        k -= n - row;
+        row += 1;
+    }
+    (row, row + k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,5 +262,50 @@ mod tests {
         assert_eq!(mass, [1.0, 2.0, 3.0, 2.0, 4.0, 5.0, 3.0, 5.0, 6.0]);
         assert_eq!(forcing, [7.0, 8.0, 9.0]);
         assert_eq!(rest, [10.0, 11.0]);
+    }
+
+    /// The slots name the outputs in the order the other descriptions give.
+    #[test]
+    fn output_slots_follow_the_layout() {
+        let n = 3;
+        let slots = |kind: RoutineKind| -> Vec<OutputSlot> {
+            let count = kind.output_count(n).unwrap();
+            assert_eq!(kind.output_slot(n, count), None);
+            (0..count)
+                .map(|k| kind.output_slot(n, k).unwrap())
+                .collect()
+        };
+        let mut dynamics: Vec<OutputSlot> = mass_entries(n)
+            .map(|(row, column)| OutputSlot::Mass { row, column })
+            .collect();
+        dynamics.extend((0..n).map(OutputSlot::Forcing));
+        assert_eq!(slots(RoutineKind::Dynamics), dynamics);
+        dynamics.push(OutputSlot::Energy(Energy::DampingPower));
+        dynamics.push(OutputSlot::Energy(Energy::ExternalPower));
+        assert_eq!(slots(RoutineKind::DynamicsAndPowers), dynamics);
+        let energies: Vec<&str> = slots(RoutineKind::Energies)
+            .into_iter()
+            .map(|slot| match slot {
+                OutputSlot::Energy(e) => e.field(),
+                other => panic!("{other:?} among the energies"),
+            })
+            .collect();
+        assert_eq!(energies, Energies::FIELDS);
+        let jacobians = slots(RoutineKind::Jacobians);
+        assert_eq!(jacobians.len(), 27);
+        assert_eq!(
+            jacobians[9 + 5],
+            OutputSlot::Jacobian {
+                block: JacobianBlock::ForcingQd,
+                row: 1,
+                column: 2
+            }
+        );
+        let blocks = JacobianBlock::ALL.map(JacobianBlock::field);
+        assert_eq!(blocks, JACOBIAN_BLOCKS);
+        assert_eq!(
+            RoutineKind::InputArguments.output_slot(n, 7),
+            Some(OutputSlot::InputArgument(7))
+        );
     }
 }

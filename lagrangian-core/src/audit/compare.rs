@@ -2,7 +2,7 @@
 
 use super::small_angle;
 use crate::emit::{Notation, Printer};
-use crate::expr::{Evaluator, ExprId, Node, Store, SymbolKind};
+use crate::expr::{Evaluator, ExprId, Store, SymbolKind};
 use crate::random::Lcg;
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
@@ -119,18 +119,6 @@ pub struct GroupAudit {
     pub findings: Vec<Finding>,
 }
 
-/// Velocities, accelerations and input values head a group.
-fn is_motion(store: &Store, base: ExprId) -> bool {
-    match store.node(base) {
-        Node::Sym(s) => matches!(
-            store.symbol_info(*s).kind,
-            SymbolKind::Velocity(_) | SymbolKind::Acceleration(_)
-        ),
-        Node::Input(..) => true,
-        _ => false,
-    }
-}
-
 type Groups = Vec<(ExprId, ExprId)>;
 
 /// `(motion monomial, coefficient)` pairs of `e`.
@@ -141,7 +129,7 @@ fn split(store: &mut Store, e: ExprId) -> Groups {
         let (motion, rest): (Vec<_>, Vec<_>) = store
             .factors(t)
             .into_iter()
-            .partition(|(b, _)| is_motion(store, *b));
+            .partition(|(b, _)| store.is_motion_base(*b));
         let key = store.raw_monomial(motion);
         let coefficient = store.raw_monomial(rest);
         if !map.contains_key(&key) {

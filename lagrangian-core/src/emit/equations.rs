@@ -2,7 +2,8 @@
 
 use super::notation::{Notation, Printer, latex_name};
 use crate::Compiled;
-use crate::expr::ExprId;
+use crate::expr::{ExprId, Store};
+use crate::spec::Model;
 use std::fmt::Write;
 
 /// Renders M, f, T, V, D (and the generalized forces) of a compiled model.
@@ -12,35 +13,63 @@ pub fn render_equations(compiled: &mut Compiled, notation: Notation) -> String {
 
 fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String {
     let model = &compiled.model;
-    let names: Vec<String> = model.coordinates.iter().map(|c| c.name.clone()).collect();
+    let names: Vec<String> = (model.coordinates.iter())
+        .map(|c| match notation {
+            Notation::Text => c.name.clone(),
+            Notation::Latex => latex_name(&c.name),
+        })
+        .collect();
     let n = names.len();
     let d = compiled.derivation.clone();
-    let title = model.name.clone();
-    let doc = model.doc.clone();
-    let mut p = Printer {
-        store: &mut compiled.model.store,
-        notation,
+    let out = heading(model, notation);
+    let mut doc = Document {
+        printer: Printer {
+            store: &mut compiled.model.store,
+            notation,
+        },
+        out,
     };
+    doc.section("Mass matrix M (symmetric; upper triangle):");
+    for i in 0..n {
+        for j in i..n {
+            doc.equation(label(notation, "M", &[&names[i], &names[j]]), d.mass(i, j));
+        }
+    }
+    doc.section("Forcing f:");
+    for (i, name) in names.iter().enumerate() {
+        doc.equation(label(notation, "f", &[name]), d.forcing[i]);
+    }
+    if d.generalized_forces.iter().any(|&q| q != Store::ZERO) {
+        doc.section("Generalized forces Q (from the force statements, included in f):");
+        for (i, name) in names.iter().enumerate() {
+            doc.equation(label(notation, "Q", &[name]), d.generalized_forces[i]);
+        }
+    }
+    doc.section("Energies:");
+    for (label, e) in [("T", d.kinetic), ("V", d.potential), ("D", d.dissipation)] {
+        doc.equation(label.to_string(), e);
+    }
+    if notation == Notation::Latex {
+        doc.out.push_str("\\end{aligned}\n");
+    }
+    doc.out
+}
+
+/// The model's name, dimension and doc (text), or the opening of the
+/// `aligned` block (LaTeX).
+fn heading(model: &Model, notation: Notation) -> String {
     let mut out = String::new();
-    let coordinate = |i: usize| match notation {
-        Notation::Text => names[i].clone(),
-        Notation::Latex => latex_name(&names[i]),
-    };
-    let equation = |out: &mut String, p: &mut Printer, lhs: String, e: ExprId| {
-        let rhs = p.expr(e);
-        let _ = match notation {
-            Notation::Text => writeln!(out, "  {lhs} = {rhs}"),
-            Notation::Latex => writeln!(out, "{lhs} &= {rhs} \\\\"),
-        };
-    };
+    let title = &model.name;
     match notation {
         Notation::Text => {
+            let names: Vec<&str> = model.coordinates.iter().map(|c| c.name.as_str()).collect();
             let _ = writeln!(
                 out,
-                "{title}: {n} coordinate(s) ({}), M(q) q̈ = f(q, q̇, t)",
+                "{title}: {} coordinate(s) ({}), M(q) q̈ = f(q, q̇, t)",
+                names.len(),
                 names.join(", ")
             );
-            for line in &doc {
+            for line in &model.doc {
                 let _ = writeln!(out, "  {line}");
             }
         }
@@ -51,54 +80,37 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
             );
         }
     }
-    let section = |out: &mut String, heading: &str| match notation {
-        Notation::Text => {
-            let _ = writeln!(out, "\n{heading}");
-        }
-        Notation::Latex => {
-            let _ = writeln!(out, "&\\text{{{heading}}} \\\\");
-        }
-    };
-    section(&mut out, "Mass matrix M (symmetric; upper triangle):");
-    for i in 0..n {
-        for j in i..n {
-            let lhs = match notation {
-                Notation::Text => format!("M[{}, {}]", names[i], names[j]),
-                Notation::Latex => format!("M_{{{} {}}}", coordinate(i), coordinate(j)),
-            };
-            equation(&mut out, &mut p, lhs, d.mass(i, j));
-        }
-    }
-    section(&mut out, "Forcing f:");
-    for (i, name) in names.iter().enumerate() {
-        let lhs = match notation {
-            Notation::Text => format!("f[{name}]"),
-            Notation::Latex => format!("f_{{{}}}", coordinate(i)),
-        };
-        equation(&mut out, &mut p, lhs, d.forcing[i]);
-    }
-    if d.generalized_forces
-        .iter()
-        .any(|&q| q != crate::expr::Store::ZERO)
-    {
-        section(
-            &mut out,
-            "Generalized forces Q (from the force statements, included in f):",
-        );
-        for (i, name) in names.iter().enumerate() {
-            let lhs = match notation {
-                Notation::Text => format!("Q[{name}]"),
-                Notation::Latex => format!("Q_{{{}}}", coordinate(i)),
-            };
-            equation(&mut out, &mut p, lhs, d.generalized_forces[i]);
-        }
-    }
-    section(&mut out, "Energies:");
-    for (label, e) in [("T", d.kinetic), ("V", d.potential), ("D", d.dissipation)] {
-        equation(&mut out, &mut p, label.to_string(), e);
-    }
-    if notation == Notation::Latex {
-        out.push_str("\\end{aligned}\n");
-    }
     out
+}
+
+/// `M[a, b]` (text) or `M_{a b}` (LaTeX).
+fn label(notation: Notation, symbol: &str, indices: &[&String]) -> String {
+    let indices: Vec<&str> = indices.iter().map(|s| s.as_str()).collect();
+    match notation {
+        Notation::Text => format!("{symbol}[{}]", indices.join(", ")),
+        Notation::Latex => format!("{symbol}_{{{}}}", indices.join(" ")),
+    }
+}
+
+/// The document being written.
+struct Document<'a> {
+    printer: Printer<'a>,
+    out: String,
+}
+
+impl Document<'_> {
+    fn section(&mut self, heading: &str) {
+        let _ = match self.printer.notation {
+            Notation::Text => writeln!(self.out, "\n{heading}"),
+            Notation::Latex => writeln!(self.out, "&\\text{{{heading}}} \\\\"),
+        };
+    }
+
+    fn equation(&mut self, lhs: String, e: ExprId) {
+        let rhs = self.printer.expr(e);
+        let _ = match self.printer.notation {
+            Notation::Text => writeln!(self.out, "  {lhs} = {rhs}"),
+            Notation::Latex => writeln!(self.out, "{lhs} &= {rhs} \\\\"),
+        };
+    }
 }

@@ -2,7 +2,9 @@
 
 use super::notation::{Notation, Printer, latex_name};
 use crate::Compiled;
+use crate::derive::Derivation;
 use crate::expr::{ExprId, Store};
+use crate::spec::Model;
 use std::fmt::Write;
 
 /// Terms per line of a broken equation.
@@ -55,7 +57,22 @@ pub fn render_markdown(compiled: &mut Compiled, source: &str) -> String {
 
 fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let model = &compiled.model;
+    let mut out = preamble(model, source);
+    out.push_str(&tables(model));
+    let names: Vec<String> = (model.coordinates.iter())
+        .map(|c| latex_name(&c.name))
+        .collect();
     let d = compiled.derivation.clone();
+    let mut p = Printer {
+        store: &mut compiled.model.store,
+        notation: Notation::Latex,
+    };
+    out.push_str(&sections(&mut p, &d, &names));
+    out
+}
+
+/// The title, provenance, the model's doc and the form of the equations.
+fn preamble(model: &Model, source: &str) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "# Equations of motion of `{}`\n", model.name);
     let _ = writeln!(
@@ -69,6 +86,12 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
         out,
         "\n$$\nM(q, t)\\,\\ddot q = f(q, \\dot q, t), \\qquad L = T - V\n$$\n"
     );
+    out
+}
+
+/// The tables of coordinates, parameters and input functions.
+fn tables(model: &Model) -> String {
+    let mut out = String::new();
     let _ = writeln!(out, "| coordinate | unit | description |\n|---|---|---|");
     for c in &model.coordinates {
         let _ = writeln!(
@@ -112,29 +135,24 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
             );
         }
     }
-    let names: Vec<String> = model
-        .coordinates
-        .iter()
-        .map(|c| latex_name(&c.name))
-        .collect();
+    out
+}
+
+/// The sections of `M`, `f`, the generalized forces and the energies;
+/// `names` are the coordinates in LaTeX.
+fn sections(p: &mut Printer, d: &Derivation, names: &[String]) -> String {
+    let mut out = String::new();
     let n = names.len();
-    let mut p = Printer {
-        store: &mut compiled.model.store,
-        notation: Notation::Latex,
-    };
     let _ = writeln!(out, "\n## Mass matrix\n\nSymmetric; the upper triangle:\n");
     for i in 0..n {
         for j in i..n {
-            out.push_str(&equation(
-                &mut p,
-                &format!("M_{{{} {}}}", names[i], names[j]),
-                d.mass(i, j),
-            ));
+            let lhs = format!("M_{{{} {}}}", names[i], names[j]);
+            out.push_str(&equation(p, &lhs, d.mass(i, j)));
         }
     }
     let _ = writeln!(out, "\n## Forcing\n");
     for (i, name) in names.iter().enumerate() {
-        out.push_str(&equation(&mut p, &format!("f_{{{name}}}"), d.forcing[i]));
+        out.push_str(&equation(p, &format!("f_{{{name}}}"), d.forcing[i]));
     }
     if d.generalized_forces.iter().any(|&q| q != Store::ZERO) {
         let _ = writeln!(
@@ -142,16 +160,13 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
             "\n## Generalized forces\n\nFrom the force statements (included in $f$):\n"
         );
         for (i, name) in names.iter().enumerate() {
-            out.push_str(&equation(
-                &mut p,
-                &format!("Q_{{{name}}}"),
-                d.generalized_forces[i],
-            ));
+            let lhs = format!("Q_{{{name}}}");
+            out.push_str(&equation(p, &lhs, d.generalized_forces[i]));
         }
     }
     let _ = writeln!(out, "\n## Energies\n");
     for (label, e) in [("T", d.kinetic), ("V", d.potential), ("D", d.dissipation)] {
-        out.push_str(&equation(&mut p, label, e));
+        out.push_str(&equation(p, label, e));
     }
     out
 }

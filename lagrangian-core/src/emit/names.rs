@@ -1,103 +1,53 @@
-//! Identifiers in generated code: the user's names where they are free,
-//! suffixed with `_` where they would collide.
+//! Names of the locals in generated code: the user's names where they are
+//! free, suffixed with `_` where they would collide with a name the target
+//! reserves (a keyword, an argument of the generated function) or with each
+//! other.
 
-use crate::program::Op;
+use super::schedule::Load;
 use crate::spec::Model;
-use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Span};
 use rustc_hash::FxHashSet;
 
-/// Names of the generated methods' parameters, which locals must not shadow.
-const TAKEN: &[&str] = &[
-    "t", "q", "qd", "qdd", "inputs", "mass", "forcing", "out", "self", "Self", "I", "f64", "value",
-    "name",
-];
-
-pub(crate) struct Names {
-    /// Struct fields, one per parameter (the parameter's own name).
-    pub fields: Vec<Ident>,
-    /// `INPUT_<NAME>` constants, one per input function.
-    pub input_consts: Vec<Ident>,
-    coordinates: Vec<Ident>,
-    velocities: Vec<Ident>,
-    accelerations: Vec<Ident>,
-    parameters: Vec<Ident>,
+/// The locals of the loads and the temporaries of generated routines.
+pub(crate) struct Locals {
+    coordinates: Vec<String>,
+    velocities: Vec<String>,
+    accelerations: Vec<String>,
+    parameters: Vec<String>,
     temporary_prefix: String,
 }
 
-/// An identifier for `name`, raw when it is written `r#…`.
-pub(crate) fn ident(name: &str) -> Ident {
-    match name.strip_prefix("r#") {
-        Some(raw) => Ident::new_raw(raw, Span::call_site()),
-        None => Ident::new(name, Span::call_site()),
-    }
-}
-
-impl Names {
-    pub fn new(model: &Model) -> Names {
-        let mut taken: FxHashSet<String> = TAKEN.iter().map(|s| s.to_string()).collect();
+impl Locals {
+    /// Locals for `model` that avoid `reserved`; `spell` writes a spec name
+    /// as the target writes it.
+    pub fn new(model: &Model, reserved: &[&str], spell: impl Fn(&str) -> String) -> Locals {
+        let mut taken: FxHashSet<String> = reserved.iter().map(|s| s.to_string()).collect();
         let mut fresh = |base: String| {
             let mut name = base;
             while !taken.insert(name.clone()) {
                 name.push('_');
             }
-            ident(&name)
+            name
         };
-        let coordinates: Vec<Ident> = model
-            .coordinates
-            .iter()
-            .map(|c| fresh(c.name.clone()))
+        let coordinates: Vec<String> = (model.coordinates.iter())
+            .map(|c| fresh(spell(&c.name)))
             .collect();
-        let parameters: Vec<Ident> = model
-            .parameters
-            .iter()
-            .map(|p| fresh(p.name.clone()))
+        let parameters: Vec<String> = (model.parameters.iter())
+            .map(|p| fresh(spell(&p.name)))
             .collect();
-        let velocities: Vec<Ident> = model
-            .coordinates
-            .iter()
-            .map(|c| fresh(format!("{}_dot", c.name)))
+        let velocities: Vec<String> = (model.coordinates.iter())
+            .map(|c| fresh(spell(&format!("{}_dot", c.name))))
             .collect();
-        let accelerations: Vec<Ident> = model
-            .coordinates
-            .iter()
-            .map(|c| fresh(format!("{}_ddot", c.name)))
+        let accelerations: Vec<String> = (model.coordinates.iter())
+            .map(|c| fresh(spell(&format!("{}_ddot", c.name))))
             .collect();
-        let mut consts = FxHashSet::default();
-        let input_consts = model
-            .inputs
-            .iter()
-            .enumerate()
-            .map(|(k, i)| {
-                let mut name = format!("INPUT_{}", i.name.trim_start_matches("r#").to_uppercase());
-                if !consts.insert(name.clone()) {
-                    name = format!("{name}_{k}");
-                    consts.insert(name.clone());
-                }
-                ident(&name)
-            })
-            .collect();
-        let all: Vec<String> = coordinates
-            .iter()
+        let all: Vec<&String> = (coordinates.iter())
             .chain(&parameters)
             .chain(&velocities)
             .chain(&accelerations)
-            .map(|i| i.to_string())
             .collect();
-        let temporary_prefix = ["x", "tmp", "v", "w", "e", "x_"]
-            .into_iter()
-            .find(|p| {
-                !all.iter().any(|n| {
-                    n.strip_prefix(p).is_some_and(|rest| {
-                        !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit())
-                    })
-                })
-            })
-            .unwrap_or("__x")
-            .to_string();
-        Names {
-            fields: model.parameters.iter().map(|p| ident(&p.name)).collect(),
-            input_consts,
+        let temporary_prefix = temporary_prefix(&all).to_string();
+        Locals {
             coordinates,
             velocities,
             accelerations,
@@ -106,31 +56,40 @@ impl Names {
         }
     }
 
-    /// The local for a load and the expression it is loaded from.
-    pub fn load(&self, op: &Op) -> (Ident, TokenStream) {
-        let index = |i: &u32| proc_macro2::Literal::usize_unsuffixed(*i as usize);
-        match op {
-            Op::Coordinate(i) => {
-                let k = index(i);
-                (self.coordinates[*i as usize].clone(), quote!(q[#k]))
-            }
-            Op::Velocity(i) => {
-                let k = index(i);
-                (self.velocities[*i as usize].clone(), quote!(qd[#k]))
-            }
-            Op::Acceleration(i) => {
-                let k = index(i);
-                (self.accelerations[*i as usize].clone(), quote!(qdd[#k]))
-            }
-            Op::Parameter(i) => {
-                let field = &self.fields[*i as usize];
-                (self.parameters[*i as usize].clone(), quote!(self.#field))
-            }
-            _ => (ident("__unused"), quote!(f64::NAN)),
+    /// The local holding a load.
+    pub fn load(&self, load: Load) -> &str {
+        match load {
+            Load::Parameter(i) => &self.parameters[i as usize],
+            Load::Coordinate(i) => &self.coordinates[i as usize],
+            Load::Velocity(i) => &self.velocities[i as usize],
+            Load::Acceleration(i) => &self.accelerations[i as usize],
         }
     }
 
-    pub fn temporary(&self, k: usize) -> Ident {
-        ident(&format!("{}{k}", self.temporary_prefix))
+    /// The local holding temporary `k`.
+    pub fn temporary(&self, k: usize) -> String {
+        format!("{}{k}", self.temporary_prefix)
+    }
+}
+
+/// A prefix `p` such that no name in `names` is `p` followed by digits.
+fn temporary_prefix(names: &[&String]) -> &'static str {
+    ["x", "tmp", "v", "w", "e", "x_"]
+        .into_iter()
+        .find(|p| {
+            !names.iter().any(|n| {
+                n.strip_prefix(p).is_some_and(|rest| {
+                    !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit())
+                })
+            })
+        })
+        .unwrap_or("__x")
+}
+
+/// An identifier for `name`, raw when it is written `r#…`.
+pub(crate) fn ident(name: &str) -> Ident {
+    match name.strip_prefix("r#") {
+        Some(raw) => Ident::new_raw(raw, Span::call_site()),
+        None => Ident::new(name, Span::call_site()),
     }
 }

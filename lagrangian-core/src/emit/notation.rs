@@ -1,7 +1,7 @@
 //! Printing display trees as plain text or LaTeX.
 
-use super::pretty::Tree;
-use crate::expr::{ExprId, Func, Node, Store, SymbolKind};
+use crate::expr::pretty::{Tree, pretty};
+use crate::expr::{ExprId, Func, Node, Precedence, Store, SymbolKind};
 use crate::rational::Rational;
 
 /// How symbols and operators are written.
@@ -51,61 +51,59 @@ pub fn latex_name(name: &str) -> String {
 
 /// Renders display trees in one notation.
 pub struct Printer<'a> {
+    /// The store of the expressions (regrouping builds new expressions).
     pub store: &'a mut Store,
+    /// Text or LaTeX.
     pub notation: Notation,
 }
 
-#[derive(PartialEq, PartialOrd, Clone, Copy)]
-enum Prec {
-    Sum,
-    Product,
-    Power,
-}
-
 impl Printer<'_> {
+    /// `e` in its regrouped display form ([`crate::expr::pretty`]).
     pub fn expr(&mut self, e: ExprId) -> String {
-        let tree = super::pretty::pretty(self.store, e);
-        self.tree(&tree, Prec::Sum)
+        let tree = pretty(self.store, e);
+        self.tree(&tree, Precedence::Sum)
     }
 
     /// The top-level terms of the display form, each with its sign, for
     /// breaking a long equation over lines.
     pub fn terms(&mut self, e: ExprId) -> Vec<(bool, String)> {
-        match super::pretty::pretty(self.store, e) {
+        match pretty(self.store, e) {
             Tree::Add(parts) => parts
                 .iter()
-                .map(|(negated, t)| (*negated, self.tree(t, Prec::Product)))
+                .map(|(negated, t)| (*negated, self.tree(t, Precedence::Product)))
                 .collect(),
-            other => vec![(false, self.tree(&other, Prec::Sum))],
+            other => vec![(false, self.tree(&other, Precedence::Sum))],
         }
     }
 
-    fn tree(&mut self, t: &Tree, min: Prec) -> String {
+    fn tree(&mut self, t: &Tree, min: Precedence) -> String {
         let (text, prec) = match t {
             Tree::Num(c) => (
                 self.number(*c),
                 if c.is_integer() && !c.is_negative() {
-                    Prec::Power
+                    Precedence::Power
                 } else {
-                    Prec::Product
+                    Precedence::Product
                 },
             ),
-            Tree::Atom(e) => (self.atom(*e), Prec::Power),
-            Tree::Pow(base, e) => (self.power(base, *e), Prec::Power),
+            Tree::Atom(e) => (self.atom(*e), Precedence::Power),
+            Tree::Pow(base, e) => (self.power(base, *e), Precedence::Power),
             Tree::Mul(items) => {
-                let parts: Vec<String> =
-                    items.iter().map(|i| self.tree(i, Prec::Product)).collect();
+                let parts: Vec<String> = items
+                    .iter()
+                    .map(|i| self.tree(i, Precedence::Product))
+                    .collect();
                 let sep = if self.notation == Notation::Latex {
                     " \\, "
                 } else {
                     "*"
                 };
-                (parts.join(sep), Prec::Product)
+                (parts.join(sep), Precedence::Product)
             }
             Tree::Add(parts) => {
                 let mut text = String::new();
                 for (k, (negated, item)) in parts.iter().enumerate() {
-                    let body = self.tree(item, Prec::Product);
+                    let body = self.tree(item, Precedence::Product);
                     match (k, negated) {
                         (0, true) => text.push('-'),
                         (0, false) => {}
@@ -114,10 +112,14 @@ impl Printer<'_> {
                     }
                     text.push_str(&body);
                 }
-                (text, Prec::Sum)
+                (text, Precedence::Sum)
             }
         };
-        if prec < min { self.parens(&text) } else { text }
+        if prec.needs_parentheses(min) {
+            self.parens(&text)
+        } else {
+            text
+        }
     }
 
     fn parens(&self, text: &str) -> String {
@@ -141,14 +143,14 @@ impl Printer<'_> {
     fn power(&mut self, base: &Tree, e: Rational) -> String {
         let latex = self.notation == Notation::Latex;
         if e == Rational::HALF {
-            let inner = self.tree(base, Prec::Sum);
+            let inner = self.tree(base, Precedence::Sum);
             return if latex {
                 format!("\\sqrt{{{inner}}}")
             } else {
                 format!("sqrt({inner})")
             };
         }
-        let b = self.tree(base, Prec::Power);
+        let b = self.tree(base, Precedence::Power);
         match (latex, e.is_integer() && !e.is_negative()) {
             (true, _) => format!("{b}^{{{}}}", self.number(e)),
             (false, true) => format!("{b}^{e}"),
@@ -202,8 +204,8 @@ impl Printer<'_> {
                 }
             }
             _ => {
-                let tree = super::pretty::pretty(self.store, e);
-                self.tree(&tree, Prec::Power)
+                let tree = pretty(self.store, e);
+                self.tree(&tree, Precedence::Power)
             }
         }
     }

@@ -22,27 +22,55 @@ impl Store {
     }
 }
 
-/// Binding strength of the rendered form, to decide on parentheses.
-#[derive(PartialEq, PartialOrd, Clone, Copy)]
-enum Prec {
+/// How tightly a written expression binds, loosest first: the one scale of
+/// every printer of expressions and emitter of code, which parenthesizes an
+/// operand that binds less tightly than its place requires.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Precedence {
+    /// A sum or difference.
     Sum,
+    /// A product or quotient (or a coefficient that prints as one, `-2`, `1/2`).
     Product,
+    /// A negation `-x`.
+    Unary,
+    /// A power `x^2`.
+    Power,
+    /// A name, number, call or parenthesized expression.
     Atom,
 }
 
+impl Precedence {
+    /// Whether an expression binding this tightly needs parentheses where
+    /// `min` is required.
+    pub fn needs_parentheses(self, min: Precedence) -> bool {
+        self < min
+    }
+
+    /// The next tighter level: what the right operand of a left-associative
+    /// operator of this level needs (`a - (b - c)`, `a / (b * c)`).
+    pub fn tighter(self) -> Precedence {
+        match self {
+            Precedence::Sum => Precedence::Product,
+            Precedence::Product => Precedence::Unary,
+            Precedence::Unary => Precedence::Power,
+            Precedence::Power | Precedence::Atom => Precedence::Atom,
+        }
+    }
+}
+
 impl DisplayExpr<'_> {
-    fn precedence(&self, e: ExprId) -> Prec {
+    fn precedence(&self, e: ExprId) -> Precedence {
         match self.store.node(e) {
-            Node::Add(items) if items.len() > 1 => Prec::Sum,
-            Node::Add(_) => Prec::Product,
-            Node::Num(c) if !c.is_integer() || c.is_negative() => Prec::Product,
-            Node::Mul(_) => Prec::Product,
-            _ => Prec::Atom,
+            Node::Add(items) if items.len() > 1 => Precedence::Sum,
+            Node::Add(_) => Precedence::Product,
+            Node::Num(c) if !c.is_integer() || c.is_negative() => Precedence::Product,
+            Node::Mul(_) => Precedence::Product,
+            _ => Precedence::Atom,
         }
     }
 
-    fn write(&self, f: &mut fmt::Formatter<'_>, e: ExprId, min: Prec) -> fmt::Result {
-        let wrap = self.precedence(e) < min;
+    fn write(&self, f: &mut fmt::Formatter<'_>, e: ExprId, min: Precedence) -> fmt::Result {
+        let wrap = self.precedence(e).needs_parentheses(min);
         if wrap {
             write!(f, "(")?;
         }
@@ -71,7 +99,7 @@ impl DisplayExpr<'_> {
             Node::Mul(items) => self.write_factors(f, items)?,
             Node::Func(func, u) => {
                 write!(f, "{}(", func.name())?;
-                self.write(f, *u, Prec::Sum)?;
+                self.write(f, *u, Precedence::Sum)?;
                 write!(f, ")")?;
             }
             Node::Input(input, args) => {
@@ -80,7 +108,7 @@ impl DisplayExpr<'_> {
                     if i > 0 {
                         write!(f, ", ")?;
                     }
-                    self.write(f, *a, Prec::Sum)?;
+                    self.write(f, *a, Precedence::Sum)?;
                 }
                 write!(f, ")")?;
             }
@@ -98,7 +126,7 @@ impl DisplayExpr<'_> {
         if !c.is_one() {
             write!(f, "{c}*")?;
         }
-        self.write(f, t, Prec::Product)
+        self.write(f, t, Precedence::Product)
     }
 
     fn write_factors(
@@ -111,13 +139,13 @@ impl DisplayExpr<'_> {
                 write!(f, "*")?;
             }
             if x.is_one() {
-                self.write(f, b, Prec::Atom)?;
+                self.write(f, b, Precedence::Atom)?;
             } else if x == Rational::HALF {
                 write!(f, "sqrt(")?;
-                self.write(f, b, Prec::Sum)?;
+                self.write(f, b, Precedence::Sum)?;
                 write!(f, ")")?;
             } else {
-                self.write(f, b, Prec::Atom)?;
+                self.write(f, b, Precedence::Atom)?;
                 if x.is_integer() && !x.is_negative() {
                     write!(f, "^{x}")?;
                 } else {
@@ -131,6 +159,6 @@ impl DisplayExpr<'_> {
 
 impl fmt::Display for DisplayExpr<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.write(f, self.expr, Prec::Sum)
+        self.write(f, self.expr, Precedence::Sum)
     }
 }

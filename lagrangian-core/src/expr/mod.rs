@@ -51,10 +51,11 @@ mod calculus;
 mod display;
 mod eval;
 mod laurent;
+pub mod pretty;
 mod trig;
 
 pub use calculus::CoordinateSymbols;
-pub use display::DisplayExpr;
+pub use display::{DisplayExpr, Precedence};
 pub use eval::{Evaluator, Inputs, no_inputs};
 
 use crate::rational::Rational;
@@ -516,6 +517,22 @@ impl Store {
         match self.node(e) {
             Node::Func(f, u) => Some((*f, *u)),
             _ => None,
+        }
+    }
+
+    /// Whether `base`, a factor of a monomial, is a velocity, an
+    /// acceleration or an input-function value: the factors that head a
+    /// group when equations are read by motion. The equation documents
+    /// group terms by them ([`pretty`]), and the audit compares hand-derived
+    /// equations group by group.
+    pub fn is_motion_base(&self, base: ExprId) -> bool {
+        match self.node(base) {
+            Node::Sym(s) => matches!(
+                self.symbol_info(*s).kind,
+                SymbolKind::Velocity(_) | SymbolKind::Acceleration(_)
+            ),
+            Node::Input(..) => true,
+            Node::Num(_) | Node::Add(_) | Node::Mul(_) | Node::Func(..) => false,
         }
     }
 

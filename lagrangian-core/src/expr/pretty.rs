@@ -1,4 +1,5 @@
-//! Readable forms of canonical expressions, for equation documents.
+//! Readable forms of canonical expressions, for equation documents and
+//! audits (printed by `emit::Printer`).
 //!
 //! The canonical form is fully expanded; people read factored forms. This
 //! pass regroups a sum without changing its value:
@@ -10,15 +11,17 @@
 //! 4. otherwise terms are collected by the parameter that occurs (linearly)
 //!    in most of them, recursively: `m1 (l0 + r)² + m2 (l0 + l1 + r)²`.
 
-use crate::expr::{ExprId, Node, Store, SymbolKind};
+use super::{ExprId, Node, Store, SymbolKind};
 use crate::rational::Rational;
 
 /// A display tree: the same value as the expression it came from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Tree {
+    /// A rational number.
     Num(Rational),
     /// A symbol, function or input call, printed by the notation.
     Atom(ExprId),
+    /// A power with a rational exponent.
     Pow(Box<Tree>, Rational),
     /// A product; a rational coefficient, if any, comes first.
     Mul(Vec<Tree>),
@@ -38,7 +41,7 @@ pub fn pretty(store: &mut Store, e: ExprId) -> Tree {
     let mut groups: Vec<(Monomial, Vec<(Rational, Monomial)>)> = Vec::new();
     for (c, m) in terms {
         let (motion, rest): (Monomial, Monomial) =
-            m.into_iter().partition(|(b, _)| is_motion(store, *b));
+            m.into_iter().partition(|(b, _)| store.is_motion_base(*b));
         match groups.iter_mut().find(|(k, _)| *k == motion) {
             Some((_, members)) => members.push((c, rest)),
             None => groups.push((motion, vec![(c, rest)])),
@@ -68,18 +71,6 @@ fn split_terms(store: &Store, e: ExprId) -> Vec<(Rational, Monomial)> {
         .into_iter()
         .map(|(t, c)| (c, store.factors(t)))
         .collect()
-}
-
-/// Velocities, accelerations and input-function values head a group.
-fn is_motion(store: &Store, base: ExprId) -> bool {
-    match store.node(base) {
-        Node::Sym(s) => matches!(
-            store.symbol_info(*s).kind,
-            SymbolKind::Velocity(_) | SymbolKind::Acceleration(_)
-        ),
-        Node::Input(..) => true,
-        _ => false,
-    }
 }
 
 /// Higher-order motion terms first, then input terms, then the rest.
