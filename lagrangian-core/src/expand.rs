@@ -14,7 +14,8 @@
 //! at the span of the path literal.
 
 use crate::diagnostic::SpecErrors;
-use crate::emit::{RustOptions, emit_model};
+use crate::emit::{RustOptions, emit_model, emit_stub};
+use crate::spec::Outline;
 use crate::{Compiled, Model};
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, quote};
@@ -82,16 +83,38 @@ fn parse_invocation(input: ParseStream) -> syn::Result<Invocation> {
     })
 }
 
-/// Expands the macro input into the model's code, or into `compile_error!`s.
+/// Expands the macro input into the model's code, or into `compile_error!`s
+/// and, where the spec names its model, a stand-in for the model's type
+/// ([`crate::emit::emit_stub`]) so that its uses add no errors of their own.
 /// Runs on a large stack (see [`crate::depth`]), still on the compiler's thread.
 pub fn expand(input: TokenStream) -> TokenStream {
     crate::depth::with_large_stack(|| match try_expand(input) {
         Ok(tokens) => tokens,
-        Err(error) => error.to_compile_error(),
+        Err(Failed { error, stub }) => {
+            let error = error.to_compile_error();
+            quote! { #error #stub }
+        }
     })
 }
 
-fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
+/// An expansion that failed: the errors and the stand-in for the model.
+struct Failed {
+    error: syn::Error,
+    stub: Option<TokenStream>,
+}
+
+impl From<syn::Error> for Failed {
+    fn from(error: syn::Error) -> Failed {
+        Failed { error, stub: None }
+    }
+}
+
+/// The stand-in for the model of spec `tokens`, if they name one.
+fn stub(tokens: TokenStream, options: &RustOptions) -> Option<TokenStream> {
+    Outline::of(tokens).map(|outline| emit_stub(&outline, options))
+}
+
+fn try_expand(input: TokenStream) -> Result<TokenStream, Failed> {
     let invocation = parse_invocation.parse2(input)?;
     let options = RustOptions {
         runtime: invocation
@@ -100,30 +123,34 @@ fn try_expand(input: TokenStream) -> syn::Result<TokenStream> {
     };
     match invocation.source {
         Source::Inline(tokens) => {
-            let compiled = Model::from_tokens(tokens)
+            let compiled = Model::from_tokens(tokens.clone())
                 .and_then(Compiled::new)
-                .map_err(|e| e.to_syn_error())?;
+                .map_err(|e| Failed {
+                    error: e.to_syn_error(),
+                    stub: stub(tokens, &options),
+                })?;
             Ok(emit_model(&compiled, &options))
         }
         Source::File(path) => expand_file(&path, &options),
     }
 }
 
-fn expand_file(path: &LitStr, options: &RustOptions) -> syn::Result<TokenStream> {
+fn expand_file(path: &LitStr, options: &RustOptions) -> Result<TokenStream, Failed> {
     let manifest = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".to_string());
     let full = std::path::Path::new(&manifest).join(path.value());
     let source = std::fs::read_to_string(&full).map_err(|e| {
         syn::Error::new(
             path.span(),
             format!(
-                "cannot read spec file `{}` ({}): {e}",
+                "cannot read spec file `{}`: {e} (the path is relative to the directory of the crate's Cargo.toml)",
                 path.value(),
-                full.display()
             ),
         )
     })?;
-    let compiled = Compiled::from_source(&source)
-        .map_err(|_| syn::Error::new(path.span(), located_errors(&path.value(), &source)))?;
+    let compiled = Compiled::from_source(&source).map_err(|_| Failed {
+        error: syn::Error::new(path.span(), located_errors(&path.value(), &source)),
+        stub: source.parse().ok().and_then(|tokens| stub(tokens, options)),
+    })?;
     let model = emit_model(&compiled, options);
     let full_text = full.to_string_lossy().into_owned();
     // Inside a proc macro the model's tokens came from the compiler's own

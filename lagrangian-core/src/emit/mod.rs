@@ -15,8 +15,10 @@ mod names;
 mod notation;
 mod rust;
 pub mod schedule;
+mod stub;
 
 pub use equations::render_equations;
 pub use markdown::render_markdown;
 pub use notation::{Notation, Printer, latex_name};
 pub use rust::{RustOptions, emit_file, emit_model};
+pub use stub::emit_stub;

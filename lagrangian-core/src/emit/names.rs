@@ -86,7 +86,23 @@ fn temporary_prefix(names: &[&String]) -> &'static str {
         .unwrap_or("__x")
 }
 
-/// An identifier for `name`, raw when it is written `r#…`.
+/// The `INPUT_<NAME>` constant of each input function: its index in
+/// `InputFunctions::value` calls (numbered where two names collide).
+pub(crate) fn input_constants(inputs: &[String]) -> Vec<Ident> {
+    let mut taken = FxHashSet::default();
+    (inputs.iter().enumerate())
+        .map(|(k, input)| {
+            let mut name = format!("INPUT_{}", input.trim_start_matches("r#").to_uppercase());
+            if !taken.insert(name.clone()) {
+                name = format!("{name}_{k}");
+                taken.insert(name.clone());
+            }
+            ident(&name)
+        })
+        .collect()
+}
+
+/// An identifier for `name`, raw (`r#type`) where the spec wrote it so.
 pub(crate) fn ident(name: &str) -> Ident {
     match name.strip_prefix("r#") {
         Some(raw) => Ident::new_raw(raw, Span::call_site()),

@@ -9,7 +9,7 @@
 //! how the platform's `powi` is expanded.
 
 use super::backend::{self, Backend, Fragment};
-use super::names::{Locals, ident};
+use super::names::{Locals, ident, input_constants};
 use super::schedule::{BinaryOp, Function, Load, Schedule, schedule};
 use crate::Compiled;
 use crate::expr::Precedence;
@@ -18,7 +18,6 @@ use crate::spec::Model;
 use lagrangian_model::layout::{Energy, OutputSlot};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, quote};
-use rustc_hash::FxHashSet;
 
 /// How generated code refers to its surroundings.
 #[derive(Clone, Debug)]
@@ -59,17 +58,8 @@ struct Names {
 
 impl Names {
     fn new(model: &Model) -> Names {
-        let mut consts = FxHashSet::default();
-        let input_consts = (model.inputs.iter().enumerate())
-            .map(|(k, i)| {
-                let mut name = format!("INPUT_{}", i.name.trim_start_matches("r#").to_uppercase());
-                if !consts.insert(name.clone()) {
-                    name = format!("{name}_{k}");
-                    consts.insert(name.clone());
-                }
-                ident(&name)
-            })
-            .collect();
+        let inputs: Vec<String> = model.inputs.iter().map(|i| i.name.clone()).collect();
+        let input_consts = input_constants(&inputs);
         Names {
             fields: model.parameters.iter().map(|p| ident(&p.name)).collect(),
             input_consts,

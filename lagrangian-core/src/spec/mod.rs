@@ -6,12 +6,14 @@ mod dimensions;
 mod expression;
 mod hand;
 mod lower;
+mod outline;
 mod parse;
 mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
 pub(crate) use expression::engine_diagnostic;
 pub use hand::{Assumed, Convention, HandDerived, HandEquation, HandTerm};
+pub use outline::Outline;
 
 use crate::diagnostic::{SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, ExprId, Store, SymbolId};

@@ -1,0 +1,58 @@
+//! The names a spec declares, read from its syntax alone: what the macro
+//! needs to stand in for a model whose spec has errors.
+
+use super::ast::{Item, SpecAst};
+use proc_macro2::TokenStream;
+
+/// The declared names of a spec that parses, each once, in order.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Outline {
+    /// The model's name.
+    pub name: String,
+    /// The coordinates.
+    pub coordinates: Vec<String>,
+    /// The parameters.
+    pub parameters: Vec<String>,
+    /// The input functions.
+    pub inputs: Vec<String>,
+}
+
+impl Outline {
+    /// The outline of `tokens`; `None` when they do not parse as a spec or
+    /// name no model.
+    pub fn of(tokens: TokenStream) -> Option<Outline> {
+        let ast: SpecAst = syn::parse2(tokens).ok()?;
+        let mut outline = Outline::default();
+        for item in &ast.items {
+            match item {
+                Item::Model { name, .. } => outline.name = name.to_string(),
+                Item::Coordinates { decls, .. } => {
+                    push_new(&mut outline.coordinates, decls.iter().map(|d| &d.name))
+                }
+                Item::Parameters { decls } => {
+                    push_new(&mut outline.parameters, decls.iter().map(|d| &d.decl.name))
+                }
+                Item::Inputs { decls } => {
+                    push_new(&mut outline.inputs, decls.iter().map(|d| &d.decl.name))
+                }
+                Item::Let { .. }
+                | Item::Energy { .. }
+                | Item::GeneralizedForce { .. }
+                | Item::PointForce { .. }
+                | Item::Jacobians { .. }
+                | Item::HandDerived(_) => {}
+            }
+        }
+        (!outline.name.is_empty()).then_some(outline)
+    }
+}
+
+/// Appends the names not already in `list`.
+fn push_new<'a>(list: &mut Vec<String>, names: impl Iterator<Item = &'a syn::Ident>) {
+    for name in names {
+        let name = name.to_string();
+        if !list.contains(&name) {
+            list.push(name);
+        }
+    }
+}
