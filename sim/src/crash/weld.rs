@@ -6,24 +6,41 @@
 //! curve and damping for the rest of the run.
 
 use super::curve::{Curve, OutOfRange};
+use super::{Component, Event, Port};
 use crate::ode::Direction;
 
+/// The weld and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Weld {
+    /// `M_intact(θ)` [N·m].
     pub intact: Curve,
+    /// `c` while intact [N·m·s/rad].
     pub damping: f64,
+    /// It fails when `|M_intact(θ)|` reaches this [N·m].
     pub failure_moment: Option<f64>,
+    /// It fails when `|θ|` reaches this [rad].
     pub failure_angle: Option<f64>,
     /// `None`: no moment after failure.
     pub post_failure: Option<Curve>,
+    /// `c` after failure [N·m·s/rad].
     pub post_failure_damping: f64,
     failed_at: Option<f64>,
 }
 
-/// Names of the weld's events.
-pub const EVENTS: [&str; 2] = ["weld failure (moment)", "weld failure (angle)"];
+/// The weld's events: failure by moment, failure by angle.
+const EVENTS: &[Event] = &[
+    Event {
+        name: "weld failure (moment)",
+        direction: Direction::Rising,
+    },
+    Event {
+        name: "weld failure (angle)",
+        direction: Direction::Rising,
+    },
+];
 
 impl Weld {
+    /// An intact weld.
     pub fn new(
         intact: Curve,
         damping: f64,
@@ -41,11 +58,6 @@ impl Weld {
             post_failure_damping,
             failed_at: None,
         }
-    }
-
-    /// Intact again, for the start of a run.
-    pub fn reset(&mut self) {
-        self.failed_at = None;
     }
 
     /// The time of failure, if the weld failed.
@@ -70,13 +82,32 @@ impl Weld {
         let (m, dm) = self.intact.eval(angle)?;
         Ok((m + self.damping * rate, dm, self.damping))
     }
+}
 
-    pub fn event_direction(_k: usize) -> Direction {
-        Direction::Rising
+impl Component for Weld {
+    fn kind(&self) -> &'static str {
+        "weld"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the angle and its rate"))
+    }
+
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        let (m, dm, dc) = self.moment(args)?;
+        Ok(match port {
+            Port::Value => m,
+            Port::Stiffness => dm,
+            Port::Damping => dc,
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        EVENTS
     }
 
     /// `|M_intact(θ)| − M_fail` and `|θ| − θ_fail` while intact; −1 otherwise.
-    pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let intact = self.failed_at.is_none();
         g[0] = match self.failure_moment {
             Some(limit) if intact => self.intact.eval(args[0])?.0.abs() - limit,
@@ -89,7 +120,8 @@ impl Weld {
         Ok(())
     }
 
-    pub fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
+    /// Either event is the failure.
+    fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let moment = self.intact.eval(args[0])?.0;
         self.failed_at = Some(t);
         Ok(format!(
@@ -97,6 +129,16 @@ impl Weld {
             args[0].to_degrees(),
             moment / 1e3
         ))
+    }
+
+    /// Intact again.
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.failed_at = None;
+        Ok(())
+    }
+
+    fn failure_time(&self) -> Option<f64> {
+        self.failed_at
     }
 }
 
@@ -116,12 +158,12 @@ mod tests {
             "{m} {dm} {dc}"
         );
         let mut g = [0.0; 2];
-        weld.events(&[0.05, 0.0], &mut g).unwrap();
+        weld.event_values(&[0.05, 0.0], &mut g).unwrap();
         assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");
         weld.on_event(0, 0.042, &[0.05, 0.0]).unwrap();
         assert_eq!(weld.failed_at(), Some(0.042));
         assert_eq!(weld.moment(&[0.05, 2.0]).unwrap(), (20.0, 0.0, 10.0));
-        weld.events(&[0.09, 0.0], &mut g).unwrap();
+        weld.event_values(&[0.09, 0.0], &mut g).unwrap();
         assert_eq!(g, [-1.0, -1.0]);
     }
 }

@@ -3,11 +3,13 @@
 use super::ModelNames;
 use super::file::{ComponentSection, Ports};
 use super::resolve::{finite, index_of, non_negative, outside, positive};
+use crate::crash::constant::Constant;
 use crate::crash::crush::{CrushElement, Unloading};
 use crate::crash::curve::{Characteristic, Curve};
 use crate::crash::table::Table;
+use crate::crash::tabulated::Tabulated;
 use crate::crash::weld::Weld;
-use crate::crash::{Binding, BoundInputs, Component, Element, Port};
+use crate::crash::{Binding, BoundInputs, Component, NamedComponent, Port};
 use std::collections::BTreeMap;
 use std::fmt;
 
@@ -70,14 +72,14 @@ pub(super) fn bind_components(
                         ));
                     }
                 };
-                let element = Element::Crush(CrushElement::new(
+                let element: Box<dyn Component> = Box::new(CrushElement::new(
                     stiffness,
                     damping,
                     unloading,
                     sign,
                     *contact_only,
                 ));
-                binder.bind_ports(inputs, ("force", &element), c, name)?;
+                binder.bind_ports(inputs, ("force", element.as_ref()), c, name)?;
                 value_inputs.push((c, inputs.force.clone()));
                 element
             }
@@ -114,7 +116,7 @@ pub(super) fn bind_components(
                     .as_deref()
                     .map(|p| make(p, "post_failure_curve"))
                     .transpose()?;
-                let element = Element::Weld(Weld::new(
+                let element: Box<dyn Component> = Box::new(Weld::new(
                     intact,
                     *damping,
                     *failure_moment,
@@ -122,7 +124,7 @@ pub(super) fn bind_components(
                     post,
                     *post_failure_damping,
                 ));
-                binder.bind_ports(inputs, ("moment", &element), c, name)?;
+                binder.bind_ports(inputs, ("moment", element.as_ref()), c, name)?;
                 value_inputs.push((c, inputs.force.clone()));
                 element
             }
@@ -140,12 +142,12 @@ pub(super) fn bind_components(
                     let curve = table
                         .curve(time_column, column, policy)
                         .map_err(|e| format!("components.{name}: {e}"))?;
-                    let element = Element::Curve(curve);
+                    let element = Tabulated { curve };
                     let key = format!("components.{name}.columns.{input}");
                     binder.bind(&key, input, (components.len(), Port::Value), &element)?;
-                    components.push(Component {
+                    components.push(NamedComponent {
                         name: format!("{name}.{input}"),
-                        element,
+                        component: Box::new(element),
                     });
                 }
                 continue;
@@ -153,19 +155,21 @@ pub(super) fn bind_components(
             ComponentSection::Constant { values } => {
                 for (input, value) in values {
                     let key = format!("components.{name}.values.{input}");
-                    let element = Element::Constant(finite(&key, *value)?);
+                    let element = Constant {
+                        value: finite(&key, *value)?,
+                    };
                     binder.bind(&key, input, (components.len(), Port::Value), &element)?;
-                    components.push(Component {
+                    components.push(NamedComponent {
                         name: format!("{name}.{input}"),
-                        element,
+                        component: Box::new(element),
                     });
                 }
                 continue;
             }
         };
-        components.push(Component {
+        components.push(NamedComponent {
             name: name.clone(),
-            element,
+            component: element,
         });
     }
     let mut bindings = binder.bindings;
@@ -177,9 +181,9 @@ pub(super) fn bind_components(
             component: components.len(),
             port: Port::Value,
         });
-        components.push(Component {
+        components.push(NamedComponent {
             name: format!("--set {input}"),
-            element: Element::Constant(value),
+            component: Box::new(Constant { value }),
         });
     }
     // Components with events need the arguments of their one value input.
@@ -232,7 +236,7 @@ impl Binder<'_> {
         key: &str,
         input: &str,
         (index, port): (usize, Port),
-        element: &Element,
+        element: &dyn Component,
     ) -> Result<(), String> {
         let names = self.names;
         let k = index_of(&format!("{key}: input"), input, &names.inputs)?;
@@ -265,7 +269,7 @@ impl Binder<'_> {
     fn bind_ports(
         &mut self,
         ports: &Ports,
-        (value, element): (&str, &Element),
+        (value, element): (&str, &dyn Component),
         index: usize,
         owner: &str,
     ) -> Result<(), String> {
