@@ -1,10 +1,14 @@
 //! Constant values for input functions of any arguments.
 //!
-//! A scenario's `type = "constant"` section makes one per input it gives a
-//! value, named `NAME.INPUT`; `--set INPUT=VALUE` adds one too.
+//! Its scenario section is `type = "constant"` ([`ConstantSection`]), one
+//! component per input it gives a value, named `NAME.INPUT`; `--set
+//! INPUT=VALUE` adds one too.
 
 use super::curve::OutOfRange;
-use super::{Component, Event, Port};
+use super::{Binder, Component, Event, Port, Section};
+use crate::scenario::bind::finite;
+use serde::Deserialize;
+use std::collections::BTreeMap;
 
 /// A constant value; its derivatives are 0.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,6 +47,25 @@ impl Component for Constant {
     }
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+}
+
+/// `[components.NAME]` with `type = "constant"`: `values = { input = value }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ConstantSection {
+    values: BTreeMap<String, f64>,
+}
+
+impl Section for ConstantSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        for (input, value) in &self.values {
+            let key = format!("components.{name}.values.{input}");
+            let value = finite(&key, *value)?;
+            let c = binder.add(format!("{name}.{input}"), Box::new(Constant { value }));
+            binder.bind(&key, input, (c, Port::Value))?;
+        }
         Ok(())
     }
 }

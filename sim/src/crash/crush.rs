@@ -18,10 +18,15 @@
 //!
 //! Each change of regime is an event of the integration, so the force is
 //! smooth within a step.
+//!
+//! Its scenario section is `type = "crush"` ([`CrushSection`]).
 
 use super::curve::{Characteristic, OutOfRange};
-use super::{Component, Event, Port};
+use super::{Binder, Component, Event, Port, Section};
 use crate::ode::Direction;
+use crate::scenario::bind::{Ports, outside};
+use serde::Deserialize;
+use std::fmt;
 
 /// How the crush spring unloads.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -282,6 +287,90 @@ impl Component for CrushElement {
 
     fn compression_sign(&self) -> Option<f64> {
         Some(self.compression_sign)
+    }
+}
+
+/// `[components.NAME]` with `type = "crush"`: the element's tables, unloading
+/// and contact, and the inputs it supplies (force and, optionally, its
+/// tangent stiffness and damping).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CrushSection {
+    inputs: Ports,
+    compression: String,
+    stiffness_breakpoints: Vec<f64>,
+    stiffness_values: Vec<f64>,
+    damping_breakpoints: Vec<f64>,
+    damping_values: Vec<f64>,
+    #[serde(default = "elastic")]
+    unloading: String,
+    unloading_stiffness: Option<f64>,
+    #[serde(default = "yes")]
+    contact_only: bool,
+    #[serde(default = "hold")]
+    outside: String,
+}
+
+fn elastic() -> String {
+    "elastic".into()
+}
+fn yes() -> bool {
+    true
+}
+fn hold() -> String {
+    "hold".into()
+}
+
+impl Section for CrushSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let element = self.element(name)?;
+        let c = binder.add(name.to_string(), Box::new(element));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+impl CrushSection {
+    /// The element `[components.{name}]` describes.
+    fn element(&self, name: &str) -> Result<CrushElement, String> {
+        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
+        let policy = outside(&format!("components.{name}"), &self.outside)?;
+        let stiffness =
+            Characteristic::new(&self.stiffness_breakpoints, &self.stiffness_values, policy)
+                .map_err(|e| at("stiffness table", &e))?;
+        let damping = Characteristic::new(&self.damping_breakpoints, &self.damping_values, policy)
+            .map_err(|e| at("damping table", &e))?;
+        Ok(CrushElement::new(
+            stiffness,
+            damping,
+            self.unloading(name)?,
+            self.compression_sign(name)?,
+            self.contact_only,
+        ))
+    }
+
+    fn unloading(&self, name: &str) -> Result<Unloading, String> {
+        match (self.unloading.as_str(), self.unloading_stiffness) {
+            ("elastic", _) => Ok(Unloading::Elastic),
+            ("plastic", Some(k)) if k > 0.0 && k.is_finite() => {
+                Ok(Unloading::Plastic { stiffness: k })
+            }
+            ("plastic", _) => Err(format!(
+                "components.{name}: plastic unloading needs a positive unloading_stiffness [N/m]"
+            )),
+            (other, _) => Err(format!(
+                "components.{name}: unloading = `{other}`; use elastic or plastic"
+            )),
+        }
+    }
+
+    fn compression_sign(&self, name: &str) -> Result<f64, String> {
+        match self.compression.as_str() {
+            "positive" => Ok(1.0),
+            "negative" => Ok(-1.0),
+            other => Err(format!(
+                "components.{name}: compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+            )),
+        }
     }
 }
 

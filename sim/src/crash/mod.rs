@@ -27,6 +27,13 @@
 //! of its value input: that input must be called at one place of the
 //! dynamics (the scenario checks it), and [`BoundInputs`] passes its
 //! arguments to the component's events and to [`Component::start`].
+//!
+//! Its scenario section, `[components.NAME]` with `type = "KIND"`, is a
+//! struct that implements the crate's `Section` trait: it reads the
+//! section's entries (`serde`, `deny_unknown_fields`), checks them, adds the
+//! component (or components) to the scenario's `Binder` and binds the
+//! model's inputs to their ports (`Binder::bind`, `Binder::bind_ports`). Each section is registered by
+//! one line of the `components!` list below.
 
 pub mod bound;
 pub mod constant;
@@ -37,9 +44,12 @@ pub mod tabulated;
 pub mod weld;
 
 use crate::ode::Direction;
+pub(crate) use crate::scenario::bind::Binder;
 pub use bound::{Binding, BoundInputs, NamedComponent};
 use curve::OutOfRange;
 use std::fmt;
+use std::path::Path;
+use table::Table;
 
 /// Which value of a component an input function reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,8 +78,8 @@ pub struct Event {
 /// Every event method is required, so that a component with events cannot
 /// leave one out; a component without events implements them as such.
 pub trait Component: ComponentClone + fmt::Debug + Send {
-    /// What the scenario calls this kind of component: the `type` of its
-    /// section.
+    /// What the scenario calls this kind of component: the `type` its
+    /// section is registered under.
     fn kind(&self) -> &'static str;
 
     /// How many arguments the input functions bound to this component must
@@ -130,5 +140,75 @@ impl<T: Component + Clone + 'static> ComponentClone for T {
 impl Clone for Box<dyn Component> {
     fn clone(&self) -> Self {
         self.clone_box()
+    }
+}
+
+/// A `[components.NAME]` section of a scenario file, as read for one kind
+/// of component.
+pub(crate) trait Section {
+    /// Reads the data file the section names, if any, and checks that what
+    /// it needs is there — before anything is bound, so that a missing file
+    /// is reported as such. The default: no data file.
+    fn load_table(&self, _name: &str, _base: &Path) -> Result<Option<Table>, String> {
+        Ok(None)
+    }
+
+    /// Checks the section `[components.{name}]`, adds its components to
+    /// `binder` and binds the model's inputs to their ports.
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String>;
+}
+
+/// The registry: from `KIND => module::Section` lines, the serde enum of
+/// the sections (tagged by `type = "KIND"`) and their dispatch.
+macro_rules! components {
+    ($($(#[$attr:meta])* $kind:ident => $section:ty,)*) => {
+        /// A `[components.NAME]` section of a scenario file, by its `type`.
+        #[derive(serde::Deserialize)]
+        #[serde(tag = "type", deny_unknown_fields)]
+        #[allow(non_camel_case_types)]
+        pub(crate) enum ComponentSection {
+            $(
+                #[doc = concat!("`type = \"", stringify!($kind), "\"`")]
+                $(#[$attr])* $kind($section),
+            )*
+        }
+
+        impl ComponentSection {
+            /// The `type` of the component as written.
+            pub(crate) fn kind(&self) -> &'static str {
+                match self {
+                    $($(#[$attr])* ComponentSection::$kind(_) => stringify!($kind),)*
+                }
+            }
+
+            /// The section's reading and building.
+            pub(crate) fn section(&self) -> &dyn Section {
+                match self {
+                    $($(#[$attr])* ComponentSection::$kind(section) => section,)*
+                }
+            }
+        }
+    };
+}
+
+components! {
+    crush => crush::CrushSection,
+    weld => weld::WeldSection,
+    table => tabulated::TableSection,
+    constant => constant::ConstantSection,
+}
+
+impl ComponentSection {
+    /// Builds the section `[components.{name}]` into `binder` (see
+    /// [`Section::build`]).
+    pub(crate) fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let first = binder.component_count();
+        self.section().build(name, binder)?;
+        debug_assert!(
+            binder.kinds_from(first).all(|kind| kind == self.kind()),
+            "a `{}` section built a component of another kind",
+            self.kind()
+        );
+        Ok(())
     }
 }

@@ -1,11 +1,16 @@
 //! A tabulated function of one argument: a column of a CSV table against
 //! its time column (a barrier force history, say), interpolated linearly.
 //!
-//! A scenario's `type = "table"` section makes one per column it binds,
-//! named `NAME.INPUT`.
+//! Its scenario section is `type = "table"` ([`TableSection`]): one file,
+//! and one component per column it binds, named `NAME.INPUT`.
 
-use super::curve::{Curve, OutOfRange};
-use super::{Component, Event, Port};
+use super::curve::{Curve, OutOfRange, Outside};
+use super::table::Table;
+use super::{Binder, Component, Event, Port, Section};
+use crate::scenario::bind::outside;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::Path;
 
 /// `y(x)` from a table: its value and slope at the input's first argument.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,6 +52,56 @@ impl Component for Tabulated {
     }
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+}
+
+/// `[components.NAME]` with `type = "table"`: a CSV file, its time column,
+/// and the model inputs its other columns supply (`columns = { input =
+/// "column" }`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct TableSection {
+    file: String,
+    #[serde(default = "time")]
+    time_column: String,
+    columns: BTreeMap<String, String>,
+    #[serde(default = "zero")]
+    outside: String,
+}
+
+fn time() -> String {
+    "t".into()
+}
+fn zero() -> String {
+    "zero".into()
+}
+
+impl Section for TableSection {
+    /// Reads the file (relative to `base`) and checks that every column it
+    /// names is there, against increasing times.
+    fn load_table(&self, name: &str, base: &Path) -> Result<Option<Table>, String> {
+        let at = |e: &dyn std::fmt::Display| format!("components.{name}: {e}");
+        let table = Table::load(&base.join(&self.file)).map_err(|e| at(&e))?;
+        for column in self.columns.values() {
+            table
+                .curve(&self.time_column, column, Outside::Hold)
+                .map_err(|e| at(&e))?;
+        }
+        Ok(Some(table))
+    }
+
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let policy = outside(&format!("components.{name}"), &self.outside)?;
+        let table = binder.table(name)?;
+        for (input, column) in &self.columns {
+            let curve = table
+                .curve(&self.time_column, column, policy)
+                .map_err(|e| format!("components.{name}: {e}"))?;
+            let c = binder.add(format!("{name}.{input}"), Box::new(Tabulated { curve }));
+            let key = format!("components.{name}.columns.{input}");
+            binder.bind(&key, input, (c, Port::Value))?;
+        }
         Ok(())
     }
 }

@@ -4,10 +4,14 @@
 //! `M = M_intact(θ) + c·θ̇`; when `|M_intact(θ)|` reaches the failure moment
 //! (or `|θ|` the failure angle) an event switches it to the post-failure
 //! curve and damping for the rest of the run.
+//!
+//! Its scenario section is `type = "weld"` ([`WeldSection`]).
 
 use super::curve::{Curve, OutOfRange};
-use super::{Component, Event, Port};
+use super::{Binder, Component, Event, Port, Section};
 use crate::ode::Direction;
+use crate::scenario::bind::{Ports, non_negative, outside, positive};
+use serde::Deserialize;
 
 /// The weld and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
@@ -139,6 +143,75 @@ impl Component for Weld {
 
     fn failure_time(&self) -> Option<f64> {
         self.failed_at
+    }
+}
+
+/// `[components.NAME]` with `type = "weld"`: the intact and post-failure
+/// curves `[[θ, M], …]`, damping, failure limits, and the inputs it supplies
+/// (`moment` and, optionally, its tangent stiffness and damping).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WeldSection {
+    inputs: Ports,
+    curve: Vec<[f64; 2]>,
+    #[serde(default)]
+    damping: f64,
+    failure_moment: Option<f64>,
+    failure_angle: Option<f64>,
+    post_failure_curve: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    post_failure_damping: f64,
+    #[serde(default = "extrapolate")]
+    outside: String,
+}
+
+fn extrapolate() -> String {
+    "extrapolate".into()
+}
+
+impl Section for WeldSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let weld = self.weld(name)?;
+        let c = binder.add(name.to_string(), Box::new(weld));
+        binder.bind_ports(&self.inputs, "moment", c, name)
+    }
+}
+
+impl WeldSection {
+    /// The weld `[components.{name}]` describes.
+    fn weld(&self, name: &str) -> Result<Weld, String> {
+        let policy = outside(&format!("components.{name}"), &self.outside)?;
+        let make = |points: &[[f64; 2]], what: &str| {
+            Curve::new(
+                points.iter().map(|p| p[0]).collect(),
+                points.iter().map(|p| p[1]).collect(),
+                policy,
+            )
+            .map_err(|e| format!("components.{name}: {what}: {e}"))
+        };
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        non_negative(&key("damping"), self.damping)?;
+        non_negative(&key("post_failure_damping"), self.post_failure_damping)?;
+        if let Some(m) = self.failure_moment {
+            positive(&key("failure_moment"), m)?;
+        }
+        if let Some(a) = self.failure_angle {
+            positive(&key("failure_angle"), a)?;
+        }
+        let intact = make(&self.curve, "curve")?;
+        let post = self
+            .post_failure_curve
+            .as_deref()
+            .map(|p| make(p, "post_failure_curve"))
+            .transpose()?;
+        Ok(Weld::new(
+            intact,
+            self.damping,
+            self.failure_moment,
+            self.failure_angle,
+            post,
+            self.post_failure_damping,
+        ))
     }
 }
 
