@@ -1,6 +1,6 @@
 //! Constant values for input functions of any arguments.
 //!
-//! Its scenario section is `type = "constant"` ([`ConstantSection`]), one
+//! Its scenario section is `type = "constant"` (`ConstantSection`), one
 //! component per input it gives a value, named `NAME.INPUT`; `--set
 //! INPUT=VALUE` adds one too.
 

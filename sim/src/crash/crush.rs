@@ -19,7 +19,7 @@
 //! Each change of regime is an event of the integration, so the force is
 //! smooth within a step.
 //!
-//! Its scenario section is `type = "crush"` ([`CrushSection`]).
+//! Its scenario section is `type = "crush"` (`CrushSection`).
 
 use super::curve::{Characteristic, OutOfRange};
 use super::{Binder, Component, Event, Port, Section};

@@ -32,8 +32,39 @@
 //! struct that implements the crate's `Section` trait: it reads the
 //! section's entries (`serde`, `deny_unknown_fields`), checks them, adds the
 //! component (or components) to the scenario's `Binder` and binds the
-//! model's inputs to their ports (`Binder::bind`, `Binder::bind_ports`). Each section is registered by
-//! one line of the `components!` list below.
+//! model's inputs to their ports (`Binder::bind`, `Binder::bind_ports`).
+//!
+//! # How to add a component
+//!
+//! A new component touches one new file and two lines of this one:
+//!
+//! 1. Write `sim/src/crash/KIND.rs` with
+//!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
+//!      method but the two queries is required; a component without events
+//!      returns `&[]` from `events` and has nothing to do in `event_values`
+//!      and `on_event`, one with events lists them in a
+//!      `const EVENTS: &[Event]`;
+//!    * its section: `#[derive(Deserialize)]`,
+//!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
+//!      of its entries (with `#[serde(default = …)]` for optional ones) and
+//!      `impl Section`. `build` checks the entries (`crate::scenario::bind`
+//!      has `finite`, `positive`, `non_negative` and `outside`, which name
+//!      the entry in their messages), adds the component with
+//!      `binder.add(name, Box::new(component))` and binds inputs to its
+//!      ports: `binder.bind_ports(&self.inputs, "force", c, name)` for an
+//!      `inputs = { force, stiffness, damping }` entry (`Ports`), or
+//!      `binder.bind(key, input, (c, Port::Value))` for one input.
+//!
+//!    [`weld`] is a short example with events, [`constant`] one without.
+//! 2. Here: declare the file (`pub mod KIND;`) and register its section with
+//!    one line of the `components!` list below, `KIND => KIND::KindSection,`.
+//!    The name before the arrow is the section's `type` in scenario files,
+//!    which [`Component::kind`] must return (checked in debug builds).
+//!
+//! Nothing else names a component: scenario files, the binding of inputs,
+//! events, the summary and the plots reach every component through these
+//! two traits. `test_spring.rs`, registered for tests only, is a complete
+//! example with an event that fires in a simulation.
 
 pub mod bound;
 pub mod constant;
@@ -41,6 +72,8 @@ pub mod crush;
 pub mod curve;
 pub mod table;
 pub mod tabulated;
+#[cfg(test)]
+mod test_spring;
 pub mod weld;
 
 use crate::ode::Direction;
@@ -196,6 +229,8 @@ components! {
     weld => weld::WeldSection,
     table => tabulated::TableSection,
     constant => constant::ConstantSection,
+    #[cfg(test)]
+    test_spring => test_spring::SpringSection,
 }
 
 impl ComponentSection {

@@ -1,7 +1,7 @@
 //! A tabulated function of one argument: a column of a CSV table against
 //! its time column (a barrier force history, say), interpolated linearly.
 //!
-//! Its scenario section is `type = "table"` ([`TableSection`]): one file,
+//! Its scenario section is `type = "table"` (`TableSection`): one file,
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::curve::{Curve, OutOfRange, Outside};

@@ -5,7 +5,7 @@
 //! (or `|θ|` the failure angle) an event switches it to the post-failure
 //! curve and damping for the rest of the run.
 //!
-//! Its scenario section is `type = "weld"` ([`WeldSection`]).
+//! Its scenario section is `type = "weld"` (`WeldSection`).
 
 use super::curve::{Curve, OutOfRange};
 use super::{Binder, Component, Event, Port, Section};
@@ -22,7 +22,7 @@ pub struct Weld {
     pub damping: f64,
     /// It fails when `|M_intact(θ)|` reaches this [N·m].
     pub failure_moment: Option<f64>,
-    /// It fails when `|θ|` reaches this [rad].
+    /// It fails when `|θ|` reaches this \[rad\].
     pub failure_angle: Option<f64>,
     /// `None`: no moment after failure.
     pub post_failure: Option<Curve>,
