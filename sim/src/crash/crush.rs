@@ -33,8 +33,11 @@ use std::fmt;
 pub enum Unloading {
     /// Along the loading curve (the paper's elastic spring).
     Elastic,
-    /// Linearly from the peak with this stiffness [N/m].
-    Plastic { stiffness: f64 },
+    /// Linearly from the peak.
+    Plastic {
+        /// The unloading stiffness `k_u` [N/m].
+        stiffness: f64,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
