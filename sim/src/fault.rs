@@ -9,8 +9,9 @@ use std::fmt;
 /// A failed evaluation of the model or of a component it reads.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Fault {
-    /// `M(q)` has no Cholesky (or LU) factorization: singular, or not
-    /// positive definite, at coordinates `q`.
+    /// `M(q)` has no `L D Lᵀ` factorization with positive pivots (the only
+    /// way the mass matrix is solved): singular, or not positive definite,
+    /// at coordinates `q`.
     SingularMassMatrix { q: Vec<f64>, qd: Vec<f64> },
     /// An entry of `M`, `f`, `q̈` or a power is NaN or ±∞.
     NonFinite {

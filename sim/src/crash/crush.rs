@@ -18,17 +18,26 @@
 //!
 //! Each change of regime is an event of the integration, so the force is
 //! smooth within a step.
+//!
+//! Its scenario section is `type = "crush"` (`CrushSection`).
 
 use super::curve::{Characteristic, OutOfRange};
+use super::{Binder, Component, Event, Port, Section};
 use crate::ode::Direction;
+use crate::scenario::bind::{Ports, outside};
+use serde::Deserialize;
+use std::fmt;
 
 /// How the crush spring unloads.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Unloading {
     /// Along the loading curve (the paper's elastic spring).
     Elastic,
-    /// Linearly from the peak with this stiffness [N/m].
-    Plastic { stiffness: f64 },
+    /// Linearly from the peak.
+    Plastic {
+        /// The unloading stiffness `k_u` [N/m].
+        stiffness: f64,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,8 +49,11 @@ enum Phase {
 /// The crush element and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CrushElement {
+    /// The spring's `k(|δ|)` of eq 1.
     pub stiffness: Characteristic,
+    /// The damper's `c(|δ̇|)` of eq 2.
     pub damping: Characteristic,
+    /// How the spring unloads.
     pub unloading: Unloading,
     /// `+1` if compression is a positive input argument, `−1` if negative
     /// (the paper's `r < 0`).
@@ -52,15 +64,28 @@ pub struct CrushElement {
     in_contact: bool,
 }
 
-/// Names of the element's events, in index order.
-pub const EVENTS: [&str; 4] = [
-    "peak crush",
-    "reloading past the peak",
-    "separation",
-    "contact",
+/// The element's events, in index order (see [`CrushElement::event_values`]).
+const EVENTS: &[Event] = &[
+    Event {
+        name: "peak crush",
+        direction: Direction::Falling,
+    },
+    Event {
+        name: "reloading past the peak",
+        direction: Direction::Rising,
+    },
+    Event {
+        name: "separation",
+        direction: Direction::Falling,
+    },
+    Event {
+        name: "contact",
+        direction: Direction::Rising,
+    },
 ];
 
 impl CrushElement {
+    /// An element in the undeformed, loading state, in contact.
     pub fn new(
         stiffness: Characteristic,
         damping: Characteristic,
@@ -77,20 +102,6 @@ impl CrushElement {
             phase: Phase::Loading,
             in_contact: true,
         }
-    }
-
-    /// Back to the undeformed, loading state, in contact or not as the
-    /// state the run starts in, with input arguments `args`, says: in contact
-    /// when the gap is closed and the barrier would push (see
-    /// [`CrushElement::events`]).
-    pub fn start(&mut self, args: &[f64]) -> Result<(), OutOfRange> {
-        self.phase = Phase::Loading;
-        self.in_contact = true;
-        if self.contact_only {
-            let (delta, rate) = self.crush(args);
-            self.in_contact = self.closing(delta, rate)? >= 0.0;
-        }
-        Ok(())
     }
 
     /// Whether the element is in contact with the barrier.
@@ -164,11 +175,40 @@ impl CrushElement {
         Ok(self.compressive(args)?.2)
     }
 
-    pub fn event_direction(k: usize) -> Direction {
-        match k {
-            0 | 2 => Direction::Falling,
-            _ => Direction::Rising,
+    /// The permanent crush after plastic unloading from the peak, if any.
+    pub fn permanent_set(&self) -> Option<f64> {
+        match (self.phase, self.unloading) {
+            (
+                Phase::Unloading {
+                    peak_crush,
+                    peak_force,
+                },
+                Unloading::Plastic { stiffness },
+            ) => Some(peak_crush - peak_force / stiffness),
+            _ => None,
         }
+    }
+}
+
+impl Component for CrushElement {
+    fn kind(&self) -> &'static str {
+        "crush"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the crush coordinate and its rate"))
+    }
+
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        match port {
+            Port::Value => self.force(args),
+            Port::Stiffness => self.force_stiffness(args),
+            Port::Damping => self.force_damping(args),
+        }
+    }
+
+    fn events(&self) -> &'static [Event] {
+        EVENTS
     }
 
     /// The event functions; one that does not apply in the current regime is
@@ -179,7 +219,7 @@ impl CrushElement {
     /// 2. separation (contact only, in contact): `S + D`, falling;
     /// 3. contact (contact only, separated): `min(δ − δ₀, S + D)`, rising —
     ///    the gap closes at the spring's zero `δ₀` with the barrier pushing.
-    pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let (delta, rate) = self.crush(args);
         let plastic = matches!(self.unloading, Unloading::Plastic { .. });
         g[0] = match self.phase {
@@ -203,9 +243,7 @@ impl CrushElement {
         Ok(())
     }
 
-    /// Applies event `k` at the state with input arguments `args`; returns
-    /// a description of the change.
-    pub fn on_event(&mut self, k: usize, args: &[f64]) -> Result<String, OutOfRange> {
+    fn on_event(&mut self, k: usize, _t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let (delta, _) = self.crush(args);
         Ok(match k {
             0 => {
@@ -234,17 +272,107 @@ impl CrushElement {
         })
     }
 
-    /// The permanent crush after plastic unloading from the peak, if any.
-    pub fn permanent_set(&self) -> Option<f64> {
-        match (self.phase, self.unloading) {
-            (
-                Phase::Unloading {
-                    peak_crush,
-                    peak_force,
-                },
-                Unloading::Plastic { stiffness },
-            ) => Some(peak_crush - peak_force / stiffness),
-            _ => None,
+    /// Back to the undeformed, loading state, in contact or not as the
+    /// state the run starts in, with input arguments `args`, says: in contact
+    /// when the gap is closed and the barrier would push (see
+    /// [`CrushElement::event_values`]). Without arguments (its force is not
+    /// called by the dynamics, so it has no events) it starts at rest.
+    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        let args = args.unwrap_or(&[0.0, 0.0]);
+        self.phase = Phase::Loading;
+        self.in_contact = true;
+        if self.contact_only {
+            let (delta, rate) = self.crush(args);
+            self.in_contact = self.closing(delta, rate)? >= 0.0;
+        }
+        Ok(())
+    }
+
+    fn compression_sign(&self) -> Option<f64> {
+        Some(self.compression_sign)
+    }
+}
+
+/// `[components.NAME]` with `type = "crush"`: the element's tables, unloading
+/// and contact, and the inputs it supplies (force and, optionally, its
+/// tangent stiffness and damping).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CrushSection {
+    inputs: Ports,
+    compression: String,
+    stiffness_breakpoints: Vec<f64>,
+    stiffness_values: Vec<f64>,
+    damping_breakpoints: Vec<f64>,
+    damping_values: Vec<f64>,
+    #[serde(default = "elastic")]
+    unloading: String,
+    unloading_stiffness: Option<f64>,
+    #[serde(default = "yes")]
+    contact_only: bool,
+    #[serde(default = "hold")]
+    outside: String,
+}
+
+fn elastic() -> String {
+    "elastic".into()
+}
+fn yes() -> bool {
+    true
+}
+fn hold() -> String {
+    "hold".into()
+}
+
+impl Section for CrushSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let element = self.element(name)?;
+        let c = binder.add(name.to_string(), Box::new(element));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+impl CrushSection {
+    /// The element `[components.{name}]` describes.
+    fn element(&self, name: &str) -> Result<CrushElement, String> {
+        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
+        let policy = outside(&format!("components.{name}"), &self.outside)?;
+        let stiffness =
+            Characteristic::new(&self.stiffness_breakpoints, &self.stiffness_values, policy)
+                .map_err(|e| at("stiffness table", &e))?;
+        let damping = Characteristic::new(&self.damping_breakpoints, &self.damping_values, policy)
+            .map_err(|e| at("damping table", &e))?;
+        Ok(CrushElement::new(
+            stiffness,
+            damping,
+            self.unloading(name)?,
+            self.compression_sign(name)?,
+            self.contact_only,
+        ))
+    }
+
+    fn unloading(&self, name: &str) -> Result<Unloading, String> {
+        match (self.unloading.as_str(), self.unloading_stiffness) {
+            ("elastic", _) => Ok(Unloading::Elastic),
+            ("plastic", Some(k)) if k > 0.0 && k.is_finite() => {
+                Ok(Unloading::Plastic { stiffness: k })
+            }
+            ("plastic", _) => Err(format!(
+                "components.{name}: plastic unloading needs a positive unloading_stiffness [N/m]"
+            )),
+            (other, _) => Err(format!(
+                "components.{name}: unloading = `{other}`; use elastic or plastic"
+            )),
+        }
+    }
+
+    fn compression_sign(&self, name: &str) -> Result<f64, String> {
+        match self.compression.as_str() {
+            "positive" => Ok(1.0),
+            "negative" => Ok(-1.0),
+            other => Err(format!(
+                "components.{name}: compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+            )),
         }
     }
 }
@@ -273,9 +401,9 @@ mod tests {
         let mut e = element(Unloading::Plastic { stiffness: 1.0e8 });
         let mut g = [0.0; 4];
         // At the peak the crush rate passes zero: event 0.
-        e.events(&[-0.3, 0.0], &mut g).unwrap();
+        e.event_values(&[-0.3, 0.0], &mut g).unwrap();
         assert_eq!(g[0], 0.0);
-        let note = e.on_event(0, &[-0.3, 0.0]).unwrap();
+        let note = e.on_event(0, 0.0, &[-0.3, 0.0]).unwrap();
         assert!(note.contains("peak crush 0.3000 m"), "{note}");
         let peak_force = 1.5e6 * 0.3; // k(0.3) = 1.5e6 N/m
         let set = e.permanent_set().unwrap();
@@ -284,9 +412,9 @@ mod tests {
         let f = e.force(&[-0.299, 0.0]).unwrap();
         assert!((f + (peak_force - 1.0e8 * 0.001)).abs() < 1e-6, "{f}");
         // Below the permanent set, S + D < 0: the separation event function is negative.
-        e.events(&[-(set - 1e-4), 1.0], &mut g).unwrap();
+        e.event_values(&[-(set - 1e-4), 1.0], &mut g).unwrap();
         assert!(g[2] < 0.0);
-        e.on_event(2, &[-(set - 1e-4), 1.0]).unwrap();
+        e.on_event(2, 0.0, &[-(set - 1e-4), 1.0]).unwrap();
         assert_eq!(e.force(&[-(set - 1e-4), 1.0]).unwrap(), 0.0);
     }
 
@@ -294,23 +422,23 @@ mod tests {
     fn a_run_that_starts_with_a_gap_starts_separated_until_the_gap_closes() {
         // compression_sign = −1: crush δ = −r; r = 0.05 is a gap of 5 cm.
         let mut e = element(Unloading::Elastic);
-        e.start(&[0.05, -15.0]).unwrap();
+        e.start(Some(&[0.05, -15.0])).unwrap();
         assert!(!e.in_contact());
         assert_eq!(e.force(&[0.05, -15.0]).unwrap(), 0.0);
         // The contact function is the gap (δ − 0) until it closes, although
         // the damper alone would push already (S + D > 0 at 1 mm).
         let mut g = [0.0; 4];
-        e.events(&[0.001, -15.0], &mut g).unwrap();
+        e.event_values(&[0.001, -15.0], &mut g).unwrap();
         assert_eq!((g[2], g[3]), (1.0, -0.001));
-        e.events(&[-0.001, -15.0], &mut g).unwrap();
+        e.event_values(&[-0.001, -15.0], &mut g).unwrap();
         assert!(g[3] > 0.0);
         // Touching the barrier and closing in, or resting against it: in contact.
-        e.start(&[0.0, -15.0]).unwrap();
+        e.start(Some(&[0.0, -15.0])).unwrap();
         assert!(e.in_contact());
-        e.start(&[0.0, 0.0]).unwrap();
+        e.start(Some(&[0.0, 0.0])).unwrap();
         assert!(e.in_contact());
         // Pressed in but moving away so fast that S + D < 0: separated.
-        e.start(&[-0.001, 100.0]).unwrap();
+        e.start(Some(&[-0.001, 100.0])).unwrap();
         assert!(!e.in_contact());
     }
 }

@@ -18,6 +18,7 @@ pub enum Outside {
 }
 
 impl Outside {
+    /// The policy named `text` (one of [`Outside::NAMES`]).
     pub fn parse(text: &str) -> Option<Outside> {
         match text {
             "hold" => Some(Outside::Hold),
@@ -28,27 +29,41 @@ impl Outside {
         }
     }
 
+    /// The names of the policies, for messages.
     pub const NAMES: &'static str = "hold, extrapolate, zero, error";
 }
 
 /// A problem with a curve's table.
 #[derive(Clone, Debug, PartialEq)]
 pub enum CurveError {
+    /// Fewer than two points (this many).
     TooFewPoints(usize),
+    /// A breakpoint or value is NaN or ±∞.
     NotFinite {
+        /// Its index, from 0.
         index: usize,
     },
+    /// An abscissa does not exceed the one before it.
     NotIncreasing {
+        /// Its index, from 0.
         index: usize,
+        /// The abscissa before it.
         previous: f64,
+        /// The abscissa.
         value: f64,
     },
+    /// A stiffness or damping coefficient is negative.
     Negative {
+        /// Its index, from 0.
         index: usize,
+        /// The coefficient.
         value: f64,
     },
+    /// A characteristic needs one more value than breakpoints.
     LengthMismatch {
+        /// The number of breakpoints.
         breakpoints: usize,
+        /// The number of values.
         values: usize,
     },
 }
@@ -109,12 +124,17 @@ impl PartialEq for Curve {
 /// The result of evaluating outside a curve whose policy is `Outside::Error`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OutOfRange {
+    /// Where it was evaluated.
     pub x: f64,
+    /// The first abscissa.
     pub min: f64,
+    /// The last abscissa.
     pub max: f64,
 }
 
 impl Curve {
+    /// The curve through `(xs[i], ys[i])`; `xs` must increase strictly and
+    /// every number be finite.
     pub fn new(xs: Vec<f64>, ys: Vec<f64>, outside: Outside) -> Result<Curve, CurveError> {
         if xs.len() != ys.len() {
             return Err(CurveError::LengthMismatch {
@@ -147,10 +167,12 @@ impl Curve {
         })
     }
 
+    /// The abscissae.
     pub fn xs(&self) -> &[f64] {
         &self.xs
     }
 
+    /// The values.
     pub fn ys(&self) -> &[f64] {
         &self.ys
     }

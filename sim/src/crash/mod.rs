@@ -1,19 +1,88 @@
 //! Crash components that supply a model's input functions: the crush
 //! element (eqs 1–2, hysteresis, contact), a failing torsional weld,
 //! tabulated time histories and constants.
+//!
+//! # The contract of a component
+//!
+//! A component is a type that implements [`Component`]. A model's input
+//! function reads one of its [`Port`]s: its value, or the value's derivative
+//! with respect to the input's first argument (tangent stiffness) or second
+//! argument (tangent damping). A component
+//!
+//! * says what it is ([`Component::kind`], the `type` of its scenario
+//!   section) and how many arguments the inputs bound to it must take
+//!   ([`Component::arguments`]), which the scenario checks;
+//! * computes each port at an input's arguments ([`Component::value`]);
+//! * lists its events with their directions ([`Component::events`]; a
+//!   component without events says so with an empty list), gives their
+//!   functions ([`Component::event_values`]) and applies one when the
+//!   integrator finds its zero ([`Component::on_event`]): a change of regime
+//!   (peak crush, separation, failure) is an event, so each port is smooth
+//!   within a step;
+//! * starts every run in its initial state ([`Component::start`]);
+//! * answers the queries of the summary and the plots
+//!   ([`Component::compression_sign`], [`Component::failure_time`]).
+//!
+//! A component with events keeps state, which it reads from the arguments
+//! of its value input: that input must be called at one place of the
+//! dynamics (the scenario checks it), and [`BoundInputs`] passes its
+//! arguments to the component's events and to [`Component::start`].
+//!
+//! Its scenario section, `[components.NAME]` with `type = "KIND"`, is a
+//! struct that implements the crate's `Section` trait: it reads the
+//! section's entries (`serde`, `deny_unknown_fields`), checks them, adds the
+//! component (or components) to the scenario's `Binder` and binds the
+//! model's inputs to their ports (`Binder::bind`, `Binder::bind_ports`).
+//!
+//! # How to add a component
+//!
+//! A new component touches one new file and two lines of this one:
+//!
+//! 1. Write `sim/src/crash/KIND.rs` with
+//!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
+//!      method but the two queries is required; a component without events
+//!      returns `&[]` from `events` and has nothing to do in `event_values`
+//!      and `on_event`, one with events lists them in a
+//!      `const EVENTS: &[Event]`;
+//!    * its section: `#[derive(Deserialize)]`,
+//!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
+//!      of its entries (with `#[serde(default = …)]` for optional ones) and
+//!      `impl Section`. `build` checks the entries (`crate::scenario::bind`
+//!      has `finite`, `positive`, `non_negative` and `outside`, which name
+//!      the entry in their messages), adds the component with
+//!      `binder.add(name, Box::new(component))` and binds inputs to its
+//!      ports: `binder.bind_ports(&self.inputs, "force", c, name)` for an
+//!      `inputs = { force, stiffness, damping }` entry (`Ports`), or
+//!      `binder.bind(key, input, (c, Port::Value))` for one input.
+//!
+//!    [`weld`] is a short example with events, [`constant`] one without.
+//! 2. Here: declare the file (`pub mod KIND;`) and register its section with
+//!    one line of the `components!` list below, `KIND => KIND::KindSection,`.
+//!    The name before the arrow is the section's `type` in scenario files,
+//!    which [`Component::kind`] must return (checked in debug builds).
+//!
+//! Nothing else names a component: scenario files, the binding of inputs,
+//! events, the summary and the plots reach every component through these
+//! two traits. `test_spring.rs`, registered for tests only, is a complete
+//! example with an event that fires in a simulation.
 
+pub mod bound;
+pub mod constant;
 pub mod crush;
 pub mod curve;
 pub mod table;
+pub mod tabulated;
+#[cfg(test)]
+mod test_spring;
 pub mod weld;
 
-use crate::fault::Fault;
 use crate::ode::Direction;
-use crush::CrushElement;
-use curve::{Curve, OutOfRange};
-use lagrangian_model::InputFunctions;
-use std::cell::RefCell;
-use weld::Weld;
+pub(crate) use crate::scenario::bind::Binder;
+pub use bound::{Binding, BoundInputs, NamedComponent};
+use curve::OutOfRange;
+use std::fmt;
+use std::path::Path;
+use table::Table;
 
 /// Which value of a component an input function reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,338 +95,155 @@ pub enum Port {
     Damping,
 }
 
-/// What a component is.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Element {
-    Crush(CrushElement),
-    Weld(Weld),
-    /// A function of the input's first argument (a time history).
-    Curve(Curve),
-    Constant(f64),
-}
-
-impl Element {
-    /// Number of event functions.
-    pub fn event_count(&self) -> usize {
-        match self {
-            Element::Crush(_) => crush::EVENTS.len(),
-            Element::Weld(_) => weld::EVENTS.len(),
-            _ => 0,
-        }
-    }
-
-    /// What the scenario calls this kind of component.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Element::Crush(_) => "crush",
-            Element::Weld(_) => "weld",
-            Element::Curve(_) => "table",
-            Element::Constant(_) => "constant",
-        }
-    }
-
-    /// How many arguments the input functions bound to this element must
-    /// have, and what they are; `None`: any number (a constant).
-    pub fn arguments(&self) -> Option<(usize, &'static str)> {
-        match self {
-            Element::Crush(_) => Some((2, "the crush coordinate and its rate")),
-            Element::Weld(_) => Some((2, "the angle and its rate")),
-            Element::Curve(_) => Some((1, "the time or abscissa of the table")),
-            Element::Constant(_) => None,
-        }
-    }
-
-    pub fn event_name(&self, k: usize) -> &'static str {
-        match self {
-            Element::Crush(_) => crush::EVENTS[k],
-            Element::Weld(_) => weld::EVENTS[k],
-            _ => "",
-        }
-    }
-
-    /// The value of `port` at the input's arguments `args`, which hold as
-    /// many values as [`Element::arguments`] asks for.
-    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
-        match (self, port) {
-            (Element::Crush(c), Port::Value) => c.force(args),
-            (Element::Crush(c), Port::Stiffness) => c.force_stiffness(args),
-            (Element::Crush(c), Port::Damping) => c.force_damping(args),
-            (Element::Weld(w), port) => {
-                let (m, dm, dc) = w.moment(args)?;
-                Ok(match port {
-                    Port::Value => m,
-                    Port::Stiffness => dm,
-                    Port::Damping => dc,
-                })
-            }
-            (Element::Curve(c), Port::Value) => Ok(c.eval(args[0])?.0),
-            (Element::Curve(c), Port::Stiffness) => Ok(c.eval(args[0])?.1),
-            (Element::Curve(_), Port::Damping) => Ok(0.0),
-            (Element::Constant(v), Port::Value) => Ok(*v),
-            (Element::Constant(_), _) => Ok(0.0),
-        }
-    }
-}
-
-/// A named component.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Component {
-    pub name: String,
-    pub element: Element,
-}
-
-/// Where a model's input function gets its value.
+/// An event function of a component: a change of regime when it crosses
+/// zero in `direction`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Binding {
-    pub component: usize,
-    pub port: Port,
+pub struct Event {
+    /// What happens, for messages (`"peak crush"`).
+    pub name: &'static str,
+    /// The crossings that trigger it.
+    pub direction: Direction,
 }
 
-/// A model's inputs bound to components; implements [`InputFunctions`].
+/// A crash component: the source of one or more of a model's input
+/// functions (see the module documentation for the contract).
 ///
-/// A value that cannot be produced (a table read outside its range under the
-/// `error` policy) is returned as NaN and the reason kept, so the integrator
-/// stops with that reason instead of a wrong number.
-#[derive(Clone, Debug)]
-pub struct BoundInputs {
-    pub components: Vec<Component>,
-    /// One per model input, by input index (`None`: unbound, NaN if called).
-    pub bindings: Vec<Option<Binding>>,
-    /// For each component with events: the offset and length of the
-    /// arguments of its value input among the model's input arguments.
-    pub event_arguments: Vec<Option<(usize, usize)>>,
-    /// The input names, for messages.
-    pub input_names: Vec<String>,
-    failure: RefCell<Option<Fault>>,
-}
+/// Every event method is required, so that a component with events cannot
+/// leave one out; a component without events implements them as such.
+pub trait Component: ComponentClone + fmt::Debug + Send {
+    /// What the scenario calls this kind of component: the `type` its
+    /// section is registered under.
+    fn kind(&self) -> &'static str;
 
-impl BoundInputs {
-    pub fn new(
-        components: Vec<Component>,
-        bindings: Vec<Option<Binding>>,
-        event_arguments: Vec<Option<(usize, usize)>>,
-        input_names: Vec<String>,
-    ) -> BoundInputs {
-        BoundInputs {
-            components,
-            bindings,
-            event_arguments,
-            input_names,
-            failure: RefCell::new(None),
-        }
-    }
+    /// How many arguments the input functions bound to this component must
+    /// have, and what they are; `None`: any number.
+    fn arguments(&self) -> Option<(usize, &'static str)>;
 
-    /// The first failure since the last call, which clears it.
-    pub fn take_failure(&self) -> Option<Fault> {
-        self.failure.borrow_mut().take()
-    }
+    /// The value of `port` at an input's arguments `args`, which hold as many
+    /// values as [`Component::arguments`] asks for. `Stiffness` is the
+    /// derivative of the value with respect to the first argument,
+    /// `Damping` with respect to the second.
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange>;
 
-    fn fail(&self, fault: Fault) -> f64 {
-        let mut slot = self.failure.borrow_mut();
-        if slot.is_none() {
-            *slot = Some(fault);
-        }
-        f64::NAN
-    }
+    /// The component's events, in index order; empty if it has none.
+    fn events(&self) -> &'static [Event];
 
-    /// Puts every component in its initial state for a run that starts
-    /// with the model's input arguments `arguments` (crush elements in
-    /// contact or not, welds intact).
-    pub fn start(&mut self, arguments: &[f64]) -> Result<(), Fault> {
-        for c in 0..self.components.len() {
-            let args = self.event_arguments[c].map(|(start, len)| &arguments[start..start + len]);
-            let result = match (&mut self.components[c].element, args) {
-                (Element::Crush(e), Some(args)) => e.start(args),
-                // Not called by the dynamics: no events, so it stays as it is at rest.
-                (Element::Crush(e), None) => e.start(&[0.0, 0.0]),
-                (Element::Weld(w), _) => {
-                    w.reset();
-                    Ok(())
-                }
-                _ => Ok(()),
-            };
-            result.map_err(|e| self.out_of_range(c, None, e))?;
-        }
-        Ok(())
-    }
+    /// The event functions at its value input's arguments `args`, one per
+    /// [`Component::events`] entry, into `g`. One that does not apply in the
+    /// current regime is held at a constant of the sign that cannot trigger
+    /// it.
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
 
-    /// `(component, local event)` of global event `k`.
-    pub fn event(&self, k: usize) -> Option<(usize, usize)> {
-        let mut k = k;
-        for (c, component) in self.components.iter().enumerate() {
-            let n = if self.event_arguments[c].is_some() {
-                component.element.event_count()
-            } else {
-                0
-            };
-            if k < n {
-                return Some((c, k));
-            }
-            k -= n;
-        }
+    /// Applies event `k` at time `t` and its value input's arguments `args`;
+    /// returns a description of the change.
+    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
+
+    /// Puts the component in its initial state for a run that starts with
+    /// its value input's arguments `args` (`None` when it has no events, or
+    /// the dynamics does not call that input).
+    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
+
+    /// `+1` if compression is a positive first argument, `−1` if negative,
+    /// for the crush force plot; `None` (the default): the component is not
+    /// a crush element.
+    fn compression_sign(&self) -> Option<f64> {
         None
     }
 
-    pub fn event_count(&self) -> usize {
-        self.components
-            .iter()
-            .zip(&self.event_arguments)
-            .filter(|(_, a)| a.is_some())
-            .map(|(c, _)| c.element.event_count())
-            .sum()
+    /// The time the component failed in the run, if it did; `None` (the
+    /// default) for one that cannot fail.
+    fn failure_time(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Copies a boxed [`Component`]; implemented for every component that is
+/// `Clone`, so that [`BoundInputs`] is.
+pub trait ComponentClone {
+    /// A copy of the component, in its current state.
+    fn clone_box(&self) -> Box<dyn Component>;
+}
+
+impl<T: Component + Clone + 'static> ComponentClone for T {
+    fn clone_box(&self) -> Box<dyn Component> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn Component> {
+    fn clone(&self) -> Self {
+        self.clone_box()
+    }
+}
+
+/// A `[components.NAME]` section of a scenario file, as read for one kind
+/// of component.
+pub(crate) trait Section {
+    /// Reads the data file the section names, if any, and checks that what
+    /// it needs is there — before anything is bound, so that a missing file
+    /// is reported as such. The default: no data file.
+    fn load_table(&self, _name: &str, _base: &Path) -> Result<Option<Table>, String> {
+        Ok(None)
     }
 
-    pub fn event_direction(&self, k: usize) -> Direction {
-        match self
-            .event(k)
-            .map(|(c, local)| (&self.components[c].element, local))
-        {
-            Some((Element::Crush(_), local)) => CrushElement::event_direction(local),
-            Some((Element::Weld(_), local)) => Weld::event_direction(local),
-            _ => Direction::Either,
-        }
-    }
+    /// Checks the section `[components.{name}]`, adds its components to
+    /// `binder` and binds the model's inputs to their ports.
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String>;
+}
 
-    /// All event functions, given the model's input arguments at one state.
-    pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), Fault> {
-        let mut offset = 0;
-        for (c, component) in self.components.iter().enumerate() {
-            let Some((start, len)) = self.event_arguments[c] else {
-                continue;
-            };
-            let n = component.element.event_count();
-            let args = &arguments[start..start + len];
-            let result = match &component.element {
-                Element::Crush(e) => e.events(args, &mut g[offset..offset + n]),
-                Element::Weld(w) => w.events(args, &mut g[offset..offset + n]),
-                _ => Ok(()),
-            };
-            result.map_err(|e| self.out_of_range(c, None, e))?;
-            offset += n;
+/// The registry: from `KIND => module::Section` lines, the serde enum of
+/// the sections (tagged by `type = "KIND"`) and their dispatch.
+macro_rules! components {
+    ($($(#[$attr:meta])* $kind:ident => $section:ty,)*) => {
+        /// A `[components.NAME]` section of a scenario file, by its `type`.
+        #[derive(serde::Deserialize)]
+        #[serde(tag = "type", deny_unknown_fields)]
+        #[allow(non_camel_case_types)]
+        pub(crate) enum ComponentSection {
+            $(
+                #[doc = concat!("`type = \"", stringify!($kind), "\"`")]
+                $(#[$attr])* $kind($section),
+            )*
         }
+
+        impl ComponentSection {
+            /// The `type` of the component as written.
+            pub(crate) fn kind(&self) -> &'static str {
+                match self {
+                    $($(#[$attr])* ComponentSection::$kind(_) => stringify!($kind),)*
+                }
+            }
+
+            /// The section's reading and building.
+            pub(crate) fn section(&self) -> &dyn Section {
+                match self {
+                    $($(#[$attr])* ComponentSection::$kind(section) => section,)*
+                }
+            }
+        }
+    };
+}
+
+components! {
+    crush => crush::CrushSection,
+    weld => weld::WeldSection,
+    table => tabulated::TableSection,
+    constant => constant::ConstantSection,
+    #[cfg(test)]
+    test_spring => test_spring::SpringSection,
+}
+
+impl ComponentSection {
+    /// Builds the section `[components.{name}]` into `binder` (see
+    /// [`Section::build`]).
+    pub(crate) fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let first = binder.component_count();
+        self.section().build(name, binder)?;
+        debug_assert!(
+            binder.kinds_from(first).all(|kind| kind == self.kind()),
+            "a `{}` section built a component of another kind",
+            self.kind()
+        );
         Ok(())
-    }
-
-    /// Applies global event `k` at time `t`; returns `(component, description)`.
-    pub fn on_event(
-        &mut self,
-        k: usize,
-        t: f64,
-        arguments: &[f64],
-    ) -> Result<(String, String), Fault> {
-        let Some((c, local)) = self.event(k) else {
-            return Err(Fault::Component(format!("no event {k}")));
-        };
-        let (start, len) = self.event_arguments[c].unwrap_or((0, 0));
-        let args = &arguments[start..start + len];
-        let name = self.components[c].name.clone();
-        let result = match &mut self.components[c].element {
-            Element::Crush(e) => e.on_event(local, args),
-            Element::Weld(w) => w.on_event(local, t, args),
-            _ => Ok(String::new()),
-        };
-        result
-            .map(|d| (name, d))
-            .map_err(|e| self.out_of_range(c, None, e))
-    }
-
-    fn out_of_range(&self, component: usize, input: Option<usize>, e: OutOfRange) -> Fault {
-        Fault::OutOfRange {
-            component: self.components[component].name.clone(),
-            input: input.map(|i| self.input_names[i].clone()),
-            x: e.x,
-            min: e.min,
-            max: e.max,
-        }
-    }
-
-    /// The compression sign of the crush element whose force input `input`
-    /// is, or `None` when it is not one.
-    pub fn crush_force_sign(&self, input: usize) -> Option<f64> {
-        let binding = self.bindings.get(input).copied().flatten()?;
-        match &self.components[binding.component].element {
-            Element::Crush(c) if binding.port == Port::Value => Some(c.compression_sign),
-            _ => None,
-        }
-    }
-
-    /// The time a weld component failed, if it did.
-    pub fn weld_failure(&self, name: Option<&str>) -> Option<f64> {
-        self.components
-            .iter()
-            .filter(|c| name.is_none_or(|n| n == c.name))
-            .find_map(|c| match &c.element {
-                Element::Weld(w) => w.failed_at(),
-                _ => None,
-            })
-    }
-}
-
-impl InputFunctions for BoundInputs {
-    fn value(&self, input: usize, args: &[f64]) -> f64 {
-        let Some(Some(binding)) = self.bindings.get(input) else {
-            let name = self.input_names.get(input).map_or("?", String::as_str);
-            return self.fail(Fault::Component(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE")));
-        };
-        let component = &self.components[binding.component];
-        if let Some((needed, _)) = component.element.arguments()
-            && args.len() != needed
-        {
-            // The scenario checks this where it knows the input's arguments;
-            // a compiled model does not tell them for inputs only its
-            // Jacobians call.
-            return self.fail(Fault::Component(format!(
-                "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
-                self.input_names[input],
-                args.len(),
-                if args.len() == 1 { "" } else { "s" },
-                component.element.kind(),
-                component.name
-            )));
-        }
-        match component.element.value(binding.port, args) {
-            Ok(v) => v,
-            Err(e) => self.fail(self.out_of_range(binding.component, Some(input), e)),
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::crash::crush::Unloading;
-    use crate::crash::curve::Characteristic;
-
-    #[test]
-    fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
-        // What a compiled model can bring past the scenario check: a crush
-        // element's stiffness port on an input of one argument.
-        let crush = CrushElement::new(
-            Characteristic::constant(1.0e6),
-            Characteristic::constant(1.0e3),
-            Unloading::Elastic,
-            1.0,
-            true,
-        );
-        let inputs = BoundInputs::new(
-            vec![Component {
-                name: "front_end".into(),
-                element: Element::Crush(crush),
-            }],
-            vec![Some(Binding {
-                component: 0,
-                port: Port::Stiffness,
-            })],
-            vec![None],
-            vec!["crush_stiffness".into()],
-        );
-        assert!(inputs.value(0, &[0.1]).is_nan());
-        assert_eq!(
-            inputs.take_failure(),
-            Some(Fault::Component(
-                "input `crush_stiffness` is called with 1 argument, but crush component `front_end` needs 2"
-                    .to_string()
-            ))
-        );
     }
 }

@@ -13,36 +13,60 @@ use std::path::{Path, PathBuf};
 /// A problem with a table file, located at `file:line` where possible.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TableError {
+    /// The file cannot be read.
     Read {
+        /// The file.
         file: PathBuf,
+        /// The system's reason.
         message: String,
     },
+    /// Not a CSV table (rows of different lengths, say).
     Malformed {
+        /// The file.
         file: PathBuf,
         /// The line of the problem, when it has one.
         line: Option<u64>,
+        /// The CSV reader's reason.
         message: String,
     },
+    /// A cell that is not a finite number.
     NotNumeric {
+        /// The file.
         file: PathBuf,
+        /// Its line.
         line: u64,
+        /// Its column's header.
         column: String,
+        /// The cell as written.
         value: String,
     },
+    /// A time that does not exceed the one of the row before.
     NotIncreasing {
+        /// The file.
         file: PathBuf,
+        /// Its line.
         line: u64,
+        /// The time.
         time: f64,
+        /// The time of the row before.
         previous: f64,
     },
+    /// No column of that name.
     MissingColumn {
+        /// The file.
         file: PathBuf,
+        /// The name asked for.
         column: String,
+        /// The headers there are.
         available: Vec<String>,
+        /// The closest header, when one is close.
         suggestion: Option<String>,
     },
+    /// Fewer than two data rows (this many).
     TooShort {
+        /// The file.
         file: PathBuf,
+        /// The number of data rows.
         rows: usize,
     },
 }
@@ -131,6 +155,7 @@ fn bare(header: &str) -> &str {
 }
 
 impl Table {
+    /// Reads and parses the CSV file `file`.
     pub fn load(file: &Path) -> Result<Table, TableError> {
         let text = std::fs::read_to_string(file).map_err(|e| TableError::Read {
             file: file.to_path_buf(),
@@ -139,6 +164,8 @@ impl Table {
         Table::parse(file, &text)
     }
 
+    /// Parses `text`, the contents of `file`: a header row, then rows of
+    /// numbers; `#` starts a comment.
     pub fn parse(file: &Path, text: &str) -> Result<Table, TableError> {
         let file = file.to_path_buf();
         let mut reader = csv::ReaderBuilder::new()
@@ -188,6 +215,7 @@ impl Table {
         })
     }
 
+    /// The file it was read from.
     pub fn file(&self) -> &Path {
         &self.file
     }

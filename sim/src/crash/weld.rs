@@ -4,26 +4,47 @@
 //! `M = M_intact(θ) + c·θ̇`; when `|M_intact(θ)|` reaches the failure moment
 //! (or `|θ|` the failure angle) an event switches it to the post-failure
 //! curve and damping for the rest of the run.
+//!
+//! Its scenario section is `type = "weld"` (`WeldSection`).
 
 use super::curve::{Curve, OutOfRange};
+use super::{Binder, Component, Event, Port, Section};
 use crate::ode::Direction;
+use crate::scenario::bind::{Ports, non_negative, outside, positive};
+use serde::Deserialize;
 
+/// The weld and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Weld {
+    /// `M_intact(θ)` [N·m].
     pub intact: Curve,
+    /// `c` while intact [N·m·s/rad].
     pub damping: f64,
+    /// It fails when `|M_intact(θ)|` reaches this [N·m].
     pub failure_moment: Option<f64>,
+    /// It fails when `|θ|` reaches this \[rad\].
     pub failure_angle: Option<f64>,
     /// `None`: no moment after failure.
     pub post_failure: Option<Curve>,
+    /// `c` after failure [N·m·s/rad].
     pub post_failure_damping: f64,
     failed_at: Option<f64>,
 }
 
-/// Names of the weld's events.
-pub const EVENTS: [&str; 2] = ["weld failure (moment)", "weld failure (angle)"];
+/// The weld's events: failure by moment, failure by angle.
+const EVENTS: &[Event] = &[
+    Event {
+        name: "weld failure (moment)",
+        direction: Direction::Rising,
+    },
+    Event {
+        name: "weld failure (angle)",
+        direction: Direction::Rising,
+    },
+];
 
 impl Weld {
+    /// An intact weld.
     pub fn new(
         intact: Curve,
         damping: f64,
@@ -41,11 +62,6 @@ impl Weld {
             post_failure_damping,
             failed_at: None,
         }
-    }
-
-    /// Intact again, for the start of a run.
-    pub fn reset(&mut self) {
-        self.failed_at = None;
     }
 
     /// The time of failure, if the weld failed.
@@ -70,13 +86,32 @@ impl Weld {
         let (m, dm) = self.intact.eval(angle)?;
         Ok((m + self.damping * rate, dm, self.damping))
     }
+}
 
-    pub fn event_direction(_k: usize) -> Direction {
-        Direction::Rising
+impl Component for Weld {
+    fn kind(&self) -> &'static str {
+        "weld"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the angle and its rate"))
+    }
+
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        let (m, dm, dc) = self.moment(args)?;
+        Ok(match port {
+            Port::Value => m,
+            Port::Stiffness => dm,
+            Port::Damping => dc,
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        EVENTS
     }
 
     /// `|M_intact(θ)| − M_fail` and `|θ| − θ_fail` while intact; −1 otherwise.
-    pub fn events(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let intact = self.failed_at.is_none();
         g[0] = match self.failure_moment {
             Some(limit) if intact => self.intact.eval(args[0])?.0.abs() - limit,
@@ -89,13 +124,93 @@ impl Weld {
         Ok(())
     }
 
-    pub fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
+    /// Either event is the failure.
+    fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let moment = self.intact.eval(args[0])?.0;
         self.failed_at = Some(t);
         Ok(format!(
             "weld fails at θ = {:.3}° (spring moment {:.2} kN·m)",
             args[0].to_degrees(),
             moment / 1e3
+        ))
+    }
+
+    /// Intact again.
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.failed_at = None;
+        Ok(())
+    }
+
+    fn failure_time(&self) -> Option<f64> {
+        self.failed_at
+    }
+}
+
+/// `[components.NAME]` with `type = "weld"`: the intact and post-failure
+/// curves `[[θ, M], …]`, damping, failure limits, and the inputs it supplies
+/// (`moment` and, optionally, its tangent stiffness and damping).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WeldSection {
+    inputs: Ports,
+    curve: Vec<[f64; 2]>,
+    #[serde(default)]
+    damping: f64,
+    failure_moment: Option<f64>,
+    failure_angle: Option<f64>,
+    post_failure_curve: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    post_failure_damping: f64,
+    #[serde(default = "extrapolate")]
+    outside: String,
+}
+
+fn extrapolate() -> String {
+    "extrapolate".into()
+}
+
+impl Section for WeldSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let weld = self.weld(name)?;
+        let c = binder.add(name.to_string(), Box::new(weld));
+        binder.bind_ports(&self.inputs, "moment", c, name)
+    }
+}
+
+impl WeldSection {
+    /// The weld `[components.{name}]` describes.
+    fn weld(&self, name: &str) -> Result<Weld, String> {
+        let policy = outside(&format!("components.{name}"), &self.outside)?;
+        let make = |points: &[[f64; 2]], what: &str| {
+            Curve::new(
+                points.iter().map(|p| p[0]).collect(),
+                points.iter().map(|p| p[1]).collect(),
+                policy,
+            )
+            .map_err(|e| format!("components.{name}: {what}: {e}"))
+        };
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        non_negative(&key("damping"), self.damping)?;
+        non_negative(&key("post_failure_damping"), self.post_failure_damping)?;
+        if let Some(m) = self.failure_moment {
+            positive(&key("failure_moment"), m)?;
+        }
+        if let Some(a) = self.failure_angle {
+            positive(&key("failure_angle"), a)?;
+        }
+        let intact = make(&self.curve, "curve")?;
+        let post = self
+            .post_failure_curve
+            .as_deref()
+            .map(|p| make(p, "post_failure_curve"))
+            .transpose()?;
+        Ok(Weld::new(
+            intact,
+            self.damping,
+            self.failure_moment,
+            self.failure_angle,
+            post,
+            self.post_failure_damping,
         ))
     }
 }
@@ -116,12 +231,12 @@ mod tests {
             "{m} {dm} {dc}"
         );
         let mut g = [0.0; 2];
-        weld.events(&[0.05, 0.0], &mut g).unwrap();
+        weld.event_values(&[0.05, 0.0], &mut g).unwrap();
         assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");
         weld.on_event(0, 0.042, &[0.05, 0.0]).unwrap();
         assert_eq!(weld.failed_at(), Some(0.042));
         assert_eq!(weld.moment(&[0.05, 2.0]).unwrap(), (20.0, 0.0, 10.0));
-        weld.events(&[0.09, 0.0], &mut g).unwrap();
+        weld.event_values(&[0.09, 0.0], &mut g).unwrap();
         assert_eq!(g, [-1.0, -1.0]);
     }
 }

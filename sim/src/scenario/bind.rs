@@ -1,15 +1,28 @@
-//! Binding a model's input functions to the scenario's crash components.
+//! Binding a model's input functions to the scenario's crash components:
+//! each `[components.NAME]` section builds its components into a [`Binder`]
+//! (see [`crate::crash`]), then `--set` constants override, then the
+//! components with events learn where their arguments are.
 
 use super::ModelNames;
-use super::file::{ComponentSection, Ports};
-use super::resolve::{finite, index_of, non_negative, outside, positive};
-use crate::crash::crush::{CrushElement, Unloading};
-use crate::crash::curve::{Characteristic, Curve};
+use super::resolve::index_of;
+pub(crate) use super::resolve::{finite, non_negative, outside, positive};
+use crate::crash::constant::Constant;
 use crate::crash::table::Table;
-use crate::crash::weld::Weld;
-use crate::crash::{Binding, BoundInputs, Component, Element, Port};
+use crate::crash::{Binding, BoundInputs, Component, ComponentSection, NamedComponent, Port};
+use serde::Deserialize;
 use std::collections::BTreeMap;
-use std::fmt;
+
+/// The inputs a component supplies: its value and, optionally, derivatives
+/// (`inputs = { force = "…", stiffness = "…", damping = "…" }`; `moment` for
+/// `force` too).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Ports {
+    #[serde(alias = "moment")]
+    force: String,
+    stiffness: Option<String>,
+    damping: Option<String>,
+}
 
 pub(super) fn bind_components(
     sections: &BTreeMap<String, ComponentSection>,
@@ -17,222 +30,71 @@ pub(super) fn bind_components(
     names: &ModelNames,
     constants: BTreeMap<String, f64>,
 ) -> Result<BoundInputs, String> {
-    let mut components = Vec::new();
     let mut binder = Binder {
         names,
+        tables,
+        components: Vec::new(),
         bindings: vec![None; names.inputs.len()],
     };
-    let mut value_inputs = Vec::new();
     for (name, section) in sections {
-        let c = components.len();
-        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
-        let element = match section {
-            ComponentSection::Crush {
-                inputs,
-                compression,
-                stiffness_breakpoints,
-                stiffness_values,
-                damping_breakpoints,
-                damping_values,
-                unloading,
-                unloading_stiffness,
-                contact_only,
-                outside: policy,
-            } => {
-                let policy = outside(&format!("components.{name}"), policy)?;
-                let stiffness =
-                    Characteristic::new(stiffness_breakpoints, stiffness_values, policy)
-                        .map_err(|e| at("stiffness table", &e))?;
-                let damping = Characteristic::new(damping_breakpoints, damping_values, policy)
-                    .map_err(|e| at("damping table", &e))?;
-                let unloading = match (unloading.as_str(), unloading_stiffness) {
-                    ("elastic", _) => Unloading::Elastic,
-                    ("plastic", Some(k)) if *k > 0.0 && k.is_finite() => {
-                        Unloading::Plastic { stiffness: *k }
-                    }
-                    ("plastic", _) => {
-                        return Err(format!(
-                            "components.{name}: plastic unloading needs a positive unloading_stiffness [N/m]"
-                        ));
-                    }
-                    (other, _) => {
-                        return Err(format!(
-                            "components.{name}: unloading = `{other}`; use elastic or plastic"
-                        ));
-                    }
-                };
-                let sign = match compression.as_str() {
-                    "positive" => 1.0,
-                    "negative" => -1.0,
-                    other => {
-                        return Err(format!(
-                            "components.{name}: compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
-                        ));
-                    }
-                };
-                let element = Element::Crush(CrushElement::new(
-                    stiffness,
-                    damping,
-                    unloading,
-                    sign,
-                    *contact_only,
-                ));
-                binder.bind_ports(inputs, ("force", &element), c, name)?;
-                value_inputs.push((c, inputs.force.clone()));
-                element
-            }
-            ComponentSection::Weld {
-                inputs,
-                curve,
-                damping,
-                failure_moment,
-                failure_angle,
-                post_failure_curve,
-                post_failure_damping,
-                outside: policy,
-            } => {
-                let policy = outside(&format!("components.{name}"), policy)?;
-                let make = |points: &[[f64; 2]], what: &str| {
-                    Curve::new(
-                        points.iter().map(|p| p[0]).collect(),
-                        points.iter().map(|p| p[1]).collect(),
-                        policy,
-                    )
-                    .map_err(|e| at(what, &e))
-                };
-                let key = |entry: &str| format!("components.{name}.{entry}");
-                non_negative(&key("damping"), *damping)?;
-                non_negative(&key("post_failure_damping"), *post_failure_damping)?;
-                if let Some(m) = failure_moment {
-                    positive(&key("failure_moment"), *m)?;
-                }
-                if let Some(a) = failure_angle {
-                    positive(&key("failure_angle"), *a)?;
-                }
-                let intact = make(curve, "curve")?;
-                let post = post_failure_curve
-                    .as_deref()
-                    .map(|p| make(p, "post_failure_curve"))
-                    .transpose()?;
-                let element = Element::Weld(Weld::new(
-                    intact,
-                    *damping,
-                    *failure_moment,
-                    *failure_angle,
-                    post,
-                    *post_failure_damping,
-                ));
-                binder.bind_ports(inputs, ("moment", &element), c, name)?;
-                value_inputs.push((c, inputs.force.clone()));
-                element
-            }
-            ComponentSection::Table {
-                time_column,
-                columns,
-                outside: policy,
-                ..
-            } => {
-                let policy = outside(&format!("components.{name}"), policy)?;
-                let table = tables
-                    .get(name)
-                    .ok_or_else(|| format!("components.{name}: its table was not loaded"))?;
-                for (input, column) in columns {
-                    let curve = table
-                        .curve(time_column, column, policy)
-                        .map_err(|e| format!("components.{name}: {e}"))?;
-                    let element = Element::Curve(curve);
-                    let key = format!("components.{name}.columns.{input}");
-                    binder.bind(&key, input, (components.len(), Port::Value), &element)?;
-                    components.push(Component {
-                        name: format!("{name}.{input}"),
-                        element,
-                    });
-                }
-                continue;
-            }
-            ComponentSection::Constant { values } => {
-                for (input, value) in values {
-                    let key = format!("components.{name}.values.{input}");
-                    let element = Element::Constant(finite(&key, *value)?);
-                    binder.bind(&key, input, (components.len(), Port::Value), &element)?;
-                    components.push(Component {
-                        name: format!("{name}.{input}"),
-                        element,
-                    });
-                }
-                continue;
-            }
-        };
-        components.push(Component {
-            name: name.clone(),
-            element,
-        });
+        section.build(name, &mut binder)?;
     }
-    let mut bindings = binder.bindings;
     // --set constants override whatever the file binds.
     for (input, value) in constants {
-        finite(&format!("--set {input}"), value)?;
-        let k = index_of("--set: input", &input, &names.inputs)?;
-        bindings[k] = Some(Binding {
-            component: components.len(),
-            port: Port::Value,
-        });
-        components.push(Component {
-            name: format!("--set {input}"),
-            element: Element::Constant(value),
-        });
+        binder.set_constant(&input, value)?;
     }
-    // Components with events need the arguments of their one value input.
-    let mut event_arguments = vec![None; components.len()];
-    for (c, input) in value_inputs {
-        let k = index_of("input", &input, &names.inputs)?;
-        if bindings[k].map(|b| b.component) != Some(c) {
-            continue; // overridden by --set
-        }
-        let mut offset = 0;
-        let mut found = Vec::new();
-        for &(site, arity) in &names.input_sites {
-            if site == k {
-                found.push((offset, arity));
-            }
-            offset += arity;
-        }
-        match found.as_slice() {
-            [] => {}
-            [one] => event_arguments[c] = Some(*one),
-            _ => {
-                return Err(format!(
-                    "component `{}` keeps state (hysteresis, failure), but its input `{input}` is called at {} places with different arguments; give each call its own input function",
-                    components[c].name,
-                    found.len()
-                ));
-            }
-        }
-    }
+    let event_arguments = binder.event_arguments()?;
     Ok(BoundInputs::new(
-        components,
-        bindings,
+        binder.components,
+        binder.bindings,
         event_arguments,
         names.inputs.clone(),
     ))
 }
 
-/// The model's inputs as they get bound, each to one port of a component.
-struct Binder<'a> {
+/// The scenario's components as they are built, and the model's inputs as
+/// they get bound, each to one port of a component.
+pub(crate) struct Binder<'a> {
     names: &'a ModelNames,
+    tables: &'a BTreeMap<String, Table>,
+    components: Vec<NamedComponent>,
     bindings: Vec<Option<Binding>>,
 }
 
-impl Binder<'_> {
+impl<'a> Binder<'a> {
+    /// Adds `component` under `name`; returns its index, to bind inputs to.
+    pub(crate) fn add(&mut self, name: String, component: Box<dyn Component>) -> usize {
+        self.components.push(NamedComponent { name, component });
+        self.components.len() - 1
+    }
+
+    /// The number of components so far.
+    pub(crate) fn component_count(&self) -> usize {
+        self.components.len()
+    }
+
+    /// The kinds of the components from index `first` on.
+    pub(crate) fn kinds_from(&self, first: usize) -> impl Iterator<Item = &'static str> + '_ {
+        self.components[first..].iter().map(|c| c.component.kind())
+    }
+
+    /// The data file that section `[components.{name}]` loaded
+    /// ([`crate::crash::Section::load_table`]).
+    pub(crate) fn table(&self, name: &str) -> Result<&'a Table, String> {
+        let tables: &'a BTreeMap<String, Table> = self.tables;
+        tables
+            .get(name)
+            .ok_or_else(|| format!("components.{name}: its table was not loaded"))
+    }
+
     /// Binds the input named at scenario entry `key` to `port` of component
-    /// `index`, which is `element`; the input must take the number of
-    /// arguments the element reads.
-    fn bind(
+    /// `index`; the input must take the number of arguments the component
+    /// reads.
+    pub(crate) fn bind(
         &mut self,
         key: &str,
         input: &str,
         (index, port): (usize, Port),
-        element: &Element,
     ) -> Result<(), String> {
         let names = self.names;
         let k = index_of(&format!("{key}: input"), input, &names.inputs)?;
@@ -241,7 +103,8 @@ impl Binder<'_> {
                 "{key}: input `{input}` is already supplied by another component"
             ));
         }
-        if let (Some((needed, meaning)), Some(has)) = (element.arguments(), names.arity(k))
+        let component = &self.components[index].component;
+        if let (Some((needed, meaning)), Some(has)) = (component.arguments(), names.arity(k))
             && needed != has
         {
             let plural = |n: usize| if n == 1 { "" } else { "s" };
@@ -249,7 +112,7 @@ impl Binder<'_> {
                 "{key}: input {} has {has} argument{}, but a {} component needs an input of {needed} argument{} ({meaning})",
                 names.signature(k),
                 plural(has),
-                element.kind(),
+                component.kind(),
                 plural(needed),
             ));
         }
@@ -261,24 +124,82 @@ impl Binder<'_> {
     }
 
     /// Binds the value input (written as `inputs.{value}`) and, if given,
-    /// the stiffness and damping inputs of component `index` of `owner`.
-    fn bind_ports(
+    /// the stiffness and damping inputs of component `index` of section
+    /// `[components.{owner}]`.
+    pub(crate) fn bind_ports(
         &mut self,
         ports: &Ports,
-        (value, element): (&str, &Element),
+        value: &str,
         index: usize,
         owner: &str,
     ) -> Result<(), String> {
         let key =
             |entry: &str, input: &str| format!("components.{owner}.inputs.{entry} = \"{input}\"");
         let f = &ports.force;
-        self.bind(&key(value, f), f, (index, Port::Value), element)?;
+        self.bind(&key(value, f), f, (index, Port::Value))?;
         if let Some(s) = &ports.stiffness {
-            self.bind(&key("stiffness", s), s, (index, Port::Stiffness), element)?;
+            self.bind(&key("stiffness", s), s, (index, Port::Stiffness))?;
         }
         if let Some(d) = &ports.damping {
-            self.bind(&key("damping", d), d, (index, Port::Damping), element)?;
+            self.bind(&key("damping", d), d, (index, Port::Damping))?;
         }
         Ok(())
+    }
+
+    /// Gives `input` the constant `value` of `--set input=value`, whatever
+    /// the file binds it to.
+    fn set_constant(&mut self, input: &str, value: f64) -> Result<(), String> {
+        finite(&format!("--set {input}"), value)?;
+        let k = index_of("--set: input", input, &self.names.inputs)?;
+        let c = self.add(format!("--set {input}"), Box::new(Constant { value }));
+        self.bindings[k] = Some(Binding {
+            component: c,
+            port: Port::Value,
+        });
+        Ok(())
+    }
+
+    /// For each component: where its events find the arguments of its value
+    /// input (the first input bound to its value port) among the model's
+    /// input arguments — `None` for a component without events, or whose
+    /// value input `--set` overrode or the dynamics does not call.
+    fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, String> {
+        let mut arguments = vec![None; self.components.len()];
+        for (c, named) in self.components.iter().enumerate() {
+            if named.component.events().is_empty() {
+                continue;
+            }
+            let value = Some(Binding {
+                component: c,
+                port: Port::Value,
+            });
+            let Some(k) = self.bindings.iter().position(|b| *b == value) else {
+                continue; // overridden by --set
+            };
+            arguments[c] = self.only_call(k, &named.name)?;
+        }
+        Ok(arguments)
+    }
+
+    /// The offset and number of the arguments of input `k`'s one call in
+    /// the dynamics (`None`: no call), for stateful component `owner`.
+    fn only_call(&self, k: usize, owner: &str) -> Result<Option<(usize, usize)>, String> {
+        let mut offset = 0;
+        let mut found = Vec::new();
+        for &(site, arity) in &self.names.input_sites {
+            if site == k {
+                found.push((offset, arity));
+            }
+            offset += arity;
+        }
+        match found.as_slice() {
+            [] => Ok(None),
+            [one] => Ok(Some(*one)),
+            _ => Err(format!(
+                "component `{owner}` keeps state (hysteresis, failure), but its input `{}` is called at {} places with different arguments; give each call its own input function",
+                self.names.inputs[k],
+                found.len()
+            )),
+        }
     }
 }

@@ -1,5 +1,8 @@
 //! The scenario file as written: the TOML sections and their defaults.
+//! Each kind of component has its own section, in its file of
+//! [`crate::crash`].
 
+use crate::crash::ComponentSection;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -64,89 +67,4 @@ pub(super) struct MetricsSection {
     pub(super) crush: Option<String>,
     pub(super) pitch: Vec<String>,
     pub(super) weld: Option<String>,
-}
-
-#[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub(super) enum ComponentSection {
-    Crush {
-        inputs: Ports,
-        compression: String,
-        stiffness_breakpoints: Vec<f64>,
-        stiffness_values: Vec<f64>,
-        damping_breakpoints: Vec<f64>,
-        damping_values: Vec<f64>,
-        #[serde(default = "elastic")]
-        unloading: String,
-        unloading_stiffness: Option<f64>,
-        #[serde(default = "yes")]
-        contact_only: bool,
-        #[serde(default = "hold")]
-        outside: String,
-    },
-    Weld {
-        inputs: Ports,
-        curve: Vec<[f64; 2]>,
-        #[serde(default)]
-        damping: f64,
-        failure_moment: Option<f64>,
-        failure_angle: Option<f64>,
-        post_failure_curve: Option<Vec<[f64; 2]>>,
-        #[serde(default)]
-        post_failure_damping: f64,
-        #[serde(default = "extrapolate")]
-        outside: String,
-    },
-    Table {
-        file: String,
-        #[serde(default = "time")]
-        time_column: String,
-        columns: BTreeMap<String, String>,
-        #[serde(default = "zero")]
-        outside: String,
-    },
-    Constant {
-        values: BTreeMap<String, f64>,
-    },
-}
-
-impl ComponentSection {
-    /// The `type` of the component as written.
-    pub(super) fn kind(&self) -> &'static str {
-        match self {
-            ComponentSection::Crush { .. } => "crush",
-            ComponentSection::Weld { .. } => "weld",
-            ComponentSection::Table { .. } => "table",
-            ComponentSection::Constant { .. } => "constant",
-        }
-    }
-}
-
-/// The inputs a component supplies: its value and, optionally, derivatives.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct Ports {
-    #[serde(alias = "moment")]
-    pub(super) force: String,
-    pub(super) stiffness: Option<String>,
-    pub(super) damping: Option<String>,
-}
-
-fn elastic() -> String {
-    "elastic".into()
-}
-fn yes() -> bool {
-    true
-}
-fn hold() -> String {
-    "hold".into()
-}
-fn extrapolate() -> String {
-    "extrapolate".into()
-}
-fn zero() -> String {
-    "zero".into()
-}
-fn time() -> String {
-    "t".into()
 }

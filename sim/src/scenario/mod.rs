@@ -18,14 +18,13 @@
 //! [`bind`] binds the model's inputs to crash components.
 
 mod base;
-mod bind;
+pub(crate) mod bind;
 mod discover;
 mod file;
 mod overrides;
 mod resolve;
 
 use crate::crash::BoundInputs;
-use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
 pub use base::BaseScenario;
@@ -255,28 +254,15 @@ impl Scenario {
     }
 }
 
-/// Reads every table a scenario's components name, and checks that the
-/// columns it names are there, before anything is bound.
+/// Reads every data file a scenario's components name, and checks that
+/// what they read is there, before anything is bound.
 fn load_tables(
-    components: &BTreeMap<String, file::ComponentSection>,
+    components: &BTreeMap<String, crate::crash::ComponentSection>,
     base: &Path,
 ) -> Result<BTreeMap<String, Table>, String> {
     let mut tables = BTreeMap::new();
     for (name, section) in components {
-        if let file::ComponentSection::Table {
-            file,
-            time_column,
-            columns,
-            ..
-        } = section
-        {
-            let table =
-                Table::load(&base.join(file)).map_err(|e| format!("components.{name}: {e}"))?;
-            for column in columns.values() {
-                table
-                    .curve(time_column, column, Outside::Hold)
-                    .map_err(|e| format!("components.{name}: {e}"))?;
-            }
+        if let Some(table) = section.section().load_table(name, base)? {
             tables.insert(name.clone(), table);
         }
     }

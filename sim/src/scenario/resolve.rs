@@ -2,8 +2,9 @@
 //! entries, and resolving names to indices.
 
 use super::bind::bind_components;
-use super::file::{ComponentSection, File};
+use super::file::File;
 use super::{ModelNames, Scenario};
+use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
@@ -48,7 +49,7 @@ pub(super) fn number(value: f64) -> String {
 }
 
 /// `value` if it is a finite number; else an error naming `key`.
-pub(super) fn finite(key: &str, value: f64) -> Result<f64, String> {
+pub(crate) fn finite(key: &str, value: f64) -> Result<f64, String> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -60,7 +61,7 @@ pub(super) fn finite(key: &str, value: f64) -> Result<f64, String> {
 }
 
 /// `value` if it is finite and positive; else an error naming `key`.
-pub(super) fn positive(key: &str, value: f64) -> Result<f64, String> {
+pub(crate) fn positive(key: &str, value: f64) -> Result<f64, String> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
@@ -71,7 +72,7 @@ pub(super) fn positive(key: &str, value: f64) -> Result<f64, String> {
 }
 
 /// `value` if it is finite and not negative; else an error naming `key`.
-pub(super) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
+pub(crate) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
@@ -82,7 +83,8 @@ pub(super) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
     }
 }
 
-pub(super) fn outside(what: &str, text: &str) -> Result<Outside, String> {
+/// The `outside` policy written as `text` at `what`.
+pub(crate) fn outside(what: &str, text: &str) -> Result<Outside, String> {
     Outside::parse(text)
         .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
 }
@@ -219,7 +221,7 @@ fn check_weld_metric(
 ) -> Result<(), String> {
     let welds: Vec<&str> = components
         .iter()
-        .filter(|(_, c)| matches!(c, ComponentSection::Weld { .. }))
+        .filter(|(_, c)| matches!(c, ComponentSection::weld(_)))
         .map(|(name, _)| name.as_str())
         .collect();
     let allowed = if welds.is_empty() {
@@ -228,7 +230,7 @@ fn check_weld_metric(
         format!("weld components: {}", welds.join(", "))
     };
     match components.get(weld) {
-        Some(ComponentSection::Weld { .. }) => Ok(()),
+        Some(ComponentSection::weld(_)) => Ok(()),
         Some(other) => Err(format!(
             "metrics.weld = \"{weld}\": component `{weld}` is a {} component; metrics.weld names a weld component ({allowed})",
             other.kind()

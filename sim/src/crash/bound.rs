@@ -1,0 +1,269 @@
+//! A model's input functions bound to the scenario's components, and the
+//! components' events as one list for the integrator.
+
+use super::curve::OutOfRange;
+use super::{Component, Port};
+use crate::fault::Fault;
+use crate::ode::Direction;
+use lagrangian_model::InputFunctions;
+use std::cell::RefCell;
+
+/// A component with the name it has in the scenario (`front_end`, or
+/// `barrier.barrier_x1` for one column of a table).
+#[derive(Clone, Debug)]
+pub struct NamedComponent {
+    /// The name, for messages and the event log.
+    pub name: String,
+    /// The component, in its current state.
+    pub component: Box<dyn Component>,
+}
+
+/// Where a model's input function gets its value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Binding {
+    /// The index of the component in [`BoundInputs::components`].
+    pub component: usize,
+    /// Which of its values.
+    pub port: Port,
+}
+
+/// A model's inputs bound to components; implements [`InputFunctions`].
+///
+/// A value that cannot be produced (a table read outside its range under the
+/// `error` policy) is returned as NaN and the reason kept, so the integrator
+/// stops with that reason instead of a wrong number.
+#[derive(Clone, Debug)]
+pub struct BoundInputs {
+    /// The components, in the order of the scenario.
+    pub components: Vec<NamedComponent>,
+    /// One per model input, by input index (`None`: unbound, NaN if called).
+    pub bindings: Vec<Option<Binding>>,
+    /// For each component with events: the offset and length of the
+    /// arguments of its value input among the model's input arguments
+    /// (`None`: no events, or an input the dynamics does not call).
+    pub event_arguments: Vec<Option<(usize, usize)>>,
+    /// The input names, for messages.
+    pub input_names: Vec<String>,
+    failure: RefCell<Option<Fault>>,
+}
+
+impl BoundInputs {
+    /// Inputs bound to `components` by `bindings` (one per input), with the
+    /// `event_arguments` of each component (one per component).
+    pub fn new(
+        components: Vec<NamedComponent>,
+        bindings: Vec<Option<Binding>>,
+        event_arguments: Vec<Option<(usize, usize)>>,
+        input_names: Vec<String>,
+    ) -> BoundInputs {
+        BoundInputs {
+            components,
+            bindings,
+            event_arguments,
+            input_names,
+            failure: RefCell::new(None),
+        }
+    }
+
+    /// The first failure since the last call, which clears it.
+    pub fn take_failure(&self) -> Option<Fault> {
+        self.failure.borrow_mut().take()
+    }
+
+    fn fail(&self, fault: Fault) -> f64 {
+        let mut slot = self.failure.borrow_mut();
+        if slot.is_none() {
+            *slot = Some(fault);
+        }
+        f64::NAN
+    }
+
+    /// The arguments of component `c`'s value input among the model's input
+    /// `arguments`, if its events see them.
+    fn arguments_of<'a>(&self, c: usize, arguments: &'a [f64]) -> Option<&'a [f64]> {
+        self.event_arguments[c].map(|(start, len)| &arguments[start..start + len])
+    }
+
+    /// Puts every component in its initial state for a run that starts
+    /// with the model's input arguments `arguments` (crush elements in
+    /// contact or not, welds intact).
+    pub fn start(&mut self, arguments: &[f64]) -> Result<(), Fault> {
+        for c in 0..self.components.len() {
+            let args = self.arguments_of(c, arguments);
+            let result = self.components[c].component.start(args);
+            result.map_err(|e| self.out_of_range(c, None, e))?;
+        }
+        Ok(())
+    }
+
+    /// The number of events of component `c` that the integrator watches:
+    /// none unless its events see the arguments of its value input.
+    fn events_of(&self, c: usize) -> usize {
+        match self.event_arguments[c] {
+            Some(_) => self.components[c].component.events().len(),
+            None => 0,
+        }
+    }
+
+    /// `(component, local event)` of global event `k`.
+    pub fn event(&self, k: usize) -> Option<(usize, usize)> {
+        let mut k = k;
+        for c in 0..self.components.len() {
+            let n = self.events_of(c);
+            if k < n {
+                return Some((c, k));
+            }
+            k -= n;
+        }
+        None
+    }
+
+    /// The number of event functions of all components together.
+    pub fn event_count(&self) -> usize {
+        (0..self.components.len()).map(|c| self.events_of(c)).sum()
+    }
+
+    /// The direction of crossing that triggers global event `k`.
+    pub fn event_direction(&self, k: usize) -> Direction {
+        match self.event(k) {
+            Some((c, local)) => self.components[c].component.events()[local].direction,
+            None => Direction::Either,
+        }
+    }
+
+    /// All event functions, given the model's input arguments at one state.
+    pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), Fault> {
+        let mut offset = 0;
+        for (c, named) in self.components.iter().enumerate() {
+            let Some(args) = self.arguments_of(c, arguments) else {
+                continue;
+            };
+            let n = named.component.events().len();
+            let result = named
+                .component
+                .event_values(args, &mut g[offset..offset + n]);
+            result.map_err(|e| self.out_of_range(c, None, e))?;
+            offset += n;
+        }
+        Ok(())
+    }
+
+    /// Applies global event `k` at time `t`; returns `(component, description)`.
+    pub fn on_event(
+        &mut self,
+        k: usize,
+        t: f64,
+        arguments: &[f64],
+    ) -> Result<(String, String), Fault> {
+        let Some((c, local)) = self.event(k) else {
+            return Err(Fault::Component(format!("no event {k}")));
+        };
+        let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+        let named = &mut self.components[c];
+        let name = named.name.clone();
+        let result = named.component.on_event(local, t, args);
+        result
+            .map(|d| (name, d))
+            .map_err(|e| self.out_of_range(c, None, e))
+    }
+
+    fn out_of_range(&self, component: usize, input: Option<usize>, e: OutOfRange) -> Fault {
+        Fault::OutOfRange {
+            component: self.components[component].name.clone(),
+            input: input.map(|i| self.input_names[i].clone()),
+            x: e.x,
+            min: e.min,
+            max: e.max,
+        }
+    }
+
+    /// The compression sign of the crush element whose force input `input`
+    /// is, or `None` when it is not one.
+    pub fn crush_force_sign(&self, input: usize) -> Option<f64> {
+        let binding = self.bindings.get(input).copied().flatten()?;
+        match binding.port {
+            Port::Value => self.components[binding.component]
+                .component
+                .compression_sign(),
+            Port::Stiffness | Port::Damping => None,
+        }
+    }
+
+    /// The time a component named `name` (any component, if `None`) failed,
+    /// if it did: the weld failure of the summary.
+    pub fn weld_failure(&self, name: Option<&str>) -> Option<f64> {
+        self.components
+            .iter()
+            .filter(|c| name.is_none_or(|n| n == c.name))
+            .find_map(|c| c.component.failure_time())
+    }
+}
+
+impl InputFunctions for BoundInputs {
+    fn value(&self, input: usize, args: &[f64]) -> f64 {
+        let Some(Some(binding)) = self.bindings.get(input) else {
+            let name = self.input_names.get(input).map_or("?", String::as_str);
+            return self.fail(Fault::Component(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE")));
+        };
+        let named = &self.components[binding.component];
+        if let Some((needed, _)) = named.component.arguments()
+            && args.len() != needed
+        {
+            // The scenario checks this where it knows the input's arguments;
+            // a compiled model does not tell them for inputs only its
+            // Jacobians call.
+            return self.fail(Fault::Component(format!(
+                "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
+                self.input_names[input],
+                args.len(),
+                if args.len() == 1 { "" } else { "s" },
+                named.component.kind(),
+                named.name
+            )));
+        }
+        match named.component.value(binding.port, args) {
+            Ok(v) => v,
+            Err(e) => self.fail(self.out_of_range(binding.component, Some(input), e)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crash::crush::{CrushElement, Unloading};
+    use crate::crash::curve::Characteristic;
+
+    #[test]
+    fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
+        // What a compiled model can bring past the scenario check: a crush
+        // element's stiffness port on an input of one argument.
+        let crush = CrushElement::new(
+            Characteristic::constant(1.0e6),
+            Characteristic::constant(1.0e3),
+            Unloading::Elastic,
+            1.0,
+            true,
+        );
+        let inputs = BoundInputs::new(
+            vec![NamedComponent {
+                name: "front_end".into(),
+                component: Box::new(crush),
+            }],
+            vec![Some(Binding {
+                component: 0,
+                port: Port::Stiffness,
+            })],
+            vec![None],
+            vec!["crush_stiffness".into()],
+        );
+        assert!(inputs.value(0, &[0.1]).is_nan());
+        assert_eq!(
+            inputs.take_failure(),
+            Some(Fault::Component(
+                "input `crush_stiffness` is called with 1 argument, but crush component `front_end` needs 2"
+                    .to_string()
+            ))
+        );
+    }
+}

@@ -1,0 +1,71 @@
+//! Constant values for input functions of any arguments.
+//!
+//! Its scenario section is `type = "constant"` (`ConstantSection`), one
+//! component per input it gives a value, named `NAME.INPUT`; `--set
+//! INPUT=VALUE` adds one too.
+
+use super::curve::OutOfRange;
+use super::{Binder, Component, Event, Port, Section};
+use crate::scenario::bind::finite;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// A constant value; its derivatives are 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Constant {
+    /// The value.
+    pub value: f64,
+}
+
+impl Component for Constant {
+    fn kind(&self) -> &'static str {
+        "constant"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        None
+    }
+
+    fn value(&self, port: Port, _args: &[f64]) -> Result<f64, OutOfRange> {
+        match port {
+            Port::Value => Ok(self.value),
+            Port::Stiffness | Port::Damping => Ok(0.0),
+        }
+    }
+
+    /// None: it keeps no state.
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+}
+
+/// `[components.NAME]` with `type = "constant"`: `values = { input = value }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ConstantSection {
+    values: BTreeMap<String, f64>,
+}
+
+impl Section for ConstantSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        for (input, value) in &self.values {
+            let key = format!("components.{name}.values.{input}");
+            let value = finite(&key, *value)?;
+            let c = binder.add(format!("{name}.{input}"), Box::new(Constant { value }));
+            binder.bind(&key, input, (c, Port::Value))?;
+        }
+        Ok(())
+    }
+}
