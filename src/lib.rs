@@ -62,3 +62,9 @@ pub use lagrangian_model::*;
 /// crash components, integration, pulse metrics, sweeps, fitting, plots.
 #[cfg(feature = "sim")]
 pub use lagrangian_sim::*;
+
+/// The Rust examples of the README, compiled and run as doctests (its spec
+/// blocks, commands and outputs are checked by `lpm/tests/readme.rs`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

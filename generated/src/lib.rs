@@ -12,6 +12,9 @@ pub mod double_pendulum;
 /// Generated from `specs/elastic_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod elastic_pendulum;
+/// Generated from `specs/pendulum.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod pendulum;
 /// Generated from `specs/pendulum_chain_10.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod pendulum_chain_10;

@@ -3,6 +3,7 @@
 use crate::failure::{Failure, Outcome};
 use crate::spec::compile;
 use clap::ValueEnum;
+use lagrangian_core::emit::c::{COptions, emit_c};
 use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
 use std::path::PathBuf;
 
@@ -29,6 +30,9 @@ enum Format {
     Markdown,
     /// The Rust code the `lagrangian!` macro generates.
     Rust,
+    /// C99 code: one function per routine (the interface is in the file's
+    /// documentation of `lagrangian_core::emit::c`).
+    C,
 }
 
 /// Runs `lpm derive`.
@@ -56,6 +60,7 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
             );
             emit_file(compiled, &options, &header)
         }
+        Format::C => emit_c(&compiled, &COptions::default()),
     };
     Ok(Outcome::success(text))
 }
