@@ -5,6 +5,14 @@
 //! `M(q) q̈ = f(q, q̇, t)` symbolically while your crate compiles, then
 //! generates a struct implementing [`LagrangianSystem`].
 //!
+//! The crate re-exports the macro (`lagrangian-macro`, which runs the
+//! compiler `lagrangian-core`), the model runtime (`lagrangian-model`: the
+//! trait, input functions, the interpreter) and, with the default feature
+//! `sim`, the crash-simulation library (`lagrangian-sim`: [`scenario`],
+//! [`simulate`], [`ode`], [`crash`], [`pulse`], [`sweep`], [`fit`],
+//! [`plot`], [`report`]). With `default-features = false` it is the macro
+//! and the model runtime only, which depend on nalgebra and nothing heavy.
+//!
 //! ```
 //! use lagrangian::{lagrangian, LagrangianSystem, NoInputs};
 //! use lagrangian::nalgebra::Vector1;
@@ -55,6 +63,8 @@
 //! let e = model.energies(2.0, &q, &Vector1::new(3.0), &torque);
 //! assert!((e.external_power - 0.2 * 3.0).abs() < 1e-15); // Q·q̇
 //! ```
+
+#![warn(missing_docs)]
 
 pub use lagrangian_macro::lagrangian;
 pub use lagrangian_model::*;

@@ -6,6 +6,8 @@
 //! same code). Equation documents and audits are beside, in
 //! `generated/<spec>/`.
 
+#![warn(missing_docs)]
+
 /// Generated from `specs/double_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod double_pendulum;

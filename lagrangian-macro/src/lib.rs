@@ -2,6 +2,8 @@
 //! compiler can be tested as a plain library; see the umbrella crate
 //! `lagrangian` for the spec language and examples.
 
+#![warn(missing_docs)]
+
 use proc_macro::TokenStream;
 
 /// Derives a model's Euler–Lagrange equations at compile time and generates a
