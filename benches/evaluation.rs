@@ -1,5 +1,5 @@
 //! One evaluation of the paper model's accelerations q̈ = M⁻¹ f (M, f and the
-//! Cholesky solve): the macro-compiled code, the interpreter, and a
+//! L D Lᵀ solve): the macro-compiled code, the interpreter, and a
 //! hand-written implementation of the same equations (written here from the
 //! SymPy-verified derivation, the way one would by hand).
 //!
