@@ -186,8 +186,10 @@ fn snippet(file: &str, source: &str, span: SpanRange) -> String {
 ///
 /// It displays as the diagnostics' messages with their notes and help
 /// ([`Diagnostic::full_message`]), one after the other, a line apart.
-#[derive(Clone, Debug, thiserror::Error)]
-#[error("{}", full_messages(.diagnostics))]
+///
+/// (`Display` is written out rather than derived: a derive would put a
+/// second `syn` into the build of every crate that uses the macro.)
+#[derive(Clone, Debug)]
 pub struct SpecErrors {
     /// The problems, in the order they were found.
     pub diagnostics: Vec<Diagnostic>,
@@ -243,10 +245,16 @@ impl From<Diagnostic> for SpecErrors {
 }
 
 /// Every diagnostic's full message, one after the other, a line apart.
-fn full_messages(diagnostics: &[Diagnostic]) -> String {
-    let messages: Vec<String> = diagnostics.iter().map(Diagnostic::full_message).collect();
-    messages.join("\n")
+impl std::fmt::Display for SpecErrors {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let messages: Vec<String> = (self.diagnostics.iter())
+            .map(Diagnostic::full_message)
+            .collect();
+        f.write_str(&messages.join("\n"))
+    }
 }
+
+impl std::error::Error for SpecErrors {}
 
 pub use lagrangian_model::names::closest;
 
