@@ -45,6 +45,14 @@ fn derive_latex_and_rust() {
         rust.contains("impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum"),
         "{rust}"
     );
+    let c = stdout(&lpm(&[
+        "derive",
+        "specs/double_pendulum.lpm",
+        "--format",
+        "c",
+    ]));
+    assert!(c.contains("#include <math.h>"), "{c}");
+    assert!(c.contains("void double_pendulum_dynamics("), "{c}");
 }
 
 #[test]
