@@ -9,24 +9,39 @@ use std::fmt;
 /// A failed evaluation of the model or of a component it reads.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Fault {
-    /// `M(q)` has no Cholesky (or LU) factorization: singular, or not
-    /// positive definite, at coordinates `q`.
-    SingularMassMatrix { q: Vec<f64>, qd: Vec<f64> },
+    /// `M(q)` has no `L D Lᵀ` factorization with positive pivots (the only
+    /// way the mass matrix is solved): singular, or not positive definite,
+    /// at coordinates `q`.
+    SingularMassMatrix {
+        /// The coordinates the mass matrix was evaluated at, in the model's
+        /// order and units ([m] or [rad]).
+        q: Vec<f64>,
+        /// The velocities at the same instant ([m/s] or [rad/s]).
+        qd: Vec<f64>,
+    },
     /// An entry of `M`, `f`, `q̈` or a power is NaN or ±∞.
     NonFinite {
         /// Which value, e.g. `f[theta1]` or `M[r, theta2]`.
         output: String,
+        /// The offending value: NaN, `inf` or `-inf`.
         value: f64,
+        /// The coordinates the model was evaluated at ([m] or [rad]).
         q: Vec<f64>,
+        /// The velocities at the same instant ([m/s] or [rad/s]).
         qd: Vec<f64>,
     },
     /// A table read outside its range under the `error` policy.
     OutOfRange {
+        /// The scenario's name of the component (`[components.NAME]`).
         component: String,
         /// The model input that read it, when it was read through one.
         input: Option<String>,
+        /// The abscissa it was read at, in the table's units (a time [s],
+        /// a crush [m], …).
         x: f64,
+        /// The first abscissa of the table.
         min: f64,
+        /// The last abscissa of the table.
         max: f64,
     },
     /// Anything else a component reports (an input with no value, an input

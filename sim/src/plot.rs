@@ -13,7 +13,10 @@ pub struct PlotSetup {
     pub pitch: Vec<usize>,
     /// Input column of the crush force and the sign that makes compression positive.
     pub crush_force: Option<(usize, f64)>,
+    /// The gravitational acceleration the deceleration panel is in [m/s²]
+    /// ([`SimulationResult::g`]).
     pub g: f64,
+    /// The title above the figure (`lpm simulate` writes the model and the scenario).
     pub title: String,
 }
 

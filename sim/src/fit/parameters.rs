@@ -34,21 +34,32 @@ pub struct Entry {
     pub index: Option<usize>,
     /// Name in reports (`front_end.k3`, `k_f`).
     pub label: String,
+    /// How the fit variable maps to the value: keeps a positive value
+    /// positive and an ordered list ordered.
     pub transform: Transform,
 }
 
 /// A key and the values of everything at it (all entries of a list).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Slot {
+    /// Scenario key or parameter name, as in [`Entry::key`]; one slot per key.
     pub key: String,
+    /// `true` when the key holds a list (set as `key=[a, b, …]`), `false`
+    /// for a single number.
     pub is_list: bool,
+    /// The values at the key in the base scenario (one for a number), in
+    /// the entry's own units; entries not fitted keep these.
     pub base: Vec<f64>,
 }
 
 /// The fitted entries and the slots they live in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parameters {
+    /// The scalars the fit varies, in the order of `--fit` (a list's
+    /// entries in list order); no two have the same label.
     pub entries: Vec<Entry>,
+    /// The keys those entries are in, each once; every entry's key has
+    /// its slot.
     pub slots: Vec<Slot>,
 }
 

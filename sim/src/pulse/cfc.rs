@@ -31,7 +31,12 @@ pub enum CfcError {
     SamplePeriod(f64),
     /// The class is not positive, or too high for the sample rate: the
     /// design frequency 2.0775·CFC must stay below the Nyquist frequency.
-    Class { cfc: f64, sample_rate: f64 },
+    Class {
+        /// The channel frequency class asked for (60, 180, …).
+        cfc: f64,
+        /// The signal's sample rate, `1 / period` [Hz].
+        sample_rate: f64,
+    },
 }
 
 impl std::fmt::Display for CfcError {

@@ -25,6 +25,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// The quantity in words, as messages name it (`acceleration`).
     pub fn name(self) -> &'static str {
         match self {
             Quantity::Acceleration => "acceleration",
@@ -33,6 +34,7 @@ impl Quantity {
         }
     }
 
+    /// The SI unit its values are converted to, in ASCII (`m/s^2`).
     pub fn si_unit(self) -> &'static str {
         match self {
             Quantity::Acceleration => "m/s^2",
@@ -45,43 +47,62 @@ impl Quantity {
 /// One channel, in SI units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Channel {
+    /// What it measures; a file has at most one channel of each.
     pub quantity: Quantity,
     /// The header cell it came from.
     pub header: String,
+    /// One value per row of the file, in [`Quantity::si_unit`] and the
+    /// sign conventions above (a `decel` column is negated).
     pub values: Vec<f64>,
 }
 
 /// The channels of a file, on its time column.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TimeHistories {
+    /// Sample times [s], strictly increasing, at least 3.
     pub t: Vec<f64>,
+    /// At least one, each as long as `t`, sorted by quantity
+    /// (acceleration, velocity, crush).
     pub channels: Vec<Channel>,
 }
 
 impl TimeHistories {
+    /// The channel of `quantity`, if the file has one.
     pub fn channel(&self, quantity: Quantity) -> Option<&Channel> {
         self.channels.iter().find(|c| c.quantity == quantity)
     }
 }
 
+/// Why a file gives no time histories.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ChannelError {
+    /// The file cannot be read as a table of numbers, is shorter than 3
+    /// rows, or its time does not increase.
     Table(TableError),
     /// A column this tool reads has no `[unit]`, or one it does not know.
     Unit {
+        /// The file, as displayed in messages.
         file: String,
+        /// The whole header cell, e.g. `velocity [kph]`.
         header: String,
+        /// The units accepted for that quantity, comma separated, the
+        /// first one used as the example.
         known: &'static str,
     },
     /// No time column, or none of acceleration, velocity, crush.
     Missing {
+        /// The file, as displayed in messages.
         file: String,
+        /// What is missing, in words with the expected header.
         what: String,
+        /// The header cells the file has.
         headers: Vec<String>,
     },
     /// Two columns measure the same quantity.
     Duplicate {
+        /// The file, as displayed in messages.
         file: String,
+        /// `time` or the [`Quantity::name`] that is there twice.
         quantity: &'static str,
     },
 }
@@ -179,6 +200,9 @@ pub fn read_time_histories(path: &Path) -> Result<TimeHistories, ChannelError> {
     from_table(&table)
 }
 
+/// The time histories of a table already read (see
+/// [`read_time_histories`]): the columns named as a quantity, with their
+/// units, converted to SI; other columns are ignored.
 pub fn from_table(table: &Table) -> Result<TimeHistories, ChannelError> {
     let file = table.file().display().to_string();
     let mut time: Option<Vec<f64>> = None;

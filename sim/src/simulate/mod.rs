@@ -27,15 +27,21 @@ pub type SolverError = ode::SolverError<Fault>;
 /// The state and derived quantities at one output time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sample {
+    /// Time since the start of the run [s].
     pub t: f64,
+    /// Coordinates, in the model's order and units ([m] or [rad]).
     pub q: Vec<f64>,
+    /// Velocities `q̇` ([m/s] or [rad/s]).
     pub v: Vec<f64>,
+    /// Accelerations `q̈` ([m/s²] or [rad/s²]).
     pub a: Vec<f64>,
+    /// Kinetic energy `T` [J].
     pub kinetic: f64,
+    /// Potential energy `V` [J].
     pub potential: f64,
-    /// Energy dissipated by `D` since the start.
+    /// Energy dissipated by `D` since the start [J].
     pub dissipated: f64,
-    /// Work of the generalized forces since the start.
+    /// Work of the generalized forces since the start [J].
     pub external_work: f64,
     /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
     pub inputs: Vec<f64>,
@@ -44,16 +50,27 @@ pub struct Sample {
 /// Everything a run produced.
 #[derive(Clone, Debug)]
 pub struct SimulationResult {
+    /// The model's name (the spec's `model` / the system's type).
     pub model: String,
+    /// The coordinate names, in the order of [`Sample::q`].
     pub coordinates: Vec<String>,
-    /// `(name, unit)` of each column of [`Sample::inputs`].
+    /// The input name of each column of [`Sample::inputs`]: one per input
+    /// call of the dynamics, so an input called twice is there twice.
+    /// Their units travel separately, in [`crate::report::Units`].
     pub input_columns: Vec<String>,
     /// The coordinates at the start (after the static-equilibrium solve).
     pub initial_q: Vec<f64>,
+    /// The output samples, at multiples of the scenario's output interval
+    /// from 0 to the end of the run (one within half an interval of
+    /// `t_end` is moved onto it).
     pub samples: Vec<Sample>,
+    /// The solver's counts of steps and evaluations.
     pub stats: Stats,
+    /// The crash components' events, in time order.
     pub events: Vec<EventRecord>,
+    /// The crash metrics of the run.
     pub summary: Summary,
+    /// The integration method the scenario chose.
     pub method: Method,
     /// The gravitational acceleration `g` the summary's decelerations are
     /// in: the model's `g` parameter, or standard gravity without one.
@@ -70,7 +87,9 @@ pub enum SimulationError {
     /// The integration stopped; `reached` is where its last accepted step
     /// ended (`None` when it failed before the first step).
     Solver {
+        /// Why the solver stopped.
         error: SolverError,
+        /// The end of the last accepted step, when there was one.
         reached: Option<Box<Reached>>,
     },
 }
@@ -78,8 +97,11 @@ pub enum SimulationError {
 /// The state at the end of a run's last accepted step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reached {
+    /// Where the step ended [s].
     pub t: f64,
+    /// The coordinates there ([m] or [rad]).
     pub q: Vec<f64>,
+    /// The velocities there ([m/s] or [rad/s]).
     pub qd: Vec<f64>,
 }
 
@@ -136,6 +158,8 @@ impl FailureKind {
 }
 
 impl SimulationError {
+    /// The kind of failure, which decides `lpm`'s exit status and a
+    /// sweep's `status` column.
     pub fn kind(&self) -> FailureKind {
         match self {
             SimulationError::Model(_) => FailureKind::Scenario,

@@ -27,7 +27,10 @@ pub struct Row {
 /// rejects) and the one-line message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunFailure {
+    /// The kind in snake case ([`crate::simulate::FailureKind::name`], or
+    /// `scenario` / `data_file`).
     pub kind: String,
+    /// What went wrong, on one line, as `lpm simulate` would print it.
     pub message: String,
 }
 
