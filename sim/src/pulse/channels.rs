@@ -9,7 +9,6 @@
 //! converted to SI. Columns with other names are ignored.
 
 use crate::crash::table::{Table, TableError};
-use std::fmt;
 use std::path::Path;
 
 /// What a column measures, with the sign conventions of [`super`]:
@@ -74,12 +73,18 @@ impl TimeHistories {
 }
 
 /// Why a file gives no time histories.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ChannelError {
     /// The file cannot be read as a table of numbers, is shorter than 3
     /// rows, or its time does not increase.
+    #[error("{0}")]
     Table(TableError),
     /// A column this tool reads has no `[unit]`, or one it does not know.
+    #[error(
+        "{file}: column `{header}` needs a unit in brackets, one of {known} (e.g. `{} [{}]`)",
+        name_of(.header),
+        first_unit(.known)
+    )]
     Unit {
         /// The file, as displayed in messages.
         file: String,
@@ -90,6 +95,7 @@ pub enum ChannelError {
         known: &'static str,
     },
     /// No time column, or none of acceleration, velocity, crush.
+    #[error("{file}: no {what} column (columns: {})", .headers.join(", "))]
     Missing {
         /// The file, as displayed in messages.
         file: String,
@@ -99,6 +105,7 @@ pub enum ChannelError {
         headers: Vec<String>,
     },
     /// Two columns measure the same quantity.
+    #[error("{file}: two columns hold the {quantity}; keep one")]
     Duplicate {
         /// The file, as displayed in messages.
         file: String,
@@ -107,37 +114,15 @@ pub enum ChannelError {
     },
 }
 
-impl fmt::Display for ChannelError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ChannelError::Table(e) => write!(f, "{e}"),
-            ChannelError::Unit {
-                file,
-                header,
-                known,
-            } => write!(
-                f,
-                "{file}: column `{header}` needs a unit in brackets, one of {known} (e.g. `{} [{}]`)",
-                header.split('[').next().unwrap_or(header).trim(),
-                known.split(", ").next().unwrap_or("")
-            ),
-            ChannelError::Missing {
-                file,
-                what,
-                headers,
-            } => write!(
-                f,
-                "{file}: no {what} column (columns: {})",
-                headers.join(", ")
-            ),
-            ChannelError::Duplicate { file, quantity } => {
-                write!(f, "{file}: two columns hold the {quantity}; keep one")
-            }
-        }
-    }
+/// The column name of a header cell, without its `[unit]`.
+fn name_of(header: &str) -> &str {
+    header.split('[').next().unwrap_or(header).trim()
 }
 
-impl std::error::Error for ChannelError {}
+/// The first of a comma-separated list of units, for an example.
+fn first_unit(known: &str) -> &str {
+    known.split(", ").next().unwrap_or("")
+}
 
 /// The quantity a column name stands for, `None` for the time column.
 fn quantity_of(name: &str) -> Option<Option<(Quantity, f64)>> {

@@ -70,16 +70,21 @@ pub struct PulseMetrics {
 }
 
 /// Why a pulse has no metrics.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PulseError {
     /// Fewer than 3 samples (the number it has).
+    #[error("a pulse needs at least 3 samples, has {0}")]
     TooShort(usize),
     /// Time does not increase at sample `index`.
+    #[error("time does not increase at sample {index}")]
     NotIncreasing {
         /// The first sample, from 0, whose time is not after the one before.
         index: usize,
     },
     /// The period varies by more than 1e-6 relative (resample first).
+    #[error(
+        "samples are not equally spaced: period {period:e} s at sample {index}, {first:e} s at the start"
+    )]
     Unequal {
         /// The first sample, from 1, that ends a period unlike the first.
         index: usize,
@@ -89,6 +94,7 @@ pub enum PulseError {
         first: f64,
     },
     /// A NaN or ±∞ among the samples.
+    #[error("{what} at sample {index} is not a finite number")]
     NotFinite {
         /// Which channel: `time`, `acceleration` or `crush`.
         what: &'static str,
@@ -96,33 +102,9 @@ pub enum PulseError {
         index: usize,
     },
     /// The CFC filter cannot be applied at the pulse's sample rate.
+    #[error("{0}")]
     Filter(CfcError),
 }
-
-impl std::fmt::Display for PulseError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            PulseError::TooShort(n) => write!(f, "a pulse needs at least 3 samples, has {n}"),
-            PulseError::NotIncreasing { index } => {
-                write!(f, "time does not increase at sample {index}")
-            }
-            PulseError::Unequal {
-                index,
-                period,
-                first,
-            } => write!(
-                f,
-                "samples are not equally spaced: period {period:e} s at sample {index}, {first:e} s at the start"
-            ),
-            PulseError::NotFinite { what, index } => {
-                write!(f, "{what} at sample {index} is not a finite number")
-            }
-            PulseError::Filter(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl std::error::Error for PulseError {}
 
 impl Pulse {
     /// A pulse from samples at any increasing times, resampled by linear

@@ -37,7 +37,6 @@ pub use overrides::{Setting, setting_number, split_setting};
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// The names a scenario is resolved against.
@@ -118,8 +117,10 @@ pub enum ScenarioErrorKind {
     DataFile,
 }
 
-/// A scenario that does not fit its spec, or a file that cannot be read.
-#[derive(Clone, Debug, PartialEq)]
+/// A scenario that does not fit its spec, or a file that cannot be read:
+/// `file:line:column: message`, with as much of the place as is known.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{}{message}", place(.file, .location))]
 pub struct ScenarioError {
     /// What kind of problem, which decides `lpm`'s exit status.
     pub kind: ScenarioErrorKind,
@@ -143,20 +144,15 @@ impl ScenarioError {
     }
 }
 
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(file) = &self.file {
-            write!(f, "{}:", file.display())?;
-            if let Some((line, column)) = self.location {
-                write!(f, "{line}:{column}:")?;
-            }
-            f.write_str(" ")?;
-        }
-        f.write_str(&self.message)
+/// `file:line:column: ` before a message (`file: ` without a location,
+/// nothing without a file).
+fn place(file: &Option<PathBuf>, location: &Option<(usize, usize)>) -> String {
+    match (file, location) {
+        (None, _) => String::new(),
+        (Some(file), None) => format!("{}: ", file.display()),
+        (Some(file), Some((line, column))) => format!("{}:{line}:{column}: ", file.display()),
     }
 }
-
-impl std::error::Error for ScenarioError {}
 
 /// A scenario resolved against a model.
 #[derive(Clone, Debug)]

@@ -18,7 +18,6 @@ use crate::ode::{self, DenseStep, Method, Options, PhaseState, Stats};
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
-use std::fmt;
 
 /// Why the integration of a run stopped: the solver's reasons, with the
 /// model's [`Fault`] for a failed evaluation.
@@ -78,14 +77,17 @@ pub struct SimulationResult {
 }
 
 /// Why a run failed.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SimulationError {
     /// A scenario value does not apply to the model.
+    #[error("{0}")]
     Model(ModelError),
     /// Newton's method found no static equilibrium.
+    #[error("no static equilibrium: {0}")]
     Equilibrium(String),
     /// The integration stopped; `reached` is where its last accepted step
     /// ended (`None` when it failed before the first step).
+    #[error("integration failed: {error}")]
     Solver {
         /// Why the solver stopped.
         error: SolverError,
@@ -104,18 +106,6 @@ pub struct Reached {
     /// The velocities there ([m/s] or [rad/s]).
     pub qd: Vec<f64>,
 }
-
-impl fmt::Display for SimulationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SimulationError::Model(e) => write!(f, "{e}"),
-            SimulationError::Equilibrium(m) => write!(f, "no static equilibrium: {m}"),
-            SimulationError::Solver { error, .. } => write!(f, "integration failed: {error}"),
-        }
-    }
-}
-
-impl std::error::Error for SimulationError {}
 
 /// What kind of failure ended a run: one exit status of `lpm` each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
