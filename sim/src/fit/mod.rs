@@ -182,6 +182,31 @@ fn check_target(target: &TimeHistories) -> Result<(), String> {
     Ok(())
 }
 
+/// The fit quality of each target channel, from the simulated channels
+/// with the initial and with the fitted values.
+fn channel_fits(
+    target: &TimeHistories,
+    initial: &[Vec<f64>],
+    fitted: &[Vec<f64>],
+) -> Vec<ChannelFit> {
+    target
+        .channels
+        .iter()
+        .zip(initial.iter().zip(fitted))
+        .map(|(c, (a, b))| {
+            let error = |sim: &[f64]| rms(sim.iter().zip(&c.values).map(|(s, y)| s - y));
+            let fitted = error(b);
+            ChannelFit {
+                channel: c.header.clone(),
+                unit: c.quantity.si_unit().into(),
+                rms_error_initial: error(a),
+                rms_error: fitted,
+                relative_rms_error: fitted / rms(c.values.iter().copied()),
+            }
+        })
+        .collect()
+}
+
 /// Fits `setup.parameters`, calling `progress(simulations, best cost)`.
 pub fn fit<const N: usize, S>(
     system: &S,
@@ -198,23 +223,7 @@ where
     let initial_channels = problem.channels_of(&initial)?;
     let outcome = problem.minimize(setup.starts, setup.seed)?;
     let fitted_channels = problem.channels_of(&outcome.values)?;
-    let channels = setup
-        .target
-        .channels
-        .iter()
-        .zip(initial_channels.iter().zip(&fitted_channels))
-        .map(|(c, (a, b))| {
-            let error = |sim: &[f64]| rms(sim.iter().zip(&c.values).map(|(s, y)| s - y));
-            let fitted = error(b);
-            ChannelFit {
-                channel: c.header.clone(),
-                unit: c.quantity.si_unit().into(),
-                rms_error_initial: error(a),
-                rms_error: fitted,
-                relative_rms_error: fitted / rms(c.values.iter().copied()),
-            }
-        })
-        .collect();
+    let channels = channel_fits(&setup.target, &initial_channels, &fitted_channels);
     let stats = statistics::uncertainty(&problem, &outcome)?;
     let labels: Vec<String> = setup
         .parameters

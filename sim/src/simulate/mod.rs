@@ -14,7 +14,7 @@ pub use problem::{CrashProblem, EventRecord};
 pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
-use crate::ode::{self, DenseStep, Method, Options, PhaseState, Stats};
+use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
@@ -258,6 +258,53 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     scenario: &Scenario,
     keep: bool,
 ) -> Result<(S, Run), SimulationError> {
+    let model = with_parameters(system, scenario)?;
+    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    let y0 = initial_state(&mut problem, scenario)?;
+    let g = gravity(&model);
+    let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
+    let mut sampler = Sampler::new(scenario, metrics, keep);
+    sampler.start(&mut problem, &y0);
+    let outcome = ode::integrate(
+        scenario.method,
+        &mut problem,
+        (0.0, y0),
+        scenario.t_end,
+        &scenario.options,
+        &mut |problem, step| sampler.observe(problem, step),
+    )
+    .map_err(|error| SimulationError::Solver {
+        error,
+        reached: sampler.reached(),
+    })?;
+    if let Some(fault) = problem.failure.take() {
+        return Err(SolverError::Rhs {
+            t: outcome.t,
+            error: fault,
+        }
+        .into());
+    }
+    if let Some(e) = sampler.error {
+        return Err(e.into());
+    }
+    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
+    let summary = sampler.metrics.finish(&outcome.stats, weld);
+    let run = Run {
+        initial_q: y0.q.as_slice().to_vec(),
+        samples: sampler.samples,
+        stats: outcome.stats,
+        events: problem.events,
+        summary,
+        g,
+    };
+    Ok((model, run))
+}
+
+/// A copy of `system` with the scenario's parameter overrides.
+fn with_parameters<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<S, SimulationError> {
     let mut model = system.clone();
     let parameter_names: Vec<String> = model
         .parameter_names()
@@ -269,6 +316,16 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
             .set_parameter(&parameter_names[index], value)
             .map_err(SimulationError::Model)?;
     }
+    Ok(model)
+}
+
+/// The state the run starts from: the scenario's initial coordinates and
+/// velocities (0 where it gives none), with the equilibrium coordinates
+/// solved for; the components are put in the state that goes with it.
+fn initial_state<const N: usize, S: LagrangianSystem<N>>(
+    problem: &mut CrashProblem<N, S>,
+    scenario: &Scenario,
+) -> Result<PhaseState<N>, SimulationError> {
     let mut q = SVector::<f64, N>::zeros();
     let mut v = SVector::<f64, N>::zeros();
     for &(i, value) in &scenario.initial_coordinates {
@@ -277,104 +334,124 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     for &(i, value) in &scenario.initial_velocities {
         v[i] = value;
     }
-    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
     // The components' state (a crush element in contact or not) follows the
     // initial state, for the equilibrium as for the run.
     problem.start(0.0, &PhaseState::new(q, v))?;
     if !scenario.equilibrium.is_empty() {
-        q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
+        q = static_equilibrium(problem, 0.0, q, &scenario.equilibrium)?;
     }
     let y0 = PhaseState::new(q, v);
     problem.start(0.0, &y0)?;
-    let g = gravity(&model);
-    let mut metrics = Metrics::new(scenario, q.as_slice(), g);
-    let mut samples = Vec::new();
-    let mut sample_error = None;
-    let interval = scenario.output_interval;
-    let mut next = 0usize;
-    let mut record = |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(
-        problem, t, y, keep,
+    Ok(y0)
+}
+
+/// Takes a run's output samples from the dense output of its steps: at
+/// `k · interval`, the last one moved onto `t_end` when it falls within
+/// half an interval of it.
+struct Sampler<const N: usize> {
+    metrics: Metrics,
+    /// The samples, when the run keeps them.
+    samples: Vec<Sample>,
+    keep: bool,
+    /// The first sample that could not be evaluated.
+    error: Option<SolverError>,
+    interval: f64,
+    t_end: f64,
+    /// The index `k` of the next sample.
+    next: usize,
+    /// The last index that may be sampled: one or two beyond `t_end`, so
+    /// that it bounds the sampling even for an interval the scenario check
+    /// would not let through (∞ or NaN, when `k·interval` never passes
+    /// t_end, or too small).
+    last: usize,
+    /// The end of the last accepted step, for the report of a failure.
+    reached: Option<(f64, PhaseState<N>)>,
+}
+
+impl<const N: usize> Sampler<N> {
+    fn new(scenario: &Scenario, metrics: Metrics, keep: bool) -> Self {
+        let interval = scenario.output_interval;
+        let bound = (scenario.t_end / interval + 1.0).ceil();
+        let last = if bound >= 0.0 {
+            bound.min(MAX_SAMPLES + 1.0) as usize
+        } else {
+            0 // NaN
+        };
+        Sampler {
+            metrics,
+            samples: Vec::new(),
+            keep,
+            error: None,
+            interval,
+            t_end: scenario.t_end,
+            next: 0,
+            last,
+            reached: None,
+        }
+    }
+
+    /// Takes the sample at the start of the run.
+    fn start<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        y0: &PhaseState<N>,
     ) {
-        Ok((view, inputs)) => {
-            metrics.push(view.as_view());
-            if keep {
-                samples.push(view.into_sample(inputs));
-            }
-        }
-        Err(e) => {
-            sample_error.get_or_insert(e);
-        }
-    };
-    record(&mut problem, 0.0, &y0);
-    next += 1;
-    let t_end = scenario.t_end;
-    // Samples at k·interval, the last one moved onto t_end when it falls
-    // within half an interval of it. `last` (one or two beyond that) bounds
-    // the loop even for an interval the scenario check would not let through
-    // (∞ or NaN, when `k·interval` never passes t_end, or too small).
-    let bound = (t_end / interval + 1.0).ceil();
-    let last = if bound >= 0.0 {
-        bound.min(MAX_SAMPLES + 1.0) as usize
-    } else {
-        0 // NaN
-    };
-    // The end of the last accepted step, for the report of a failure.
-    let mut reached: Option<(f64, PhaseState<N>)> = None;
-    let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
+        self.record(problem, 0.0, y0);
+        self.next = 1;
+    }
+
+    /// Takes the samples that fall within an accepted step.
+    fn observe<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        step: &dyn DenseStep<PhaseState<N>>,
+    ) {
         let mut y = PhaseState::zeros();
         step.eval(step.t1(), &mut y);
-        reached = Some((step.t1(), y));
-        while next <= last {
-            let t = (next as f64 * interval).min(t_end);
-            if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
+        self.reached = Some((step.t1(), y));
+        while self.next <= self.last {
+            let t = (self.next as f64 * self.interval).min(self.t_end);
+            if t > step.t1() || self.next as f64 * self.interval > self.t_end + 0.5 * self.interval
+            {
                 break;
             }
             step.eval(t, &mut y);
-            record(problem, t, &y);
-            next += 1;
+            self.record(problem, t, &y);
+            self.next += 1;
         }
-    };
-    let options: Options = scenario.options;
-    let start = (0.0, y0);
-    let outcome = ode::integrate(
-        scenario.method,
-        &mut problem,
-        start,
-        t_end,
-        &options,
-        &mut observer,
-    );
-    let outcome = outcome.map_err(|error| SimulationError::Solver {
-        error,
-        reached: reached.map(|(t, y)| {
+    }
+
+    /// Adds the sample at `(t, y)` to the metrics (and to the samples, when
+    /// kept), or keeps the first error.
+    fn record<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        t: f64,
+        y: &PhaseState<N>,
+    ) {
+        match sample(problem, t, y, self.keep) {
+            Ok((view, inputs)) => {
+                self.metrics.push(view.as_view());
+                if self.keep {
+                    self.samples.push(view.into_sample(inputs));
+                }
+            }
+            Err(e) => {
+                self.error.get_or_insert(e);
+            }
+        }
+    }
+
+    /// Where the last accepted step ended.
+    fn reached(&self) -> Option<Box<Reached>> {
+        self.reached.map(|(t, y)| {
             Box::new(Reached {
                 t,
                 q: y.q.as_slice().to_vec(),
                 qd: y.v.as_slice().to_vec(),
             })
-        }),
-    })?;
-    if let Some(fault) = problem.failure.take() {
-        return Err(SolverError::Rhs {
-            t: outcome.t,
-            error: fault,
-        }
-        .into());
+        })
     }
-    if let Some(e) = sample_error {
-        return Err(e.into());
-    }
-    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
-    let summary = metrics.finish(&outcome.stats, weld);
-    let run = Run {
-        initial_q: q.as_slice().to_vec(),
-        samples,
-        stats: outcome.stats,
-        events: problem.events,
-        summary,
-        g,
-    };
-    Ok((model, run))
 }
 
 /// The model's `g` parameter if it has one, else standard gravity.
