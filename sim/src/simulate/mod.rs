@@ -15,6 +15,7 @@ pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
+use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
@@ -460,7 +461,7 @@ fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
         .parameter_names()
         .iter()
         .position(|p| *p == "g")
-        .map_or(9.80665, |i| model.parameters()[i])
+        .map_or(STANDARD_GRAVITY, |i| model.parameters()[i])
 }
 
 /// The state, accelerations and energies at one output time.
