@@ -7,7 +7,7 @@
 
 use lagrangian::scenario::BaseScenario;
 use lagrangian::scenario::ModelNames;
-use lagrangian::sweep::{Plan, Settings, run_sweep};
+use lagrangian::sweep::{Plan, Settings, SweepJob, run_sweep};
 use lagrangian::{Interpreted, LagrangianSystem};
 use std::path::Path;
 use std::time::Instant;
@@ -26,7 +26,14 @@ fn throughput<S: LagrangianSystem<3> + Clone + Send>(
 ) -> (f64, usize) {
     let settings = Settings::new(plan, base, &model.parameters()).unwrap();
     let start = Instant::now();
-    let rows = run_sweep(model, base, plan, &settings, 0..runs, threads, &|| {}).unwrap();
+    let job = SweepJob {
+        base,
+        plan,
+        settings: &settings,
+        runs: 0..runs,
+        threads,
+    };
+    let rows = run_sweep(model, job, &|| {}).unwrap();
     let elapsed = start.elapsed().as_secs_f64();
     (
         runs as f64 / elapsed,

@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, WithDimension};
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
-    Design, Journal, Plan, Row, Settings, Shard, journal_path, read_groups, run_scenario,
+    Design, Journal, Plan, Row, Settings, Shard, SweepJob, journal_path, read_groups, run_scenario,
     stream_sweep, write_parquet,
 };
 use std::path::{Path, PathBuf};
@@ -347,6 +347,13 @@ impl WithDimension for Sweep<'_> {
             stop,
             sink,
         } = self;
-        stream_sweep(&system, base, plan, settings, runs, threads, stop, sink).map_err(Failure::io)
+        let job = SweepJob {
+            base,
+            plan,
+            settings,
+            runs,
+            threads,
+        };
+        stream_sweep(&system, job, stop, sink).map_err(Failure::io)
     }
 }

@@ -4,35 +4,61 @@
 //! ([`crate::ode::SolverError::Rhs`]); the state is kept so that a user can
 //! see where the model broke (`lpm … -v` prints it with coordinate names).
 
-use std::fmt;
-
 /// A failed evaluation of the model or of a component it reads.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum Fault {
     /// `M(q)` has no `L D Lᵀ` factorization with positive pivots (the only
     /// way the mass matrix is solved): singular, or not positive definite,
     /// at coordinates `q`.
-    SingularMassMatrix { q: Vec<f64>, qd: Vec<f64> },
+    #[error("the mass matrix is singular or not positive definite at q = {q:?}")]
+    SingularMassMatrix {
+        /// The coordinates the mass matrix was evaluated at, in the model's
+        /// order and units ([m] or [rad]).
+        q: Vec<f64>,
+        /// The velocities at the same instant ([m/s] or [rad/s]).
+        qd: Vec<f64>,
+    },
     /// An entry of `M`, `f`, `q̈` or a power is NaN or ±∞.
+    #[error("{output} is {value}")]
     NonFinite {
         /// Which value, e.g. `f[theta1]` or `M[r, theta2]`.
         output: String,
+        /// The offending value: NaN, `inf` or `-inf`.
         value: f64,
+        /// The coordinates the model was evaluated at ([m] or [rad]).
         q: Vec<f64>,
+        /// The velocities at the same instant ([m/s] or [rad/s]).
         qd: Vec<f64>,
     },
     /// A table read outside its range under the `error` policy.
+    #[error(
+        "{}component `{component}` evaluated at {x} outside its table [{min}, {max}] (policy `error`)",
+        read_through(.input)
+    )]
     OutOfRange {
+        /// The scenario's name of the component (`[components.NAME]`).
         component: String,
         /// The model input that read it, when it was read through one.
         input: Option<String>,
+        /// The abscissa it was read at, in the table's units (a time [s],
+        /// a crush [m], …).
         x: f64,
+        /// The first abscissa of the table.
         min: f64,
+        /// The last abscissa of the table.
         max: f64,
     },
     /// Anything else a component reports (an input with no value, an input
     /// called with the wrong number of arguments).
+    #[error("{0}")]
     Component(String),
+}
+
+/// `input `force`: ` before the message of a table read through an input.
+fn read_through(input: &Option<String>) -> String {
+    input
+        .as_ref()
+        .map_or_else(String::new, |input| format!("input `{input}`: "))
 }
 
 impl Fault {
@@ -41,34 +67,6 @@ impl Fault {
         match self {
             Fault::SingularMassMatrix { q, qd } | Fault::NonFinite { q, qd, .. } => Some((q, qd)),
             _ => None,
-        }
-    }
-}
-
-impl fmt::Display for Fault {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Fault::SingularMassMatrix { q, .. } => write!(
-                f,
-                "the mass matrix is singular or not positive definite at q = {q:?}"
-            ),
-            Fault::NonFinite { output, value, .. } => write!(f, "{output} is {value}"),
-            Fault::OutOfRange {
-                component,
-                input,
-                x,
-                min,
-                max,
-            } => {
-                if let Some(input) = input {
-                    write!(f, "input `{input}`: ")?;
-                }
-                write!(
-                    f,
-                    "component `{component}` evaluated at {x} outside its table [{min}, {max}] (policy `error`)"
-                )
-            }
-            Fault::Component(message) => f.write_str(message),
         }
     }
 }

@@ -26,6 +26,8 @@
 //! }
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod crash;
 pub mod fault;
 #[cfg(feature = "fit")]

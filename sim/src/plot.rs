@@ -13,7 +13,10 @@ pub struct PlotSetup {
     pub pitch: Vec<usize>,
     /// Input column of the crush force and the sign that makes compression positive.
     pub crush_force: Option<(usize, f64)>,
+    /// The gravitational acceleration the deceleration panel is in [m/s²]
+    /// ([`SimulationResult::g`]).
     pub g: f64,
+    /// The title above the figure (`lpm simulate` writes the model and the scenario).
     pub title: String,
 }
 
@@ -47,118 +50,34 @@ pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String
     Ok(svg)
 }
 
-fn panels_of(
-    result: &SimulationResult,
-    setup: &PlotSetup,
-) -> Vec<(String, String, String, Vec<Series>)> {
-    let ms = |t: f64| t * 1e3;
-    let time = "t [ms]".to_string();
-    let s = &result.samples;
-    let mut panels = Vec::new();
-    match setup.crush {
-        Some((k, sign)) => {
-            let crush = s.iter().map(|x| (ms(x.t), sign * x.q[k])).collect();
-            let velocity = s.iter().map(|x| (ms(x.t), sign * x.v[k])).collect();
-            let deceleration = s
-                .iter()
-                .map(|x| (ms(x.t), -sign * x.a[k] / setup.g))
-                .collect();
-            panels.push((
-                "Crush".into(),
-                time.clone(),
-                "crush [m]".into(),
-                vec![("crush".into(), crush)],
-            ));
-            panels.push((
-                "Velocity towards the barrier".into(),
-                time.clone(),
-                "velocity [m/s]".into(),
-                vec![("velocity".into(), velocity)],
-            ));
-            panels.push((
-                "Deceleration (unfiltered)".into(),
-                time.clone(),
-                "deceleration [g]".into(),
-                vec![("deceleration".into(), deceleration)],
-            ));
-        }
-        None => {
-            let coordinates = result
-                .coordinates
-                .iter()
-                .enumerate()
-                .map(|(k, name)| (name.clone(), s.iter().map(|x| (ms(x.t), x.q[k])).collect()))
-                .collect();
-            let velocities = result
-                .coordinates
-                .iter()
-                .enumerate()
-                .map(|(k, name)| {
-                    (
-                        format!("d{name}/dt"),
-                        s.iter().map(|x| (ms(x.t), x.v[k])).collect(),
-                    )
-                })
-                .collect();
-            panels.push(("Coordinates".into(), time.clone(), "q".into(), coordinates));
-            panels.push((
-                "Velocities".into(),
-                time.clone(),
-                "dq/dt".into(),
-                velocities,
-            ));
-        }
-    }
+/// One panel of the figure: `(title, x label, y label, lines)`.
+type Panel = (String, String, String, Vec<Series>);
+
+/// A panel against time in milliseconds.
+fn time_panel(title: &str, y_label: &str, series: Vec<Series>) -> Panel {
+    (title.into(), "t [ms]".into(), y_label.into(), series)
+}
+
+/// Seconds to milliseconds, the time axis of the panels.
+fn ms(t: f64) -> f64 {
+    t * 1e3
+}
+
+/// The panels of a run, in reading order: the crush pulse (or the raw
+/// coordinates without a crush coordinate), pitch, energies, and the crush
+/// force–deflection loop.
+fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
+    let mut panels = match setup.crush {
+        Some((k, sign)) => crush_panels(result, k, sign, setup.g),
+        None => coordinate_panels(result),
+    };
     if !setup.pitch.is_empty() {
-        let pitch = setup
-            .pitch
-            .iter()
-            .map(|&k| {
-                let q0 = result.initial_q[k];
-                (
-                    result.coordinates[k].clone(),
-                    s.iter()
-                        .map(|x| (ms(x.t), (x.q[k] - q0).to_degrees()))
-                        .collect(),
-                )
-            })
-            .collect();
-        panels.push((
-            "Pitch from static equilibrium".into(),
-            time.clone(),
-            "angle [°]".into(),
-            pitch,
-        ));
+        panels.push(pitch_panel(result, &setup.pitch));
     }
-    let first = s.first().map_or(0.0, |x| x.potential);
-    let kj = 1e-3;
-    panels.push((
-        "Energy".into(),
-        time.clone(),
-        "energy [kJ]".into(),
-        vec![
-            (
-                "kinetic".into(),
-                s.iter().map(|x| (ms(x.t), kj * x.kinetic)).collect(),
-            ),
-            (
-                "potential − V(0)".into(),
-                s.iter()
-                    .map(|x| (ms(x.t), kj * (x.potential - first)))
-                    .collect(),
-            ),
-            (
-                "dissipated by D".into(),
-                s.iter().map(|x| (ms(x.t), kj * x.dissipated)).collect(),
-            ),
-            (
-                "absorbed by inputs".into(),
-                s.iter().map(|x| (ms(x.t), -kj * x.external_work)).collect(),
-            ),
-        ],
-    ));
+    panels.push(energy_panel(result));
     if let (Some((k, sign)), Some((column, force_sign))) = (setup.crush, setup.crush_force) {
-        let loop_points = s
+        let loop_points = result
+            .samples
             .iter()
             .map(|x| (sign * x.q[k], 1e-3 * force_sign * x.inputs[column]))
             .collect();
@@ -170,6 +89,98 @@ fn panels_of(
         ));
     }
     panels
+}
+
+/// Crush, velocity towards the barrier and deceleration [g] of crush
+/// coordinate `k` (`sign` makes compression positive).
+fn crush_panels(result: &SimulationResult, k: usize, sign: f64, g: f64) -> Vec<Panel> {
+    let s = &result.samples;
+    let crush = s.iter().map(|x| (ms(x.t), sign * x.q[k])).collect();
+    let velocity = s.iter().map(|x| (ms(x.t), sign * x.v[k])).collect();
+    let deceleration = s.iter().map(|x| (ms(x.t), -sign * x.a[k] / g)).collect();
+    vec![
+        time_panel("Crush", "crush [m]", vec![("crush".into(), crush)]),
+        time_panel(
+            "Velocity towards the barrier",
+            "velocity [m/s]",
+            vec![("velocity".into(), velocity)],
+        ),
+        time_panel(
+            "Deceleration (unfiltered)",
+            "deceleration [g]",
+            vec![("deceleration".into(), deceleration)],
+        ),
+    ]
+}
+
+/// Every coordinate and every velocity, for a run without a crush
+/// coordinate.
+fn coordinate_panels(result: &SimulationResult) -> Vec<Panel> {
+    let s = &result.samples;
+    let coordinates = result
+        .coordinates
+        .iter()
+        .enumerate()
+        .map(|(k, name)| (name.clone(), s.iter().map(|x| (ms(x.t), x.q[k])).collect()))
+        .collect();
+    let velocities = result
+        .coordinates
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            (
+                format!("d{name}/dt"),
+                s.iter().map(|x| (ms(x.t), x.v[k])).collect(),
+            )
+        })
+        .collect();
+    vec![
+        time_panel("Coordinates", "q", coordinates),
+        time_panel("Velocities", "dq/dt", velocities),
+    ]
+}
+
+/// The pitch coordinates in degrees, relative to their initial values.
+fn pitch_panel(result: &SimulationResult, pitch: &[usize]) -> Panel {
+    let lines = pitch
+        .iter()
+        .map(|&k| {
+            let q0 = result.initial_q[k];
+            (
+                result.coordinates[k].clone(),
+                result
+                    .samples
+                    .iter()
+                    .map(|x| (ms(x.t), (x.q[k] - q0).to_degrees()))
+                    .collect(),
+            )
+        })
+        .collect();
+    time_panel("Pitch from static equilibrium", "angle [°]", lines)
+}
+
+/// The energy bookkeeping [kJ]: kinetic, potential from its start,
+/// dissipated, and absorbed by the inputs.
+fn energy_panel(result: &SimulationResult) -> Panel {
+    let s = &result.samples;
+    let first = s.first().map_or(0.0, |x| x.potential);
+    let kj = 1e-3;
+    let line = |name: &str, value: &dyn Fn(&crate::simulate::Sample) -> f64| -> Series {
+        (
+            name.into(),
+            s.iter().map(|x| (ms(x.t), kj * value(x))).collect(),
+        )
+    };
+    time_panel(
+        "Energy",
+        "energy [kJ]",
+        vec![
+            line("kinetic", &|x| x.kinetic),
+            line("potential − V(0)", &|x| x.potential - first),
+            line("dissipated by D", &|x| x.dissipated),
+            line("absorbed by inputs", &|x| -x.external_work),
+        ],
+    )
 }
 
 /// Panels of lines side by side, one row: `(title, x label, y label, lines)`.

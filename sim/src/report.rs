@@ -23,7 +23,12 @@ pub fn write_atomically(path: &Path, contents: &[u8]) -> io::Result<()> {
 /// Units of the columns, where the spec declares them.
 #[derive(Clone, Debug, Default)]
 pub struct Units {
+    /// The unit of each coordinate (`m`, `rad`), by coordinate index; the
+    /// velocity and acceleration columns add `/s` and `/s^2`. `None`, or
+    /// an index past the end, writes the column without a unit.
     pub coordinates: Vec<Option<String>>,
+    /// The unit of each column of [`SimulationResult::input_columns`], in
+    /// the same order.
     pub inputs: Vec<Option<String>>,
 }
 
@@ -90,6 +95,8 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
     out
 }
 
+/// `summary.json`: the run's [`Summary`](crate::simulate::Summary) as
+/// pretty-printed JSON, one line per metric, ending in a newline.
 pub fn summary_json(result: &SimulationResult) -> String {
     serde_json::to_string_pretty(&result.summary).unwrap_or_else(|_| "{}".to_string()) + "\n"
 }

@@ -25,20 +25,31 @@ use serde::Serialize;
 /// What to fit and how.
 #[derive(Clone, Debug)]
 pub struct FitSetup {
+    /// The scenario the fitted values are applied to, with its `--set`
+    /// settings; its `[metrics] crush` coordinate is what the target
+    /// channels are compared with.
     pub base: BaseScenario,
+    /// The measured (or reference) pulse to match: acceleration, velocity
+    /// and/or crush against time, in SI units.
     pub target: TimeHistories,
+    /// The entries the fit varies, with their base values and transforms.
     pub parameters: Parameters,
     /// Number of starts: the scenario's values, then random perturbations of
     /// them (factors in [1/1.5, 1.5]).
     pub starts: usize,
+    /// Seed of the random perturbations of the starts after the first: the
+    /// same seed gives the same starts, and so the same fit.
     pub seed: u64,
 }
 
 /// One parameter's result.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FittedParameter {
+    /// The entry's name in reports (`front_end.k3`, `k_f`).
     pub name: String,
+    /// Its value in the scenario (the first start), in the entry's own units.
     pub initial: f64,
+    /// Its value at the best optimum found, in the same units.
     pub fitted: f64,
     /// Standard error from `σ² (JᵀJ)⁻¹` at the optimum (`None` when the
     /// target does not determine it).
@@ -51,9 +62,14 @@ pub struct FittedParameter {
 /// Fit quality of one target channel.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ChannelFit {
+    /// The channel's column header in the target file.
     pub channel: String,
+    /// The SI unit of the channel and of its errors (`m/s^2`, `m/s`, `m`).
     pub unit: String,
+    /// RMS of simulated minus target over the target times, with the
+    /// scenario's own values, in `unit`.
     pub rms_error_initial: f64,
+    /// The same with the fitted values, in `unit`.
     pub rms_error: f64,
     /// `rms_error / rms(target)`.
     pub relative_rms_error: f64,
@@ -62,23 +78,39 @@ pub struct ChannelFit {
 /// One start of the optimizer.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StartReport {
+    /// `½ Σ r²` (dimensionless: residuals are scaled per channel) where the
+    /// start ended.
     pub cost: f64,
+    /// The simulations this start ran (residuals and Jacobian columns).
     pub simulations: usize,
+    /// Why the optimizer stopped, as the `levenberg-marquardt` crate names
+    /// it (`Converged { ftol: true, … }`, `LostPatience`, …).
     pub termination: String,
+    /// `true` when it stopped on a tolerance rather than a limit or a failure.
     pub converged: bool,
 }
 
+/// Everything a fit produced: the parameters with their standard errors,
+/// the fit quality per channel, and how the optimizer got there.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FitReport {
+    /// One per fitted entry, in the order of `--fit`.
     pub parameters: Vec<FittedParameter>,
+    /// One per target channel, in the order of the target file.
     pub channels: Vec<ChannelFit>,
     /// Pairs of parameters correlated by more than 0.95 in magnitude.
     pub strong_correlations: Vec<(String, String, f64)>,
-    /// `½ Σ r²` at the start and at the end (best start).
+    /// `½ Σ r²` with the scenario's own values (where the first start
+    /// begins); dimensionless, the residuals being scaled per channel.
     pub cost_initial: f64,
+    /// `½ Σ r²` at the optimum of the best start.
     pub cost: f64,
+    /// One report per start, in the order they ran (the first from the
+    /// scenario's values).
     pub starts: Vec<StartReport>,
+    /// All simulations of the fit, starts and statistics together.
     pub simulations: usize,
+    /// Wall-clock time of the whole fit [s].
     pub seconds: f64,
     /// `key=value` settings that give the fitted scenario.
     pub settings: Vec<String>,
@@ -150,6 +182,31 @@ fn check_target(target: &TimeHistories) -> Result<(), String> {
     Ok(())
 }
 
+/// The fit quality of each target channel, from the simulated channels
+/// with the initial and with the fitted values.
+fn channel_fits(
+    target: &TimeHistories,
+    initial: &[Vec<f64>],
+    fitted: &[Vec<f64>],
+) -> Vec<ChannelFit> {
+    target
+        .channels
+        .iter()
+        .zip(initial.iter().zip(fitted))
+        .map(|(c, (a, b))| {
+            let error = |sim: &[f64]| rms(sim.iter().zip(&c.values).map(|(s, y)| s - y));
+            let fitted = error(b);
+            ChannelFit {
+                channel: c.header.clone(),
+                unit: c.quantity.si_unit().into(),
+                rms_error_initial: error(a),
+                rms_error: fitted,
+                relative_rms_error: fitted / rms(c.values.iter().copied()),
+            }
+        })
+        .collect()
+}
+
 /// Fits `setup.parameters`, calling `progress(simulations, best cost)`.
 pub fn fit<const N: usize, S>(
     system: &S,
@@ -166,23 +223,7 @@ where
     let initial_channels = problem.channels_of(&initial)?;
     let outcome = problem.minimize(setup.starts, setup.seed)?;
     let fitted_channels = problem.channels_of(&outcome.values)?;
-    let channels = setup
-        .target
-        .channels
-        .iter()
-        .zip(initial_channels.iter().zip(&fitted_channels))
-        .map(|(c, (a, b))| {
-            let error = |sim: &[f64]| rms(sim.iter().zip(&c.values).map(|(s, y)| s - y));
-            let fitted = error(b);
-            ChannelFit {
-                channel: c.header.clone(),
-                unit: c.quantity.si_unit().into(),
-                rms_error_initial: error(a),
-                rms_error: fitted,
-                relative_rms_error: fitted / rms(c.values.iter().copied()),
-            }
-        })
-        .collect();
+    let channels = channel_fits(&setup.target, &initial_channels, &fitted_channels);
     let stats = statistics::uncertainty(&problem, &outcome)?;
     let labels: Vec<String> = setup
         .parameters

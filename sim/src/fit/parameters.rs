@@ -34,21 +34,32 @@ pub struct Entry {
     pub index: Option<usize>,
     /// Name in reports (`front_end.k3`, `k_f`).
     pub label: String,
+    /// How the fit variable maps to the value: keeps a positive value
+    /// positive and an ordered list ordered.
     pub transform: Transform,
 }
 
 /// A key and the values of everything at it (all entries of a list).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Slot {
+    /// Scenario key or parameter name, as in [`Entry::key`]; one slot per key.
     pub key: String,
+    /// `true` when the key holds a list (set as `key=[a, b, …]`), `false`
+    /// for a single number.
     pub is_list: bool,
+    /// The values at the key in the base scenario (one for a number), in
+    /// the entry's own units; entries not fitted keep these.
     pub base: Vec<f64>,
 }
 
 /// The fitted entries and the slots they live in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parameters {
+    /// The scalars the fit varies, in the order of `--fit` (a list's
+    /// entries in list order); no two have the same label.
     pub entries: Vec<Entry>,
+    /// The keys those entries are in, each once; every entry's key has
+    /// its slot.
     pub slots: Vec<Slot>,
 }
 
@@ -80,6 +91,43 @@ fn lookup<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     value
 }
 
+/// The scenario key of the values a `stiffness` / `damping` name stands
+/// for (`front_end.stiffness`: the `stiffness_values` of crush component
+/// `front_end`; a bare `stiffness`: those of the scenario's only crush
+/// component) and the prefix of their labels (`front_end.k`); `None` for
+/// any other name.
+fn crush_values_key(
+    name: &str,
+    document: &toml::Table,
+) -> Result<Option<(String, String)>, String> {
+    let short = |component: &str, what: &str| match what {
+        "stiffness" => Some((format!("components.{component}.stiffness_values"), "k")),
+        "damping" => Some((format!("components.{component}.damping_values"), "c")),
+        _ => None,
+    };
+    let crush = crush_components(document);
+    if name == "stiffness" || name == "damping" {
+        match crush.as_slice() {
+            [one] => Ok(short(one, name).map(|(k, l)| (k, format!("{one}.{l}")))),
+            [] => Err(format!(
+                "--fit {name}: the scenario has no crush component (type = \"crush\")"
+            )),
+            many => Err(format!(
+                "--fit {name}: the scenario has several crush components ({}); name one, e.g. `{}.{name}`",
+                many.join(", "),
+                many[0]
+            )),
+        }
+    } else if let Some((component, what)) = name.split_once('.')
+        && crush.iter().any(|c| c == component)
+        && (what == "stiffness" || what == "damping")
+    {
+        Ok(short(component, what).map(|(k, l)| (k, format!("{component}.{l}"))))
+    } else {
+        Ok(None)
+    }
+}
+
 impl Parameters {
     /// Resolves `names` against the scenario `document` and the model's
     /// parameter names and defaults.
@@ -95,13 +143,7 @@ impl Parameters {
         };
         for name in names {
             let name = name.trim();
-            let short = |component: &str, what: &str| match what {
-                "stiffness" => Some((format!("components.{component}.stiffness_values"), "k")),
-                "damping" => Some((format!("components.{component}.damping_values"), "c")),
-                _ => None,
-            };
-            let crush = crush_components(document);
-            let resolved = if let Some(p) = model.parameters.iter().position(|p| p == name) {
+            if let Some(p) = model.parameters.iter().position(|p| p == name) {
                 let base = document
                     .get("parameters")
                     .and_then(|t| t.get(name))
@@ -109,31 +151,9 @@ impl Parameters {
                     .unwrap_or(defaults[p]);
                 parameters.push_scalar(name.to_string(), name.to_string(), base);
                 continue;
-            } else if name == "stiffness" || name == "damping" {
-                match crush.as_slice() {
-                    [one] => short(one, name).map(|(k, l)| (k, format!("{one}.{l}"))),
-                    [] => {
-                        return Err(format!(
-                            "--fit {name}: the scenario has no crush component (type = \"crush\")"
-                        ));
-                    }
-                    many => {
-                        return Err(format!(
-                            "--fit {name}: the scenario has several crush components ({}); name one, e.g. `{}.{name}`",
-                            many.join(", "),
-                            many[0]
-                        ));
-                    }
-                }
-            } else if let Some((component, what)) = name.split_once('.')
-                && crush.iter().any(|c| c == component)
-                && (what == "stiffness" || what == "damping")
-            {
-                short(component, what).map(|(k, l)| (k, format!("{component}.{l}")))
-            } else {
-                None
-            };
-            let (key, prefix) = resolved.unwrap_or_else(|| (name.to_string(), String::new()));
+            }
+            let (key, prefix) = crush_values_key(name, document)?
+                .unwrap_or_else(|| (name.to_string(), String::new()));
             let value = lookup(document, &key).ok_or_else(|| {
                 let parameters = model.parameters.join(", ");
                 format!(
@@ -141,48 +161,7 @@ impl Parameters {
                 )
             })?;
             match value {
-                toml::Value::Array(items) => {
-                    let base: Vec<f64> = items
-                        .iter()
-                        .map(number)
-                        .collect::<Option<_>>()
-                        .ok_or_else(|| {
-                            format!("--fit {name}: `{key}` holds something other than numbers")
-                        })?;
-                    let ordered = key.ends_with("breakpoints");
-                    for (i, _) in base.iter().enumerate() {
-                        let label = if prefix.is_empty() {
-                            format!("{key}[{i}]")
-                        } else {
-                            format!("{prefix}{}", i + 1)
-                        };
-                        parameters.entries.push(Entry {
-                            key: key.clone(),
-                            index: Some(i),
-                            label,
-                            transform: if ordered {
-                                Transform::Increment
-                            } else if base[i] > 0.0 {
-                                Transform::Log
-                            } else {
-                                Transform::Identity
-                            },
-                        });
-                    }
-                    if ordered
-                        && (base.windows(2).any(|w| w[1] <= w[0])
-                            || base.first().is_some_and(|&b| b <= 0.0))
-                    {
-                        return Err(format!(
-                            "--fit {name}: `{key}` must be positive and increasing"
-                        ));
-                    }
-                    parameters.slots.push(Slot {
-                        key,
-                        is_list: true,
-                        base,
-                    });
-                }
+                toml::Value::Array(items) => parameters.push_list(name, key, &prefix, items)?,
                 other => {
                     let base = number(other).ok_or_else(|| {
                         format!("--fit {name}: `{key}` is not a number ({other})")
@@ -203,6 +182,56 @@ impl Parameters {
             return Err("--fit: nothing to fit".into());
         }
         Ok(parameters)
+    }
+
+    /// Every number of the list at `key` as an entry, labelled `{prefix}1`,
+    /// `{prefix}2`, … (`key[0]`, … without a prefix); a list named
+    /// `…breakpoints` must be positive and increasing, and stays so.
+    fn push_list(
+        &mut self,
+        name: &str,
+        key: String,
+        prefix: &str,
+        items: &[toml::Value],
+    ) -> Result<(), String> {
+        let base: Vec<f64> = items
+            .iter()
+            .map(number)
+            .collect::<Option<_>>()
+            .ok_or_else(|| format!("--fit {name}: `{key}` holds something other than numbers"))?;
+        let ordered = key.ends_with("breakpoints");
+        for (i, _) in base.iter().enumerate() {
+            let label = if prefix.is_empty() {
+                format!("{key}[{i}]")
+            } else {
+                format!("{prefix}{}", i + 1)
+            };
+            self.entries.push(Entry {
+                key: key.clone(),
+                index: Some(i),
+                label,
+                transform: if ordered {
+                    Transform::Increment
+                } else if base[i] > 0.0 {
+                    Transform::Log
+                } else {
+                    Transform::Identity
+                },
+            });
+        }
+        if ordered
+            && (base.windows(2).any(|w| w[1] <= w[0]) || base.first().is_some_and(|&b| b <= 0.0))
+        {
+            return Err(format!(
+                "--fit {name}: `{key}` must be positive and increasing"
+            ));
+        }
+        self.slots.push(Slot {
+            key,
+            is_list: true,
+            base,
+        });
+        Ok(())
     }
 
     fn push_scalar(&mut self, key: String, label: String, base: f64) {

@@ -10,6 +10,7 @@ pub enum Direction {
     Rising,
     /// From positive to non-positive.
     Falling,
+    /// Both: any change of sign.
     Either,
 }
 

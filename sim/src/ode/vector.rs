@@ -5,12 +5,15 @@ use nalgebra::{DVector, SVector};
 /// A state vector: fixed-size ones live on the stack, so integrating them
 /// does not allocate.
 pub trait OdeVector: Clone {
+    /// The number of components.
     fn len(&self) -> usize;
 
+    /// `true` for a vector of no components.
     fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
+    /// Component `i` (`i < len()`).
     fn get(&self, i: usize) -> f64;
 
     /// `self ← base + Σ_k c_k · x_k`.
@@ -19,6 +22,7 @@ pub trait OdeVector: Clone {
     /// `self ← Σ_k c_k · x_k`.
     fn set_sum(&mut self, terms: &[(f64, &Self)]);
 
+    /// `true` when no component is NaN or ±∞.
     fn all_finite(&self) -> bool {
         (0..self.len()).all(|i| self.get(i).is_finite())
     }
@@ -79,12 +83,16 @@ impl OdeVector for DVector<f64> {
 /// balance as accurate as the solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseState<const N: usize> {
+    /// Generalized coordinates, in the model's units ([m] or [rad]).
     pub q: SVector<f64, N>,
+    /// Generalized velocities `q̇` ([m/s] or [rad/s]).
     pub v: SVector<f64, N>,
+    /// `[dissipated, external work]` since the start of the run [J].
     pub work: [f64; 2],
 }
 
 impl<const N: usize> PhaseState<N> {
+    /// The state at coordinates `q` and velocities `v`, with no work done yet.
     pub fn new(q: SVector<f64, N>, v: SVector<f64, N>) -> Self {
         PhaseState {
             q,
@@ -93,6 +101,7 @@ impl<const N: usize> PhaseState<N> {
         }
     }
 
+    /// All zeros: at rest at `q = 0`, no work done.
     pub fn zeros() -> Self {
         PhaseState::new(SVector::zeros(), SVector::zeros())
     }

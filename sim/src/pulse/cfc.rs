@@ -25,32 +25,25 @@ pub const STANDARD_CLASSES: [f64; 4] = [60.0, 180.0, 600.0, 1000.0];
 const PADDING: f64 = 0.050;
 
 /// Why a signal cannot be filtered.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CfcError {
     /// The sample period is not a positive finite number.
+    #[error("sample period {0} s is not a positive number")]
     SamplePeriod(f64),
     /// The class is not positive, or too high for the sample rate: the
     /// design frequency 2.0775·CFC must stay below the Nyquist frequency.
-    Class { cfc: f64, sample_rate: f64 },
+    #[error(
+        "CFC {cfc} cannot be applied to a signal sampled at {sample_rate:.0} Hz \
+         (needs 0 < 2.0775·CFC < half the sample rate; J211 recommends a sample \
+         rate of at least 10 × CFC)"
+    )]
+    Class {
+        /// The channel frequency class asked for (60, 180, …).
+        cfc: f64,
+        /// The signal's sample rate, `1 / period` [Hz].
+        sample_rate: f64,
+    },
 }
-
-impl std::fmt::Display for CfcError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            CfcError::SamplePeriod(dt) => {
-                write!(f, "sample period {dt} s is not a positive number")
-            }
-            CfcError::Class { cfc, sample_rate } => write!(
-                f,
-                "CFC {cfc} cannot be applied to a signal sampled at {sample_rate:.0} Hz \
-                 (needs 0 < 2.0775·CFC < half the sample rate; J211 recommends a sample \
-                 rate of at least 10 × CFC)"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for CfcError {}
 
 /// The coefficients `[a0, a1, a2, b1, b2]` of one pass.
 pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {

@@ -9,7 +9,6 @@
 //! converted to SI. Columns with other names are ignored.
 
 use crate::crash::table::{Table, TableError};
-use std::fmt;
 use std::path::Path;
 
 /// What a column measures, with the sign conventions of [`super`]:
@@ -25,6 +24,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// The quantity in words, as messages name it (`acceleration`).
     pub fn name(self) -> &'static str {
         match self {
             Quantity::Acceleration => "acceleration",
@@ -33,6 +33,7 @@ impl Quantity {
         }
     }
 
+    /// The SI unit its values are converted to, in ASCII (`m/s^2`).
     pub fn si_unit(self) -> &'static str {
         match self {
             Quantity::Acceleration => "m/s^2",
@@ -45,78 +46,83 @@ impl Quantity {
 /// One channel, in SI units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Channel {
+    /// What it measures; a file has at most one channel of each.
     pub quantity: Quantity,
     /// The header cell it came from.
     pub header: String,
+    /// One value per row of the file, in [`Quantity::si_unit`] and the
+    /// sign conventions above (a `decel` column is negated).
     pub values: Vec<f64>,
 }
 
 /// The channels of a file, on its time column.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TimeHistories {
+    /// Sample times [s], strictly increasing, at least 3.
     pub t: Vec<f64>,
+    /// At least one, each as long as `t`, sorted by quantity
+    /// (acceleration, velocity, crush).
     pub channels: Vec<Channel>,
 }
 
 impl TimeHistories {
+    /// The channel of `quantity`, if the file has one.
     pub fn channel(&self, quantity: Quantity) -> Option<&Channel> {
         self.channels.iter().find(|c| c.quantity == quantity)
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// Why a file gives no time histories.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ChannelError {
+    /// The file cannot be read as a table of numbers, is shorter than 3
+    /// rows, or its time does not increase.
+    #[error("{0}")]
     Table(TableError),
     /// A column this tool reads has no `[unit]`, or one it does not know.
+    #[error(
+        "{file}: column `{header}` needs a unit in brackets, one of {known} (e.g. `{} [{}]`)",
+        name_of(.header),
+        first_unit(.known)
+    )]
     Unit {
+        /// The file, as displayed in messages.
         file: String,
+        /// The whole header cell, e.g. `velocity [kph]`.
         header: String,
+        /// The units accepted for that quantity, comma separated, the
+        /// first one used as the example.
         known: &'static str,
     },
     /// No time column, or none of acceleration, velocity, crush.
+    #[error("{file}: no {what} column (columns: {})", .headers.join(", "))]
     Missing {
+        /// The file, as displayed in messages.
         file: String,
+        /// What is missing, in words with the expected header.
         what: String,
+        /// The header cells the file has.
         headers: Vec<String>,
     },
     /// Two columns measure the same quantity.
+    #[error("{file}: two columns hold the {quantity}; keep one")]
     Duplicate {
+        /// The file, as displayed in messages.
         file: String,
+        /// `time` or the [`Quantity::name`] that is there twice.
         quantity: &'static str,
     },
 }
 
-impl fmt::Display for ChannelError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ChannelError::Table(e) => write!(f, "{e}"),
-            ChannelError::Unit {
-                file,
-                header,
-                known,
-            } => write!(
-                f,
-                "{file}: column `{header}` needs a unit in brackets, one of {known} (e.g. `{} [{}]`)",
-                header.split('[').next().unwrap_or(header).trim(),
-                known.split(", ").next().unwrap_or("")
-            ),
-            ChannelError::Missing {
-                file,
-                what,
-                headers,
-            } => write!(
-                f,
-                "{file}: no {what} column (columns: {})",
-                headers.join(", ")
-            ),
-            ChannelError::Duplicate { file, quantity } => {
-                write!(f, "{file}: two columns hold the {quantity}; keep one")
-            }
-        }
-    }
+/// The column name of a header cell, without its `[unit]`.
+fn name_of(header: &str) -> &str {
+    header.split('[').next().unwrap_or(header).trim()
 }
 
-impl std::error::Error for ChannelError {}
+/// The first of a comma-separated list of units, for an example.
+fn first_unit(known: &str) -> &str {
+    known.split(", ").next().unwrap_or("")
+}
 
 /// The quantity a column name stands for, `None` for the time column.
 fn quantity_of(name: &str) -> Option<Option<(Quantity, f64)>> {
@@ -179,6 +185,9 @@ pub fn read_time_histories(path: &Path) -> Result<TimeHistories, ChannelError> {
     from_table(&table)
 }
 
+/// The time histories of a table already read (see
+/// [`read_time_histories`]): the columns named as a quantity, with their
+/// units, converted to SI; other columns are ignored.
 pub fn from_table(table: &Table) -> Result<TimeHistories, ChannelError> {
     let file = table.file().display().to_string();
     let mut time: Option<Vec<f64>> = None;

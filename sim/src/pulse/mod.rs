@@ -34,75 +34,77 @@ pub struct Pulse {
 /// The metrics of a pulse.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PulseMetrics {
+    /// The velocity at the first sample, [`Pulse::v0`] [m/s].
     pub impact_velocity_mps: f64,
     /// Largest crush (the crush channel, or the displacement from the CFC 180
     /// acceleration integrated twice) [m].
     pub max_dynamic_crush_m: Option<f64>,
+    /// When the largest crush is reached: the time of its sample [s].
+    /// `None`, like the crush, when the vehicle never compresses.
     pub time_of_max_crush_s: Option<f64>,
     /// First time the velocity (CFC 180 acceleration integrated) reaches zero [s].
     pub time_to_zero_velocity_s: Option<f64>,
     /// Largest backward velocity after that [m/s].
     pub rebound_velocity_mps: Option<f64>,
+    /// Largest deceleration of the unfiltered acceleration [g]; 0 when the
+    /// vehicle never decelerates.
     pub peak_deceleration_g: f64,
+    /// Largest deceleration of the CFC 60 filtered acceleration [g].
     pub peak_deceleration_cfc60_g: f64,
     /// `v0² / (2 g C)`: the constant deceleration that stops the car in its
     /// maximum crush [g].
     pub equivalent_square_wave_g: Option<f64>,
     /// Occupant load criterion (Euro NCAP, from the CFC 180 velocity) [g].
     pub olc_g: Option<f64>,
+    /// End of the virtual occupant's free flight (65 mm of relative
+    /// travel) [s]; see [`Olc::t1`].
     pub olc_t1_s: Option<f64>,
+    /// End of its restraint phase (300 mm of relative travel) [s]; see
+    /// [`Olc::t2`].
     pub olc_t2_s: Option<f64>,
     /// Acceleration severity index (EN 1317-1, 50 ms averages of the CFC 180
     /// acceleration; the longitudinal component only).
     pub asi: Option<f64>,
+    /// When the ASI is reached: the end of its 50 ms window [s].
     pub asi_time_s: Option<f64>,
 }
 
 /// Why a pulse has no metrics.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PulseError {
+    /// Fewer than 3 samples (the number it has).
+    #[error("a pulse needs at least 3 samples, has {0}")]
     TooShort(usize),
     /// Time does not increase at sample `index`.
+    #[error("time does not increase at sample {index}")]
     NotIncreasing {
+        /// The first sample, from 0, whose time is not after the one before.
         index: usize,
     },
     /// The period varies by more than 1e-6 relative (resample first).
+    #[error(
+        "samples are not equally spaced: period {period:e} s at sample {index}, {first:e} s at the start"
+    )]
     Unequal {
+        /// The first sample, from 1, that ends a period unlike the first.
         index: usize,
+        /// The period ending at that sample [s].
         period: f64,
+        /// The first period, `t[1] − t[0]` [s].
         first: f64,
     },
+    /// A NaN or ±∞ among the samples.
+    #[error("{what} at sample {index} is not a finite number")]
     NotFinite {
+        /// Which channel: `time`, `acceleration` or `crush`.
         what: &'static str,
+        /// The first sample, from 0, that is not finite.
         index: usize,
     },
+    /// The CFC filter cannot be applied at the pulse's sample rate.
+    #[error("{0}")]
     Filter(CfcError),
 }
-
-impl std::fmt::Display for PulseError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            PulseError::TooShort(n) => write!(f, "a pulse needs at least 3 samples, has {n}"),
-            PulseError::NotIncreasing { index } => {
-                write!(f, "time does not increase at sample {index}")
-            }
-            PulseError::Unequal {
-                index,
-                period,
-                first,
-            } => write!(
-                f,
-                "samples are not equally spaced: period {period:e} s at sample {index}, {first:e} s at the start"
-            ),
-            PulseError::NotFinite { what, index } => {
-                write!(f, "{what} at sample {index} is not a finite number")
-            }
-            PulseError::Filter(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl std::error::Error for PulseError {}
 
 impl Pulse {
     /// A pulse from samples at any increasing times, resampled by linear

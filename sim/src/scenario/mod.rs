@@ -36,14 +36,18 @@ pub use overrides::{Setting, setting_number, split_setting};
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// The names a scenario is resolved against.
 #[derive(Clone, Debug, Default)]
 pub struct ModelNames {
+    /// The generalized coordinates, in the model's order (the order of
+    /// `q`).
     pub coordinates: Vec<String>,
+    /// The parameters `[parameters]` and `--set` may set, in the model's
+    /// order.
     pub parameters: Vec<String>,
+    /// The input functions components are bound to, in the model's order.
     pub inputs: Vec<String>,
     /// The declared argument names of each input, where the model tells them
     /// (specs do; compiled models do not, and the number of arguments is
@@ -112,13 +116,19 @@ pub enum ScenarioErrorKind {
     DataFile,
 }
 
-/// A scenario that does not fit its spec, or a file that cannot be read.
-#[derive(Clone, Debug, PartialEq)]
+/// A scenario that does not fit its spec, or a file that cannot be read:
+/// `file:line:column: message`, with as much of the place as is known.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{}{message}", place(.file, .location))]
 pub struct ScenarioError {
+    /// What kind of problem, which decides `lpm`'s exit status.
     pub kind: ScenarioErrorKind,
+    /// The scenario file; `None` for a malformed `--set` setting and for
+    /// a scenario with no file.
     pub file: Option<PathBuf>,
     /// `(line, column)` in the file, both from 1, where the parser knows it.
     pub location: Option<(usize, usize)>,
+    /// What is wrong, on one line, naming the key and the value.
     pub message: String,
 }
 
@@ -133,42 +143,54 @@ impl ScenarioError {
     }
 }
 
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(file) = &self.file {
-            write!(f, "{}:", file.display())?;
-            if let Some((line, column)) = self.location {
-                write!(f, "{line}:{column}:")?;
-            }
-            f.write_str(" ")?;
-        }
-        f.write_str(&self.message)
+/// `file:line:column: ` before a message (`file: ` without a location,
+/// nothing without a file).
+fn place(file: &Option<PathBuf>, location: &Option<(usize, usize)>) -> String {
+    match (file, location) {
+        (None, _) => String::new(),
+        (Some(file), None) => format!("{}: ", file.display()),
+        (Some(file), Some((line, column))) => format!("{}:{line}:{column}: ", file.display()),
     }
 }
-
-impl std::error::Error for ScenarioError {}
 
 /// A scenario resolved against a model.
 #[derive(Clone, Debug)]
 pub struct Scenario {
+    /// The file it was read from (`None` for [`Scenario::defaults`]).
     pub file: Option<PathBuf>,
     /// The spec the file names, resolved relative to the file.
     pub spec: Option<PathBuf>,
+    /// The file's free-text `description` (empty when it has none).
     pub description: String,
+    /// End time of the run [s]; positive and finite.
     pub t_end: f64,
+    /// The integration method (`simulation.method`).
     pub method: Method,
+    /// Tolerances and step limits of the solver, already validated.
     pub options: Options,
+    /// Time between output samples [s]; positive, and at most
+    /// [`MAX_SAMPLES`] samples over `t_end`.
     pub output_interval: f64,
     /// Parameter overrides by index.
     pub parameters: Vec<(usize, f64)>,
+    /// Initial coordinates by index, in the model's units ([m] or [rad]);
+    /// the others start at 0.
     pub initial_coordinates: Vec<(usize, f64)>,
+    /// Initial velocities by index ([m/s] or [rad/s]); the others start
+    /// at 0.
     pub initial_velocities: Vec<(usize, f64)>,
     /// Coordinates solved for static equilibrium before the run.
     pub equilibrium: Vec<usize>,
     /// The crush coordinate and the sign that makes compression positive.
     pub crush: Option<(usize, f64)>,
+    /// Coordinates whose rotation is reported as pitch, relative to the
+    /// start.
     pub pitch: Vec<usize>,
+    /// The weld component whose failure time the summary reports
+    /// (`metrics.weld`); it names a weld component of the scenario.
     pub weld: Option<String>,
+    /// The model's inputs bound to the scenario's crash components (and
+    /// `--set` constants).
     pub inputs: BoundInputs,
 }
 

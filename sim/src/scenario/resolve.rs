@@ -97,63 +97,9 @@ pub(super) fn resolve(
     tables: &BTreeMap<String, Table>,
 ) -> Result<Scenario, String> {
     let s = &file.simulation;
-    let method: Method = s.method.parse().map_err(|_| {
-        format!(
-            "simulation.method = `{}`; use {}",
-            s.method,
-            Method::NAMES.join(", ")
-        )
-    })?;
-    positive("simulation.t_end", s.t_end)?;
-    positive("simulation.output_interval", s.output_interval)?;
-    let samples = s.t_end / s.output_interval;
-    if samples > MAX_SAMPLES {
-        return Err(format!(
-            "simulation.output_interval = {}: gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
-            number(s.output_interval),
-            number(samples.round()),
-            number(s.t_end)
-        ));
-    }
-    non_negative("simulation.rtol", s.rtol)?;
-    non_negative("simulation.atol", s.atol)?;
-    if let Some(h) = s.max_step {
-        positive("simulation.max_step", h)?;
-    }
-    if let Some(h) = s.step {
-        positive("simulation.step", h)?;
-    }
-    // The step of a fixed-step method; the first step of the adaptive ones (which
-    // otherwise choose it themselves).
-    let (fixed_step, initial_step) = if method.is_adaptive() {
-        (None, s.step)
-    } else {
-        (Some(s.step.unwrap_or(1e-5)), None)
-    };
-    let options = Options {
-        rtol: s.rtol,
-        atol: s.atol,
-        // No limit unless one is given.
-        max_step: s.max_step.unwrap_or(f64::INFINITY),
-        max_steps: s.max_steps,
-        fixed_step,
-        initial_step,
-        ..Options::default()
-    };
-    options
-        .validate::<std::convert::Infallible>()
-        .map_err(|e| format!("simulation: {e}"))?;
+    let (method, options) = solver_settings(s)?;
 
-    let parameters = file
-        .parameters
-        .iter()
-        .map(|(name, value)| {
-            Ok((
-                index_of("parameters: parameter", name, &names.parameters)?,
-                finite(&format!("parameters.{name}"), *value)?,
-            ))
-        })
-        .collect::<Result<_, String>>()?;
+    let parameters = parameter_overrides(&file.parameters, names)?;
     let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
     // `initial.{section}`: values by coordinate name.
     let initial = |section: &str, values: &BTreeMap<String, f64>| {
@@ -245,4 +191,74 @@ fn check_weld_metric(
             Err(message)
         }
     }
+}
+
+/// The method and solver options of `[simulation]`, each value checked
+/// (positive step sizes and times, tolerances ≥ 0, at most [`MAX_SAMPLES`]
+/// output samples).
+fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Options), String> {
+    let method: Method = s.method.parse().map_err(|_| {
+        format!(
+            "simulation.method = `{}`; use {}",
+            s.method,
+            Method::NAMES.join(", ")
+        )
+    })?;
+    positive("simulation.t_end", s.t_end)?;
+    positive("simulation.output_interval", s.output_interval)?;
+    let samples = s.t_end / s.output_interval;
+    if samples > MAX_SAMPLES {
+        return Err(format!(
+            "simulation.output_interval = {}: gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
+            number(s.output_interval),
+            number(samples.round()),
+            number(s.t_end)
+        ));
+    }
+    non_negative("simulation.rtol", s.rtol)?;
+    non_negative("simulation.atol", s.atol)?;
+    if let Some(h) = s.max_step {
+        positive("simulation.max_step", h)?;
+    }
+    if let Some(h) = s.step {
+        positive("simulation.step", h)?;
+    }
+    // The step of a fixed-step method; the first step of the adaptive ones (which
+    // otherwise choose it themselves).
+    let (fixed_step, initial_step) = if method.is_adaptive() {
+        (None, s.step)
+    } else {
+        (Some(s.step.unwrap_or(1e-5)), None)
+    };
+    let options = Options {
+        rtol: s.rtol,
+        atol: s.atol,
+        // No limit unless one is given.
+        max_step: s.max_step.unwrap_or(f64::INFINITY),
+        max_steps: s.max_steps,
+        fixed_step,
+        initial_step,
+        ..Options::default()
+    };
+    options
+        .validate::<std::convert::Infallible>()
+        .map_err(|e| format!("simulation: {e}"))?;
+    Ok((method, options))
+}
+
+/// `[parameters]`: each spec parameter the file sets, by index, with its
+/// finite value.
+fn parameter_overrides(
+    values: &BTreeMap<String, f64>,
+    names: &ModelNames,
+) -> Result<Vec<(usize, f64)>, String> {
+    values
+        .iter()
+        .map(|(name, value)| {
+            Ok((
+                index_of("parameters: parameter", name, &names.parameters)?,
+                finite(&format!("parameters.{name}"), *value)?,
+            ))
+        })
+        .collect()
 }

@@ -14,11 +14,11 @@ pub use problem::{CrashProblem, EventRecord};
 pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
-use crate::ode::{self, DenseStep, Method, Options, PhaseState, Stats};
+use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
+use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
-use std::fmt;
 
 /// Why the integration of a run stopped: the solver's reasons, with the
 /// model's [`Fault`] for a failed evaluation.
@@ -27,15 +27,21 @@ pub type SolverError = ode::SolverError<Fault>;
 /// The state and derived quantities at one output time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sample {
+    /// Time since the start of the run [s].
     pub t: f64,
+    /// Coordinates, in the model's order and units ([m] or [rad]).
     pub q: Vec<f64>,
+    /// Velocities `q̇` ([m/s] or [rad/s]).
     pub v: Vec<f64>,
+    /// Accelerations `q̈` ([m/s²] or [rad/s²]).
     pub a: Vec<f64>,
+    /// Kinetic energy `T` [J].
     pub kinetic: f64,
+    /// Potential energy `V` [J].
     pub potential: f64,
-    /// Energy dissipated by `D` since the start.
+    /// Energy dissipated by `D` since the start [J].
     pub dissipated: f64,
-    /// Work of the generalized forces since the start.
+    /// Work of the generalized forces since the start [J].
     pub external_work: f64,
     /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
     pub inputs: Vec<f64>,
@@ -44,16 +50,27 @@ pub struct Sample {
 /// Everything a run produced.
 #[derive(Clone, Debug)]
 pub struct SimulationResult {
+    /// The model's name (the spec's `model` / the system's type).
     pub model: String,
+    /// The coordinate names, in the order of [`Sample::q`].
     pub coordinates: Vec<String>,
-    /// `(name, unit)` of each column of [`Sample::inputs`].
+    /// The input name of each column of [`Sample::inputs`]: one per input
+    /// call of the dynamics, so an input called twice is there twice.
+    /// Their units travel separately, in [`crate::report::Units`].
     pub input_columns: Vec<String>,
     /// The coordinates at the start (after the static-equilibrium solve).
     pub initial_q: Vec<f64>,
+    /// The output samples, at multiples of the scenario's output interval
+    /// from 0 to the end of the run (one within half an interval of
+    /// `t_end` is moved onto it).
     pub samples: Vec<Sample>,
+    /// The solver's counts of steps and evaluations.
     pub stats: Stats,
+    /// The crash components' events, in time order.
     pub events: Vec<EventRecord>,
+    /// The crash metrics of the run.
     pub summary: Summary,
+    /// The integration method the scenario chose.
     pub method: Method,
     /// The gravitational acceleration `g` the summary's decelerations are
     /// in: the model's `g` parameter, or standard gravity without one.
@@ -61,16 +78,21 @@ pub struct SimulationResult {
 }
 
 /// Why a run failed.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SimulationError {
     /// A scenario value does not apply to the model.
+    #[error("{0}")]
     Model(ModelError),
     /// Newton's method found no static equilibrium.
+    #[error("no static equilibrium: {0}")]
     Equilibrium(String),
     /// The integration stopped; `reached` is where its last accepted step
     /// ended (`None` when it failed before the first step).
+    #[error("integration failed: {error}")]
     Solver {
+        /// Why the solver stopped.
         error: SolverError,
+        /// The end of the last accepted step, when there was one.
         reached: Option<Box<Reached>>,
     },
 }
@@ -78,22 +100,13 @@ pub enum SimulationError {
 /// The state at the end of a run's last accepted step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reached {
+    /// Where the step ended [s].
     pub t: f64,
+    /// The coordinates there ([m] or [rad]).
     pub q: Vec<f64>,
+    /// The velocities there ([m/s] or [rad/s]).
     pub qd: Vec<f64>,
 }
-
-impl fmt::Display for SimulationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SimulationError::Model(e) => write!(f, "{e}"),
-            SimulationError::Equilibrium(m) => write!(f, "no static equilibrium: {m}"),
-            SimulationError::Solver { error, .. } => write!(f, "integration failed: {error}"),
-        }
-    }
-}
-
-impl std::error::Error for SimulationError {}
 
 /// What kind of failure ended a run: one exit status of `lpm` each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -136,6 +149,8 @@ impl FailureKind {
 }
 
 impl SimulationError {
+    /// The kind of failure, which decides `lpm`'s exit status and a
+    /// sweep's `status` column.
     pub fn kind(&self) -> FailureKind {
         match self {
             SimulationError::Model(_) => FailureKind::Scenario,
@@ -244,6 +259,53 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     scenario: &Scenario,
     keep: bool,
 ) -> Result<(S, Run), SimulationError> {
+    let model = with_parameters(system, scenario)?;
+    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+    let y0 = initial_state(&mut problem, scenario)?;
+    let g = gravity(&model);
+    let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
+    let mut sampler = Sampler::new(scenario, metrics, keep);
+    sampler.start(&mut problem, &y0);
+    let outcome = ode::integrate(
+        scenario.method,
+        &mut problem,
+        (0.0, y0),
+        scenario.t_end,
+        &scenario.options,
+        &mut |problem, step| sampler.observe(problem, step),
+    )
+    .map_err(|error| SimulationError::Solver {
+        error,
+        reached: sampler.reached(),
+    })?;
+    if let Some(fault) = problem.failure.take() {
+        return Err(SolverError::Rhs {
+            t: outcome.t,
+            error: fault,
+        }
+        .into());
+    }
+    if let Some(e) = sampler.error {
+        return Err(e.into());
+    }
+    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
+    let summary = sampler.metrics.finish(&outcome.stats, weld);
+    let run = Run {
+        initial_q: y0.q.as_slice().to_vec(),
+        samples: sampler.samples,
+        stats: outcome.stats,
+        events: problem.events,
+        summary,
+        g,
+    };
+    Ok((model, run))
+}
+
+/// A copy of `system` with the scenario's parameter overrides.
+fn with_parameters<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    scenario: &Scenario,
+) -> Result<S, SimulationError> {
     let mut model = system.clone();
     let parameter_names: Vec<String> = model
         .parameter_names()
@@ -255,6 +317,16 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
             .set_parameter(&parameter_names[index], value)
             .map_err(SimulationError::Model)?;
     }
+    Ok(model)
+}
+
+/// The state the run starts from: the scenario's initial coordinates and
+/// velocities (0 where it gives none), with the equilibrium coordinates
+/// solved for; the components are put in the state that goes with it.
+fn initial_state<const N: usize, S: LagrangianSystem<N>>(
+    problem: &mut CrashProblem<N, S>,
+    scenario: &Scenario,
+) -> Result<PhaseState<N>, SimulationError> {
     let mut q = SVector::<f64, N>::zeros();
     let mut v = SVector::<f64, N>::zeros();
     for &(i, value) in &scenario.initial_coordinates {
@@ -263,104 +335,124 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     for &(i, value) in &scenario.initial_velocities {
         v[i] = value;
     }
-    let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
     // The components' state (a crush element in contact or not) follows the
     // initial state, for the equilibrium as for the run.
     problem.start(0.0, &PhaseState::new(q, v))?;
     if !scenario.equilibrium.is_empty() {
-        q = static_equilibrium(&problem, 0.0, q, &scenario.equilibrium)?;
+        q = static_equilibrium(problem, 0.0, q, &scenario.equilibrium)?;
     }
     let y0 = PhaseState::new(q, v);
     problem.start(0.0, &y0)?;
-    let g = gravity(&model);
-    let mut metrics = Metrics::new(scenario, q.as_slice(), g);
-    let mut samples = Vec::new();
-    let mut sample_error = None;
-    let interval = scenario.output_interval;
-    let mut next = 0usize;
-    let mut record = |problem: &mut CrashProblem<N, S>, t: f64, y: &PhaseState<N>| match sample(
-        problem, t, y, keep,
+    Ok(y0)
+}
+
+/// Takes a run's output samples from the dense output of its steps: at
+/// `k · interval`, the last one moved onto `t_end` when it falls within
+/// half an interval of it.
+struct Sampler<const N: usize> {
+    metrics: Metrics,
+    /// The samples, when the run keeps them.
+    samples: Vec<Sample>,
+    keep: bool,
+    /// The first sample that could not be evaluated.
+    error: Option<SolverError>,
+    interval: f64,
+    t_end: f64,
+    /// The index `k` of the next sample.
+    next: usize,
+    /// The last index that may be sampled: one or two beyond `t_end`, so
+    /// that it bounds the sampling even for an interval the scenario check
+    /// would not let through (∞ or NaN, when `k·interval` never passes
+    /// t_end, or too small).
+    last: usize,
+    /// The end of the last accepted step, for the report of a failure.
+    reached: Option<(f64, PhaseState<N>)>,
+}
+
+impl<const N: usize> Sampler<N> {
+    fn new(scenario: &Scenario, metrics: Metrics, keep: bool) -> Self {
+        let interval = scenario.output_interval;
+        let bound = (scenario.t_end / interval + 1.0).ceil();
+        let last = if bound >= 0.0 {
+            bound.min(MAX_SAMPLES + 1.0) as usize
+        } else {
+            0 // NaN
+        };
+        Sampler {
+            metrics,
+            samples: Vec::new(),
+            keep,
+            error: None,
+            interval,
+            t_end: scenario.t_end,
+            next: 0,
+            last,
+            reached: None,
+        }
+    }
+
+    /// Takes the sample at the start of the run.
+    fn start<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        y0: &PhaseState<N>,
     ) {
-        Ok((view, inputs)) => {
-            metrics.push(view.as_view());
-            if keep {
-                samples.push(view.into_sample(inputs));
-            }
-        }
-        Err(e) => {
-            sample_error.get_or_insert(e);
-        }
-    };
-    record(&mut problem, 0.0, &y0);
-    next += 1;
-    let t_end = scenario.t_end;
-    // Samples at k·interval, the last one moved onto t_end when it falls
-    // within half an interval of it. `last` (one or two beyond that) bounds
-    // the loop even for an interval the scenario check would not let through
-    // (∞ or NaN, when `k·interval` never passes t_end, or too small).
-    let bound = (t_end / interval + 1.0).ceil();
-    let last = if bound >= 0.0 {
-        bound.min(MAX_SAMPLES + 1.0) as usize
-    } else {
-        0 // NaN
-    };
-    // The end of the last accepted step, for the report of a failure.
-    let mut reached: Option<(f64, PhaseState<N>)> = None;
-    let mut observer = |problem: &mut CrashProblem<N, S>, step: &dyn DenseStep<PhaseState<N>>| {
+        self.record(problem, 0.0, y0);
+        self.next = 1;
+    }
+
+    /// Takes the samples that fall within an accepted step.
+    fn observe<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        step: &dyn DenseStep<PhaseState<N>>,
+    ) {
         let mut y = PhaseState::zeros();
         step.eval(step.t1(), &mut y);
-        reached = Some((step.t1(), y));
-        while next <= last {
-            let t = (next as f64 * interval).min(t_end);
-            if t > step.t1() || next as f64 * interval > t_end + 0.5 * interval {
+        self.reached = Some((step.t1(), y));
+        while self.next <= self.last {
+            let t = (self.next as f64 * self.interval).min(self.t_end);
+            if t > step.t1() || self.next as f64 * self.interval > self.t_end + 0.5 * self.interval
+            {
                 break;
             }
             step.eval(t, &mut y);
-            record(problem, t, &y);
-            next += 1;
+            self.record(problem, t, &y);
+            self.next += 1;
         }
-    };
-    let options: Options = scenario.options;
-    let start = (0.0, y0);
-    let outcome = ode::integrate(
-        scenario.method,
-        &mut problem,
-        start,
-        t_end,
-        &options,
-        &mut observer,
-    );
-    let outcome = outcome.map_err(|error| SimulationError::Solver {
-        error,
-        reached: reached.map(|(t, y)| {
+    }
+
+    /// Adds the sample at `(t, y)` to the metrics (and to the samples, when
+    /// kept), or keeps the first error.
+    fn record<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        t: f64,
+        y: &PhaseState<N>,
+    ) {
+        match sample(problem, t, y, self.keep) {
+            Ok((view, inputs)) => {
+                self.metrics.push(view.as_view());
+                if self.keep {
+                    self.samples.push(view.into_sample(inputs));
+                }
+            }
+            Err(e) => {
+                self.error.get_or_insert(e);
+            }
+        }
+    }
+
+    /// Where the last accepted step ended.
+    fn reached(&self) -> Option<Box<Reached>> {
+        self.reached.map(|(t, y)| {
             Box::new(Reached {
                 t,
                 q: y.q.as_slice().to_vec(),
                 qd: y.v.as_slice().to_vec(),
             })
-        }),
-    })?;
-    if let Some(fault) = problem.failure.take() {
-        return Err(SolverError::Rhs {
-            t: outcome.t,
-            error: fault,
-        }
-        .into());
+        })
     }
-    if let Some(e) = sample_error {
-        return Err(e.into());
-    }
-    let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
-    let summary = metrics.finish(&outcome.stats, weld);
-    let run = Run {
-        initial_q: q.as_slice().to_vec(),
-        samples,
-        stats: outcome.stats,
-        events: problem.events,
-        summary,
-        g,
-    };
-    Ok((model, run))
 }
 
 /// The model's `g` parameter if it has one, else standard gravity.
@@ -369,7 +461,7 @@ fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
         .parameter_names()
         .iter()
         .position(|p| *p == "g")
-        .map_or(9.80665, |i| model.parameters()[i])
+        .map_or(STANDARD_GRAVITY, |i| model.parameters()[i])
 }
 
 /// The state, accelerations and energies at one output time.

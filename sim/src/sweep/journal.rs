@@ -128,6 +128,7 @@ impl Journal {
             .map_err(|e| format!("cannot write {}: {e}", self.path.display()))
     }
 
+    /// The journal's file.
     pub fn path(&self) -> &Path {
         &self.path
     }

@@ -20,6 +20,7 @@ pub enum Assignment {
 pub struct Axis {
     /// A parameter or input name, or a dotted scenario key (`components.weld.failure_moment`).
     pub key: String,
+    /// Whether a run's value replaces the entry or multiplies it.
     pub assignment: Assignment,
 }
 
@@ -42,9 +43,13 @@ impl fmt::Display for Axis {
 /// A sampled axis: uniform between `low` and `high`, or log-uniform.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SampledAxis {
+    /// The quantity sampled.
     pub axis: Axis,
+    /// Lower end of the range, in the entry's own units (or the factor).
     pub low: f64,
+    /// Upper end of the range; `low` and `high` may come in either order.
     pub high: f64,
+    /// `true`: uniform in `ln x` (both ends positive, `low:high:log`).
     pub logarithmic: bool,
 }
 
@@ -64,10 +69,17 @@ pub enum Design {
 pub enum Plan {
     /// Every combination of the axes' values; the last axis varies fastest.
     Grid(Vec<(Axis, Vec<f64>)>),
+    /// `count` points drawn from the axes' ranges.
     Samples {
+        /// Number of runs, 1 to 2³² − 1.
         count: usize,
+        /// The sampled axes, in column order; no key twice.
         axes: Vec<SampledAxis>,
+        /// Seed of the draws: run `i`'s values come from stream `i` of a
+        /// generator seeded with it, the strata from streams counted down
+        /// from `u64::MAX`.
         seed: u64,
+        /// How the points are placed.
         design: Design,
         /// For a Latin hypercube: the stratum of each run on each axis.
         strata: Vec<Vec<u32>>,
@@ -235,6 +247,7 @@ impl Plan {
         }
     }
 
+    /// `true` for a plan of no runs.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
@@ -307,7 +320,9 @@ fn permutation(n: usize, rng: &mut ChaCha8Rng) -> Vec<u32> {
 /// of runs, so that the shards' outputs concatenated in order are the full sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shard {
+    /// Which block, from 1 to `count`.
     pub index: usize,
+    /// Into how many blocks the runs are split; at least 1.
     pub count: usize,
 }
 

@@ -27,7 +27,10 @@ pub struct Row {
 /// rejects) and the one-line message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunFailure {
+    /// The kind in snake case ([`crate::simulate::FailureKind::name`], or
+    /// `scenario` / `data_file`).
     pub kind: String,
+    /// What went wrong, on one line, as `lpm simulate` would print it.
     pub message: String,
 }
 
@@ -180,16 +183,31 @@ pub fn run_scenario(
     base.resolve(&settings.for_values(values))
 }
 
+/// The runs of a sweep and how to make them: what [`stream_sweep`] and
+/// [`run_sweep`] are given besides the model.
+#[derive(Clone, Debug)]
+pub struct SweepJob<'a> {
+    /// The scenario every run starts from, with the settings common to all.
+    pub base: &'a BaseScenario,
+    /// The runs' values.
+    pub plan: &'a Plan,
+    /// The plan's axes resolved against `base`, from [`Settings::new`].
+    pub settings: &'a Settings,
+    /// Which runs of the plan to make (a shard's block, or what a resumed
+    /// sweep still lacks); within `0..plan.len()`.
+    pub runs: Range<usize>,
+    /// Worker threads; 0 for one per core.
+    pub threads: usize,
+}
+
 /// One run: its scenario, simulated to its summary.
 fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
     model: &S,
-    base: &BaseScenario,
-    settings: &Settings,
-    plan: &Plan,
+    job: &SweepJob<'_>,
     run: usize,
 ) -> Row {
-    let values = plan.point(run);
-    let outcome = match run_scenario(base, settings, &values) {
+    let values = job.plan.point(run);
+    let outcome = match run_scenario(job.base, job.settings, &values) {
         Err(e) => Err(RunFailure {
             kind: match e.kind {
                 ScenarioErrorKind::DataFile => "data_file",
@@ -214,33 +232,29 @@ fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
 /// worker: bounds the rows held back to keep the output in run order.
 const AHEAD_PER_WORKER: usize = 256;
 
-/// Runs `runs` of `plan` on `threads` worker threads (0: one per core) and
-/// hands every row to `sink` in run order, as soon as the rows before it
-/// are done: memory stays bounded whatever the number of runs.
+/// Makes the runs `job.runs` on `job.threads` worker threads and hands
+/// every row to `sink` in run order, as soon as the rows before it are
+/// done: memory stays bounded whatever the number of runs.
 ///
 /// Workers take runs in order; once `stop` is set they take no new run,
 /// and the runs under way finish and reach `sink`, so the rows delivered
 /// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
 /// `sink` ends it.
-#[allow(clippy::too_many_arguments)]
 pub fn stream_sweep<const N: usize, S>(
     system: &S,
-    base: &BaseScenario,
-    plan: &Plan,
-    settings: &Settings,
-    runs: Range<usize>,
-    threads: usize,
+    job: SweepJob<'_>,
     stop: &AtomicBool,
     sink: &mut dyn FnMut(Row) -> Result<(), String>,
 ) -> Result<usize, String>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
-    let workers = if threads == 0 {
+    let runs = job.runs.clone();
+    let workers = if job.threads == 0 {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     } else {
-        threads
+        job.threads
     };
     let next = AtomicUsize::new(runs.start);
     let delivered = AtomicUsize::new(runs.start);
@@ -251,7 +265,7 @@ where
     std::thread::scope(|scope| {
         for _ in 0..workers {
             let sender = sender.clone();
-            let (next, delivered, failed_sink) = (&next, &delivered, &failed_sink);
+            let (next, delivered, failed_sink, job) = (&next, &delivered, &failed_sink, &job);
             // Each worker simulates its own copy (models keep scratch space).
             let model = system.clone();
             scope.spawn(move || {
@@ -268,7 +282,7 @@ where
                     {
                         std::thread::sleep(std::time::Duration::from_millis(1));
                     }
-                    let row = one_run(&model, base, settings, plan, run);
+                    let row = one_run(&model, job, run);
                     if sender.send(row).is_err() {
                         break;
                     }
@@ -302,35 +316,22 @@ where
     outcome
 }
 
-/// Runs `runs` of `plan` on `threads` worker threads (0: one per core),
-/// calling `progress` after each run. Rows come back in run order.
+/// Makes the runs `job.runs` on `job.threads` worker threads, calling
+/// `progress` after each run. Rows come back in run order.
 pub fn run_sweep<const N: usize, S>(
     system: &S,
-    base: &BaseScenario,
-    plan: &Plan,
-    settings: &Settings,
-    runs: Range<usize>,
-    threads: usize,
+    job: SweepJob<'_>,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<Row>, String>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
-    let mut rows = Vec::with_capacity(runs.len());
+    let mut rows = Vec::with_capacity(job.runs.len());
     let never = AtomicBool::new(false);
-    stream_sweep(
-        system,
-        base,
-        plan,
-        settings,
-        runs,
-        threads,
-        &never,
-        &mut |row| {
-            progress();
-            rows.push(row);
-            Ok(())
-        },
-    )?;
+    stream_sweep(system, job, &never, &mut |row| {
+        progress();
+        rows.push(row);
+        Ok(())
+    })?;
     Ok(rows)
 }

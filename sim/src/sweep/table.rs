@@ -6,10 +6,12 @@
 use super::run::{Row, RunFailure};
 use crate::simulate::{Summary, Value};
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
-use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int64Type};
+use parquet::data_type::{ByteArray, ByteArrayType, DataType, DoubleType, Int64Type};
+use parquet::errors::ParquetError;
 use parquet::file::properties::WriterProperties;
-use parquet::file::writer::SerializedFileWriter;
+use parquet::file::writer::{SerializedFileWriter, SerializedRowGroupWriter};
 use parquet::schema::types::Type;
+use std::io::Write;
 use std::sync::Arc;
 
 /// The column names: `run`, the axes, `status`, `error`, the metrics.
@@ -121,12 +123,30 @@ pub fn sweep_parquet(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
 
 /// Writes a Parquet file to `out`, one row group per item of `groups`, so
 /// that a table of any length is written in the memory of one group.
-pub fn write_parquet<W: std::io::Write + Send>(
+pub fn write_parquet<W: Write + Send>(
     axes: &[String],
     groups: impl Iterator<Item = Result<Vec<Row>, String>>,
     out: W,
 ) -> Result<(), String> {
-    let fail = |e: parquet::errors::ParquetError| format!("cannot write Parquet: {e}");
+    let schema = schema(axes)?;
+    let properties = Arc::new(WriterProperties::builder().build());
+    let mut writer =
+        SerializedFileWriter::new(out, Arc::new(schema), properties).map_err(parquet_error)?;
+    for rows in groups {
+        write_group(&mut writer, axes.len(), &rows?)?;
+    }
+    writer.close().map_err(parquet_error)?;
+    Ok(())
+}
+
+fn parquet_error(e: ParquetError) -> String {
+    format!("cannot write Parquet: {e}")
+}
+
+/// The Parquet schema of the [`columns`]: `run` and the metric counts as
+/// 64-bit integers, the axes and the real metrics as doubles, `status` and
+/// `error` as UTF-8; `error` and the metrics may be null.
+fn schema(axes: &[String]) -> Result<Type, String> {
     let mut fields = vec![column_type("run", Physical::INT64, Repetition::REQUIRED)?];
     for axis in axes {
         fields.push(column_type(axis, Physical::DOUBLE, Repetition::REQUIRED)?);
@@ -148,100 +168,128 @@ pub fn write_parquet<W: std::io::Write + Send>(
         };
         fields.push(column_type(metric.name, physical, Repetition::OPTIONAL)?);
     }
-    let schema = Type::group_type_builder("sweep")
+    Type::group_type_builder("sweep")
         .with_fields(fields)
         .build()
-        .map_err(fail)?;
-    let properties = Arc::new(WriterProperties::builder().build());
-    let mut writer = SerializedFileWriter::new(out, Arc::new(schema), properties).map_err(fail)?;
-    for rows in groups {
-        let rows = rows?;
-        let mut group = writer.next_row_group().map_err(fail)?;
-        let mut column = 0usize;
-        // Writes the next column: values of the present entries and, for an
-        // optional column, the definition levels (1 present, 0 null).
-        macro_rules! write_column {
-            ($kind:ty, $values:expr, $levels:expr) => {{
-                let mut writer = group
-                    .next_column()
-                    .map_err(fail)?
-                    .ok_or_else(|| format!("Parquet: column {column} missing from the schema"))?;
-                let levels: Option<Vec<i16>> = $levels;
-                writer
-                    .typed::<$kind>()
-                    .write_batch(&$values, levels.as_deref(), None)
-                    .map_err(fail)?;
-                writer.close().map_err(fail)?;
-                column += 1;
-            }};
-        }
-        let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
-        write_column!(Int64Type, runs, None);
-        for k in 0..axes.len() {
-            let values: Vec<f64> = rows.iter().map(|r| r.values[k]).collect();
-            write_column!(DoubleType, values, None);
-        }
-        let status: Vec<ByteArray> = rows
+        .map_err(parquet_error)
+}
+
+/// The columns of one row group, written one after the other in schema
+/// order.
+struct GroupColumns<'a, W: Write> {
+    group: SerializedRowGroupWriter<'a, W>,
+    /// How many columns are written so far.
+    written: usize,
+}
+
+impl<W: Write + Send> GroupColumns<'_, W> {
+    /// Writes the next column: the values of the present entries and, for
+    /// an optional column, the definition levels (1 present, 0 null).
+    fn write<T: DataType>(
+        &mut self,
+        values: &[T::T],
+        levels: Option<&[i16]>,
+    ) -> Result<(), String> {
+        let column = self.written;
+        let mut writer = self
+            .group
+            .next_column()
+            .map_err(parquet_error)?
+            .ok_or_else(|| format!("Parquet: column {column} missing from the schema"))?;
+        writer
+            .typed::<T>()
+            .write_batch(values, levels, None)
+            .map_err(parquet_error)?;
+        writer.close().map_err(parquet_error)?;
+        self.written += 1;
+        Ok(())
+    }
+}
+
+/// Writes `rows` as one row group: run, axes, status, error, metrics.
+fn write_group<W: Write + Send>(
+    writer: &mut SerializedFileWriter<W>,
+    axes: usize,
+    rows: &[Row],
+) -> Result<(), String> {
+    let mut columns = GroupColumns {
+        group: writer.next_row_group().map_err(parquet_error)?,
+        written: 0,
+    };
+    let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
+    columns.write::<Int64Type>(&runs, None)?;
+    for k in 0..axes {
+        let values: Vec<f64> = rows.iter().map(|r| r.values[k]).collect();
+        columns.write::<DoubleType>(&values, None)?;
+    }
+    let status: Vec<ByteArray> = rows
+        .iter()
+        .map(|r| match &r.outcome {
+            Ok(_) => ByteArray::from("ok"),
+            Err(f) => ByteArray::from(f.kind.as_str()),
+        })
+        .collect();
+    columns.write::<ByteArrayType>(&status, None)?;
+    let errors: Vec<ByteArray> = rows
+        .iter()
+        .filter_map(|r| {
+            r.outcome
+                .as_ref()
+                .err()
+                .map(|e| ByteArray::from(e.message.as_str()))
+        })
+        .collect();
+    let levels: Vec<i16> = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
+    columns.write::<ByteArrayType>(&errors, Some(&levels))?;
+    write_metric_columns(&mut columns, rows)?;
+    columns.group.close().map_err(parquet_error)?;
+    Ok(())
+}
+
+/// The metric columns of a row group, in [`Summary::METRICS`] order: null
+/// for a failed run and for a metric the run does not have.
+fn write_metric_columns<W: Write + Send>(
+    columns: &mut GroupColumns<'_, W>,
+    rows: &[Row],
+) -> Result<(), String> {
+    let values: Vec<Option<Vec<Value>>> = rows
+        .iter()
+        .map(|r| r.outcome.as_ref().ok().map(Summary::values))
+        .collect();
+    for (m, empty) in Summary::EMPTY.values().into_iter().enumerate() {
+        let cells: Vec<Option<Value>> = values.iter().map(|v| v.as_ref().map(|v| v[m])).collect();
+        let levels: Vec<i16> = cells
             .iter()
-            .map(|r| match &r.outcome {
-                Ok(_) => ByteArray::from("ok"),
-                Err(f) => ByteArray::from(f.kind.as_str()),
+            .map(|c| {
+                i16::from(matches!(
+                    c,
+                    Some(Value::Real(Some(_))) | Some(Value::Count(_))
+                ))
             })
             .collect();
-        write_column!(ByteArrayType, status, None);
-        let errors: Vec<ByteArray> = rows
-            .iter()
-            .filter_map(|r| {
-                r.outcome
-                    .as_ref()
-                    .err()
-                    .map(|e| ByteArray::from(e.message.as_str()))
-            })
-            .collect();
-        let levels = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
-        write_column!(ByteArrayType, errors, Some(levels));
-        let values: Vec<Option<Vec<Value>>> = rows
-            .iter()
-            .map(|r| r.outcome.as_ref().ok().map(Summary::values))
-            .collect();
-        for (m, empty) in Summary::EMPTY.values().into_iter().enumerate() {
-            let cells: Vec<Option<Value>> =
-                values.iter().map(|v| v.as_ref().map(|v| v[m])).collect();
-            let levels: Vec<i16> = cells
-                .iter()
-                .map(|c| {
-                    i16::from(matches!(
-                        c,
-                        Some(Value::Real(Some(_))) | Some(Value::Count(_))
-                    ))
-                })
-                .collect();
-            match empty {
-                Value::Real(_) => {
-                    let values: Vec<f64> = cells
-                        .iter()
-                        .filter_map(|c| match c {
-                            Some(Value::Real(x)) => *x,
-                            _ => None,
-                        })
-                        .collect();
-                    write_column!(DoubleType, values, Some(levels));
-                }
-                Value::Count(_) => {
-                    let values: Vec<i64> = cells
-                        .iter()
-                        .filter_map(|c| match c {
-                            Some(Value::Count(n)) => Some(*n as i64),
-                            _ => None,
-                        })
-                        .collect();
-                    write_column!(Int64Type, values, Some(levels));
-                }
+        match empty {
+            Value::Real(_) => {
+                let values: Vec<f64> = cells
+                    .iter()
+                    .filter_map(|c| match c {
+                        Some(Value::Real(x)) => *x,
+                        _ => None,
+                    })
+                    .collect();
+                columns.write::<DoubleType>(&values, Some(&levels))?;
+            }
+            Value::Count(_) => {
+                let values: Vec<i64> = cells
+                    .iter()
+                    .filter_map(|c| match c {
+                        Some(Value::Count(n)) => Some(*n as i64),
+                        _ => None,
+                    })
+                    .collect();
+                columns.write::<Int64Type>(&values, Some(&levels))?;
             }
         }
-        group.close().map_err(fail)?;
     }
-    writer.close().map_err(fail)?;
     Ok(())
 }
 
