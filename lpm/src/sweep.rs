@@ -5,7 +5,7 @@ use crate::failure::{Failure, Outcome};
 use crate::spec::compile;
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
     Design, Journal, Plan, Row, Settings, Shard, SweepJob, journal_path, read_groups, run_scenario,
@@ -103,27 +103,24 @@ fn plan(options: &Args) -> Result<Plan, String> {
     }
 }
 
-/// Runs `lpm sweep`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let usage = |m: String| Failure::usage(m);
-    let plan = plan(&options).map_err(usage)?;
-    let shard = match &options.shard {
-        Some(text) => Shard::parse(text).map_err(usage)?,
-        None => Shard::ALL,
-    };
-    let parquet = match options.format.as_deref() {
-        Some(format) => format == "parquet",
+/// Whether the table is Parquet: `--format`, else the `--out` extension.
+fn wants_parquet(options: &Args) -> Result<bool, Failure> {
+    match options.format.as_deref() {
+        Some(format) => Ok(format == "parquet"),
         None => match options.out.extension().and_then(|e| e.to_str()) {
-            Some("parquet") => true,
-            Some("csv") => false,
-            _ => {
-                return Err(usage(format!(
-                    "--out {}: name a .csv or .parquet file, or give --format",
-                    options.out.display()
-                )));
-            }
+            Some("parquet") => Ok(true),
+            Some("csv") => Ok(false),
+            _ => Err(Failure::usage(format!(
+                "--out {}: name a .csv or .parquet file, or give --format",
+                options.out.display()
+            ))),
         },
-    };
+    }
+}
+
+/// The model the scenario (or `--spec`) names and the scenario every run
+/// starts from.
+fn load(options: &Args) -> Result<(InterpretedModel, BaseScenario), Failure> {
     let text = std::fs::read_to_string(&options.scenario)
         .map_err(|e| Failure::io(format!("cannot read {}: {e}", options.scenario.display())))?;
     let spec = match &options.spec {
@@ -137,53 +134,84 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         names: ModelNames::of_interpreted(&model),
         settings: options.set.clone(),
     };
-    let settings = Settings::new(&plan, &base, model.parameters()).map_err(usage)?;
+    Ok((model, base))
+}
+
+/// A progress bar over `runs` runs (hidden with `--quiet`).
+fn progress_bar(quiet: bool, runs: usize) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar =
+        ProgressBar::with_draw_target(Some(runs as u64), ProgressDrawTarget::stderr_with_hz(4));
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {per_sec}  eta {eta}")
+    {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// What the runs of this invocation came to.
+#[derive(Default)]
+struct Tally {
+    ok: usize,
+    failed: usize,
+    /// The first failed run and its `kind: message`.
+    first_failure: Option<(usize, String)>,
+}
+
+impl Tally {
+    fn count(&mut self, row: &Row) {
+        match &row.outcome {
+            Ok(_) => self.ok += 1,
+            Err(e) => {
+                self.failed += 1;
+                (self.first_failure).get_or_insert((row.run, format!("{}: {}", e.kind, e.message)));
+            }
+        }
+    }
+}
+
+/// Runs `lpm sweep`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let plan = plan(&options).map_err(Failure::usage)?;
+    let shard = match &options.shard {
+        Some(text) => Shard::parse(text).map_err(Failure::usage)?,
+        None => Shard::ALL,
+    };
+    let parquet = wants_parquet(&options)?;
+    let (model, base) = load(&options)?;
+    let settings = Settings::new(&plan, &base, model.parameters()).map_err(Failure::usage)?;
     // A key the scenario does not know fails here, before any run starts.
     if !plan.is_empty() {
         run_scenario(&base, &settings, &plan.point(0)).map_err(|e| Failure::scenario(&e))?;
     }
     let runs = shard.runs(plan.len());
-    let bar = if options.quiet {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(
-            Some(runs.len() as u64),
-            ProgressDrawTarget::stderr_with_hz(4),
-        );
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {per_sec}  eta {eta}")
-        {
-            bar.set_style(style);
-        }
-        bar
-    };
     let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
     let journal_path = journal_path(&options.out);
     let (mut journal, done) = open_journal(&options, &journal_path, &axes, &plan, &runs)?;
+    let bar = progress_bar(options.quiet, runs.len());
     bar.set_position(done as u64);
     let stop = stop_on_signal();
     let start = Instant::now();
-    let (mut ok, mut failed) = (0usize, 0usize);
-    let mut first_failure: Option<(usize, String)> = None;
+    let mut tally = Tally::default();
     let mut sink = |row: Row| -> Result<(), String> {
         journal.append(&row)?;
-        match &row.outcome {
-            Ok(_) => ok += 1,
-            Err(e) => {
-                failed += 1;
-                first_failure.get_or_insert((row.run, format!("{}: {}", e.kind, e.message)));
-            }
-        }
+        tally.count(&row);
         bar.inc(1);
         Ok(())
     };
     let remaining = runs.start + done..runs.end;
-    let sweep = Sweep {
+    let job = SweepJob {
         base: &base,
         plan: &plan,
         settings: &settings,
         runs: remaining.clone(),
         threads: options.threads,
+    };
+    let sweep = Sweep {
+        job,
         stop: &stop,
         sink: &mut sink,
     };
@@ -193,7 +221,6 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     drop(journal);
-    let rate = finished as f64 / elapsed.max(1e-9);
     if finished < remaining.len() {
         return Err(Failure::rendered(
             ExitStatus::Interrupted,
@@ -206,38 +233,70 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         ));
     }
     finish_output(&journal_path, &options.out, &axes, parquet)?;
-    let mut text = format!(
-        "{} runs{}{} in {elapsed:.2} s ({rate:.0} runs/s), {failed} failed; wrote {}\n",
-        runs.len(),
-        if shard == Shard::ALL {
-            String::new()
-        } else {
-            format!(
-                " (shard {}/{}: runs {}..{} of {})",
-                shard.index,
-                shard.count,
-                runs.start,
-                runs.end,
-                plan.len()
-            )
-        },
-        if done > 0 {
-            format!(" ({done} from the journal, {finished} now)")
-        } else {
-            String::new()
-        },
-        options.out.display()
-    );
-    if let Some((run, message)) = &first_failure {
-        text.push_str(&format!("  first failure, run {run}: {message}\n"));
-    }
-    if !runs.is_empty() && ok == 0 && done == 0 {
+    let counts = Counts {
+        runs: &runs,
+        total: plan.len(),
+        shard,
+        done,
+        finished,
+        elapsed,
+    };
+    let text = report(&counts, &tally, &options.out);
+    if !runs.is_empty() && tally.ok == 0 && done == 0 {
         return Err(Failure::new(
             ExitStatus::EveryRunFailed,
             format!("every run failed\n{text}"),
         ));
     }
     Ok(Outcome::success(text))
+}
+
+/// How many runs there were and how long they took.
+struct Counts<'a> {
+    runs: &'a std::ops::Range<usize>,
+    total: usize,
+    shard: Shard,
+    /// Runs found in the journal.
+    done: usize,
+    /// Runs made now.
+    finished: usize,
+    elapsed: f64,
+}
+
+/// The lines `lpm sweep` prints when it is done.
+fn report(counts: &Counts, tally: &Tally, out: &Path) -> String {
+    let Counts {
+        runs,
+        total,
+        shard,
+        done,
+        finished,
+        elapsed,
+    } = *counts;
+    let rate = finished as f64 / elapsed.max(1e-9);
+    let shard_text = if shard == Shard::ALL {
+        String::new()
+    } else {
+        format!(
+            " (shard {}/{}: runs {}..{} of {total})",
+            shard.index, shard.count, runs.start, runs.end
+        )
+    };
+    let journal_text = if done > 0 {
+        format!(" ({done} from the journal, {finished} now)")
+    } else {
+        String::new()
+    };
+    let mut text = format!(
+        "{} runs{shard_text}{journal_text} in {elapsed:.2} s ({rate:.0} runs/s), {} failed; wrote {}\n",
+        runs.len(),
+        tally.failed,
+        out.display()
+    );
+    if let Some((run, message)) = &tally.first_failure {
+        text.push_str(&format!("  first failure, run {run}: {message}\n"));
+    }
+    text
 }
 
 /// The journal to append to: a new one, or with `--resume` the one an
@@ -325,11 +384,7 @@ fn stop_on_signal() -> Arc<AtomicBool> {
 
 /// `stream_sweep` on the model at its dimension.
 struct Sweep<'a> {
-    base: &'a BaseScenario,
-    plan: &'a Plan,
-    settings: &'a Settings,
-    runs: std::ops::Range<usize>,
-    threads: usize,
+    job: SweepJob<'a>,
     stop: &'a AtomicBool,
     sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
 }
@@ -338,22 +393,6 @@ impl WithDimension for Sweep<'_> {
     type Output = Result<usize, Failure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        let Sweep {
-            base,
-            plan,
-            settings,
-            runs,
-            threads,
-            stop,
-            sink,
-        } = self;
-        let job = SweepJob {
-            base,
-            plan,
-            settings,
-            runs,
-            threads,
-        };
-        stream_sweep(&system, job, stop, sink).map_err(Failure::io)
+        stream_sweep(&system, self.job, self.stop, self.sink).map_err(Failure::io)
     }
 }
