@@ -108,14 +108,7 @@ fn the_run_starts_in_static_equilibrium() {
     let q = lagrangian::nalgebra::Vector3::from_column_slice(&r.initial_q);
     let scenario = Scenario::load(Path::new(SCENARIO), &ModelNames::of(&model), &[]).unwrap();
     let mut model = model;
-    let parameter_names: Vec<String> = model
-        .parameter_names()
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    for &(index, value) in &scenario.parameters {
-        model.set_parameter(&parameter_names[index], value).unwrap();
-    }
+    scenario.apply_parameters(&mut model).unwrap();
     let f = model.forcing(
         0.0,
         &q,

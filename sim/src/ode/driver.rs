@@ -10,6 +10,7 @@
 use super::events::{EventAction, EventTracker};
 use super::{
     DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, evaluate,
+    initial_step,
 };
 
 /// A step's dense output that can be cut short at an event.
@@ -32,15 +33,6 @@ pub(crate) trait Stepper<Y: OdeVector, P: OdeProblem<Y>> {
     /// The dense output of an accepted step.
     type Dense: DenseStep<Y> + Truncate;
 
-    /// The first step to attempt from `(t, y)` with `F(t, y) = f`.
-    fn first_step(
-        &mut self,
-        problem: &mut P,
-        start: (f64, &Y, &Y),
-        span: f64,
-        stats: &mut Stats,
-    ) -> Result<f64, SolverError<P::Error>>;
-
     /// Attempts a step of size `h` from `(t, y)` with `F(t, y) = f`.
     fn attempt(
         &mut self,
@@ -62,6 +54,22 @@ pub(crate) trait Stepper<Y: OdeVector, P: OdeProblem<Y>> {
     fn restart(&mut self, h: f64) -> f64;
 }
 
+/// The first step: `Options::fixed_step`, else `Options::initial_step`, else
+/// Hairer's estimate; at most `Options::max_step`.
+fn first_step<Y: OdeVector, P: OdeProblem<Y>>(
+    problem: &mut P,
+    (t, y, f): (f64, &Y, &Y),
+    span: f64,
+    options: &Options,
+    stats: &mut Stats,
+) -> Result<f64, SolverError<P::Error>> {
+    let h = match options.fixed_step.or(options.initial_step) {
+        Some(h) => h,
+        None => initial_step(problem, t, y, f, span, options, stats)?,
+    };
+    Ok(h.min(options.max_step))
+}
+
 /// Integrates `problem` from `(t0, y0)` to `t_end` with `stepper`, calling
 /// `observer` with the problem and every accepted step (truncated at events).
 pub(crate) fn run<Y, P, S>(
@@ -80,7 +88,7 @@ where
     let (mut t, mut y) = (t0, y0);
     let mut f = y.clone();
     let mut driver = Driver::start(problem, t, &y, &mut f, t_end, options)?;
-    let mut h = stepper.first_step(problem, (t, &y, &f), t_end - t, &mut driver.stats)?;
+    let mut h = first_step(problem, (t, &y, &f), t_end - t, options, &mut driver.stats)?;
     while let Some(step) = driver.next_step(t, h)? {
         h = step;
         let dense = match stepper.attempt(problem, (t, &y, &f), h, &mut driver.stats)? {

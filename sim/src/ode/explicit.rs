@@ -14,7 +14,7 @@ use super::hermite::Hermite;
 use super::tableau::{DenseOutput, Tableau};
 use super::{
     DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, error_norm,
-    evaluate, initial_step,
+    evaluate,
 };
 
 const SAFETY: f64 = 0.9;
@@ -194,20 +194,6 @@ const MAX_STAGES: usize = 16;
 
 impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
     type Dense = Dense<Y>;
-
-    fn first_step(
-        &mut self,
-        problem: &mut P,
-        (t, y, f): (f64, &Y, &Y),
-        span: f64,
-        stats: &mut Stats,
-    ) -> Result<f64, SolverError<P::Error>> {
-        let h = match self.fixed.or(self.options.initial_step) {
-            Some(h) => h,
-            None => initial_step(problem, t, y, f, span, &self.options, stats)?,
-        };
-        Ok(h.min(self.options.max_step))
-    }
 
     fn attempt(
         &mut self,

@@ -28,7 +28,7 @@ use super::hermite::Hermite;
 use super::lu::Lu;
 use super::{
     Observer, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats, error_norm,
-    evaluate, initial_step,
+    evaluate,
 };
 use nalgebra::{SMatrix, SVector};
 
@@ -98,20 +98,6 @@ impl<const N: usize> TrBdf2<N> {
 
 impl<const N: usize, P: AccelerationJacobians<N>> Stepper<PhaseState<N>, P> for TrBdf2<N> {
     type Dense = Hermite<PhaseState<N>>;
-
-    fn first_step(
-        &mut self,
-        problem: &mut P,
-        (t, y, f): (f64, &PhaseState<N>, &PhaseState<N>),
-        span: f64,
-        stats: &mut Stats,
-    ) -> Result<f64, SolverError<P::Error>> {
-        let h = match self.options.fixed_step.or(self.options.initial_step) {
-            Some(h) => h,
-            None => initial_step(problem, t, y, f, span, &self.options, stats)?,
-        };
-        Ok(h.min(self.options.max_step))
-    }
 
     fn attempt(
         &mut self,

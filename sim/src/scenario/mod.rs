@@ -195,6 +195,21 @@ pub struct Scenario {
 }
 
 impl Scenario {
+    /// Sets the scenario's parameter overrides on `model` (which must be
+    /// the model the scenario was resolved against).
+    pub fn apply_parameters<const N: usize, S: LagrangianSystem<N>>(
+        &self,
+        model: &mut S,
+    ) -> Result<(), lagrangian_model::ModelError> {
+        let names: Vec<String> = (model.parameter_names().iter())
+            .map(|s| s.to_string())
+            .collect();
+        for &(index, value) in &self.parameters {
+            model.set_parameter(&names[index], value)?;
+        }
+        Ok(())
+    }
+
     /// Reads and resolves a scenario file, applying `settings` (`key=value`,
     /// see [`Scenario::parse`]) first.
     pub fn load(

@@ -307,16 +307,9 @@ fn with_parameters<const N: usize, S: LagrangianSystem<N> + Clone>(
     scenario: &Scenario,
 ) -> Result<S, SimulationError> {
     let mut model = system.clone();
-    let parameter_names: Vec<String> = model
-        .parameter_names()
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    for &(index, value) in &scenario.parameters {
-        model
-            .set_parameter(&parameter_names[index], value)
-            .map_err(SimulationError::Model)?;
-    }
+    scenario
+        .apply_parameters(&mut model)
+        .map_err(SimulationError::Model)?;
     Ok(model)
 }
 
