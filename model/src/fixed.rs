@@ -3,7 +3,7 @@
 
 use crate::error::ModelError;
 use crate::interpreted::InterpretedModel;
-use crate::layout::RoutineKind;
+use crate::layout::{RoutineKind, unpack_dynamics};
 use crate::system::{Jacobians, LagrangianSystem};
 use crate::{Energies, InputFunctions};
 use nalgebra::{SMatrix, SVector};
@@ -117,14 +117,10 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
     ) {
         // M is symmetric, so its column-major storage is its row-major one.
         // The dimension is N by construction, so this cannot fail.
-        let _ = self.0.evaluate_dynamics(
-            t,
-            q.as_slice(),
-            qd.as_slice(),
-            inputs,
-            mass.as_mut_slice(),
-            forcing.as_mut_slice(),
-        );
+        let state = (t, q.as_slice(), qd.as_slice(), &[][..]);
+        let _ = self.0.run(RoutineKind::Dynamics, state, inputs, |out| {
+            unpack_dynamics(out, N, mass.as_mut_slice(), forcing.as_mut_slice());
+        });
     }
 
     fn mass_matrix_forcing_and_powers<I: InputFunctions + ?Sized>(
@@ -139,12 +135,7 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         let state = (t, q.as_slice(), qd.as_slice(), &[][..]);
         self.0
             .run(RoutineKind::DynamicsAndPowers, state, inputs, |out| {
-                let powers = crate::layout::unpack_dynamics(
-                    out,
-                    N,
-                    mass.as_mut_slice(),
-                    forcing.as_mut_slice(),
-                );
+                let powers = unpack_dynamics(out, N, mass.as_mut_slice(), forcing.as_mut_slice());
                 [powers[0], powers[1]]
             })
             .unwrap_or([f64::NAN; 2])

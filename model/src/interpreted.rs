@@ -179,6 +179,7 @@ impl InterpretedModel {
     }
 
     /// Runs one routine and hands its outputs to `take`.
+    #[inline]
     pub(crate) fn run<I: InputFunctions + ?Sized, R>(
         &self,
         kind: RoutineKind,

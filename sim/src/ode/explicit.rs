@@ -38,9 +38,47 @@ pub fn integrate<Y: OdeVector, P: OdeProblem<Y>>(
     super::driver::run(&mut stepper, problem, (t0, y0), t_end, options, observer)
 }
 
+/// The non-zero coefficients of a row of a tableau: `(stage, coefficient)`.
+type Row = Vec<(usize, f64)>;
+
+/// `(j, w_j)` for the non-zero `w_j`, so that a step skips the terms a
+/// method does not have.
+fn nonzero(weights: &[f64]) -> Row {
+    (weights.iter().copied().enumerate())
+        .filter(|&(_, w)| w != 0.0)
+        .collect()
+}
+
+/// A tableau's rows as a step uses them.
+struct Rows {
+    /// Stage `i`'s coefficients `a_ij`.
+    stages: Vec<Row>,
+    /// The weights `b_j` of the solution.
+    solution: Row,
+    /// The weights of the error estimate.
+    error: Option<Row>,
+    /// The weights of Dormand–Prince's `r4`.
+    dense: Option<Row>,
+}
+
+impl Rows {
+    fn of(tableau: &Tableau) -> Rows {
+        Rows {
+            stages: tableau.a.iter().map(|row| nonzero(row)).collect(),
+            solution: nonzero(tableau.b),
+            error: tableau.error.map(nonzero),
+            dense: match tableau.dense {
+                DenseOutput::DormandPrince { d } => Some(nonzero(d)),
+                DenseOutput::Hermite => None,
+            },
+        }
+    }
+}
+
 /// The stepper of an explicit method: its stages and the end of a step.
 struct ExplicitRk<Y> {
     tableau: &'static Tableau,
+    rows: Rows,
     options: Options,
     /// `Some(h)` for fixed steps.
     fixed: Option<f64>,
@@ -76,6 +114,7 @@ impl<Y: OdeVector> ExplicitRk<Y> {
         };
         Ok(ExplicitRk {
             tableau,
+            rows: Rows::of(tableau),
             options: *options,
             fixed,
             k: vec![y0.clone(); tableau.stages()],
@@ -99,13 +138,8 @@ impl<Y: OdeVector> ExplicitRk<Y> {
         stats: &mut Stats,
     ) -> Result<(), SolverError<P::Error>> {
         let (tableau, k) = (self.tableau, &self.k);
-        let row = tableau.a[i];
         let mut terms = [(0.0, f); MAX_STAGES];
-        let mut m = 0;
-        for (j, &a) in row.iter().enumerate().filter(|(_, a)| **a != 0.0) {
-            terms[m] = (h * a, if j == 0 { f } else { &k[j] });
-            m += 1;
-        }
+        let m = gather(&mut terms, &self.rows.stages[i], k, f, h);
         let last_is_y1 = tableau.fsal && i + 1 == tableau.stages();
         let argument = if last_is_y1 {
             &mut self.y1
@@ -123,15 +157,11 @@ impl<Y: OdeVector> ExplicitRk<Y> {
         )
     }
 
-    /// `Σ h w_j k_j` over the non-zero weights `w` (`k_0 = f`) into `out`,
-    /// added to `base` when given.
-    fn weighted(k: &[Y], f: &Y, weights: &[f64], h: f64, base: Option<&Y>, out: &mut Y) {
+    /// `Σ h w_j k_j` over the weights `row` (`k_0 = f`) into `out`, added
+    /// to `base` when given.
+    fn weighted(k: &[Y], f: &Y, row: &[(usize, f64)], h: f64, base: Option<&Y>, out: &mut Y) {
         let mut terms = [(0.0, f); MAX_STAGES];
-        let mut m = 0;
-        for (j, &w) in weights.iter().enumerate().filter(|(_, w)| **w != 0.0) {
-            terms[m] = (h * w, if j == 0 { f } else { &k[j] });
-            m += 1;
-        }
+        let m = gather(&mut terms, row, k, f, h);
         match base {
             Some(base) => out.set_combination(base, &terms[..m]),
             None => out.set_sum(&terms[..m]),
@@ -158,8 +188,8 @@ impl<Y: OdeVector> ExplicitRk<Y> {
 
     /// The dense output of the accepted step from `(t, y, f)`.
     fn dense(&self, (t, y, f): (f64, &Y, &Y), h: f64) -> Dense<Y> {
-        match self.tableau.dense {
-            DenseOutput::Hermite => Dense::Hermite(Hermite {
+        match &self.rows.dense {
+            None => Dense::Hermite(Hermite {
                 t0: t,
                 h,
                 end: t + h,
@@ -168,7 +198,7 @@ impl<Y: OdeVector> ExplicitRk<Y> {
                 y1: self.y1.clone(),
                 f1: self.end_derivative().clone(),
             }),
-            DenseOutput::DormandPrince { d } => {
+            Some(d) => {
                 let (y1, last) = (&self.y1, self.end_derivative());
                 let mut difference = y.clone();
                 difference.set_combination(y1, &[(-1.0, y)]);
@@ -192,6 +222,22 @@ impl<Y: OdeVector> ExplicitRk<Y> {
 /// The most stages a tableau may have.
 const MAX_STAGES: usize = 16;
 
+/// Writes `(h w_j, k_j)` for the weights of `row` into `terms` (`k_0 = f`);
+/// returns how many.
+#[inline]
+fn gather<'a, Y>(
+    terms: &mut [(f64, &'a Y); MAX_STAGES],
+    row: &[(usize, f64)],
+    k: &'a [Y],
+    f: &'a Y,
+    h: f64,
+) -> usize {
+    for (slot, &(j, w)) in terms.iter_mut().zip(row) {
+        *slot = (h * w, if j == 0 { f } else { &k[j] });
+    }
+    row.len()
+}
+
 impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
     type Dense = Dense<Y>;
 
@@ -207,10 +253,10 @@ impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
             self.stage(problem, (t, y, f), (i, h), stats)?;
         }
         if !tableau.fsal {
-            Self::weighted(&self.k, f, tableau.b, h, Some(y), &mut self.y1);
+            Self::weighted(&self.k, f, &self.rows.solution, h, Some(y), &mut self.y1);
             evaluate(problem, t + h, &self.y1, &mut self.f1, stats)?;
         }
-        let norm = match (self.fixed, tableau.error) {
+        let norm = match (self.fixed, &self.rows.error) {
             (None, Some(e)) => {
                 Self::weighted(&self.k, f, e, h, None, &mut self.err);
                 error_norm(&self.err, y, &self.y1, &self.options)
