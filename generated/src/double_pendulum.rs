@@ -9,19 +9,19 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct DoublePendulum {
     /// Upper bob mass.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m1: f64,
     /// Lower bob mass.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m2: f64,
     /// Upper rod length.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l1: f64,
     /// Lower rod length.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l2: f64,
     /// Gravitational acceleration.
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
 }
 #[automatically_derived]

@@ -14,31 +14,31 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct ElasticPendulum {
     /// Vehicle mass (m1 + m2 of the Yaris model).
-    /// Default: 1168.0 [kg].
+    /// Default: 1168.0 \[kg\].
     pub m: f64,
     /// Pitch inertia about the CG (Table 1, I_y).
-    /// Default: 1400.0 [kg*m^2].
+    /// Default: 1400.0 \[kg*m^2\].
     pub I: f64,
     /// Distance from the CG to the impact point at rest.
-    /// Default: 1.48 [m].
+    /// Default: 1.48 \[m\].
     pub l0: f64,
     /// Distance from the CG to the suspension.
-    /// Default: 0.1 [m].
+    /// Default: 0.1 \[m\].
     pub ls: f64,
     /// Linear crush stiffness (illustrative: 0.6 m of crush absorbs 141 kJ).
-    /// Default: 780000.0 [N/m].
+    /// Default: 780000.0 \[N/m\].
     pub k: f64,
     /// Crush damping (illustrative).
-    /// Default: 10000.0 [N*s/m].
+    /// Default: 10000.0 \[N*s/m\].
     pub c: f64,
     /// Suspension stiffness (Table 1: two front wheels at 30 000 N/m).
-    /// Default: 60000.0 [N/m].
+    /// Default: 60000.0 \[N/m\].
     pub ks: f64,
     /// Suspension damping (Table 1: two front wheels at 1 500 N·s/m).
-    /// Default: 3000.0 [N*s/m].
+    /// Default: 3000.0 \[N*s/m\].
     pub cs: f64,
     /// Gravitational acceleration.
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
 }
 #[automatically_derived]

@@ -8,13 +8,13 @@
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct Pendulum {
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m: f64,
-    /// Default: 2.0 [m].
+    /// Default: 2.0 \[m\].
     pub l: f64,
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
-    /// Default: 0.1 [N*m*s].
+    /// Default: 0.1 \[N*m*s\].
     pub c: f64,
 }
 #[automatically_derived]

@@ -10,67 +10,67 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct PendulumChain10 {
     /// Mass at the end of link 1.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m1: f64,
     /// Length of link 1.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l1: f64,
     /// Mass at the end of link 2.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m2: f64,
     /// Length of link 2.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l2: f64,
     /// Mass at the end of link 3.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m3: f64,
     /// Length of link 3.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l3: f64,
     /// Mass at the end of link 4.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m4: f64,
     /// Length of link 4.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l4: f64,
     /// Mass at the end of link 5.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m5: f64,
     /// Length of link 5.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l5: f64,
     /// Mass at the end of link 6.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m6: f64,
     /// Length of link 6.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l6: f64,
     /// Mass at the end of link 7.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m7: f64,
     /// Length of link 7.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l7: f64,
     /// Mass at the end of link 8.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m8: f64,
     /// Length of link 8.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l8: f64,
     /// Mass at the end of link 9.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m9: f64,
     /// Length of link 9.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l9: f64,
     /// Mass at the end of link 10.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m10: f64,
     /// Length of link 10.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l10: f64,
     /// Gravitational acceleration.
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
 }
 #[automatically_derived]

@@ -10,16 +10,16 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct SimplePendulum {
     /// Mass.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m: f64,
     /// Distance from the pivot to the centre of mass.
-    /// Default: 1.0 [m].
+    /// Default: 1.0 \[m\].
     pub l: f64,
     /// Moment of inertia about the centre of mass (0: point mass).
-    /// Default: 0.0 [kg*m^2].
+    /// Default: 0.0 \[kg*m^2\].
     pub I: f64,
     /// Gravitational acceleration.
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
 }
 #[automatically_derived]

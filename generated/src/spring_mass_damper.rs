@@ -9,13 +9,13 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct SpringMassDamper {
     /// Mass.
-    /// Default: 1.0 [kg].
+    /// Default: 1.0 \[kg\].
     pub m: f64,
     /// Spring stiffness.
-    /// Default: 100.0 [N/m].
+    /// Default: 100.0 \[N/m\].
     pub k: f64,
     /// Viscous damping.
-    /// Default: 0.5 [N*s/m].
+    /// Default: 0.5 \[N*s/m\].
     pub c: f64,
 }
 #[automatically_derived]

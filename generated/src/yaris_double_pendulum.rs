@@ -16,61 +16,61 @@
 #[allow(non_snake_case, non_camel_case_types)]
 pub struct YarisDoublePendulum {
     /// Mass of body 1, before the weld and heat-affected zone (Table 2).
-    /// Default: 539.0 [kg].
+    /// Default: 539.0 \[kg\].
     pub m1: f64,
     /// Mass of body 2, the occupant compartment (Table 2 prints "m1"; it is m2).
-    /// Default: 629.0 [kg].
+    /// Default: 629.0 \[kg\].
     pub m2: f64,
     /// Distance from the CG of m1 to the point of impact at rest (Table 2).
-    /// Default: 0.91 [m].
+    /// Default: 0.91 \[m\].
     pub l0: f64,
     /// Distance from the CG of m1 to the weld, the pivot of body 2 (Table 2).
-    /// Default: 0.57 [m].
+    /// Default: 0.57 \[m\].
     pub l1: f64,
     /// Distance from the weld to the CG of m2 (Table 2).
-    /// Default: 1.3 [m].
+    /// Default: 1.3 \[m\].
     pub l2: f64,
     /// Distance from the CG of m1 to the front suspension (Table 2).
-    /// Default: 0.1 [m].
+    /// Default: 0.1 \[m\].
     pub l3: f64,
     /// Pitch inertia of body 1 about its CG. The paper's eq 18 has point masses
     /// only; 0 reproduces it, a positive value makes the pendulum compound.
-    /// Default: 0.0 [kg*m^2].
+    /// Default: 0.0 \[kg*m^2\].
     pub I1: f64,
     /// Pitch inertia of body 2 about its CG (0 reproduces eq 18).
-    /// Default: 0.0 [kg*m^2].
+    /// Default: 0.0 \[kg*m^2\].
     pub I2: f64,
     /// Front suspension stiffness, per axle: Table 1 gives k_f = 30 000 N/m per wheel.
-    /// Default: 60000.0 [N/m].
+    /// Default: 60000.0 \[N/m\].
     pub k1: f64,
     /// Rear suspension stiffness, per axle: Table 1 gives k_r = 20 000 N/m per wheel.
-    /// Default: 40000.0 [N/m].
+    /// Default: 40000.0 \[N/m\].
     pub k2: f64,
     /// Front suspension damping, per axle: Table 1 gives c_f = 1 500 N·s/m per wheel.
-    /// Default: 3000.0 [N*s/m].
+    /// Default: 3000.0 \[N*s/m\].
     pub c1: f64,
     /// Rear suspension damping, per axle: Table 1 gives c_r = 3 000 N·s/m per wheel.
-    /// Default: 6000.0 [N*s/m].
+    /// Default: 6000.0 \[N*s/m\].
     pub c2: f64,
     /// Linear part of the front-end crush spring (eqs 20, 23: ½k_comp·r²). The
     /// paper's spring is piecewise linear (eqs 1–2): that is the `crush` input,
     /// so this is 0 unless a linear spring is wanted.
-    /// Default: 0.0 [N/m].
+    /// Default: 0.0 \[N/m\].
     pub k_comp: f64,
     /// Linear part of the front-end damper (eq 40: ½c_comp·ṙ²); 0, see `crush`.
-    /// Default: 0.0 [N*s/m].
+    /// Default: 0.0 \[N*s/m\].
     pub c_comp: f64,
     /// Linear torsional stiffness of the weld (eq 20: ½k_tor·θ2²). The paper's
     /// values are "curves from the LS-Dyna model" (Table 2), unpublished:
     /// illustrative value. A weld that follows a curve and fails is the
     /// `weld` input (the crash scenario sets k_tor = c_tor = 0 and uses it).
-    /// Default: 100000.0 [N*m/rad].
+    /// Default: 100000.0 \[N*m/rad\].
     pub k_tor: f64,
     /// Linear torsional damping of the weld (eq 40, corrected; illustrative).
-    /// Default: 1000.0 [N*m*s/rad].
+    /// Default: 1000.0 \[N*m*s/rad\].
     pub c_tor: f64,
     /// Gravitational acceleration.
-    /// Default: 9.81 [m/s^2].
+    /// Default: 9.81 \[m/s^2\].
     pub g: f64,
 }
 #[automatically_derived]

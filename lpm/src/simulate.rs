@@ -22,7 +22,7 @@ pub struct Args {
     /// or set a scenario entry (`components.front_end.unloading=elastic`).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
-    /// End time [s].
+    /// End time \[s\].
     #[arg(long)]
     t_end: Option<f64>,
     /// Relative tolerance of the local error.

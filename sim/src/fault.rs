@@ -13,7 +13,7 @@ pub enum Fault {
     #[error("the mass matrix is singular or not positive definite at q = {q:?}")]
     SingularMassMatrix {
         /// The coordinates the mass matrix was evaluated at, in the model's
-        /// order and units ([m] or [rad]).
+        /// order and units (\[m\] or \[rad\]).
         q: Vec<f64>,
         /// The velocities at the same instant ([m/s] or [rad/s]).
         qd: Vec<f64>,
@@ -25,7 +25,7 @@ pub enum Fault {
         output: String,
         /// The offending value: NaN, `inf` or `-inf`.
         value: f64,
-        /// The coordinates the model was evaluated at ([m] or [rad]).
+        /// The coordinates the model was evaluated at (\[m\] or \[rad\]).
         q: Vec<f64>,
         /// The velocities at the same instant ([m/s] or [rad/s]).
         qd: Vec<f64>,
@@ -40,8 +40,8 @@ pub enum Fault {
         component: String,
         /// The model input that read it, when it was read through one.
         input: Option<String>,
-        /// The abscissa it was read at, in the table's units (a time [s],
-        /// a crush [m], …).
+        /// The abscissa it was read at, in the table's units (a time \[s\],
+        /// a crush \[m\], …).
         x: f64,
         /// The first abscissa of the table.
         min: f64,

@@ -91,7 +91,7 @@ fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
     panels
 }
 
-/// Crush, velocity towards the barrier and deceleration [g] of crush
+/// Crush, velocity towards the barrier and deceleration \[g\] of crush
 /// coordinate `k` (`sign` makes compression positive).
 fn crush_panels(result: &SimulationResult, k: usize, sign: f64, g: f64) -> Vec<Panel> {
     let s = &result.samples;

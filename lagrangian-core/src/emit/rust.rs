@@ -100,7 +100,7 @@ fn struct_definition(model: &Model, names: &Names, ty: &Ident) -> TokenStream {
         .map(|(p, field)| {
             let mut doc = p.doc.clone();
             let unit = (p.unit.as_ref())
-                .map(|u| format!(" [{}]", u.text))
+                .map(|u| format!(" \\[{}\\]", u.text))
                 .unwrap_or_default();
             doc.push(format!("Default: {:?}{unit}.", p.default));
             let doc = doc_lines(&doc);

@@ -110,7 +110,7 @@ pub struct FitReport {
     pub starts: Vec<StartReport>,
     /// All simulations of the fit, starts and statistics together.
     pub simulations: usize,
-    /// Wall-clock time of the whole fit [s].
+    /// Wall-clock time of the whole fit \[s\].
     pub seconds: f64,
     /// `key=value` settings that give the fitted scenario.
     pub settings: Vec<String>,

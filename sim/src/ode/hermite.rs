@@ -20,11 +20,11 @@ pub fn hermite_weights(s: f64, h: f64) -> [f64; 4] {
 /// Cubic Hermite interpolation between `(y0, f0)` at `t0` and `(y1, f1)` at
 /// `t0 + h`, reported as covering `[t0, end]` (`end < t0 + h` at an event).
 pub struct Hermite<Y> {
-    /// Start of the step [s].
+    /// Start of the step \[s\].
     pub t0: f64,
-    /// Length of the step the interpolant spans [s]; positive.
+    /// Length of the step the interpolant spans \[s\]; positive.
     pub h: f64,
-    /// End of the interval it reports covering [s], `t0 < end ≤ t0 + h`.
+    /// End of the interval it reports covering \[s\], `t0 < end ≤ t0 + h`.
     pub end: f64,
     /// The state at `t0`.
     pub y0: Y,

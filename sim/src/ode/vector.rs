@@ -83,11 +83,11 @@ impl OdeVector for DVector<f64> {
 /// balance as accurate as the solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseState<const N: usize> {
-    /// Generalized coordinates, in the model's units ([m] or [rad]).
+    /// Generalized coordinates, in the model's units (\[m\] or \[rad\]).
     pub q: SVector<f64, N>,
     /// Generalized velocities `q̇` ([m/s] or [rad/s]).
     pub v: SVector<f64, N>,
-    /// `[dissipated, external work]` since the start of the run [J].
+    /// `[dissipated, external work]` since the start of the run \[J\].
     pub work: [f64; 2],
 }
 

@@ -18,7 +18,7 @@ use std::f64::consts::SQRT_2;
 /// The standard channel classes of J211-1.
 pub const STANDARD_CLASSES: [f64; 4] = [60.0, 180.0, 600.0, 1000.0];
 
-/// Length of the padding at each end before filtering [s]. J211 asks for at
+/// Length of the padding at each end before filtering \[s\]. J211 asks for at
 /// least 10 ms of pre-test data; the padding stands in for it, and is made
 /// long enough that the start-up transient of the slowest class (CFC 60:
 /// poles with real part −554 s⁻¹) has decayed by e^−27 when the signal begins.
@@ -40,7 +40,7 @@ pub enum CfcError {
     Class {
         /// The channel frequency class asked for (60, 180, …).
         cfc: f64,
-        /// The signal's sample rate, `1 / period` [Hz].
+        /// The signal's sample rate, `1 / period` \[Hz\].
         sample_rate: f64,
     },
 }

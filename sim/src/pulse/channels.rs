@@ -19,7 +19,7 @@ pub enum Quantity {
     Acceleration,
     /// Vehicle velocity [m/s].
     Velocity,
-    /// Crush [m].
+    /// Crush \[m\].
     Crush,
 }
 
@@ -58,7 +58,7 @@ pub struct Channel {
 /// The channels of a file, on its time column.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TimeHistories {
-    /// Sample times [s], strictly increasing, at least 3.
+    /// Sample times \[s\], strictly increasing, at least 3.
     pub t: Vec<f64>,
     /// At least one, each as long as `t`, sorted by quantity
     /// (acceleration, velocity, crush).

@@ -20,13 +20,13 @@ pub const STANDARD_GRAVITY: f64 = 9.80665;
 /// A vehicle pulse sampled at a constant period.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pulse {
-    /// Sample times [s], equally spaced.
+    /// Sample times \[s\], equally spaced.
     pub t: Vec<f64>,
     /// Vehicle acceleration [m/s²], forward positive.
     pub acceleration: Vec<f64>,
     /// Velocity at `t[0]` [m/s], forward positive.
     pub v0: f64,
-    /// Crush [m] when measured or simulated; otherwise the vehicle's
+    /// Crush \[m\] when measured or simulated; otherwise the vehicle's
     /// displacement is used (equal to the crush against a rigid barrier).
     pub crush: Option<Vec<f64>>,
 }
@@ -37,35 +37,35 @@ pub struct PulseMetrics {
     /// The velocity at the first sample, [`Pulse::v0`] [m/s].
     pub impact_velocity_mps: f64,
     /// Largest crush (the crush channel, or the displacement from the CFC 180
-    /// acceleration integrated twice) [m].
+    /// acceleration integrated twice) \[m\].
     pub max_dynamic_crush_m: Option<f64>,
-    /// When the largest crush is reached: the time of its sample [s].
+    /// When the largest crush is reached: the time of its sample \[s\].
     /// `None`, like the crush, when the vehicle never compresses.
     pub time_of_max_crush_s: Option<f64>,
-    /// First time the velocity (CFC 180 acceleration integrated) reaches zero [s].
+    /// First time the velocity (CFC 180 acceleration integrated) reaches zero \[s\].
     pub time_to_zero_velocity_s: Option<f64>,
     /// Largest backward velocity after that [m/s].
     pub rebound_velocity_mps: Option<f64>,
-    /// Largest deceleration of the unfiltered acceleration [g]; 0 when the
+    /// Largest deceleration of the unfiltered acceleration \[g\]; 0 when the
     /// vehicle never decelerates.
     pub peak_deceleration_g: f64,
-    /// Largest deceleration of the CFC 60 filtered acceleration [g].
+    /// Largest deceleration of the CFC 60 filtered acceleration \[g\].
     pub peak_deceleration_cfc60_g: f64,
     /// `v0² / (2 g C)`: the constant deceleration that stops the car in its
-    /// maximum crush [g].
+    /// maximum crush \[g\].
     pub equivalent_square_wave_g: Option<f64>,
-    /// Occupant load criterion (Euro NCAP, from the CFC 180 velocity) [g].
+    /// Occupant load criterion (Euro NCAP, from the CFC 180 velocity) \[g\].
     pub olc_g: Option<f64>,
     /// End of the virtual occupant's free flight (65 mm of relative
-    /// travel) [s]; see [`Olc::t1`].
+    /// travel) \[s\]; see [`Olc::t1`].
     pub olc_t1_s: Option<f64>,
-    /// End of its restraint phase (300 mm of relative travel) [s]; see
+    /// End of its restraint phase (300 mm of relative travel) \[s\]; see
     /// [`Olc::t2`].
     pub olc_t2_s: Option<f64>,
     /// Acceleration severity index (EN 1317-1, 50 ms averages of the CFC 180
     /// acceleration; the longitudinal component only).
     pub asi: Option<f64>,
-    /// When the ASI is reached: the end of its 50 ms window [s].
+    /// When the ASI is reached: the end of its 50 ms window \[s\].
     pub asi_time_s: Option<f64>,
 }
 
@@ -88,9 +88,9 @@ pub enum PulseError {
     Unequal {
         /// The first sample, from 1, that ends a period unlike the first.
         index: usize,
-        /// The period ending at that sample [s].
+        /// The period ending at that sample \[s\].
         period: f64,
-        /// The first period, `t[1] − t[0]` [s].
+        /// The first period, `t[1] − t[0]` \[s\].
         first: f64,
     },
     /// A NaN or ±∞ among the samples.

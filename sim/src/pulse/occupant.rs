@@ -20,15 +20,15 @@ pub fn integrate(t: &[f64], x: &[f64], x0: f64) -> Vec<f64> {
 pub struct Olc {
     /// The virtual occupant's constant deceleration in the restraint phase [m/s²].
     pub deceleration: f64,
-    /// End of free flight: the occupant has moved 65 mm relative to the vehicle [s].
+    /// End of free flight: the occupant has moved 65 mm relative to the vehicle \[s\].
     pub t1: f64,
-    /// End of the restraint phase: relative travel 300 mm, velocities equal [s].
+    /// End of the restraint phase: relative travel 300 mm, velocities equal \[s\].
     pub t2: f64,
 }
 
-/// Free-flight travel of the virtual occupant before the restraint acts [m].
+/// Free-flight travel of the virtual occupant before the restraint acts \[m\].
 pub const OLC_FREE_FLIGHT: f64 = 0.065;
-/// Total relative travel of the virtual occupant [m].
+/// Total relative travel of the virtual occupant \[m\].
 pub const OLC_TOTAL_TRAVEL: f64 = 0.300;
 
 /// The OLC of the vehicle velocity `v(t)` (forward positive; Euro NCAP
@@ -83,7 +83,7 @@ fn lerp(a: f64, b: f64, f: f64) -> f64 {
     a + f * (b - a)
 }
 
-/// Averaging window of the ASI [s].
+/// Averaging window of the ASI \[s\].
 pub const ASI_WINDOW: f64 = 0.050;
 
 /// The acceleration severity index of EN 1317-1 and when it is reached (the

@@ -162,18 +162,18 @@ pub struct Scenario {
     pub spec: Option<PathBuf>,
     /// The file's free-text `description` (empty when it has none).
     pub description: String,
-    /// End time of the run [s]; positive and finite.
+    /// End time of the run \[s\]; positive and finite.
     pub t_end: f64,
     /// The integration method (`simulation.method`).
     pub method: Method,
     /// Tolerances and step limits of the solver, already validated.
     pub options: Options,
-    /// Time between output samples [s]; positive, and at most
+    /// Time between output samples \[s\]; positive, and at most
     /// [`MAX_SAMPLES`] samples over `t_end`.
     pub output_interval: f64,
     /// Parameter overrides by index.
     pub parameters: Vec<(usize, f64)>,
-    /// Initial coordinates by index, in the model's units ([m] or [rad]);
+    /// Initial coordinates by index, in the model's units (\[m\] or \[rad\]);
     /// the others start at 0.
     pub initial_coordinates: Vec<(usize, f64)>,
     /// Initial velocities by index ([m/s] or [rad/s]); the others start

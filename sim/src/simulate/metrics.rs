@@ -15,21 +15,21 @@ use crate::scenario::Scenario;
 /// One output sample as the metrics see it.
 #[derive(Clone, Copy, Debug)]
 pub struct SampleView<'a> {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Coordinates, in the model's units ([m] or [rad]).
+    /// Coordinates, in the model's units (\[m\] or \[rad\]).
     pub q: &'a [f64],
     /// Velocities ([m/s] or [rad/s]).
     pub v: &'a [f64],
     /// Accelerations ([m/s²] or [rad/s²]).
     pub a: &'a [f64],
-    /// Kinetic energy `T` [J].
+    /// Kinetic energy `T` \[J\].
     pub kinetic: f64,
-    /// Potential energy `V` [J].
+    /// Potential energy `V` \[J\].
     pub potential: f64,
-    /// Energy dissipated by `D` since the start [J].
+    /// Energy dissipated by `D` since the start \[J\].
     pub dissipated: f64,
-    /// Work of the generalized forces since the start [J].
+    /// Work of the generalized forces since the start \[J\].
     pub external_work: f64,
 }
 

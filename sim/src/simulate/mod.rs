@@ -27,21 +27,21 @@ pub type SolverError = ode::SolverError<Fault>;
 /// The state and derived quantities at one output time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sample {
-    /// Time since the start of the run [s].
+    /// Time since the start of the run \[s\].
     pub t: f64,
-    /// Coordinates, in the model's order and units ([m] or [rad]).
+    /// Coordinates, in the model's order and units (\[m\] or \[rad\]).
     pub q: Vec<f64>,
     /// Velocities `q̇` ([m/s] or [rad/s]).
     pub v: Vec<f64>,
     /// Accelerations `q̈` ([m/s²] or [rad/s²]).
     pub a: Vec<f64>,
-    /// Kinetic energy `T` [J].
+    /// Kinetic energy `T` \[J\].
     pub kinetic: f64,
-    /// Potential energy `V` [J].
+    /// Potential energy `V` \[J\].
     pub potential: f64,
-    /// Energy dissipated by `D` since the start [J].
+    /// Energy dissipated by `D` since the start \[J\].
     pub dissipated: f64,
-    /// Work of the generalized forces since the start [J].
+    /// Work of the generalized forces since the start \[J\].
     pub external_work: f64,
     /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
     pub inputs: Vec<f64>,
@@ -100,9 +100,9 @@ pub enum SimulationError {
 /// The state at the end of a run's last accepted step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reached {
-    /// Where the step ended [s].
+    /// Where the step ended \[s\].
     pub t: f64,
-    /// The coordinates there ([m] or [rad]).
+    /// The coordinates there (\[m\] or \[rad\]).
     pub q: Vec<f64>,
     /// The velocities there ([m/s] or [rad/s]).
     pub qd: Vec<f64>,

@@ -13,7 +13,7 @@ use nalgebra::{SMatrix, SVector};
 /// One event handled during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRecord {
-    /// When it happened, located on the dense output [s].
+    /// When it happened, located on the dense output \[s\].
     pub t: f64,
     /// The scenario's name of the component it changed (`front_end`).
     pub component: String,

@@ -211,11 +211,11 @@ macro_rules! summary {
 }
 
 summary! {
-    /// Largest crush [m].
+    /// Largest crush \[m\].
     max_crush_m: Option<f64> => Some(Text::line("max dynamic crush", "m", 3)),
-    /// When the crush was largest [s].
+    /// When the crush was largest \[s\].
     time_of_max_crush_s: Option<f64> => Some(Text::line("at", "", 1).in_ms()),
-    /// First time the velocity towards the barrier reaches zero [s].
+    /// First time the velocity towards the barrier reaches zero \[s\].
     time_to_zero_velocity_s: Option<f64> =>
         Some(Text::line("time to zero velocity", "", 1).in_ms()),
     /// The first pitch coordinate's deviation of largest magnitude from
@@ -224,19 +224,19 @@ summary! {
     /// The second pitch coordinate's, likewise [°].
     max_theta2_deg: Option<f64> =>
         Some(Text::more("°", 2).note(" (from static equilibrium)")),
-    /// Largest deceleration, unfiltered [g].
+    /// Largest deceleration, unfiltered \[g\].
     peak_deceleration_g: Option<f64> =>
         Some(Text::line("peak deceleration", "g", 1).note(" (unfiltered)")),
     /// Largest speed away from the barrier after the peak crush [m/s].
     rebound_velocity_mps: Option<f64> => Some(Text::line("rebound velocity", "m/s", 2)),
-    /// When the weld failed [s].
+    /// When the weld failed \[s\].
     weld_failure_time_s: Option<f64> =>
         Some(Text::line("weld failure", "", 1).in_ms().missing("none")),
-    /// Largest deceleration after SAE J211 CFC 60 filtering [g].
+    /// Largest deceleration after SAE J211 CFC 60 filtering \[g\].
     peak_deceleration_cfc60_g: Option<f64> => Some(Text::line("CFC 60 peak, ESW", "g", 1)),
-    /// `v0² / (2 g C)` with the maximum crush `C` [g].
+    /// `v0² / (2 g C)` with the maximum crush `C` \[g\].
     equivalent_square_wave_g: Option<f64> => Some(Text::more("g", 1)),
-    /// Occupant load criterion (Euro NCAP) of the crush coordinate's pulse [g].
+    /// Occupant load criterion (Euro NCAP) of the crush coordinate's pulse \[g\].
     olc_g: Option<f64> => Some(Text::line("OLC, ASI", "g", 1)),
     /// Acceleration severity index (EN 1317-1), longitudinal component.
     asi: Option<f64> => Some(Text::more("", 2)),
