@@ -8,10 +8,13 @@
 //! The crate re-exports the macro (`lagrangian-macro`, which runs the
 //! compiler `lagrangian-core`), the model runtime (`lagrangian-model`: the
 //! trait, input functions, the interpreter) and, with the default feature
-//! `sim`, the crash-simulation library (`lagrangian-sim`: [`scenario`],
-//! [`simulate`], [`ode`], [`crash`], [`pulse`], [`sweep`], [`fit`],
-//! [`plot`], [`report`]). With `default-features = false` it is the macro
-//! and the model runtime only, which depend on nalgebra and nothing heavy.
+//! `sim`, the crash-simulation library (`lagrangian-sim`: `scenario`,
+//! `simulate`, `ode`, `crash`, `pulse`, `sweep`, `fit`, `plot`, `report`).
+//! With `default-features = false` it is the macro and the model runtime
+//! only, which depend on nalgebra and nothing heavy; `lagrangian::nalgebra`
+//! is then built without its `std` feature (fixed-size matrices and vectors;
+//! depend on nalgebra yourself for dynamic ones). The feature `compiler`
+//! adds the compiler as `lagrangian::compiler`.
 //!
 //! ```
 //! use lagrangian::{lagrangian, LagrangianSystem, NoInputs};
@@ -66,6 +69,11 @@
 
 #![warn(missing_docs)]
 
+/// The compiler itself (feature `compiler`): spec parser, symbolic engine,
+/// derivation, optimizer, emitters, audit; `compiler::interpret` runs a spec
+/// given as text.
+#[cfg(feature = "compiler")]
+pub use lagrangian_core as compiler;
 pub use lagrangian_macro::lagrangian;
 pub use lagrangian_model::*;
 /// The crash-simulation library (feature `sim`, on by default): scenarios,
@@ -75,6 +83,6 @@ pub use lagrangian_sim::*;
 
 /// The Rust examples of the README, compiled and run as doctests (its spec
 /// blocks, commands and outputs are checked by `lpm/tests/readme.rs`).
-#[cfg(doctest)]
+#[cfg(all(doctest, feature = "sim"))]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

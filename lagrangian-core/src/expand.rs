@@ -13,7 +13,6 @@
 //! it changes. Errors in a file are reported as `file:line:col` with a snippet,
 //! at the span of the path literal.
 
-use crate::diagnostic::SpecErrors;
 use crate::emit::{RustOptions, emit_model, emit_stub};
 use crate::spec::Outline;
 use crate::{Compiled, Model};
@@ -85,7 +84,8 @@ fn parse_invocation(input: ParseStream) -> syn::Result<Invocation> {
 
 /// Expands the macro input into the model's code, or into `compile_error!`s
 /// and, where the spec names its model, a stand-in for the model's type
-/// ([`crate::emit::emit_stub`]) so that its uses add no errors of their own.
+/// (with its fields, constants and trait impl) so that its uses add no errors
+/// of their own.
 /// Runs on a large stack (see [`crate::depth`]), still on the compiler's thread.
 pub fn expand(input: TokenStream) -> TokenStream {
     crate::depth::with_large_stack(|| match try_expand(input) {
@@ -109,9 +109,13 @@ impl From<syn::Error> for Failed {
     }
 }
 
-/// The stand-in for the model of spec `tokens`, if they name one.
+/// The stand-in for the model of spec `tokens`, if they name one and are
+/// within the input limits (beyond them, even reading their outline could
+/// overflow the stack: they get their error alone).
 fn stub(tokens: TokenStream, options: &RustOptions) -> Option<TokenStream> {
-    Outline::of(tokens).map(|outline| emit_stub(&outline, options))
+    let count = crate::depth::check_tokens(&tokens).ok()?;
+    let outline = crate::depth::with_stack_for_tokens(count, || Outline::of(tokens))?;
+    Some(emit_stub(&outline, options))
 }
 
 fn try_expand(input: TokenStream) -> Result<TokenStream, Failed> {
@@ -177,11 +181,7 @@ pub fn located_errors(file: &str, source: &str) -> String {
     let result = Compiled::from_source(source).err();
     proc_macro2::fallback::unforce();
     match result {
-        Some(errors) => render(&errors, file, source),
+        Some(errors) => errors.render(file, source),
         None => format!("{file}: the spec failed to compile, but not when compiled again"),
     }
-}
-
-fn render(errors: &SpecErrors, file: &str, source: &str) -> String {
-    errors.render(file, source)
 }

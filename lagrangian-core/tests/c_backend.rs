@@ -280,14 +280,16 @@ fn a_pendulum_chain_in_c_matches_the_interpreter() {
 }
 
 /// Integer and fractional powers, exp, ln, sqrt, division and the time;
-/// parameters named like C keywords, macros and the functions' arguments.
+/// parameters named like C keywords, macros, the functions' arguments and
+/// the model's own helpers (`odd_powi`, `odd_input`).
 #[test]
 fn powers_and_functions_in_c_match_the_interpreter() {
     let source = "model Odd; coordinates { x, y }
-        parameters { a = 2.5, b = 0.5, r#type = 3.0, w [1/s] = 2.0, p = 1.5, int = 0.75, NAN = 2.0, _u = 0.5 }
+        parameters { a = 2.5, b = 0.5, r#type = 3.0, w [1/s] = 2.0, p = 1.5, int = 0.75, NAN = 2.0, _u = 0.5, odd_powi = 1.25, odd_input = 0.5 }
         kinetic = 0.5 * a * p * pow(dot(x), 2) * (2 + exp(x) * int) * (NAN + _u) + 0.5 * pow(dot(y), 2) * pow(2 + sin(x), -3);
         potential = pow(1 + x * x, 1/3) * b + ln(2 + x * x) + sqrt(3 + x) / (1 + pow(x, 6))
-            + r#type * y * cos(w * t) + pow(y, 7) / (3 + pow(y, 2)) + pow(x * y + 2, 3/2);
+            + r#type * y * cos(w * t) + pow(y, 7) / (3 + pow(y, 2)) + pow(x * y + 2, 3/2)
+            + odd_powi * pow(x, 3) + odd_input * y;
         jacobians;";
     check("odd", source);
 }

@@ -167,4 +167,16 @@ fn deep_input_in_the_macro_is_a_compile_error() {
     let out = lagrangian_core::expand::expand(deep).to_string();
     assert!(out.contains("compile_error"), "{out}");
     assert!(out.contains("brackets nested more than 256 deep"), "{out}");
+    // Far beyond the limit, too deep even to read the model's outline for
+    // its stand-in: the error alone, and no overflow of the stack.
+    let deeper: proc_macro2::TokenStream = format!(
+        "model Deep; coordinates {{ x }} kinetic = pow(dot(x), 2) * {}1{};",
+        "(".repeat(100_000),
+        ")".repeat(100_000)
+    )
+    .parse()
+    .unwrap();
+    let out = lagrangian_core::expand::expand(deeper).to_string();
+    assert!(out.contains("brackets nested more than 256 deep"));
+    assert!(!out.contains("struct Deep"), "no stand-in past the limits");
 }

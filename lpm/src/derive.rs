@@ -1,4 +1,4 @@
-//! `lpm derive`: the derived equations, readably factored, or the Rust code.
+//! `lpm derive`: the derived equations, readably factored, or the Rust or C code.
 
 use crate::failure::{Failure, Outcome};
 use crate::spec::compile;

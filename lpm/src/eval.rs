@@ -2,8 +2,6 @@
 
 use crate::failure::{Failure, Outcome};
 use crate::spec::compile;
-use lagrangian_core::Compiled;
-use lagrangian_core::program::{Op, RoutineKind};
 use lagrangian_model::{ConstantInputs, InterpretedModel};
 use lagrangian_sim::scenario::{ModelNames, Setting};
 use std::path::PathBuf;
@@ -31,8 +29,7 @@ pub struct Args {
 
 /// Runs `lpm eval`.
 pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let compiled = compile(&args.spec)?;
-    let mut model = compiled.interpreted();
+    let mut model = compile(&args.spec)?.interpreted();
     let n = model.dimension();
     if args.state.len() != 2 * n {
         return Err(Failure::usage(format!(
@@ -42,7 +39,7 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
             args.state.len()
         )));
     }
-    let inputs = apply_settings(&mut model, &compiled, &args.set)?;
+    let inputs = apply_settings(&mut model, &args.set)?;
     let (q, qd) = args.state.split_at(n);
     let (mut mass, mut forcing) = (vec![0.0; n * n], vec![0.0; n]);
     model
@@ -66,7 +63,6 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
 /// to the inputs returned. Every input the dynamics calls needs a value.
 fn apply_settings(
     model: &mut InterpretedModel,
-    compiled: &Compiled,
     settings: &[String],
 ) -> Result<ConstantInputs, Failure> {
     let names = ModelNames::of_interpreted(model);
@@ -88,13 +84,11 @@ fn apply_settings(
             }
         }
     }
-    let missing: Vec<&str> = names
-        .inputs
-        .iter()
-        .zip(&inputs)
-        .zip(inputs_used(compiled))
-        .filter(|((_, v), used)| v.is_none() && *used)
-        .map(|((name, _), _)| name.as_str())
+    // The inputs the dynamics calls: those of its input sites.
+    let called = |k: usize| model.input_sites().iter().any(|&(input, _)| input == k);
+    let missing: Vec<&str> = (names.inputs.iter().enumerate())
+        .filter(|&(k, _)| inputs[k].is_none() && called(k))
+        .map(|(_, name)| name.as_str())
         .collect();
     if !missing.is_empty() {
         return Err(Failure::usage(format!(
@@ -105,17 +99,4 @@ fn apply_settings(
     Ok(ConstantInputs(
         inputs.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect(),
     ))
-}
-
-/// Which inputs the mass matrix and forcing actually call.
-fn inputs_used(compiled: &Compiled) -> Vec<bool> {
-    let mut used = vec![false; compiled.model.inputs.len()];
-    if let Some(routine) = compiled.program.routine(RoutineKind::Dynamics) {
-        for &r in &routine.ops {
-            if let Op::Input { index, .. } = &compiled.program.ops[r as usize] {
-                used[*index as usize] = true;
-            }
-        }
-    }
-    used
 }

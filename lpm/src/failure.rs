@@ -73,6 +73,11 @@ impl Failure {
         Failure::new(ExitStatus::Evaluation, message)
     }
 
+    /// A model the interpreter cannot run as it is (too many coordinates).
+    pub fn model(e: lagrangian_model::ModelError) -> Failure {
+        Failure::usage(e.to_string())
+    }
+
     /// What stderr gets (without the details).
     pub fn text(&self) -> String {
         let message = self.message.trim_end();

@@ -34,7 +34,7 @@ pub struct Args {
     /// A setting applied before fitting, as in `lpm simulate --set`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
-    /// Output directory (default lpm-out/<spec name>-fit).
+    /// Output directory (default lpm-out/NAME-fit, NAME the spec file's stem).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Number of starts (the scenario's values, then perturbations).
@@ -141,7 +141,7 @@ fn dispatch(
     model
         .clone()
         .with_dimension(Fit { setup, progress })
-        .map_err(|e| Failure::usage(e.to_string()))?
+        .map_err(Failure::model)?
 }
 
 fn text_report(report: &FitReport) -> String {

@@ -32,11 +32,20 @@ pub struct Args {
     #[arg(long)]
     atol: Option<f64>,
     /// Integration method (the scenario's `simulation.method`).
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Method::NAMES))]
+    #[arg(long, value_parser = methods())]
     method: Option<String>,
-    /// Output directory (default lpm-out/<spec name>).
+    /// Output directory (default lpm-out/NAME, NAME the spec file's stem).
     #[arg(long)]
     out: Option<PathBuf>,
+}
+
+/// The method names `--method` takes: [`Method::NAMES`], and the former
+/// names of [`Method::ALIASES`] (accepted, not listed).
+fn methods() -> clap::builder::PossibleValuesParser {
+    let names = Method::NAMES.map(clap::builder::PossibleValue::new);
+    let aliases =
+        Method::ALIASES.map(|(alias, _)| clap::builder::PossibleValue::new(alias).hide(true));
+    clap::builder::PossibleValuesParser::new(names.into_iter().chain(aliases))
 }
 
 /// The settings the command line adds to the scenario's.
@@ -105,7 +114,7 @@ impl WithDimension for Simulate<'_> {
 fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, Failure> {
     model
         .with_dimension(Simulate { scenario })
-        .map_err(|e| Failure::usage(e.to_string()))?
+        .map_err(Failure::model)?
 }
 
 fn write_outputs(

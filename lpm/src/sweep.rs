@@ -215,9 +215,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         stop: &stop,
         sink: &mut sink,
     };
-    let finished = model
-        .with_dimension(sweep)
-        .map_err(|e| Failure::usage(e.to_string()))??;
+    let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     drop(journal);

@@ -29,6 +29,10 @@ pub enum ModelError {
         /// How many were given.
         found: usize,
     },
+    /// A model description that does not fit its tape or itself (a list of
+    /// the wrong length, routines with the wrong number of outputs): a bug
+    /// in whatever built them.
+    InconsistentModel(String),
     /// The interpreter's fixed-size interface covers models of up to `max`
     /// coordinates ([`crate::InterpretedModel::with_dimension`]).
     UnsupportedDimension {
@@ -70,6 +74,7 @@ impl fmt::Display for ModelError {
             ModelError::DimensionMismatch { expected, found } => {
                 write!(f, "expected {expected} values, found {found}")
             }
+            ModelError::InconsistentModel(what) => write!(f, "inconsistent model: {what}"),
             ModelError::UnsupportedDimension { found, max } => write!(
                 f,
                 "the interpreter handles models of up to {max} coordinates; this one has {found} (compile it with the lagrangian! macro instead)"

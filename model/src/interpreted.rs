@@ -34,23 +34,44 @@ pub struct ModelDescription {
 }
 
 impl ModelDescription {
-    /// `Err` naming the first list whose length does not match what it
-    /// describes.
-    fn check(&self, dimension: usize) -> Result<(), ModelError> {
+    /// `Err` naming the first list whose length does not fit the tape, or
+    /// the first routine of the tape with the wrong number of outputs.
+    fn check(&self, tape: &Tape) -> Result<(), ModelError> {
+        let n = tape.dimension();
+        let arguments: usize = self.input_sites.iter().map(|&(_, arity)| arity).sum();
         let lengths = [
-            (self.coordinates.len(), dimension),
-            (self.coordinate_units.len(), self.coordinates.len()),
-            (self.parameter_defaults.len(), self.parameters.len()),
-            (self.input_arguments.len(), self.inputs.len()),
-            (self.input_units.len(), self.inputs.len()),
+            ("coordinates", self.coordinates.len(), n),
+            ("coordinate units", self.coordinate_units.len(), n),
+            ("parameters", self.parameters.len(), tape.parameters()),
+            (
+                "parameter defaults",
+                self.parameter_defaults.len(),
+                tape.parameters(),
+            ),
+            (
+                "input arguments",
+                self.input_arguments.len(),
+                self.inputs.len(),
+            ),
+            ("input units", self.input_units.len(), self.inputs.len()),
         ];
-        match lengths
-            .into_iter()
-            .find(|(found, expected)| found != expected)
-        {
-            Some((found, expected)) => Err(ModelError::DimensionMismatch { expected, found }),
-            None => Ok(()),
+        for (what, found, expected) in lengths {
+            if found != expected {
+                return Err(ModelError::InconsistentModel(format!(
+                    "{found} {what} for {expected}"
+                )));
+            }
         }
+        for kind in RoutineKind::ALL.into_iter().filter(|&k| tape.has(k)) {
+            let expected = kind.output_count(n).unwrap_or(arguments);
+            if tape.output_count(kind) != expected {
+                return Err(ModelError::InconsistentModel(format!(
+                    "routine {kind:?} has {} outputs, not {expected}",
+                    tape.output_count(kind)
+                )));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -72,18 +93,11 @@ pub struct InterpretedModel {
 impl InterpretedModel {
     /// The model `description` evaluated by `tape`, with default parameters.
     pub fn new(description: ModelDescription, tape: Tape) -> Result<InterpretedModel, ModelError> {
-        description.check(tape.dimension())?;
-        let longest = [
-            RoutineKind::Dynamics,
-            RoutineKind::Energies,
-            RoutineKind::Jacobians,
-            RoutineKind::InputArguments,
-            RoutineKind::DynamicsAndPowers,
-        ]
-        .map(|kind| tape.output_count(kind))
-        .into_iter()
-        .max()
-        .unwrap_or(0);
+        description.check(&tape)?;
+        let longest = (RoutineKind::ALL.into_iter())
+            .map(|kind| tape.output_count(kind))
+            .max()
+            .unwrap_or(0);
         let parameters = description.parameter_defaults.clone();
         Ok(InterpretedModel {
             registers: RefCell::new(tape.registers(&parameters)),

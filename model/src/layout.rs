@@ -201,6 +201,15 @@ impl JacobianBlock {
 }
 
 impl RoutineKind {
+    /// Every routine a program can have.
+    pub const ALL: [RoutineKind; 5] = [
+        RoutineKind::Dynamics,
+        RoutineKind::Energies,
+        RoutineKind::Jacobians,
+        RoutineKind::InputArguments,
+        RoutineKind::DynamicsAndPowers,
+    ];
+
     /// The number of outputs of the routine for a model with `n`
     /// coordinates; `None` for [`RoutineKind::InputArguments`], whose count
     /// depends on the model's input calls.

@@ -195,7 +195,7 @@ impl Tape {
                 {
                     return Err(InvalidTape(format!(
                         "input arguments {start}..{} outside {}",
-                        start + count,
+                        start as usize + count as usize,
                         arguments.len()
                     )));
                 }
@@ -214,6 +214,11 @@ impl Tape {
     /// The number of coordinates.
     pub fn dimension(&self) -> usize {
         self.layout.dimension
+    }
+
+    /// The number of parameters.
+    pub fn parameters(&self) -> usize {
+        self.layout.parameters
     }
 
     /// A register file holding the constants and `parameters`.

@@ -164,7 +164,7 @@ fn every_method_converges_with_its_order() {
         let expected = method.order() as f64;
         println!("{method}: observed order {observed:.3} (expected {expected})");
         assert!(
-            (expected - 0.1..expected + 0.3).contains(&observed),
+            (expected - 0.1..expected + 0.2).contains(&observed),
             "{method}: order {observed}, expected {expected}"
         );
     }
@@ -277,6 +277,30 @@ fn every_method_respects_event_directions() {
     }
 }
 
+/// DOPRI5, the default method, at tight tolerances: the crossing times
+/// to 1e-10.
+#[test]
+fn dopri5_locates_crossings_to_1e_10() {
+    let options = Options {
+        rtol: 1e-12,
+        atol: 1e-13,
+        ..Options::default()
+    };
+    for (direction, expected) in [
+        (Direction::Falling, PI / 2.0),
+        (Direction::Rising, 1.5 * PI),
+        (Direction::Either, PI / 2.0),
+    ] {
+        let mut crossings = Problem {
+            event: Some((direction, |_, _| EventAction::Stop)),
+            ..Problem::new(OSCILLATOR)
+        };
+        let out = solve(Method::Dopri5, &mut crossings, (1.0, 0.0), 10.0, &options).unwrap();
+        let error = (out.t - expected).abs();
+        assert!(error <= 1e-10, "{direction:?}: {} vs {expected}", out.t);
+    }
+}
+
 #[test]
 fn every_method_reports_failures_as_typed_errors() {
     // ẍ = 2x³ from (1, 1): x = 1/(1 − t) blows up at t = 1.
@@ -296,13 +320,12 @@ fn every_method_reports_failures_as_typed_errors() {
         .unwrap_err();
         println!("{method}: {err}");
         // Near t = 1, or a few fixed steps past it.
-        let window = 0.95..1.0 + 4.0 * options.fixed_step.unwrap_or(0.0025);
+        let window = 0.99..1.0 + 4.0 * options.fixed_step.unwrap_or(0.0025);
         assert!(
             matches!(
                 err,
                 SolverError::StepSizeUnderflow { t, .. }
-                | SolverError::NonFinite { t, .. }
-                | SolverError::NewtonFailure { t, .. } if window.contains(&t)
+                | SolverError::NonFinite { t, .. } if window.contains(&t)
             ),
             "{method}: {err:?}"
         );

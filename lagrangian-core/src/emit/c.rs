@@ -92,7 +92,11 @@ fn emit_c_deep(compiled: &Compiled, options: &COptions) -> String {
         Some(prefix) => spell(prefix),
         None => snake_case(&model.name),
     };
-    let reserved: Vec<&str> = RESERVED.iter().flat_map(|s| s.split_whitespace()).collect();
+    // The model's own helpers, `<prefix>_powi` and `<prefix>_input`, too.
+    let own = [format!("{prefix}_powi"), format!("{prefix}_input")];
+    let reserved: Vec<&str> = (RESERVED.iter().flat_map(|s| s.split_whitespace()))
+        .chain(own.iter().map(String::as_str))
+        .collect();
     let syntax = CSyntax {
         locals: Locals::new(model, &reserved, spell),
         prefix: prefix.clone(),

@@ -21,4 +21,4 @@ pub use equations::render_equations;
 pub use markdown::render_markdown;
 pub use notation::{Notation, Printer, latex_name};
 pub use rust::{RustOptions, emit_file, emit_model};
-pub use stub::emit_stub;
+pub(crate) use stub::emit_stub;

@@ -10,7 +10,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 /// The stand-in for the model `outline` describes.
-pub fn emit_stub(outline: &Outline, options: &RustOptions) -> TokenStream {
+pub(crate) fn emit_stub(outline: &Outline, options: &RustOptions) -> TokenStream {
     let rt = &options.runtime;
     let ty = ident(&outline.name);
     let fields: Vec<_> = outline.parameters.iter().map(|p| ident(p)).collect();

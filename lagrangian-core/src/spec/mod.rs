@@ -13,7 +13,7 @@ mod unit_check;
 pub use ast::{EnergyKind, UnitText};
 pub(crate) use expression::engine_diagnostic;
 pub use hand::{Assumed, Convention, HandDerived, HandEquation, HandTerm};
-pub use outline::Outline;
+pub(crate) use outline::Outline;
 
 use crate::diagnostic::{SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, ExprId, Store, SymbolId};

@@ -6,7 +6,7 @@ use proc_macro2::TokenStream;
 
 /// The declared names of a spec that parses, each once, in order.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Outline {
+pub(crate) struct Outline {
     /// The model's name.
     pub name: String,
     /// The coordinates.
@@ -20,12 +20,16 @@ pub struct Outline {
 impl Outline {
     /// The outline of `tokens`; `None` when they do not parse as a spec or
     /// name no model.
-    pub fn of(tokens: TokenStream) -> Option<Outline> {
+    pub(crate) fn of(tokens: TokenStream) -> Option<Outline> {
         let ast: SpecAst = syn::parse2(tokens).ok()?;
         let mut outline = Outline::default();
         for item in &ast.items {
             match item {
-                Item::Model { name, .. } => outline.name = name.to_string(),
+                // The first, as lowering takes it (a second is an error).
+                Item::Model { name, .. } if outline.name.is_empty() => {
+                    outline.name = name.to_string()
+                }
+                Item::Model { .. } => {}
                 Item::Coordinates { decls, .. } => {
                     push_new(&mut outline.coordinates, decls.iter().map(|d| &d.name))
                 }

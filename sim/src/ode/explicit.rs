@@ -1,8 +1,8 @@
 //! Explicit Runge–Kutta methods from their tableaux ([`super::tableau`]).
 //!
 //! With an embedded error estimate and no fixed step, the step size is
-//! controlled: the error estimate `‖err‖` is the weighted RMS norm of
-//! [`super::error_norm`]; a step is accepted when `‖err‖ ≤ 1`, and the next
+//! controlled: the error estimate `‖err‖` is the weighted RMS norm Hairer
+//! and SciPy use; a step is accepted when `‖err‖ ≤ 1`, and the next
 //! step is `h · clamp(0.9 · ‖err‖^(−α) · ‖err_prev‖^β, 0.2, 10)` with the Lund
 //! stabilization `β = 0.04`, `α = 1/p − 0.75 β` for a method of order `p`
 //! (no growth right after a rejection). The first step follows Hairer's
@@ -102,6 +102,7 @@ impl<Y: OdeVector> ExplicitRk<Y> {
         options: &Options,
     ) -> Result<Self, SolverError<E>> {
         options.validate()?;
+        check(tableau).map_err(SolverError::InvalidOptions)?;
         let fixed = match (options.fixed_step, tableau.error) {
             (Some(h), _) => Some(h),
             (None, Some(_)) => None,
@@ -221,6 +222,29 @@ impl<Y: OdeVector> ExplicitRk<Y> {
 
 /// The most stages a tableau may have.
 const MAX_STAGES: usize = 16;
+
+/// `Err` unless the tableau's lists fit each other and [`MAX_STAGES`].
+fn check(tableau: &Tableau) -> Result<(), String> {
+    let s = tableau.stages();
+    let rows_fit = tableau.a.iter().enumerate().all(|(i, row)| row.len() <= i);
+    let weights = [Some(tableau.b), tableau.error].into_iter().flatten();
+    let weights_fit = weights.chain(match tableau.dense {
+        DenseOutput::DormandPrince { d } => Some(d),
+        DenseOutput::Hermite => None,
+    });
+    if (1..=MAX_STAGES).contains(&s)
+        && tableau.a.len() == s
+        && rows_fit
+        && weights_fit.into_iter().all(|w| w.len() == s)
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "the tableau of {} does not fit its {s} stages (at most {MAX_STAGES})",
+            tableau.name
+        ))
+    }
+}
 
 /// Writes `(h w_j, k_j)` for the weights of `row` into `terms` (`k_0 = f`);
 /// returns how many.
@@ -374,5 +398,31 @@ impl<Y: OdeVector> DormandPrince<Y> {
                 (theta * theta * theta1 * theta1, r4),
             ],
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ode::tableau::{DOPRI5, RK4};
+
+    #[test]
+    fn a_tableau_that_does_not_fit_its_stages_is_refused() {
+        assert_eq!(check(&DOPRI5), Ok(()));
+        assert_eq!(check(&RK4), Ok(()));
+        // Row 1 reaches stage 1 itself: not explicit.
+        let implicit_row = Tableau {
+            name: "bad",
+            a: &[&[], &[0.5, 0.5]],
+            c: &[0.0, 1.0],
+            b: &[0.5, 0.5],
+            ..RK4
+        };
+        assert_eq!(
+            check(&implicit_row),
+            Err("the tableau of bad does not fit its 2 stages (at most 16)".to_string())
+        );
+        let short_weights = Tableau { b: &[1.0], ..RK4 };
+        assert!(check(&short_weights).is_err());
     }
 }

@@ -35,6 +35,10 @@ impl Method {
         names
     };
 
+    /// Former names still read, `(name, method)`: scenarios written for an
+    /// earlier version keep working. Messages and help list [`Method::NAMES`].
+    pub const ALIASES: [(&'static str, Method); 1] = [("implicit", Method::TrBdf2)];
+
     /// The method's name.
     pub const fn name(self) -> &'static str {
         match self {
@@ -79,9 +83,11 @@ impl FromStr for Method {
     type Err = UnknownMethod;
 
     fn from_str(text: &str) -> Result<Method, UnknownMethod> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == text)
+        let names = Method::ALL.into_iter().map(|m| (m.name(), m));
+        names
+            .chain(Method::ALIASES)
+            .find(|(name, _)| *name == text)
+            .map(|(_, method)| method)
             .ok_or_else(|| UnknownMethod(text.to_string()))
     }
 }
@@ -114,10 +120,12 @@ mod tests {
             assert_eq!(method.name().parse::<Method>(), Ok(method));
             assert_eq!(method.to_string(), method.name());
         }
-        let error = "implicit".parse::<Method>().unwrap_err();
+        // The former name of TR-BDF2 still reads, but is not listed.
+        assert_eq!("implicit".parse::<Method>(), Ok(Method::TrBdf2));
+        let error = "sdirk".parse::<Method>().unwrap_err();
         assert_eq!(
             error.to_string(),
-            "unknown method `implicit`; use dopri5, rk4, tr-bdf2"
+            "unknown method `sdirk`; use dopri5, rk4, tr-bdf2"
         );
     }
 }

@@ -1,6 +1,6 @@
 //! Integrators for `y' = F(t, y)` with event location.
 //!
-//! The methods ([`Method`]) share one driver ([`driver`]): it asks a method's
+//! The methods ([`Method`]) share one driver (`driver`): it asks a method's
 //! stepper for steps, ends exactly at `t_end`, enforces the step limit and
 //! the minimum step, and handles events. A method is a stepper:
 //!

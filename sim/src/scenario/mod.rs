@@ -13,9 +13,9 @@
 //!
 //! Every name is checked against the spec, with a suggestion for typos.
 //!
-//! By phase: [`file`] is the file format, [`overrides`] applies `--set`
-//! settings to the document, [`resolve`] checks values and names, and
-//! [`bind`] binds the model's inputs to crash components.
+//! By phase (private modules): `file` is the file format, `overrides`
+//! applies `--set` settings to the document, `resolve` checks values and
+//! names, and `bind` binds the model's inputs to crash components.
 
 mod base;
 pub(crate) mod bind;
@@ -31,8 +31,9 @@ pub use base::BaseScenario;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};
-use overrides::apply_setting;
-pub use overrides::{Setting, setting_number, split_setting};
+pub use overrides::Setting;
+pub(crate) use overrides::split_setting;
+use overrides::with_settings;
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
 use std::collections::BTreeMap;
@@ -205,7 +206,13 @@ impl Scenario {
             .map(|s| s.to_string())
             .collect();
         for &(index, value) in &self.parameters {
-            model.set_parameter(&names[index], value)?;
+            let name = names
+                .get(index)
+                .ok_or(lagrangian_model::ModelError::DimensionMismatch {
+                    expected: index + 1,
+                    found: names.len(),
+                })?;
+            model.set_parameter(name, value)?;
         }
         Ok(())
     }
@@ -238,12 +245,8 @@ impl Scenario {
         names: &ModelNames,
         settings: &[String],
     ) -> Result<toml::Table, String> {
-        let mut document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
-        let mut constants = BTreeMap::new();
-        for setting in settings {
-            apply_setting(&mut document, setting, names, &mut constants)?;
-        }
-        Ok(document)
+        let document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
+        Ok(with_settings(document, names, settings)?.0)
     }
 
     /// Resolves scenario `text` (from `file`, which relative paths start from).
@@ -259,14 +262,11 @@ impl Scenario {
         settings: &[String],
     ) -> Result<Scenario, ScenarioError> {
         let error = |message: String| ScenarioError::invalid(file, message);
-        let mut document: toml::Table = text
+        let document: toml::Table = text
             .parse()
             .map_err(|e: toml::de::Error| toml_error(file, text, &e))?;
-        let mut constants = BTreeMap::new();
-        for setting in settings {
-            apply_setting(&mut document, setting, names, &mut constants)
-                .map_err(|m| ScenarioError::invalid(None, m))?;
-        }
+        let (document, constants) = with_settings(document, names, settings)
+            .map_err(|m| ScenarioError::invalid(None, m))?;
         let parsed: File = document.try_into().map_err(|e: toml::de::Error| {
             // The document has no positions; the text has them when the
             // problem is in the file rather than in a setting.

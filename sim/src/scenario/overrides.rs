@@ -87,7 +87,7 @@ impl Setting {
 
 /// Applies one `--set key=value` to the document (input constants go to
 /// `constants`, which are not part of it).
-pub(super) fn apply_setting(
+fn apply_setting(
     document: &mut toml::Table,
     setting: &str,
     names: &ModelNames,
@@ -125,4 +125,18 @@ fn set_entry(document: &mut toml::Table, key: &str, value: toml::Value) -> Resul
     }
     table.insert(parts[parts.len() - 1].to_string(), value);
     Ok(())
+}
+
+/// The document with the dotted-key and parameter `settings` applied, and
+/// the input constants they give (not part of the document).
+pub(super) fn with_settings(
+    mut document: toml::Table,
+    names: &ModelNames,
+    settings: &[String],
+) -> Result<(toml::Table, BTreeMap<String, f64>), String> {
+    let mut constants = BTreeMap::new();
+    for setting in settings {
+        apply_setting(&mut document, setting, names, &mut constants)?;
+    }
+    Ok((document, constants))
 }

@@ -1,5 +1,6 @@
 //! Scenario files that do not fit their spec or hold values out of range.
 
+use super::overrides::setting_number;
 use super::*;
 
 const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
@@ -197,7 +198,7 @@ fn the_step_setting_applies_to_every_method() {
     };
     assert_eq!(options("rk4").fixed_step, Some(2e-6));
     assert_eq!(options("rk4").initial_step, None);
-    for method in ["dopri5", "tr-bdf2"] {
+    for method in ["dopri5", "tr-bdf2", "implicit"] {
         assert_eq!(options(method).fixed_step, None, "{method}");
         assert_eq!(options(method).initial_step, Some(2e-6), "{method}");
     }

@@ -2,7 +2,7 @@
 //! the plan's values applied as settings, simulated to its summary metrics.
 
 use super::plan::{Assignment, Axis, Plan};
-use crate::scenario::{BaseScenario, ModelNames, Scenario};
+use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
 use crate::scenario::{ScenarioError, ScenarioErrorKind};
 use crate::simulate::{Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
@@ -64,8 +64,7 @@ impl Settings {
         let mut axes = Vec::new();
         for axis in plan.axes() {
             let overridden = base.settings.iter().any(|s| {
-                s.split_once('=')
-                    .is_some_and(|(k, _)| k.trim().trim_end_matches('*').trim() == axis.key)
+                split_setting(s).is_ok_and(|(k, _)| k.trim_end_matches('*').trim() == axis.key)
             });
             if overridden {
                 return Err(format!(
