@@ -59,6 +59,11 @@ pub(super) struct InitialSection {
     pub(super) coordinates: BTreeMap<String, f64>,
     pub(super) velocities: BTreeMap<String, f64>,
     pub(super) equilibrium: Vec<String>,
+    /// The impact speed \[m/s\], given to every coordinate of `moving`.
+    pub(super) speed: Option<f64>,
+    /// The coordinates that move with the vehicle at `speed`, each with a
+    /// sign: `"-r"` starts with `ṙ = −speed`.
+    pub(super) moving: Vec<String>,
 }
 
 #[derive(Deserialize, Default)]

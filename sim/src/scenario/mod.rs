@@ -5,6 +5,8 @@
 //! spec = "../yaris_double_pendulum.lpm"   # the spec this scenario is for
 //! [simulation]   t_end = 0.15, method = "dopri5", rtol = 1e-8, atol = 1e-10   # or rk4, tr-bdf2
 //! [initial]      coordinates = { r = 0.0 }, velocities = { r = -15.56 }, equilibrium = ["theta1"]
+//!                # or: speed = 15.56, moving = ["-r"] (the impact speed, given to every
+//!                # coordinate that moves with the vehicle, with its sign)
 //! [parameters]   k_tor = 0.0
 //! [metrics]      crush = "-r", pitch = ["theta1", "theta2"], weld = "weld"
 //! [components.front_end]  type = "crush", inputs = { force = "crush", … }, …

@@ -2,7 +2,7 @@
 //! entries, and resolving names to indices.
 
 use super::bind::bind_components;
-use super::file::File;
+use super::file::{File, InitialSection};
 use super::{ModelNames, Scenario};
 use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
@@ -114,7 +114,8 @@ pub(super) fn resolve(
             .collect::<Result<Vec<_>, String>>()
     };
     let initial_coordinates = initial("coordinates", &file.initial.coordinates)?;
-    let initial_velocities = initial("velocities", &file.initial.velocities)?;
+    let mut initial_velocities = initial("velocities", &file.initial.velocities)?;
+    initial_velocities.extend(moving_with_the_vehicle(&file.initial, names)?);
     let equilibrium = file
         .initial
         .equilibrium
@@ -124,10 +125,7 @@ pub(super) fn resolve(
     let crush = match &file.metrics.crush {
         None => None,
         Some(text) => {
-            let (sign, name) = match text.trim().strip_prefix('-') {
-                Some(rest) => (-1.0, rest.trim()),
-                None => (1.0, text.trim().trim_start_matches('+')),
-            };
+            let (sign, name) = signed(text);
             Some((coordinate("metrics.crush: coordinate", name)?, sign))
         }
     };
@@ -158,6 +156,55 @@ pub(super) fn resolve(
         weld: file.metrics.weld.clone(),
         inputs,
     })
+}
+
+/// `-name` as `(−1, name)`, `name` or `+name` as `(1, name)`.
+fn signed(text: &str) -> (f64, &str) {
+    match text.trim().strip_prefix('-') {
+        Some(rest) => (-1.0, rest.trim()),
+        None => (1.0, text.trim().trim_start_matches('+').trim()),
+    }
+}
+
+/// The velocities `initial.speed` gives the coordinates of `initial.moving`
+/// (`±speed` by the sign written before each); a coordinate given a
+/// velocity both ways, a speed without coordinates or coordinates without
+/// a speed is an error.
+fn moving_with_the_vehicle(
+    initial: &InitialSection,
+    names: &ModelNames,
+) -> Result<Vec<(usize, f64)>, String> {
+    let speed = match (initial.speed, initial.moving.is_empty()) {
+        (None, true) => return Ok(Vec::new()),
+        (Some(speed), false) => finite("initial.speed", speed)?,
+        (Some(speed), true) => {
+            return Err(format!(
+                "initial.speed = {}: name the coordinates that move with the vehicle in initial.moving (e.g. moving = [\"-{}\"] when the crush coordinate decreases)",
+                number(speed),
+                names.coordinates.first().map_or("x", String::as_str)
+            ));
+        }
+        (None, false) => {
+            return Err(
+                "initial.moving names coordinates but initial.speed gives them no speed".into(),
+            );
+        }
+    };
+    let mut velocities = Vec::new();
+    for entry in &initial.moving {
+        let (sign, name) = signed(entry);
+        let k = index_of("initial.moving: coordinate", name, &names.coordinates)?;
+        if initial.velocities.contains_key(name) {
+            return Err(format!(
+                "initial.velocities.{name} and initial.moving both set the velocity of `{name}`; keep one"
+            ));
+        }
+        if velocities.iter().any(|&(i, _)| i == k) {
+            return Err(format!("initial.moving names `{name}` twice"));
+        }
+        velocities.push((k, sign * speed));
+    }
+    Ok(velocities)
 }
 
 /// `metrics.weld` must name a weld component of the file.

@@ -203,3 +203,46 @@ fn the_step_setting_applies_to_every_method() {
         assert_eq!(options(method).initial_step, Some(2e-6), "{method}");
     }
 }
+
+#[test]
+fn the_impact_speed_goes_to_every_coordinate_that_moves_with_the_vehicle() {
+    let names = ModelNames {
+        coordinates: vec!["r".into(), "xb".into(), "xe".into()],
+        ..ModelNames::default()
+    };
+    let text = "[initial]\nspeed = 15.5\nmoving = [\"-r\", \"xb\", \"+xe\"]\nvelocities = {}\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    assert_eq!(
+        scenario.initial_velocities,
+        [(0, -15.5), (1, 15.5), (2, 15.5)]
+    );
+    // Sweepable as any entry.
+    let settings = ["initial.speed=10".to_string()];
+    let scenario = Scenario::parse(text, None, &names, &settings).unwrap();
+    assert_eq!(scenario.initial_velocities[1], (1, 10.0));
+}
+
+#[test]
+fn an_impact_speed_needs_its_coordinates_once_each() {
+    let e = error("[initial]\nspeed = 15.5\n", &[]);
+    assert!(e.starts_with("initial.speed = 15.5: name the coordinates that move with the vehicle in initial.moving"), "{e}");
+    let e = error("[initial]\nmoving = [\"x\"]\n", &[]);
+    assert_eq!(
+        e,
+        "initial.moving names coordinates but initial.speed gives them no speed"
+    );
+    let e = error(
+        "[initial]\nspeed = 1.0\nmoving = [\"x\"]\nvelocities = { x = 2.0 }\n",
+        &[],
+    );
+    assert_eq!(
+        e,
+        "initial.velocities.x and initial.moving both set the velocity of `x`; keep one"
+    );
+    let e = error("[initial]\nspeed = 1.0\nmoving = [\"x\", \"-x\"]\n", &[]);
+    assert_eq!(e, "initial.moving names `x` twice");
+    let e = error("[initial]\nspeed = 1.0\nmoving = [\"-y\"]\n", &[]);
+    assert!(e.contains("initial.moving: coordinate `y`"), "{e}");
+    let e = error("[initial]\nspeed = nan\nmoving = [\"x\"]\n", &[]);
+    assert!(e.starts_with("initial.speed = NaN"), "{e}");
+}

@@ -40,11 +40,15 @@ impl fmt::Display for Axis {
     }
 }
 
+/// Axes that take the same value in every run (`KEY1,KEY2=…`): tied
+/// quantities, such as two masses scaled together. Each is a column of its own.
+pub type Tied = Vec<Axis>;
+
 /// A sampled axis: uniform between `low` and `high`, or log-uniform.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SampledAxis {
-    /// The quantity sampled.
-    pub axis: Axis,
+    /// The quantities sampled, tied to one value per run.
+    pub axes: Tied,
     /// Lower end of the range, in the entry's own units (or the factor).
     pub low: f64,
     /// Upper end of the range; `low` and `high` may come in either order.
@@ -68,7 +72,7 @@ pub enum Design {
 #[derive(Clone, Debug)]
 pub enum Plan {
     /// Every combination of the axes' values; the last axis varies fastest.
-    Grid(Vec<(Axis, Vec<f64>)>),
+    Grid(Vec<(Tied, Vec<f64>)>),
     /// `count` points drawn from the axes' ranges.
     Samples {
         /// Number of runs, 1 to 2³² − 1.
@@ -86,26 +90,41 @@ pub enum Plan {
     },
 }
 
-/// Splits `KEY=VALUE` or `KEY*=VALUE`.
-fn split_assignment(text: &str, flag: &str) -> Result<(Axis, String), String> {
-    let (key, value) = text
+/// Splits `KEY=VALUE` or `KEY*=VALUE`; `KEY1,KEY2=VALUE` ties several keys
+/// to the same value (the `*` of `*=` applies to each).
+fn split_assignment(text: &str, flag: &str) -> Result<(Tied, String), String> {
+    let (keys, value) = text
         .split_once('=')
         .ok_or_else(|| format!("{flag} `{text}` is not of the form KEY=VALUES or KEY*=VALUES"))?;
-    let (key, assignment) = match key.trim().strip_suffix('*') {
-        Some(k) => (k.trim(), Assignment::Scale),
-        None => (key.trim(), Assignment::Set),
+    let (keys, assignment) = match keys.trim().strip_suffix('*') {
+        Some(k) => (k, Assignment::Scale),
+        None => (keys, Assignment::Set),
     };
-    if key.is_empty() {
-        return Err(format!("{flag} `{text}` names no key"));
+    let mut tied = Vec::new();
+    for key in keys.split(',').map(str::trim) {
+        if key.is_empty() {
+            return Err(format!(
+                "{flag} `{text}` names no key before `=` or between commas"
+            ));
+        }
+        tied.push(Axis {
+            key: key.to_string(),
+            assignment,
+        });
     }
-    let axis = Axis {
-        key: key.to_string(),
-        assignment,
-    };
-    Ok((axis, value.trim().to_string()))
+    Ok((tied, value.trim().to_string()))
 }
 
-fn number(text: &str, flag: &str, axis: &Axis) -> Result<f64, String> {
+/// The name of tied axes in messages: `a,b*`.
+fn tied_name(tied: &[Axis]) -> String {
+    let keys: Vec<&str> = tied.iter().map(|a| a.key.as_str()).collect();
+    match tied.first().map(|a| a.assignment) {
+        Some(Assignment::Scale) => format!("{}*", keys.join(",")),
+        _ => keys.join(","),
+    }
+}
+
+fn number(text: &str, flag: &str, axis: &str) -> Result<f64, String> {
     let value: f64 = text
         .trim()
         .parse()
@@ -118,7 +137,7 @@ fn number(text: &str, flag: &str, axis: &Axis) -> Result<f64, String> {
 }
 
 /// `a,b,c` or `low:high:count` (count evenly spaced values, ends included).
-fn grid_values(text: &str, axis: &Axis) -> Result<Vec<f64>, String> {
+fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, String> {
     let flag = "--grid";
     let parts: Vec<&str> = text.split(':').collect();
     match parts.as_slice() {
@@ -163,11 +182,11 @@ impl Plan {
         }
         let mut axes = Vec::new();
         for argument in arguments {
-            let (axis, values) = split_assignment(argument, "--grid")?;
-            let values = grid_values(&values, &axis)?;
-            axes.push((axis, values));
+            let (tied, values) = split_assignment(argument, "--grid")?;
+            let values = grid_values(&values, &tied_name(&tied))?;
+            axes.push((tied, values));
         }
-        check_distinct(axes.iter().map(|(a, _)| a))?;
+        check_distinct(axes.iter().flat_map(|(tied, _)| tied))?;
         let total = axes
             .iter()
             .try_fold(1usize, |n, (_, v)| n.checked_mul(v.len()));
@@ -192,7 +211,8 @@ impl Plan {
         }
         let mut axes = Vec::new();
         for argument in arguments {
-            let (axis, range) = split_assignment(argument, "--vary")?;
+            let (tied, range) = split_assignment(argument, "--vary")?;
+            let axis = tied_name(&tied);
             let parts: Vec<&str> = range.split(':').collect();
             let (low, high, logarithmic) = match parts.as_slice() {
                 [low, high] => (low, high, false),
@@ -213,13 +233,13 @@ impl Plan {
                 ));
             }
             axes.push(SampledAxis {
-                axis,
+                axes: tied,
                 low,
                 high,
                 logarithmic,
             });
         }
-        check_distinct(axes.iter().map(|a| &a.axis))?;
+        check_distinct(axes.iter().flat_map(|a| &a.axes))?;
         let strata = match design {
             Design::Random => Vec::new(),
             Design::LatinHypercube => (0..axes.len())
@@ -252,16 +272,30 @@ impl Plan {
         self.len() == 0
     }
 
-    /// The swept quantities, in column order.
+    /// The swept quantities, in column order (tied ones one after another).
     pub fn axes(&self) -> Vec<&Axis> {
+        self.tied().into_iter().flatten().collect()
+    }
+
+    /// The groups of tied axes, in column order: one value each per run.
+    fn tied(&self) -> Vec<&Tied> {
         match self {
-            Plan::Grid(axes) => axes.iter().map(|(a, _)| a).collect(),
-            Plan::Samples { axes, .. } => axes.iter().map(|a| &a.axis).collect(),
+            Plan::Grid(axes) => axes.iter().map(|(tied, _)| tied).collect(),
+            Plan::Samples { axes, .. } => axes.iter().map(|a| &a.axes).collect(),
         }
     }
 
-    /// The values of run `run` (`run < self.len()`), one per axis.
+    /// The values of run `run` (`run < self.len()`), one per axis (tied
+    /// axes repeat their group's value).
     pub fn point(&self, run: usize) -> Vec<f64> {
+        let values = self.group_values(run);
+        (self.tied().iter().zip(values))
+            .flat_map(|(tied, x)| std::iter::repeat_n(x, tied.len()))
+            .collect()
+    }
+
+    /// The value of each group of tied axes in run `run`.
+    fn group_values(&self, run: usize) -> Vec<f64> {
         match self {
             Plan::Grid(axes) => {
                 let mut rest = run;
@@ -379,6 +413,33 @@ mod tests {
         );
         let columns: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
         assert_eq!(columns, ["a", "b*"]);
+    }
+
+    #[test]
+    fn tied_axes_take_one_value_each_run_in_columns_of_their_own() {
+        let plan = Plan::grid(&strings(&["m1,m2*=0.5,2", "k=1:3:3"])).unwrap();
+        assert_eq!(plan.len(), 6);
+        let columns: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+        assert_eq!(columns, ["m1*", "m2*", "k"]);
+        assert_eq!(plan.point(0), [0.5, 0.5, 1.0]);
+        assert_eq!(plan.point(5), [2.0, 2.0, 3.0]);
+        let sampled = Plan::samples(20, &strings(&["a,b=0:1", "c=5:6"]), 9, Design::Random);
+        let sampled = sampled.unwrap();
+        for run in 0..20 {
+            let p = sampled.point(run);
+            assert_eq!(p.len(), 3);
+            assert_eq!(p[0], p[1]);
+            assert!((5.0..6.0).contains(&p[2]));
+        }
+        let error = Plan::grid(&strings(&["a,b=1,2", "b=3"])).unwrap_err();
+        assert!(error.contains("`b` is swept twice"), "{error}");
+        let error = Plan::grid(&strings(&["a,,b=1,2"])).unwrap_err();
+        assert!(error.contains("names no key"), "{error}");
+        let error = Plan::grid(&strings(&["a,b*=1,x"])).unwrap_err();
+        assert!(
+            error.contains("--grid a,b*: `x` is not a number"),
+            "{error}"
+        );
     }
 
     #[test]

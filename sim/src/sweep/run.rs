@@ -34,11 +34,44 @@ pub struct RunFailure {
     pub message: String,
 }
 
-/// The base value a factor multiplies: a number or a list of numbers.
+/// The base value a factor multiplies: a number, or a list or table whose
+/// every number it multiplies (`initial.velocities*=…` scales the speed of
+/// every coordinate the table names).
 #[derive(Clone, Debug)]
-enum Scaled {
-    Number(f64),
-    List(Vec<f64>),
+struct Scaled(toml::Value);
+
+impl Scaled {
+    /// The base value times `x`, written as an inline TOML value.
+    fn times(&self, x: f64) -> String {
+        inline_toml(&self.0, x)
+    }
+}
+
+/// `value` with every number multiplied by `x`, as inline TOML.
+fn inline_toml(value: &toml::Value, x: f64) -> String {
+    match value {
+        toml::Value::Array(items) => {
+            let items: Vec<String> = items.iter().map(|v| inline_toml(v, x)).collect();
+            format!("[{}]", items.join(", "))
+        }
+        toml::Value::Table(table) => {
+            let entries: Vec<String> = table
+                .iter()
+                .map(|(k, v)| format!("{k:?} = {}", inline_toml(v, x)))
+                .collect();
+            format!("{{ {} }}", entries.join(", "))
+        }
+        other => toml_number(as_number(other).unwrap_or(f64::NAN) * x),
+    }
+}
+
+/// `true` when `value` is a number, or a list or table of numbers (nested).
+fn all_numbers(value: &toml::Value) -> bool {
+    match value {
+        toml::Value::Array(items) => items.iter().all(all_numbers),
+        toml::Value::Table(table) => table.values().all(all_numbers),
+        other => as_number(other).is_some(),
+    }
 }
 
 /// The plan's axes, resolved against the base scenario: turns run values
@@ -94,11 +127,7 @@ impl Settings {
             .map(|((axis, scaled), &x)| {
                 let value = match scaled {
                     None => toml_number(x),
-                    Some(Scaled::Number(b)) => toml_number(b * x),
-                    Some(Scaled::List(list)) => {
-                        let items: Vec<String> = list.iter().map(|b| toml_number(b * x)).collect();
-                        format!("[{}]", items.join(", "))
-                    }
+                    Some(base) => base.times(x),
                 };
                 format!("{}={value}", axis.key)
             })
@@ -130,7 +159,8 @@ fn scaled_base(
             .get("parameters")
             .and_then(|t| t.get(&axis.key))
             .and_then(as_number);
-        return Ok(Scaled::Number(in_file.unwrap_or(parameter_defaults[k])));
+        let base = in_file.unwrap_or(parameter_defaults[k]);
+        return Ok(Scaled(toml::Value::Float(base)));
     } else {
         return Err(format!(
             "`{0}*=`: a factor applies to a parameter or a dotted scenario entry, and `{0}` is no parameter",
@@ -144,24 +174,14 @@ fn scaled_base(
         table = value.and_then(toml::Value::as_table);
     }
     let missing = || format!("`{}*=`: the scenario has no such entry to scale", axis.key);
-    match value.ok_or_else(missing)? {
-        toml::Value::Array(items) => items
-            .iter()
-            .map(as_number)
-            .collect::<Option<Vec<f64>>>()
-            .map(Scaled::List)
-            .ok_or_else(|| {
-                format!(
-                    "`{}*=`: a factor scales a number or a list of numbers, and this list holds something else",
-                    axis.key
-                )
-            }),
-        other => as_number(other).map(Scaled::Number).ok_or_else(|| {
-            format!(
-                "`{}*=`: a factor scales a number or a list of numbers, not `{other}`",
-                axis.key
-            )
-        }),
+    let value = value.ok_or_else(missing)?;
+    if all_numbers(value) {
+        Ok(Scaled(value.clone()))
+    } else {
+        Err(format!(
+            "`{}*=`: a factor scales a number, or a list or table of numbers, not `{value}`",
+            axis.key
+        ))
     }
 }
 
@@ -333,4 +353,55 @@ where
         Ok(())
     })?;
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn base(text: &str) -> BaseScenario {
+        BaseScenario {
+            text: text.to_string(),
+            file: None,
+            names: ModelNames {
+                coordinates: vec!["xb".into(), "xe".into()],
+                parameters: vec!["m".into(), "k".into()],
+                ..ModelNames::default()
+            },
+            settings: Vec::new(),
+        }
+    }
+
+    fn settings(text: &str, grid: &[&str]) -> Result<Settings, String> {
+        let grid: Vec<String> = grid.iter().map(|s| s.to_string()).collect();
+        Settings::new(&Plan::grid(&grid)?, &base(text), &[2.0, 100.0])
+    }
+
+    #[test]
+    fn a_factor_scales_every_number_of_a_table() {
+        let text = "[initial]\nvelocities = { xb = 15.5, xe = 15.5 }\n";
+        let s = settings(text, &["initial.velocities*=0.5,2"]).unwrap();
+        assert_eq!(
+            s.for_values(&[2.0]),
+            [r#"initial.velocities={ "xb" = 31, "xe" = 31 }"#]
+        );
+        let scenario = base(text).resolve(&s.for_values(&[0.5])).unwrap();
+        assert_eq!(scenario.initial_velocities, [(0, 7.75), (1, 7.75)]);
+    }
+
+    #[test]
+    fn tied_factors_scale_parameters_from_the_file_or_the_spec_default() {
+        let s = settings("[parameters]\nk = 300.0\n", &["m,k*=1:2:2"]).unwrap();
+        assert_eq!(s.for_values(&[1.5, 1.5]), ["m=3", "k=450"]);
+    }
+
+    #[test]
+    fn a_factor_of_something_other_than_numbers_is_an_error() {
+        let text = "[metrics]\npitch = [\"xb\"]\n";
+        let error = settings(text, &["metrics.pitch*=2"]).unwrap_err();
+        assert!(
+            error.contains("a factor scales a number, or a list or table of numbers"),
+            "{error}"
+        );
+    }
 }
