@@ -52,9 +52,11 @@ fn noisy_pulse(settings: &[String]) -> TimeHistories {
     let mut all = settings.to_vec();
     all.push("simulation.t_end=0.1".into());
     let scenario = Scenario::load(Path::new(SCENARIO), &names, &all).unwrap();
-    let (k, sign) = scenario.crush.unwrap();
+    let crush = scenario.crush.clone().unwrap();
     let result = simulate(&model, &scenario).unwrap();
-    let (t, a): (Vec<f64>, Vec<f64>) = result.samples.iter().map(|s| (s.t, sign * s.a[k])).unzip();
+    let (t, a): (Vec<f64>, Vec<f64>) = (result.samples.iter())
+        .map(|s| (s.t, crush.of_coordinates(&s.a)))
+        .unzip();
     let rms = (a.iter().map(|x| x * x).sum::<f64>() / a.len() as f64).sqrt();
     let mut noise = Noise(42);
     let values = a

@@ -149,7 +149,7 @@ fn write_outputs(
             Some((column, scenario.inputs.crush_force_sign(k)?))
         });
     let setup = PlotSetup {
-        crush: scenario.crush,
+        crush: scenario.crush.clone(),
         pitch: scenario.pitch.clone(),
         crush_force,
         g: result.g,

@@ -1,14 +1,15 @@
 //! The figure of a run (SVG): crush, velocity, deceleration, pitch, energy
 //! bookkeeping and the crush force–deflection loop.
 
+use crate::scenario::Signal;
 use crate::simulate::SimulationResult;
 use plotters::prelude::*;
 
 /// What to draw beyond the raw coordinates.
 #[derive(Clone, Debug, Default)]
 pub struct PlotSetup {
-    /// Crush coordinate and the sign that makes compression positive.
-    pub crush: Option<(usize, f64)>,
+    /// The crush channel (a combination of coordinates, compression positive).
+    pub crush: Option<Signal>,
     /// Pitch coordinates (drawn relative to their initial values).
     pub pitch: Vec<usize>,
     /// Input column of the crush force and the sign that makes compression positive.
@@ -67,19 +68,24 @@ fn ms(t: f64) -> f64 {
 /// coordinates without a crush coordinate), pitch, energies, and the crush
 /// force–deflection loop.
 fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
-    let mut panels = match setup.crush {
-        Some((k, sign)) => crush_panels(result, k, sign, setup.g),
+    let mut panels = match &setup.crush {
+        Some(crush) => crush_panels(result, crush, setup.g),
         None => coordinate_panels(result),
     };
     if !setup.pitch.is_empty() {
         panels.push(pitch_panel(result, &setup.pitch));
     }
     panels.push(energy_panel(result));
-    if let (Some((k, sign)), Some((column, force_sign))) = (setup.crush, setup.crush_force) {
+    if let (Some(crush), Some((column, force_sign))) = (&setup.crush, setup.crush_force) {
         let loop_points = result
             .samples
             .iter()
-            .map(|x| (sign * x.q[k], 1e-3 * force_sign * x.inputs[column]))
+            .map(|x| {
+                (
+                    crush.of_coordinates(&x.q),
+                    1e-3 * force_sign * x.inputs[column],
+                )
+            })
             .collect();
         panels.push((
             "Crush force against crush".into(),
@@ -91,13 +97,14 @@ fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
     panels
 }
 
-/// Crush, velocity towards the barrier and deceleration \[g\] of crush
-/// coordinate `k` (`sign` makes compression positive).
-fn crush_panels(result: &SimulationResult, k: usize, sign: f64, g: f64) -> Vec<Panel> {
+/// Crush, velocity towards the barrier and deceleration \[g\] of the crush
+/// channel (compression positive).
+fn crush_panels(result: &SimulationResult, crush: &Signal, g: f64) -> Vec<Panel> {
     let s = &result.samples;
-    let crush = s.iter().map(|x| (ms(x.t), sign * x.q[k])).collect();
-    let velocity = s.iter().map(|x| (ms(x.t), sign * x.v[k])).collect();
-    let deceleration = s.iter().map(|x| (ms(x.t), -sign * x.a[k] / g)).collect();
+    let of = |values: &[f64]| crush.of_coordinates(values);
+    let velocity = s.iter().map(|x| (ms(x.t), of(&x.v))).collect();
+    let deceleration = s.iter().map(|x| (ms(x.t), -of(&x.a) / g)).collect();
+    let crush = s.iter().map(|x| (ms(x.t), of(&x.q))).collect();
     vec![
         time_panel("Crush", "crush [m]", vec![("crush".into(), crush)]),
         time_panel(

@@ -107,6 +107,12 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "{} — {}", result.model, scenario_name);
     out.push_str(&s.text_lines());
+    if !s.channels.0.is_empty() {
+        let _ = writeln!(out, "  channels:");
+        for channel in &s.channels.0 {
+            let _ = writeln!(out, "    {}", channel.text_line());
+        }
+    }
     let _ = writeln!(
         out,
         "  solver                 {}: {} steps, {} rejected, {} right-hand sides",

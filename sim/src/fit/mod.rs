@@ -132,7 +132,7 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
         target.t[target.t.len() - 1]
     ));
     let scenario = base.resolve(&all).map_err(|e| e.to_string())?;
-    let (k, sign) = scenario.crush.ok_or(
+    let crush = scenario.crush.clone().ok_or(
         "the scenario names no crush coordinate (`[metrics] crush = \"-r\"`): the target channels are its pulse",
     )?;
     let result = simulate(system, &scenario).map_err(|e| e.to_string())?;
@@ -145,11 +145,11 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
                 .samples
                 .iter()
                 .map(|s| {
-                    sign * match c.quantity {
-                        Quantity::Acceleration => s.a[k],
-                        Quantity::Velocity => s.v[k],
-                        Quantity::Crush => s.q[k],
-                    }
+                    crush.of_coordinates(match c.quantity {
+                        Quantity::Acceleration => &s.a,
+                        Quantity::Velocity => &s.v,
+                        Quantity::Crush => &s.q,
+                    })
                 })
                 .collect();
             interpolate(&t, &values, &target.t)

@@ -11,7 +11,7 @@ pub mod channels;
 pub mod occupant;
 
 pub use cfc::{CfcError, cfc_filter};
-pub use occupant::{Olc, asi, integrate, olc};
+pub use occupant::{Olc, asi, clip_3ms, integrate, olc};
 use serde::Serialize;
 
 /// Standard gravity [m/s²], the unit `g` of the metrics.

@@ -132,6 +132,20 @@ pub fn asi(t: &[f64], components: &[(&[f64], f64)]) -> Option<(f64, f64)> {
     best
 }
 
+/// The 3 ms clip of an acceleration sampled every `dt`: the highest level
+/// its magnitude reaches or exceeds for a cumulative 3 ms (the cumulative
+/// definition of FMVSS 208); `None` for a record shorter than 3 ms.
+/// Each sample stands for `dt` of the record.
+pub fn clip_3ms(acceleration: &[f64], dt: f64) -> Option<f64> {
+    let samples = (0.003 / dt * (1.0 - 1e-9)).ceil() as usize;
+    if samples == 0 || samples > acceleration.len() || !dt.is_finite() {
+        return None;
+    }
+    let mut magnitudes: Vec<f64> = acceleration.iter().map(|a| a.abs()).collect();
+    magnitudes.sort_by(|a, b| b.total_cmp(a));
+    Some(magnitudes[samples - 1])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -279,5 +293,27 @@ mod tests {
         let (value, _) = asi(&t, &[(&ax, 12.0 * G), (&az, 10.0 * G)]).unwrap();
         assert!((value - 0.5f64.hypot(0.5)).abs() < 1e-12);
         assert_eq!(asi(&t[..10], &[(&ax[..10], 12.0 * G)]), None);
+    }
+
+    #[test]
+    fn the_3ms_clip_of_a_half_sine_is_where_it_spends_3ms_above() {
+        // |a| = A sin(πt/T) is at or above L for T − (2T/π)·asin(L/A), which
+        // is 3 ms at L = A·cos(π·3 ms / (2T)).
+        let (amplitude, duration, dt) = (400.0, 0.02, 1e-5);
+        let t = grid(0.03, dt);
+        let a: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                if t < duration {
+                    -amplitude * (std::f64::consts::PI * t / duration).sin()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let expected = amplitude * (std::f64::consts::PI * 0.003 / (2.0 * duration)).cos();
+        let clip = clip_3ms(&a, dt).unwrap();
+        assert!((clip - expected).abs() < 0.2, "{clip} vs {expected}");
+        assert_eq!(clip_3ms(&a[..200], dt), None);
     }
 }

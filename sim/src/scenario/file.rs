@@ -72,4 +72,18 @@ pub(super) struct MetricsSection {
     pub(super) crush: Option<String>,
     pub(super) pitch: Vec<String>,
     pub(super) weld: Option<String>,
+    pub(super) displacement: Vec<String>,
+    pub(super) velocity: Vec<String>,
+    pub(super) acceleration: Vec<String>,
+}
+
+impl MetricsSection {
+    /// The channels listed under `role`'s key.
+    pub(super) fn channels(&self, role: super::Role) -> &[String] {
+        match role {
+            super::Role::Displacement => &self.displacement,
+            super::Role::Velocity => &self.velocity,
+            super::Role::Acceleration => &self.acceleration,
+        }
+    }
 }

@@ -23,8 +23,10 @@ mod base;
 pub(crate) mod bind;
 mod discover;
 mod file;
+mod locate;
 mod overrides;
 mod resolve;
+mod signal;
 
 use crate::crash::BoundInputs;
 use crate::crash::table::Table;
@@ -38,6 +40,7 @@ pub(crate) use overrides::split_setting;
 use overrides::with_settings;
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
+pub use signal::{Channel, Column, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -58,6 +61,12 @@ pub struct ModelNames {
     pub input_arguments: Vec<Option<Vec<String>>>,
     /// `(input, number of arguments)` per input call of the dynamics.
     pub input_sites: Vec<(usize, usize)>,
+    /// The unit of each coordinate, where the model declares it.
+    pub coordinate_units: Vec<Option<String>>,
+    /// The spec's declared outputs, in order.
+    pub outputs: Vec<String>,
+    /// The unit of each output, where declared.
+    pub output_units: Vec<Option<String>>,
 }
 
 impl ModelNames {
@@ -70,6 +79,7 @@ impl ModelNames {
             inputs: own(system.input_names()),
             input_arguments: vec![None; system.input_names().len()],
             input_sites: system.input_sites().to_vec(),
+            ..ModelNames::default()
         }
     }
 
@@ -81,6 +91,8 @@ impl ModelNames {
             inputs: model.input_names().to_vec(),
             input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
             input_sites: model.input_sites().to_vec(),
+            coordinate_units: model.coordinate_units().to_vec(),
+            ..ModelNames::default()
         }
     }
 
@@ -184,8 +196,12 @@ pub struct Scenario {
     pub initial_velocities: Vec<(usize, f64)>,
     /// Coordinates solved for static equilibrium before the run.
     pub equilibrium: Vec<usize>,
-    /// The crush coordinate and the sign that makes compression positive.
-    pub crush: Option<(usize, f64)>,
+    /// The crush channel (`metrics.crush`): a combination of coordinates,
+    /// compression positive.
+    pub crush: Option<Signal>,
+    /// The channels of `metrics.displacement`, `velocity` and
+    /// `acceleration`, in that order.
+    pub channels: Vec<Channel>,
     /// Coordinates whose rotation is reported as pitch, relative to the
     /// start.
     pub pitch: Vec<usize>,
@@ -285,7 +301,10 @@ impl Scenario {
             ..error(message)
         })?;
         resolve(parsed, base, names, constants, &tables)
-            .map_err(error)
+            .map_err(|message| ScenarioError {
+                location: locate::locate(text, &message),
+                ..error(message)
+            })
             .map(|mut s| {
                 s.file = file.map(Path::to_path_buf);
                 s

@@ -2,8 +2,8 @@
 //! entries, and resolving names to indices.
 
 use super::bind::bind_components;
-use super::file::{File, InitialSection};
-use super::{ModelNames, Scenario};
+use super::file::{File, InitialSection, MetricsSection};
+use super::{Channel, ModelNames, Role, Scenario, Signal};
 use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
@@ -122,13 +122,10 @@ pub(super) fn resolve(
         .iter()
         .map(|n| coordinate("initial.equilibrium: coordinate", n))
         .collect::<Result<_, String>>()?;
-    let crush = match &file.metrics.crush {
-        None => None,
-        Some(text) => {
-            let (sign, name) = signed(text);
-            Some((coordinate("metrics.crush: coordinate", name)?, sign))
-        }
-    };
+    let crush = (file.metrics.crush.as_deref())
+        .map(|text| crush_channel(text, names))
+        .transpose()?;
+    let channels = channels(&file.metrics, names)?;
     let pitch = file
         .metrics
         .pitch
@@ -152,6 +149,7 @@ pub(super) fn resolve(
         initial_velocities,
         equilibrium,
         crush,
+        channels,
         pitch,
         weld: file.metrics.weld.clone(),
         inputs,
@@ -205,6 +203,34 @@ fn moving_with_the_vehicle(
         velocities.push((k, sign * speed));
     }
     Ok(velocities)
+}
+
+/// `metrics.crush`: a combination of coordinates, so that its rate and
+/// acceleration are exact.
+fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, String> {
+    let signal = Signal::parse("metrics.crush", text, names)?;
+    if !signal.is_of_coordinates() {
+        return Err(format!(
+            "metrics.crush = \"{text}\": the crush channel is a combination of coordinates (e.g. \"-r\" or \"xa - xb\"), so that its rate and acceleration are exact; list other columns under metrics.displacement"
+        ));
+    }
+    Ok(signal)
+}
+
+/// The channels of `metrics.displacement`, `velocity` and `acceleration`.
+fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>, String> {
+    let mut channels: Vec<Channel> = Vec::new();
+    for role in Role::ALL {
+        for text in metrics.channels(role) {
+            let key = format!("metrics.{}", role.name());
+            let signal = Signal::parse(&key, text, names)?;
+            if channels.iter().any(|c| c.signal.name == signal.name) {
+                return Err(format!("{key} = \"{text}\": the channel is listed twice"));
+            }
+            channels.push(Channel { role, signal });
+        }
+    }
+    Ok(channels)
 }
 
 /// `metrics.weld` must name a weld component of the file.

@@ -246,3 +246,65 @@ fn an_impact_speed_needs_its_coordinates_once_each() {
     let e = error("[initial]\nspeed = nan\nmoving = [\"x\"]\n", &[]);
     assert!(e.starts_with("initial.speed = NaN"), "{e}");
 }
+
+#[test]
+fn channels_name_columns_of_the_trajectory_with_suggestions() {
+    let names = ModelNames {
+        coordinates: vec!["xa".into(), "xb".into()],
+        coordinate_units: vec![Some("m".into()), Some("m".into())],
+        outputs: vec!["belt_force".into()],
+        output_units: vec![Some("N".into())],
+        ..ModelNames::default()
+    };
+    let parse =
+        |metrics: &str| Scenario::parse(&format!("[metrics]\n{metrics}\n"), None, &names, &[]);
+    let scenario = parse("crush = \"xa - xb\"\nacceleration = [\"-xa_ddot\"]\ndisplacement = [\"belt_force\", \"2 * xb\"]").unwrap();
+    let crush = scenario.crush.unwrap();
+    assert_eq!(crush.of_coordinates(&[0.5, 0.25]), 0.25);
+    assert_eq!(crush.unit.as_deref(), Some("m"));
+    let channels: Vec<(Role, &str, Option<&str>)> = (scenario.channels.iter())
+        .map(|c| (c.role, c.signal.name.as_str(), c.signal.unit.as_deref()))
+        .collect();
+    assert_eq!(
+        channels,
+        [
+            (Role::Displacement, "belt_force", Some("N")),
+            (Role::Displacement, "2 * xb", Some("m")),
+            (Role::Acceleration, "-xa_ddot", Some("m/s^2")),
+        ]
+    );
+    let error = |metrics: &str| parse(metrics).unwrap_err().to_string();
+    assert_eq!(
+        error("acceleration = [\"belt_forse\"]"),
+        "metrics.acceleration = \"belt_forse\": column `belt_forse` does not exist in the spec; did you mean `belt_force`?"
+    );
+    assert!(
+        error("crush = \"belt_force\"")
+            .contains("the crush channel is a combination of coordinates")
+    );
+    assert!(
+        error("crush = \"xa_dot\"").contains("the crush channel is a combination of coordinates")
+    );
+    assert_eq!(
+        error("displacement = [\"xa + belt_force\"]"),
+        "metrics.displacement = \"xa + belt_force\": adds quantities of different units (m and N)"
+    );
+    assert_eq!(
+        error("displacement = [\"xa\", \"xa\"]"),
+        "metrics.displacement = \"xa\": the channel is listed twice"
+    );
+    assert!(error("displacement = [\"xa - \"]").contains("a term names no column"));
+    assert!(error("displacement = [\"two * xa\"]").contains("`two` is not a number"));
+}
+
+#[test]
+fn an_unknown_channel_in_a_file_is_reported_at_its_line_and_column() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let text = format!("{PUSH}[metrics]\nacceleration = [\n  \"x_ddot\",\n  \"x_dddot\",\n]\n");
+    let file = Path::new("car.toml");
+    let e = Scenario::parse(&text, Some(file), &names, &[]).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "car.toml:7:3: metrics.acceleration = \"x_dddot\": column `x_dddot` does not exist in the spec; did you mean `x_ddot`?"
+    );
+}

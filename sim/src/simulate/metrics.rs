@@ -1,16 +1,17 @@
 //! The crash metrics of a run, accumulated sample by sample into its
 //! [`Summary`].
 //!
-//! With the crush `c = ±q_k` of the scenario's `metrics.crush` coordinate
-//! (compression positive), the vehicle's velocity towards the barrier is `ċ`
+//! With the crush `c = Σ c_k q_k` of the scenario's `metrics.crush`
+//! channel (compression positive), the vehicle's velocity towards the barrier is `ċ`
 //! and its deceleration `−c̈`. Pitch angles are reported relative to the
 //! static equilibrium the run started from.
 
 use super::Sample;
 use super::Summary;
+use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, Signal};
 
 /// One output sample as the metrics see it.
 #[derive(Clone, Copy, Debug)]
@@ -31,6 +32,8 @@ pub struct SampleView<'a> {
     pub dissipated: f64,
     /// Work of the generalized forces since the start \[J\].
     pub external_work: f64,
+    /// The spec's declared outputs.
+    pub outputs: &'a [f64],
 }
 
 impl<'a> From<&'a Sample> for SampleView<'a> {
@@ -44,6 +47,7 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             potential: s.potential,
             dissipated: s.dissipated,
             external_work: s.external_work,
+            outputs: &[],
         }
     }
 }
@@ -60,7 +64,7 @@ struct CrushPoint {
 /// not keep its samples (a sweep does not).
 #[derive(Clone, Debug)]
 pub struct Metrics {
-    crush: Option<(usize, f64)>,
+    crush: Option<Signal>,
     pitch: Vec<(usize, f64)>,
     g: f64,
     samples: usize,
@@ -83,6 +87,8 @@ pub struct Metrics {
     /// Time, crush and crush acceleration of every sample, for the pulse
     /// metrics (filtering needs the whole record).
     pulse: Vec<(f64, f64, f64)>,
+    /// The records of the scenario's channels.
+    channels: Vec<ChannelRecord>,
 }
 
 impl Metrics {
@@ -96,7 +102,7 @@ impl Metrics {
             .map(|&k| (k, initial_q[k]))
             .collect();
         Metrics {
-            crush: scenario.crush,
+            crush: scenario.crush.clone(),
             pitch_extremes: vec![0.0; pitch.len()],
             pitch,
             g,
@@ -112,6 +118,9 @@ impl Metrics {
             deceleration: f64::NEG_INFINITY,
             rebound: 0.0,
             pulse: Vec::new(),
+            channels: (scenario.channels.iter().cloned())
+                .map(ChannelRecord::new)
+                .collect(),
         }
     }
 
@@ -131,12 +140,13 @@ impl Metrics {
                 *extreme = d;
             }
         }
-        if let Some((k, sign)) = self.crush {
+        if let Some(crush) = &self.crush {
             let point = CrushPoint {
                 t: s.t,
-                crush: sign * s.q[k],
-                rate: sign * s.v[k],
+                crush: crush.of_coordinates(s.q),
+                rate: crush.of_coordinates(s.v),
             };
+            let acceleration = crush.of_coordinates(s.a);
             let index = self.samples;
             self.first_rate.get_or_insert(point.rate);
             if let Some((_, _, after)) = &mut self.peak
@@ -161,9 +171,12 @@ impl Metrics {
                 let f = p.rate / (p.rate - point.rate);
                 self.first_zero = Some(p.t + f * (point.t - p.t));
             }
-            self.deceleration = self.deceleration.max(-sign * s.a[k] / self.g);
-            self.pulse.push((s.t, point.crush, sign * s.a[k]));
+            self.deceleration = self.deceleration.max(-acceleration / self.g);
+            self.pulse.push((s.t, point.crush, acceleration));
             self.previous = Some(point);
+        }
+        for channel in &mut self.channels {
+            channel.push(s.t, s.q, s.v, s.a, s.outputs);
         }
         self.samples += 1;
     }
@@ -178,6 +191,7 @@ impl Metrics {
             rejected_steps: stats.rejected_steps,
             rhs_evaluations: stats.rhs_evaluations,
             energy_balance_error_rel: self.energy_error,
+            channels: Channels(self.channels.iter().map(|c| c.summary(self.g)).collect()),
             ..Summary::EMPTY
         };
         if let Some((peak, before, after)) = self.peak {

@@ -1,6 +1,7 @@
 //! Running a scenario: static equilibrium, integration with events, output
 //! samples, summary metrics.
 
+mod channels;
 mod equilibrium;
 mod metrics;
 mod problem;
@@ -8,6 +9,7 @@ mod summary;
 #[cfg(test)]
 mod tests;
 
+pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channels, metric_names};
 pub use equilibrium::static_equilibrium;
 pub use metrics::{Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
@@ -477,6 +479,7 @@ impl<const N: usize> SampleValues<N> {
             potential: self.potential,
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
+            outputs: &[],
         }
     }
 

@@ -5,6 +5,7 @@
 //! [`Metric`] of [`Summary::METRICS`] (its name, and how the text summary
 //! shows it); everything that lists metrics iterates that table.
 
+use super::channels::Channels;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -178,10 +179,14 @@ pub struct Metric {
 /// with the entries in the same order.
 macro_rules! summary {
     ($($(#[doc = $doc:literal])* $name:ident: $type:ty => $text:expr,)*) => {
-        /// The metrics of a run (`summary.json`), in [`Summary::METRICS`] order.
+        /// The metrics of a run (`summary.json`), in [`Summary::METRICS`]
+        /// order, then the scenario's channels.
         #[derive(Clone, Debug, PartialEq, Serialize)]
         pub struct Summary {
             $($(#[doc = $doc])* pub $name: $type,)*
+            /// The metrics of the scenario's channels (`[metrics]
+            /// displacement`, `velocity`, `acceleration`), by name.
+            pub channels: Channels,
         }
 
         impl Summary {
@@ -191,7 +196,10 @@ macro_rules! summary {
             ];
 
             /// A summary with nothing measured.
-            pub const EMPTY: Summary = Summary { $($name: <$type as Field>::EMPTY,)* };
+            pub const EMPTY: Summary = Summary {
+                $($name: <$type as Field>::EMPTY,)*
+                channels: Channels(Vec::new()),
+            };
 
             /// The values, in [`Summary::METRICS`] order.
             pub fn values(&self) -> Vec<Value> {
@@ -297,7 +305,9 @@ mod tests {
             position = at.unwrap_or(position);
         }
         let keys = serde_json::to_value(Summary::EMPTY).unwrap();
-        assert_eq!(keys.as_object().unwrap().len(), Summary::METRICS.len());
+        let keys = keys.as_object().unwrap();
+        assert_eq!(keys.len(), Summary::METRICS.len() + 1);
+        assert_eq!(keys["channels"], serde_json::json!({}));
     }
 
     #[test]

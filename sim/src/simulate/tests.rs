@@ -103,3 +103,63 @@ fn a_summary_only_run_reports_what_the_full_run_reports() {
         assert_eq!(summary.peak_deceleration_g, Some(decel));
     }
 }
+
+#[test]
+fn channels_report_the_extremes_of_an_undamped_oscillation() {
+    // m = 1 kg, k = 100 N/m, no damping, no force, x(0) = 0, ẋ(0) = 1 m/s:
+    // x = 0.1·sin(10t), ẋ = cos(10t), ẍ = −10·sin(10t).
+    let (model, names) = spring();
+    let text = "[simulation]\nt_end = 0.5\nrtol = 1e-10\natol = 1e-12\n\
+        [parameters]\nc = 0.0\n[initial]\nvelocities = { x = 1.0 }\n\
+        [metrics]\ndisplacement = [\"x\"]\nvelocity = [\"-x_dot\"]\nacceleration = [\"x_ddot\"]\n\
+        [components.c]\ntype = \"constant\"\nvalues = { push = 0.0 }\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    let summary = simulate(&model, &scenario).unwrap().summary;
+    let [x, v, a] = &summary.channels.0[..] else {
+        panic!("{:?}", summary.channels)
+    };
+    let quarter = std::f64::consts::PI / 20.0;
+    let close = |got: Option<f64>, want: f64, tol: f64| {
+        let got = got.unwrap();
+        assert!((got - want).abs() < tol, "{got} vs {want}");
+    };
+    assert_eq!((x.name.as_str(), x.unit.as_deref()), ("x", Some("m")));
+    close(x.get("max"), 0.1, 1e-7);
+    close(x.get("time_of_max_s"), quarter, 1e-4);
+    close(x.get("min"), -0.1, 1e-7);
+    close(x.get("time_of_min_s"), 3.0 * quarter, 1e-4);
+    assert_eq!(v.unit.as_deref(), Some("m/s"));
+    close(v.get("max"), 1.0, 1e-7);
+    close(v.get("time_of_max_s"), 2.0 * quarter, 1e-4);
+    assert_eq!(v.get("peak_g"), None);
+    assert_eq!(a.unit.as_deref(), Some("m/s^2"));
+    close(a.get("min"), -10.0, 1e-5);
+    close(a.get("max"), 10.0, 1e-5);
+    let g = 9.80665;
+    close(a.get("peak_g"), 10.0 / g, 1e-6);
+    // |ẍ| = 10 at π/20 and 3π/20: either is the peak.
+    let peak = a.get("time_of_peak_s").unwrap();
+    assert!((peak - quarter).abs() < 1e-4 || (peak - 3.0 * quarter).abs() < 1e-4);
+    // 1.6 Hz passes CFC 60 and CFC 180 unchanged.
+    close(a.get("cfc60_peak_g"), 10.0 / g, 1e-3);
+    close(a.get("cfc180_peak_g"), 10.0 / g, 1e-3);
+    // Near each peak |ẍ| ≥ 10·cos(10·Δt): 3 ms in all over the two peaks
+    // is 1.5 ms about each, cos(0.0075) → 0.99997 of the peak.
+    close(a.get("clip3ms_g"), 10.0 * (0.0075f64).cos() / g, 1e-3);
+    // At t = 0.5 s neither x = 0.1·sin 5 nor −ẋ = −cos 5 is an extreme.
+    assert!(!x.extreme_at_end && !v.extreme_at_end);
+    let json = serde_json::to_value(&summary).unwrap();
+    assert_eq!(json["channels"]["x_ddot"]["role"], "acceleration");
+    assert_eq!(json["channels"]["-x_dot"]["unit"], "m/s");
+}
+
+#[test]
+fn a_signal_still_growing_at_the_end_is_flagged() {
+    let (model, names) = spring();
+    let text = "[simulation]\nt_end = 0.1\n[parameters]\nc = 0.0\n\
+        [initial]\nvelocities = { x = 1.0 }\n[metrics]\ndisplacement = [\"x\"]\n\
+        [components.c]\ntype = \"constant\"\nvalues = { push = 0.0 }\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    let summary = simulate(&model, &scenario).unwrap().summary;
+    assert!(summary.channels.0[0].extreme_at_end);
+}

@@ -1,0 +1,215 @@
+//! Signals: the quantities of a run that `[metrics]` names — a column of
+//! `trajectory.csv` (a coordinate `q`, its rate `q_dot` or acceleration
+//! `q_ddot`, a declared output) or a linear combination of them such as
+//! `"xa - xb"` or `"-r"`.
+
+use super::ModelNames;
+use super::resolve::unknown;
+
+/// A column of a run's samples that a signal reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// Coordinate `k`.
+    Coordinate(usize),
+    /// The rate of coordinate `k`.
+    Velocity(usize),
+    /// The acceleration of coordinate `k`.
+    Acceleration(usize),
+    /// Declared output `k` of the spec.
+    Output(usize),
+}
+
+impl Column {
+    /// The column's value in a sample.
+    pub fn value(self, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) -> f64 {
+        match self {
+            Column::Coordinate(k) => q[k],
+            Column::Velocity(k) => v[k],
+            Column::Acceleration(k) => a[k],
+            Column::Output(k) => outputs.get(k).copied().unwrap_or(f64::NAN),
+        }
+    }
+}
+
+/// A linear combination of sample columns, as the scenario writes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Signal {
+    /// The text in the scenario (`"xa - xb"`): the signal's name in the
+    /// summary and the sweep table.
+    pub name: String,
+    /// `(factor, column)` per term, in the order written.
+    pub terms: Vec<(f64, Column)>,
+    /// The unit of its columns, where the spec declares them.
+    pub unit: Option<String>,
+}
+
+impl Signal {
+    /// The value in a sample; the first term's product starts the sum, so
+    /// that `-r` is exactly `−1·r`.
+    pub fn value(&self, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) -> f64 {
+        let mut terms = self.terms.iter();
+        let Some(&(c, first)) = terms.next() else {
+            return f64::NAN;
+        };
+        terms.fold(c * first.value(q, v, a, outputs), |sum, &(c, column)| {
+            sum + c * column.value(q, v, a, outputs)
+        })
+    }
+
+    /// Reads `text` against the model's names; `key` names the entry in
+    /// messages (`metrics.crush`).
+    pub fn parse(key: &str, text: &str, names: &ModelNames) -> Result<Signal, String> {
+        let mut terms = Vec::new();
+        let mut units: Vec<Option<String>> = Vec::new();
+        for (factor, name) in split_terms(key, text)? {
+            let (column, unit) = column(key, text, name, names)?;
+            terms.push((factor, column));
+            units.push(unit);
+        }
+        let unit = units.first().cloned().flatten();
+        if let Some(other) = units.iter().find(|u| **u != units[0]) {
+            return Err(format!(
+                "{key} = \"{text}\": adds quantities of different units ({} and {})",
+                units[0].as_deref().unwrap_or("none"),
+                other.as_deref().unwrap_or("none")
+            ));
+        }
+        Ok(Signal {
+            name: text.trim().to_string(),
+            terms,
+            unit,
+        })
+    }
+
+    /// `true` when every term is a coordinate: then the same combination
+    /// of the rates and accelerations is the signal's exact rate and
+    /// acceleration ([`Signal::of_coordinates`]).
+    pub fn is_of_coordinates(&self) -> bool {
+        (self.terms.iter()).all(|(_, column)| matches!(column, Column::Coordinate(_)))
+    }
+
+    /// The combination of a signal of coordinates applied to `values`, one
+    /// per coordinate: the signal itself for `q`, its rate for `q̇`, its
+    /// acceleration for `q̈`.
+    pub fn of_coordinates(&self, values: &[f64]) -> f64 {
+        self.value(values, values, values, &[])
+    }
+}
+
+/// What a channel measures, which decides its metrics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// A displacement or angle: extremes and their times.
+    Displacement,
+    /// A velocity: extremes and their times.
+    Velocity,
+    /// An acceleration: extremes, peak, filtered peaks and the 3 ms clip.
+    Acceleration,
+}
+
+impl Role {
+    /// Every role, in the order of the summary.
+    pub const ALL: [Role; 3] = [Role::Displacement, Role::Velocity, Role::Acceleration];
+
+    /// The key of `[metrics]` that lists the channels of this role, and the
+    /// role's name in `summary.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Role::Displacement => "displacement",
+            Role::Velocity => "velocity",
+            Role::Acceleration => "acceleration",
+        }
+    }
+}
+
+/// A channel of the summary: a signal and what it measures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Channel {
+    /// What it measures.
+    pub role: Role,
+    /// What it reads.
+    pub signal: Signal,
+}
+
+/// `a - 2*b + c` as `[(1, "a"), (−2, "b"), (1, "c")]`.
+fn split_terms<'t>(key: &str, text: &'t str) -> Result<Vec<(f64, &'t str)>, String> {
+    let bad = |why: &str| format!("{key} = \"{text}\": {why}");
+    let mut terms = Vec::new();
+    let mut rest = text.trim();
+    let mut sign = 1.0;
+    loop {
+        if let Some(r) = rest.strip_prefix('-') {
+            (sign, rest) = (-sign, r.trim_start());
+            continue;
+        }
+        if let Some(r) = rest.strip_prefix('+') {
+            rest = r.trim_start();
+            continue;
+        }
+        let end = rest.find(['+', '-']).unwrap_or(rest.len());
+        let (term, after) = rest.split_at(end);
+        let (factor, name) = match term.split_once('*') {
+            Some((f, n)) => {
+                let f: f64 = f
+                    .trim()
+                    .parse()
+                    .map_err(|_| bad(&format!("`{}` is not a number (write `2 * x`)", f.trim())))?;
+                (f, n.trim())
+            }
+            None => (1.0, term.trim()),
+        };
+        if name.is_empty() {
+            return Err(bad("a term names no column"));
+        }
+        terms.push((sign * factor, name));
+        if after.is_empty() {
+            return Ok(terms);
+        }
+        (sign, rest) = (1.0, after);
+    }
+}
+
+/// The column `name` reads, with its unit.
+fn column(
+    key: &str,
+    text: &str,
+    name: &str,
+    names: &ModelNames,
+) -> Result<(Column, Option<String>), String> {
+    let coordinate = |k: usize, suffix: &str| {
+        let unit = names.coordinate_units.get(k).cloned().flatten();
+        unit.map(|u| format!("{u}{suffix}"))
+    };
+    let find = |list: &[String], wanted: &str| list.iter().position(|c| c == wanted);
+    if let Some(k) = find(&names.outputs, name) {
+        let unit = names.output_units.get(k).cloned().flatten();
+        return Ok((Column::Output(k), unit));
+    }
+    if let Some(k) = find(&names.coordinates, name) {
+        return Ok((Column::Coordinate(k), coordinate(k, "")));
+    }
+    if let Some(base) = name.strip_suffix("_ddot")
+        && let Some(k) = find(&names.coordinates, base)
+    {
+        return Ok((Column::Acceleration(k), coordinate(k, "/s^2")));
+    }
+    if let Some(base) = name.strip_suffix("_dot")
+        && let Some(k) = find(&names.coordinates, base)
+    {
+        return Ok((Column::Velocity(k), coordinate(k, "/s")));
+    }
+    let known = known_columns(names);
+    Err(format!(
+        "{key} = \"{text}\": {}",
+        unknown("column", name, known.iter().map(String::as_str))
+    ))
+}
+
+/// Every column name a signal may read, for suggestions.
+fn known_columns(names: &ModelNames) -> Vec<String> {
+    let mut known = names.outputs.clone();
+    for c in &names.coordinates {
+        known.extend([c.clone(), format!("{c}_dot"), format!("{c}_ddot")]);
+    }
+    known
+}

@@ -1,0 +1,220 @@
+//! The metrics of the scenario's channels (`[metrics] displacement`,
+//! `velocity`, `acceleration`): extremes and their times for every channel;
+//! for an acceleration also its peak magnitude, its peaks after SAE J211
+//! CFC 60 and CFC 180 filtering and its 3 ms clip, in units of `g`.
+
+use crate::pulse::{Pulse, cfc_filter, clip_3ms};
+use crate::scenario::{Channel, Role};
+use serde::ser::{Serialize, SerializeMap, Serializer};
+
+/// The names of a channel's metrics, in the order of `summary.json` and the
+/// columns of a sweep table; the acceleration metrics only for an
+/// acceleration channel.
+pub const CHANNEL_METRICS: [&str; 4] = ["max", "time_of_max_s", "min", "time_of_min_s"];
+
+/// The further metrics of an acceleration channel.
+pub const ACCELERATION_METRICS: [&str; 5] = [
+    "peak_g",
+    "time_of_peak_s",
+    "cfc60_peak_g",
+    "cfc180_peak_g",
+    "clip3ms_g",
+];
+
+/// The metric names of a channel of `role`, in order.
+pub fn metric_names(role: Role) -> Vec<&'static str> {
+    let mut names = CHANNEL_METRICS.to_vec();
+    if role == Role::Acceleration {
+        names.extend(ACCELERATION_METRICS);
+    }
+    names
+}
+
+/// The metrics of one channel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelSummary {
+    /// The channel as the scenario names it (`"xa - xb"`).
+    pub name: String,
+    /// What it measures.
+    pub role: Role,
+    /// The unit of its values, where the spec declares it.
+    pub unit: Option<String>,
+    /// The values of [`metric_names`]`(role)`, in order; `None` where the
+    /// run cannot say (no samples, a record too short to filter).
+    pub values: Vec<Option<f64>>,
+    /// `true` when an extreme is the last sample: the signal may still be
+    /// growing at the end of the run, and its extreme lies beyond it.
+    pub extreme_at_end: bool,
+}
+
+impl ChannelSummary {
+    /// The value of metric `name`, if the channel has it.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        let k = metric_names(self.role).iter().position(|n| *n == name)?;
+        self.values[k]
+    }
+}
+
+impl ChannelSummary {
+    /// The channel's line of the text summary: extremes with their times,
+    /// and for an acceleration its peaks in g.
+    pub fn text_line(&self) -> String {
+        let value = |name: &str| match self.get(name) {
+            Some(x) => format!("{x:.4}"),
+            None => "–".into(),
+        };
+        let ms = |name: &str| match self.get(name) {
+            Some(t) => format!("{:.1} ms", t * 1e3),
+            None => "–".into(),
+        };
+        let unit = self
+            .unit
+            .as_deref()
+            .map(|u| format!(" [{u}]"))
+            .unwrap_or_default();
+        let mut line = format!(
+            "{}{unit}: max {} at {}, min {} at {}",
+            self.name,
+            value("max"),
+            ms("time_of_max_s"),
+            value("min"),
+            ms("time_of_min_s")
+        );
+        if self.role == Role::Acceleration {
+            let g = |name: &str| match self.get(name) {
+                Some(x) => format!("{x:.1} g"),
+                None => "–".into(),
+            };
+            line.push_str(&format!(
+                "; peak {} at {}, CFC 60 {}, CFC 180 {}, 3 ms clip {}",
+                g("peak_g"),
+                ms("time_of_peak_s"),
+                g("cfc60_peak_g"),
+                g("cfc180_peak_g"),
+                g("clip3ms_g")
+            ));
+        }
+        if self.extreme_at_end {
+            line.push_str(" (still changing at the end: the extreme may lie beyond t_end)");
+        }
+        line
+    }
+}
+
+/// The channels of a summary: `summary.json` writes them as an object
+/// keyed by channel name.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Channels(pub Vec<ChannelSummary>);
+
+impl Serialize for ChannelSummary {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("role", self.role.name())?;
+        map.serialize_entry("unit", &self.unit)?;
+        for (name, value) in metric_names(self.role).iter().zip(&self.values) {
+            map.serialize_entry(name, value)?;
+        }
+        map.serialize_entry("extreme_at_end", &self.extreme_at_end)?;
+        map.end()
+    }
+}
+
+impl Serialize for Channels {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for channel in &self.0 {
+            map.serialize_entry(&channel.name, channel)?;
+        }
+        map.end()
+    }
+}
+
+/// One channel's samples, kept until the end of the run (filtering needs
+/// the whole record).
+#[derive(Clone, Debug)]
+pub struct ChannelRecord {
+    channel: Channel,
+    t: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl ChannelRecord {
+    /// An empty record of `channel`.
+    pub fn new(channel: Channel) -> ChannelRecord {
+        ChannelRecord {
+            channel,
+            t: Vec::new(),
+            values: Vec::new(),
+        }
+    }
+
+    /// Adds the channel's value at time `t` (in time order).
+    pub fn push(&mut self, t: f64, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) {
+        self.t.push(t);
+        self.values
+            .push(self.channel.signal.value(q, v, a, outputs));
+    }
+
+    /// The channel's metrics; accelerations in units of `g`.
+    pub fn summary(&self, g: f64) -> ChannelSummary {
+        let (max, min) = (
+            self.extreme(|x, best| x > best),
+            self.extreme(|x, best| x < best),
+        );
+        let at = |k: Option<usize>| k.map(|k| self.values[k]);
+        let time = |k: Option<usize>| k.map(|k| self.t[k]);
+        let mut values = vec![at(max), time(max), at(min), time(min)];
+        if self.channel.role == Role::Acceleration {
+            values.extend(self.acceleration_metrics(g));
+        }
+        let last = self.values.len().checked_sub(1);
+        let moving_at_end = last.is_some_and(|k| k > 0 && self.values[k] != self.values[k - 1]);
+        ChannelSummary {
+            name: self.channel.signal.name.clone(),
+            role: self.channel.role,
+            unit: self.channel.signal.unit.clone(),
+            values,
+            extreme_at_end: moving_at_end && (max == last || min == last),
+        }
+    }
+
+    /// The index of the first sample that no other beats by `better`.
+    fn extreme(&self, better: impl Fn(f64, f64) -> bool) -> Option<usize> {
+        let mut best: Option<usize> = None;
+        for (k, &x) in self.values.iter().enumerate() {
+            if x.is_finite() && best.is_none_or(|b| better(x, self.values[b])) {
+                best = Some(k);
+            }
+        }
+        best
+    }
+
+    /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, clip3ms_g]`:
+    /// magnitudes, the filtered ones on the record resampled onto an even
+    /// grid; the clip of the CFC 180 signal, as occupant criteria take it.
+    fn acceleration_metrics(&self, g: f64) -> [Option<f64>; 5] {
+        let peak = (self.values.iter().enumerate())
+            .filter(|(_, x)| x.is_finite())
+            .fold(None, |best: Option<(usize, f64)>, (k, &x)| match best {
+                Some((_, m)) if m >= x.abs() => best,
+                _ => Some((k, x.abs())),
+            });
+        let peak_g = peak.map(|(_, m)| m / g);
+        let time = peak.map(|(k, _)| self.t[k]);
+        let Ok(pulse) = Pulse::resampled(&self.t, &self.values, 0.0, None) else {
+            return [peak_g, time, None, None, None];
+        };
+        let dt = pulse.t[1] - pulse.t[0];
+        let filtered = |cfc: f64| cfc_filter(&pulse.acceleration, dt, cfc).ok();
+        let magnitude = |a: &[f64]| a.iter().fold(0.0f64, |m, x| m.max(x.abs())) / g;
+        let cfc60 = filtered(60.0);
+        let cfc180 = filtered(180.0);
+        [
+            peak_g,
+            time,
+            cfc60.as_deref().map(magnitude),
+            cfc180.as_deref().map(magnitude),
+            cfc180.and_then(|a| clip_3ms(&a, dt)).map(|c| c / g),
+        ]
+    }
+}
