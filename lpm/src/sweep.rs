@@ -8,8 +8,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
-    Design, Journal, Plan, Row, Settings, Shard, SweepJob, journal_path, read_groups, run_scenario,
-    stream_sweep, write_parquet,
+    Design, Journal, Layout, Plan, Row, Settings, Shard, SweepJob, journal_path, read_groups,
+    run_scenario, stream_sweep, write_parquet,
 };
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -184,13 +184,16 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
     let (model, base) = load(&options)?;
     let settings = Settings::new(&plan, &base, model.parameters()).map_err(Failure::usage)?;
     // A key the scenario does not know fails here, before any run starts.
-    if !plan.is_empty() {
-        run_scenario(&base, &settings, &plan.point(0)).map_err(|e| Failure::scenario(&e))?;
-    }
+    let first = match plan.is_empty() {
+        false => run_scenario(&base, &settings, &plan.point(0)),
+        true => base.resolve(&[]),
+    };
+    let first = first.map_err(|e| Failure::scenario(&e))?;
     let runs = shard.runs(plan.len());
     let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+    let layout = Layout::new(axes, &first);
     let journal_path = journal_path(&options.out);
-    let (mut journal, done) = open_journal(&options, &journal_path, &axes, &plan, &runs)?;
+    let (mut journal, done) = open_journal(&options, &journal_path, &layout, &plan, &runs)?;
     let bar = progress_bar(options.quiet, runs.len());
     bar.set_position(done as u64);
     let stop = stop_on_signal();
@@ -230,7 +233,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
             ),
         ));
     }
-    finish_output(&journal_path, &options.out, &axes, parquet)?;
+    finish_output(&journal_path, &options.out, &layout, parquet)?;
     let counts = Counts {
         runs: &runs,
         total: plan.len(),
@@ -302,14 +305,14 @@ fn report(counts: &Counts, tally: &Tally, out: &Path) -> String {
 fn open_journal(
     options: &Args,
     path: &Path,
-    axes: &[String],
+    layout: &Layout,
     plan: &Plan,
     runs: &std::ops::Range<usize>,
 ) -> Result<(Journal, usize), Failure> {
     let exists = path.exists();
     let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
     match (options.resume, resumable) {
-        (true, true) => Journal::resume(path, axes, plan, runs)
+        (true, true) => Journal::resume(path, layout, plan, runs)
             .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}"))),
         (true, false) if options.out.exists() => Err(Failure::usage(format!(
             "--resume: {} is complete and there is no {} to resume",
@@ -320,7 +323,7 @@ fn open_journal(
             "{} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
             path.display()
         ))),
-        _ => Journal::create(path, axes)
+        _ => Journal::create(path, layout)
             .map(|j| (j, 0))
             .map_err(Failure::io),
     }
@@ -331,16 +334,16 @@ fn open_journal(
 fn finish_output(
     journal: &Path,
     out: &Path,
-    axes: &[String],
+    layout: &Layout,
     parquet: bool,
 ) -> Result<(), Failure> {
     let io = |e: String| Failure::io(e);
     if parquet {
-        let groups = read_groups(journal, axes.len(), PARQUET_GROUP_ROWS).map_err(io)?;
+        let groups = read_groups(journal, layout, PARQUET_GROUP_ROWS).map_err(io)?;
         let temporary = temporary_beside(out);
         let file = std::fs::File::create(&temporary)
             .map_err(|e| io(format!("cannot create {}: {e}", temporary.display())))?;
-        let written = write_parquet(axes, groups, std::io::BufWriter::new(file)).and_then(|()| {
+        let written = write_parquet(layout, groups, std::io::BufWriter::new(file)).and_then(|()| {
             std::fs::rename(&temporary, out)
                 .map_err(|e| format!("cannot write {}: {e}", out.display()))
         });

@@ -214,6 +214,7 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "rejected_steps",
         "rhs_evaluations",
         "energy_balance_error_rel",
+        "channels",
     ];
     expected.sort();
     assert_eq!(keys, expected);

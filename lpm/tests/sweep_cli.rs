@@ -226,7 +226,7 @@ fn bad_sweeps_are_refused_before_any_run() {
     let cases: [(&[&str], &str); 6] = [
         (
             &["--grid", "components.front_end.unloading*=2,3"],
-            "a number or a list of numbers",
+            "a factor scales a number, or a list or table of numbers, not `\"plastic\"`",
         ),
         (
             &["--grid", "k1=1,2", "--set", "k1=3"],

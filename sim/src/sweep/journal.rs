@@ -9,7 +9,7 @@
 
 use super::plan::Plan;
 use super::run::Row;
-use super::table::{columns, parse_record, record};
+use super::table::{Layout, columns, parse_record, record};
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Seek, SeekFrom};
 use std::ops::Range;
@@ -25,18 +25,19 @@ pub fn journal_path(out: &Path) -> PathBuf {
 /// An open journal, appending rows.
 pub struct Journal {
     path: PathBuf,
+    layout: Layout,
     writer: csv::Writer<BufWriter<File>>,
 }
 
 impl Journal {
-    /// Starts a new journal for a sweep with axes `axes`.
-    pub fn create(path: &Path, axes: &[String]) -> Result<Journal, String> {
+    /// Starts a new journal for a sweep of table `layout`.
+    pub fn create(path: &Path, layout: &Layout) -> Result<Journal, String> {
         let file =
             File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-        let mut journal = Journal::over(path, file);
+        let mut journal = Journal::over(path, layout, file);
         journal
             .writer
-            .write_record(columns(axes))
+            .write_record(columns(layout))
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         journal.flush()?;
         Ok(journal)
@@ -48,7 +49,7 @@ impl Journal {
     /// the journal, ready to append, and the number of runs it holds.
     pub fn resume(
         path: &Path,
-        axes: &[String],
+        layout: &Layout,
         plan: &Plan,
         runs: &Range<usize>,
     ) -> Result<(Journal, usize), String> {
@@ -67,7 +68,7 @@ impl Journal {
             .iter()
             .map(str::to_string)
             .collect();
-        if header != columns(axes) {
+        if header != columns(layout) {
             return Err(at(
                 1,
                 format!(
@@ -80,7 +81,7 @@ impl Journal {
         for (k, record) in reader.records().enumerate() {
             let line = k as u64 + 2;
             let record = record.map_err(|e| at(line, format!("cannot read: {e}")))?;
-            let row = parse_record(&record, axes.len()).map_err(|e| at(line, e))?;
+            let row = parse_record(&record, layout).map_err(|e| at(line, e))?;
             let expected = runs.start + count;
             if row.run != expected || expected >= runs.end || row.values != plan.point(expected) {
                 return Err(at(
@@ -102,12 +103,13 @@ impl Journal {
         file.set_len(whole as u64)
             .and_then(|()| file.seek(SeekFrom::End(0)).map(|_| ()))
             .map_err(|e| format!("cannot truncate {}: {e}", path.display()))?;
-        Ok((Journal::over(path, file), count))
+        Ok((Journal::over(path, layout, file), count))
     }
 
-    fn over(path: &Path, file: File) -> Journal {
+    fn over(path: &Path, layout: &Layout, file: File) -> Journal {
         Journal {
             path: path.to_path_buf(),
+            layout: layout.clone(),
             writer: csv::Writer::from_writer(BufWriter::new(file)),
         }
     }
@@ -117,7 +119,7 @@ impl Journal {
     /// that even `kill -9` loses no row that was appended.
     pub fn append(&mut self, row: &Row) -> Result<(), String> {
         self.writer
-            .write_record(record(row))
+            .write_record(record(&self.layout, row))
             .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
         self.flush()
     }
@@ -138,7 +140,7 @@ impl Journal {
 /// output written one row group at a time).
 pub fn read_groups(
     path: &Path,
-    axes: usize,
+    layout: &Layout,
     group: usize,
 ) -> Result<impl Iterator<Item = Result<Vec<Row>, String>>, String> {
     let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
@@ -148,12 +150,13 @@ pub fn read_groups(
         .into_records()
         .enumerate();
     let path = path.to_path_buf();
+    let layout = layout.clone();
     Ok(std::iter::from_fn(move || {
         let mut rows = Vec::new();
         for (k, record) in records.by_ref() {
             let parsed = record
                 .map_err(|e| e.to_string())
-                .and_then(|r| parse_record(&r, axes))
+                .and_then(|r| parse_record(&r, &layout))
                 .map_err(|e| format!("{}:{}: {e}", path.display(), k + 2));
             match parsed {
                 Ok(row) => rows.push(row),

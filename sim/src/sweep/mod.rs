@@ -14,4 +14,4 @@ mod table;
 pub use journal::{Journal, journal_path, read_groups};
 pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
 pub use run::{Row, RunFailure, Settings, SweepJob, run_scenario, run_sweep, stream_sweep};
-pub use table::{columns, parse_record, record, sweep_csv, sweep_parquet, write_parquet};
+pub use table::{Layout, columns, parse_record, record, sweep_csv, sweep_parquet, write_parquet};

@@ -4,7 +4,8 @@
 //! the shards of one sweep concatenate into the full table.
 
 use super::run::{Row, RunFailure};
-use crate::simulate::{Summary, Value};
+use crate::scenario::{Role, Scenario};
+use crate::simulate::{ChannelSummary, Field, Summary, Value, metric_names};
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
 use parquet::data_type::{ByteArray, ByteArrayType, DataType, DoubleType, Int64Type};
 use parquet::errors::ParquetError;
@@ -14,42 +15,122 @@ use parquet::schema::types::Type;
 use std::io::Write;
 use std::sync::Arc;
 
+/// The columns of a sweep table: `run`, the axes, `status`, `error`, the
+/// summary metrics, then the metrics of each of the scenario's channels.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Layout {
+    /// The axes' columns ([`super::Axis::column`]).
+    pub axes: Vec<String>,
+    /// The channels of the base scenario: name, role, unit.
+    pub channels: Vec<(String, Role, Option<String>)>,
+}
+
+impl Layout {
+    /// A table of `axes` and no channels.
+    pub fn of_axes(axes: Vec<String>) -> Layout {
+        Layout {
+            axes,
+            channels: Vec::new(),
+        }
+    }
+
+    /// A table of `axes` and the channels of `scenario`.
+    pub fn new(axes: Vec<String>, scenario: &Scenario) -> Layout {
+        let channels = (scenario.channels.iter())
+            .map(|c| (c.signal.name.clone(), c.role, c.signal.unit.clone()))
+            .collect();
+        Layout { axes, channels }
+    }
+
+    /// The metric columns after `error`, with the kind of value of each.
+    fn metrics(&self) -> Vec<(String, Value)> {
+        let mut metrics: Vec<(String, Value)> = (Summary::METRICS.iter())
+            .zip(Summary::EMPTY.values())
+            .map(|(m, v)| (m.name.to_string(), v))
+            .collect();
+        for (name, role, _) in &self.channels {
+            for metric in metric_names(*role) {
+                metrics.push((format!("{name}.{metric}"), Value::Real(None)));
+            }
+            metrics.push((format!("{name}.extreme_at_end"), Value::Count(0)));
+        }
+        metrics
+    }
+
+    /// The values of the metric columns of a run's summary.
+    fn values(&self, summary: &Summary) -> Vec<Value> {
+        let mut values = summary.values();
+        for (name, role, _) in &self.channels {
+            let channel = summary.channels.0.iter().find(|c| c.name == *name);
+            for k in 0..metric_names(*role).len() {
+                let value = channel.and_then(|c| c.values.get(k).copied().flatten());
+                values.push(Value::Real(value));
+            }
+            let flag = channel.is_some_and(|c| c.extreme_at_end);
+            values.push(Value::Count(usize::from(flag)));
+        }
+        values
+    }
+
+    /// The summary from the cells of its metric columns.
+    fn summary<'a>(&self, mut cells: impl Iterator<Item = &'a str>) -> Result<Summary, String> {
+        let mut summary = Summary::EMPTY;
+        for metric in Summary::METRICS {
+            summary.set(metric.name, cells.next().unwrap_or(""))?;
+        }
+        for (name, role, unit) in &self.channels {
+            let values = (metric_names(*role).iter())
+                .map(|_| <Option<f64> as Field>::parse(cells.next().unwrap_or("")))
+                .collect::<Result<_, _>>()?;
+            let extreme_at_end = cells.next() == Some("1");
+            summary.channels.0.push(ChannelSummary {
+                name: name.clone(),
+                role: *role,
+                unit: unit.clone(),
+                values,
+                extreme_at_end,
+            });
+        }
+        Ok(summary)
+    }
+}
+
 /// The column names: `run`, the axes, `status`, `error`, the metrics.
-pub fn columns(axes: &[String]) -> Vec<String> {
+pub fn columns(layout: &Layout) -> Vec<String> {
     let mut names = vec!["run".to_string()];
-    names.extend(axes.iter().cloned());
+    names.extend(layout.axes.iter().cloned());
     names.push("status".into());
     names.push("error".into());
-    names.extend(Summary::METRICS.iter().map(|m| m.name.to_string()));
+    names.extend(layout.metrics().into_iter().map(|(name, _)| name));
     names
 }
 
 /// The CSV cells of a row: the run, its values, `ok` or the failure kind,
 /// the error, the metrics (empty where absent). Numbers are written so that
 /// they read back exactly.
-pub fn record(row: &Row) -> Vec<String> {
+pub fn record(layout: &Layout, row: &Row) -> Vec<String> {
     let mut record = vec![row.run.to_string()];
     record.extend(row.values.iter().map(|v| format!("{v:?}")));
     match &row.outcome {
         Ok(summary) => {
             record.push("ok".into());
             record.push(String::new());
-            record.extend(summary.values().into_iter().map(Value::cell));
+            record.extend(layout.values(summary).into_iter().map(Value::cell));
         }
         Err(failure) => {
             record.push(failure.kind.clone());
             record.push(failure.message.clone());
-            record.extend(std::iter::repeat_n(String::new(), Summary::METRICS.len()));
+            record.extend(std::iter::repeat_n(String::new(), layout.metrics().len()));
         }
     }
     record
 }
 
-/// The row a [`record`] was made from (`axes` values before `status`):
-/// the metrics are read by name from the cells of the columns of
-/// [`columns`], in [`Summary::METRICS`] order.
-pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, String> {
-    let expected = 3 + axes + Summary::METRICS.len();
+/// The row a [`record`] was made from: the metrics are read by position
+/// from the cells of the columns of [`columns`].
+pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, String> {
+    let axes = layout.axes.len();
+    let expected = 3 + axes + layout.metrics().len();
     if record.len() != expected {
         return Err(format!("{} cells instead of {expected}", record.len()));
     }
@@ -66,12 +147,7 @@ pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, Stri
         .collect::<Result<Vec<f64>, String>>()?;
     let status = &record[axes + 1];
     let outcome = if status == "ok" {
-        let mut summary = Summary::EMPTY;
-        let cells = record.iter().skip(axes + 3);
-        for (metric, cell) in Summary::METRICS.iter().zip(cells) {
-            summary.set(metric.name, cell)?;
-        }
-        Ok(summary)
+        Ok(layout.summary(record.iter().skip(axes + 3))?)
     } else {
         Err(RunFailure {
             kind: status.to_string(),
@@ -86,12 +162,12 @@ pub fn parse_record(record: &csv::StringRecord, axes: usize) -> Result<Row, Stri
 }
 
 /// CSV with a header line; a failed run has empty metric cells.
-pub fn sweep_csv(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn sweep_csv(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, String> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     let fail = |e: csv::Error| format!("cannot write CSV: {e}");
-    writer.write_record(columns(axes)).map_err(fail)?;
+    writer.write_record(columns(layout)).map_err(fail)?;
     for row in rows {
-        writer.write_record(record(row)).map_err(fail)?;
+        writer.write_record(record(layout, row)).map_err(fail)?;
     }
     writer
         .into_inner()
@@ -115,25 +191,25 @@ fn column_type(
 
 /// A Parquet file (one row group, uncompressed). Metrics absent from a run
 /// (a failed run, or no crush coordinate) are nulls.
-pub fn sweep_parquet(axes: &[String], rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn sweep_parquet(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, String> {
     let mut bytes = Vec::new();
-    write_parquet(axes, std::iter::once(Ok(rows.to_vec())), &mut bytes)?;
+    write_parquet(layout, std::iter::once(Ok(rows.to_vec())), &mut bytes)?;
     Ok(bytes)
 }
 
 /// Writes a Parquet file to `out`, one row group per item of `groups`, so
 /// that a table of any length is written in the memory of one group.
 pub fn write_parquet<W: Write + Send>(
-    axes: &[String],
+    layout: &Layout,
     groups: impl Iterator<Item = Result<Vec<Row>, String>>,
     out: W,
 ) -> Result<(), String> {
-    let schema = schema(axes)?;
+    let schema = schema(layout)?;
     let properties = Arc::new(WriterProperties::builder().build());
     let mut writer =
         SerializedFileWriter::new(out, Arc::new(schema), properties).map_err(parquet_error)?;
     for rows in groups {
-        write_group(&mut writer, axes.len(), &rows?)?;
+        write_group(&mut writer, layout, &rows?)?;
     }
     writer.close().map_err(parquet_error)?;
     Ok(())
@@ -146,9 +222,9 @@ fn parquet_error(e: ParquetError) -> String {
 /// The Parquet schema of the [`columns`]: `run` and the metric counts as
 /// 64-bit integers, the axes and the real metrics as doubles, `status` and
 /// `error` as UTF-8; `error` and the metrics may be null.
-fn schema(axes: &[String]) -> Result<Type, String> {
+fn schema(layout: &Layout) -> Result<Type, String> {
     let mut fields = vec![column_type("run", Physical::INT64, Repetition::REQUIRED)?];
-    for axis in axes {
+    for axis in &layout.axes {
         fields.push(column_type(axis, Physical::DOUBLE, Repetition::REQUIRED)?);
     }
     fields.push(column_type(
@@ -161,12 +237,12 @@ fn schema(axes: &[String]) -> Result<Type, String> {
         Physical::BYTE_ARRAY,
         Repetition::OPTIONAL,
     )?);
-    for (metric, value) in Summary::METRICS.iter().zip(Summary::EMPTY.values()) {
+    for (name, value) in layout.metrics() {
         let physical = match value {
             Value::Real(_) => Physical::DOUBLE,
             Value::Count(_) => Physical::INT64,
         };
-        fields.push(column_type(metric.name, physical, Repetition::OPTIONAL)?);
+        fields.push(column_type(&name, physical, Repetition::OPTIONAL)?);
     }
     Type::group_type_builder("sweep")
         .with_fields(fields)
@@ -209,7 +285,7 @@ impl<W: Write + Send> GroupColumns<'_, W> {
 /// Writes `rows` as one row group: run, axes, status, error, metrics.
 fn write_group<W: Write + Send>(
     writer: &mut SerializedFileWriter<W>,
-    axes: usize,
+    layout: &Layout,
     rows: &[Row],
 ) -> Result<(), String> {
     let mut columns = GroupColumns {
@@ -218,7 +294,7 @@ fn write_group<W: Write + Send>(
     };
     let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
     columns.write::<Int64Type>(&runs, None)?;
-    for k in 0..axes {
+    for k in 0..layout.axes.len() {
         let values: Vec<f64> = rows.iter().map(|r| r.values[k]).collect();
         columns.write::<DoubleType>(&values, None)?;
     }
@@ -241,22 +317,23 @@ fn write_group<W: Write + Send>(
         .collect();
     let levels: Vec<i16> = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
     columns.write::<ByteArrayType>(&errors, Some(&levels))?;
-    write_metric_columns(&mut columns, rows)?;
+    write_metric_columns(&mut columns, layout, rows)?;
     columns.group.close().map_err(parquet_error)?;
     Ok(())
 }
 
-/// The metric columns of a row group, in [`Summary::METRICS`] order: null
-/// for a failed run and for a metric the run does not have.
+/// The metric columns of a row group, in the layout's order: null for a
+/// failed run and for a metric the run does not have.
 fn write_metric_columns<W: Write + Send>(
     columns: &mut GroupColumns<'_, W>,
+    layout: &Layout,
     rows: &[Row],
 ) -> Result<(), String> {
     let values: Vec<Option<Vec<Value>>> = rows
         .iter()
-        .map(|r| r.outcome.as_ref().ok().map(Summary::values))
+        .map(|r| r.outcome.as_ref().ok().map(|s| layout.values(s)))
         .collect();
-    for (m, empty) in Summary::EMPTY.values().into_iter().enumerate() {
+    for (m, (_, empty)) in layout.metrics().into_iter().enumerate() {
         let cells: Vec<Option<Value>> = values.iter().map(|v| v.as_ref().map(|v| v[m])).collect();
         let levels: Vec<i16> = cells
             .iter()
@@ -327,17 +404,62 @@ mod tests {
         ]
     }
 
+    /// A layout of two axes and an acceleration channel, and a run with
+    /// its metrics.
+    fn with_channel() -> (Layout, Row) {
+        let layout = Layout {
+            axes: vec!["a".into(), "b".into()],
+            channels: vec![("-x_ddot".into(), Role::Acceleration, Some("m/s^2".into()))],
+        };
+        let mut summary = summary(0.25);
+        summary.channels.0.push(ChannelSummary {
+            name: "-x_ddot".into(),
+            role: Role::Acceleration,
+            unit: Some("m/s^2".into()),
+            values: vec![
+                Some(3.5),
+                Some(0.01),
+                None,
+                None,
+                Some(1.0),
+                Some(0.01),
+                Some(0.9),
+                Some(1.0),
+                Some(0.8),
+            ],
+            extreme_at_end: true,
+        });
+        let row = Row {
+            run: 0,
+            values: vec![1.0, 2.0],
+            outcome: Ok(summary),
+        };
+        (layout, row)
+    }
+
     #[test]
     fn rows_read_back_from_their_records_by_column() {
+        let layout = Layout::of_axes(vec!["a".into(), "b".into()]);
         for row in rows() {
-            let record = csv::StringRecord::from(record(&row));
-            assert_eq!(parse_record(&record, 2), Ok(row));
+            let record = csv::StringRecord::from(record(&layout, &row));
+            assert_eq!(parse_record(&record, &layout), Ok(row));
         }
+        let (layout, row) = with_channel();
+        let cells = record(&layout, &row);
+        let names = columns(&layout);
+        assert_eq!(cells.len(), names.len());
+        let cell = |name: &str| cells[names.iter().position(|n| n == name).unwrap()].as_str();
+        assert_eq!(cell("-x_ddot.max"), "3.5");
+        assert_eq!(cell("-x_ddot.min"), "");
+        assert_eq!(cell("-x_ddot.clip3ms_g"), "0.8");
+        assert_eq!(cell("-x_ddot.extreme_at_end"), "1");
+        let record = csv::StringRecord::from(cells);
+        assert_eq!(parse_record(&record, &layout), Ok(row));
     }
 
     #[test]
     fn csv_has_a_header_and_empty_cells_for_missing_metrics() {
-        let axes = vec!["k1".to_string(), "stiffness_values*".to_string()];
+        let axes = Layout::of_axes(vec!["k1".to_string(), "stiffness_values*".to_string()]);
         let text = String::from_utf8(sweep_csv(&axes, &rows()).unwrap()).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines.len(), 3);
@@ -351,7 +473,7 @@ mod tests {
 
     #[test]
     fn parquet_reads_back_with_nulls_where_metrics_are_missing() {
-        let axes = vec!["components.weld.failure_moment".to_string()];
+        let axes = Layout::of_axes(vec!["components.weld.failure_moment".to_string()]);
         let rows: Vec<Row> = rows()
             .into_iter()
             .map(|mut r| {
