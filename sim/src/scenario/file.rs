@@ -75,6 +75,7 @@ pub(super) struct MetricsSection {
     pub(super) displacement: Vec<String>,
     pub(super) velocity: Vec<String>,
     pub(super) acceleration: Vec<String>,
+    pub(super) force: Vec<String>,
 }
 
 impl MetricsSection {
@@ -84,6 +85,7 @@ impl MetricsSection {
             super::Role::Displacement => &self.displacement,
             super::Role::Velocity => &self.velocity,
             super::Role::Acceleration => &self.acceleration,
+            super::Role::Force => &self.force,
         }
     }
 }

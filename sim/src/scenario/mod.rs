@@ -9,6 +9,9 @@
 //!                # coordinate that moves with the vehicle, with its sign)
 //! [parameters]   k_tor = 0.0
 //! [metrics]      crush = "-r", pitch = ["theta1", "theta2"], weld = "weld"
+//!                # channels: any trajectory column or combination ("xa - xb"), by role
+//!                acceleration = ["occupant_deceleration"], displacement = ["s"],
+//!                velocity = ["r_dot"], force = ["belt_force"]
 //! [components.front_end]  type = "crush", inputs = { force = "crush", … }, …
 //! [components.barrier]    type = "table", file = "../data/forces.csv", columns = { barrier_x1 = "Fx1" }
 //! ```
@@ -199,8 +202,8 @@ pub struct Scenario {
     /// The crush channel (`metrics.crush`): a combination of coordinates,
     /// compression positive.
     pub crush: Option<Signal>,
-    /// The channels of `metrics.displacement`, `velocity` and
-    /// `acceleration`, in that order.
+    /// The channels of `metrics.displacement`, `velocity`, `acceleration`
+    /// and `force`, in that order.
     pub channels: Vec<Channel>,
     /// Coordinates whose rotation is reported as pitch, relative to the
     /// start.

@@ -96,7 +96,8 @@ impl Signal {
     }
 }
 
-/// What a channel measures, which decides its metrics.
+/// What a channel measures, which decides its metrics and its panel of the
+/// plots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Role {
     /// A displacement or angle: extremes and their times.
@@ -105,11 +106,18 @@ pub enum Role {
     Velocity,
     /// An acceleration: extremes, peak, filtered peaks and the 3 ms clip.
     Acceleration,
+    /// A force or moment: extremes and their times.
+    Force,
 }
 
 impl Role {
     /// Every role, in the order of the summary.
-    pub const ALL: [Role; 3] = [Role::Displacement, Role::Velocity, Role::Acceleration];
+    pub const ALL: [Role; 4] = [
+        Role::Displacement,
+        Role::Velocity,
+        Role::Acceleration,
+        Role::Force,
+    ];
 
     /// The key of `[metrics]` that lists the channels of this role, and the
     /// role's name in `summary.json`.
@@ -118,6 +126,7 @@ impl Role {
             Role::Displacement => "displacement",
             Role::Velocity => "velocity",
             Role::Acceleration => "acceleration",
+            Role::Force => "force",
         }
     }
 }

@@ -1,5 +1,5 @@
 //! The metrics of the scenario's channels (`[metrics] displacement`,
-//! `velocity`, `acceleration`): extremes and their times for every channel;
+//! `velocity`, `acceleration`, `force`): extremes and their times for every channel;
 //! for an acceleration also its peak magnitude, its peaks after SAE J211
 //! CFC 60 and CFC 180 filtering and its 3 ms clip, in units of `g`.
 

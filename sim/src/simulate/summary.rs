@@ -185,7 +185,7 @@ macro_rules! summary {
         pub struct Summary {
             $($(#[doc = $doc])* pub $name: $type,)*
             /// The metrics of the scenario's channels (`[metrics]
-            /// displacement`, `velocity`, `acceleration`), by name.
+            /// displacement`, `velocity`, `acceleration`, `force`), by name.
             pub channels: Channels,
         }
 
