@@ -11,8 +11,10 @@ pub struct PlotSetup {
     pub crush: Option<(usize, f64)>,
     /// Pitch coordinates (drawn relative to their initial values).
     pub pitch: Vec<usize>,
-    /// Input column of the crush force and the sign that makes compression positive.
-    pub crush_force: Option<(usize, f64)>,
+    /// Each crush element's name and the columns of its force and its
+    /// deflection in [`crate::simulate::Sample::components`]
+    /// ([`crate::crash::BoundInputs::force_deflection_columns`]).
+    pub force_deflection: Vec<(String, usize, usize)>,
     /// The gravitational acceleration the deceleration panel is in [m/s²]
     /// ([`SimulationResult::g`]).
     pub g: f64,
@@ -75,20 +77,30 @@ fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
         panels.push(pitch_panel(result, &setup.pitch));
     }
     panels.push(energy_panel(result));
-    if let (Some((k, sign)), Some((column, force_sign))) = (setup.crush, setup.crush_force) {
-        let loop_points = result
-            .samples
-            .iter()
-            .map(|x| (sign * x.q[k], 1e-3 * force_sign * x.inputs[column]))
-            .collect();
-        panels.push((
-            "Crush force against crush".into(),
-            "crush [m]".into(),
-            "force [kN]".into(),
-            vec![("crush force".into(), loop_points)],
-        ));
+    if !setup.force_deflection.is_empty() {
+        panels.push(force_deflection_panel(result, &setup.force_deflection));
     }
     panels
+}
+
+/// Each crush element's force against its own deflection.
+fn force_deflection_panel(result: &SimulationResult, elements: &[(String, usize, usize)]) -> Panel {
+    let lines = elements
+        .iter()
+        .map(|(name, force, deflection)| {
+            let s = &result.samples;
+            let points = s
+                .iter()
+                .map(|x| (x.components[*deflection], 1e-3 * x.components[*force]));
+            (name.clone(), points.collect())
+        })
+        .collect();
+    (
+        "Crush force against crush".into(),
+        "deflection [m]".into(),
+        "force [kN]".into(),
+        lines,
+    )
 }
 
 /// Crush, velocity towards the barrier and deceleration \[g\] of crush

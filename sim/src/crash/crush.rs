@@ -1,32 +1,67 @@
-//! The front-end crush element: spring and damper of the paper's eqs 1–2,
-//! with plastic unloading and compression-only contact as options.
+//! The crush element: a spring and damper between a vehicle and a barrier
+//! (or two bodies), the paper's eqs 1–2, with plastic unloading,
+//! compression-only contact and a gap as options.
 //!
-//! In terms of the crush `δ` (compression positive) and its rate `δ̇`, the
-//! compressive force is `P = S(δ) + D(δ̇)`:
+//! In terms of the element's deflection `δ` (compression positive: the
+//! crush, less the gap) and its rate `δ̇`, the compressive force is
+//! `P = S(δ) + D(δ̇)`:
 //!
-//! * loading: `S = k(δ)·δ` (eq 1), `D = c(|δ̇|)·δ̇` (eq 2);
+//! * loading: `S(δ)` is the spring's loading curve, in one of two forms
+//!   ([`LoadingCurve`]):
+//!   - a **secant stiffness** curve `k(δ)`, `S = k(δ)·δ` (eq 1; `k` linear
+//!     between breakpoints, so `S` is quadratic there): the paper's form;
+//!   - a **force–deflection** curve: `S` given at breakpoints, linear
+//!     between (what a test's force–deflection curve gives);
+//!
+//!   both odd in `δ` (`S(−δ) = −S(δ)`); `D = c(|δ̇|)·δ̇` (eq 2);
 //! * plastic unloading from the peak `(δ_p, S_p)` reached: `S = S_p − k_u (δ_p − δ)`,
 //!   back along that line on reloading and onto the loading curve beyond `δ_p`
 //!   (permanent set `δ_p − S_p/k_u`). Elastic unloading follows the loading
 //!   curve, which returns all the stored energy (the paper's model);
 //! * compression only: the barrier pushes but never pulls. In contact the
 //!   force is `S + D` until that would pull (`S + D < 0`: the car separates);
-//!   separated it is 0 until the gap closes — the crush reaches the spring's
-//!   zero (0 on the loading curve, the permanent set after plastic
+//!   separated it is 0 until the gap closes — the deflection reaches the
+//!   spring's zero (0 on the loading curve, the permanent set after plastic
 //!   unloading) — while `S + D ≥ 0`. A run that starts with a gap (or moving
-//!   away) starts separated ([`CrushElement::start`]).
+//!   away) starts separated ([`CrushElement::start`]);
+//! * a gap `g` (compression only): the contact opens after an offset. The
+//!   deflection is the crush less the gap, `δ = crush − g`, so there is no
+//!   force until the crush exceeds the gap, and the loading curve starts
+//!   there.
 //!
 //! Each change of regime is an event of the integration, so the force is
-//! smooth within a step.
+//! smooth within a step. The element's force `P` and deflection `δ` are
+//! trajectory columns (`NAME.force [N]`, `NAME.deflection [m]`).
 //!
-//! Its scenario section is `type = "crush"` (`CrushSection`).
+//! Its scenario section is `type = "crush"` (`CrushSection`): the loading
+//! curve is either `stiffness_breakpoints` and `stiffness_values` (secant
+//! stiffness) or `force_breakpoints` and `force_values` (force–deflection),
+//! never both.
 
-use super::curve::{Characteristic, OutOfRange};
-use super::{Binder, Component, Event, Port, Section};
+use super::curve::{ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
+use super::{Binder, Column, Component, Event, Port, Section};
 use crate::ode::Direction;
-use crate::scenario::bind::{Ports, outside};
+use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
-use std::fmt;
+
+/// The loading curve `S(δ)` of the crush spring, in one of its two forms.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadingCurve {
+    /// A secant stiffness `k(|δ|)`: `S = k(|δ|)·δ` (the paper's eq 1).
+    SecantStiffness(SecantCurve),
+    /// A force–deflection curve: `S` at breakpoints, linear between.
+    ForceDeflection(ForceCurve),
+}
+
+impl LoadingCurve {
+    /// `(S(δ), dS/dδ)`: the spring force and its tangent stiffness.
+    pub fn force(&self, delta: f64) -> Result<(f64, f64), OutOfRange> {
+        match self {
+            LoadingCurve::SecantStiffness(k) => k.force(delta),
+            LoadingCurve::ForceDeflection(f) => f.force(delta),
+        }
+    }
+}
 
 /// How the crush spring unloads.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,10 +84,10 @@ enum Phase {
 /// The crush element and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CrushElement {
-    /// The spring's `k(|δ|)` of eq 1.
-    pub stiffness: Characteristic,
+    /// The spring's loading curve `S(δ)`.
+    pub loading: LoadingCurve,
     /// The damper's `c(|δ̇|)` of eq 2.
-    pub damping: Characteristic,
+    pub damping: SecantCurve,
     /// How the spring unloads.
     pub unloading: Unloading,
     /// `+1` if compression is a positive input argument, `−1` if negative
@@ -60,6 +95,9 @@ pub struct CrushElement {
     pub compression_sign: f64,
     /// The barrier pushes but never pulls.
     pub contact_only: bool,
+    /// The crush at which the contact opens \[m\]: the deflection is the
+    /// crush less the gap. 0 unless [`CrushElement::with_gap`] sets it.
+    pub gap: f64,
     phase: Phase,
     in_contact: bool,
 }
@@ -84,24 +122,43 @@ const EVENTS: &[Event] = &[
     },
 ];
 
+/// The element's columns: its compressive force and its deflection.
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "deflection",
+        unit: "m",
+    },
+];
+
 impl CrushElement {
-    /// An element in the undeformed, loading state, in contact.
+    /// An element without a gap in the undeformed, loading state, in contact.
     pub fn new(
-        stiffness: Characteristic,
-        damping: Characteristic,
+        loading: LoadingCurve,
+        damping: SecantCurve,
         unloading: Unloading,
         compression_sign: f64,
         contact_only: bool,
     ) -> CrushElement {
         CrushElement {
-            stiffness,
+            loading,
             damping,
             unloading,
             compression_sign,
             contact_only,
+            gap: 0.0,
             phase: Phase::Loading,
             in_contact: true,
         }
+    }
+
+    /// The element with a gap of `gap` \[m\] (finite, ≥ 0; a gap only opens
+    /// for a compression-only element).
+    pub fn with_gap(self, gap: f64) -> CrushElement {
+        CrushElement { gap, ..self }
     }
 
     /// Whether the element is in contact with the barrier.
@@ -109,8 +166,8 @@ impl CrushElement {
         self.in_contact
     }
 
-    /// The crush at which the spring of the current phase is unloaded: 0 on
-    /// the loading curve, the permanent set after plastic unloading.
+    /// The deflection at which the spring of the current phase is unloaded:
+    /// 0 on the loading curve, the permanent set after plastic unloading.
     fn spring_zero(&self) -> f64 {
         self.permanent_set().unwrap_or(0.0)
     }
@@ -126,10 +183,11 @@ impl CrushElement {
         Ok((delta - self.spring_zero()).min(self.total(delta, rate)?))
     }
 
-    /// The crush `δ` and rate `δ̇` from the input's arguments `(x, v)`.
+    /// The deflection `δ` (the crush less the gap) and its rate `δ̇` from
+    /// the input's arguments `(x, v)`.
     fn crush(&self, args: &[f64]) -> (f64, f64) {
         (
-            self.compression_sign * args[0],
+            self.compression_sign * args[0] - self.gap,
             self.compression_sign * args[1],
         )
     }
@@ -144,7 +202,7 @@ impl CrushElement {
                 },
                 Unloading::Plastic { stiffness },
             ) => Ok((peak_force - stiffness * (peak_crush - delta), stiffness)),
-            _ => self.stiffness.force(delta),
+            _ => self.loading.force(delta),
         }
     }
 
@@ -175,7 +233,8 @@ impl CrushElement {
         Ok(self.compressive(args)?.2)
     }
 
-    /// The permanent crush after plastic unloading from the peak, if any.
+    /// The permanent deflection after plastic unloading from the peak, if
+    /// any (the permanent crush less the gap).
     pub fn permanent_set(&self) -> Option<f64> {
         match (self.phase, self.unloading) {
             (
@@ -247,7 +306,7 @@ impl Component for CrushElement {
         let (delta, _) = self.crush(args);
         Ok(match k {
             0 => {
-                let peak_force = self.stiffness.force(delta)?.0;
+                let peak_force = self.loading.force(delta)?.0;
                 self.phase = Phase::Unloading {
                     peak_crush: delta,
                     peak_force,
@@ -288,23 +347,38 @@ impl Component for CrushElement {
         Ok(())
     }
 
-    fn compression_sign(&self) -> Option<f64> {
-        Some(self.compression_sign)
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The compressive force `P` and the deflection `δ`.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.compressive(args)?.0;
+        out[1] = self.crush(args).0;
+        Ok(())
+    }
+
+    fn force_deflection(&self) -> Option<(usize, usize)> {
+        Some((0, 1))
     }
 }
 
-/// `[components.NAME]` with `type = "crush"`: the element's tables, unloading
-/// and contact, and the inputs it supplies (force and, optionally, its
-/// tangent stiffness and damping).
+/// `[components.NAME]` with `type = "crush"`: the element's loading curve
+/// (one of two forms), damper, gap, unloading and contact, and the inputs
+/// it supplies (force and, optionally, its tangent stiffness and damping).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct CrushSection {
     inputs: Ports,
     compression: String,
-    stiffness_breakpoints: Vec<f64>,
-    stiffness_values: Vec<f64>,
+    stiffness_breakpoints: Option<Vec<f64>>,
+    stiffness_values: Option<Vec<f64>>,
+    force_breakpoints: Option<Vec<f64>>,
+    force_values: Option<Vec<f64>>,
     damping_breakpoints: Vec<f64>,
     damping_values: Vec<f64>,
+    #[serde(default)]
+    gap: f64,
     #[serde(default = "elastic")]
     unloading: String,
     unloading_stiffness: Option<f64>,
@@ -332,23 +406,69 @@ impl Section for CrushSection {
     }
 }
 
+/// The keys of the loading curve's secant stiffness form.
+const SECANT: [&str; 2] = ["stiffness_breakpoints", "stiffness_values"];
+/// The keys of the loading curve's force–deflection form.
+const FORCE: [&str; 2] = ["force_breakpoints", "force_values"];
+
 impl CrushSection {
     /// The element `[components.{name}]` describes.
     fn element(&self, name: &str) -> Result<CrushElement, String> {
-        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
         let policy = outside(&format!("components.{name}"), &self.outside)?;
-        let stiffness =
-            Characteristic::new(&self.stiffness_breakpoints, &self.stiffness_values, policy)
-                .map_err(|e| at("stiffness table", &e))?;
-        let damping = Characteristic::new(&self.damping_breakpoints, &self.damping_values, policy)
-            .map_err(|e| at("damping table", &e))?;
-        Ok(CrushElement::new(
-            stiffness,
+        let damping = SecantCurve::new(&self.damping_breakpoints, &self.damping_values, policy)
+            .map_err(|e| table_error(name, ["damping_breakpoints", "damping_values"], &e))?;
+        let element = CrushElement::new(
+            self.loading(name, policy)?,
             damping,
             self.unloading(name)?,
             self.compression_sign(name)?,
             self.contact_only,
-        ))
+        );
+        Ok(element.with_gap(self.gap(name)?))
+    }
+
+    /// The loading curve, from the one form the section gives.
+    fn loading(&self, name: &str, policy: Outside) -> Result<LoadingCurve, String> {
+        let secant = [&self.stiffness_breakpoints, &self.stiffness_values];
+        let force = [&self.force_breakpoints, &self.force_values];
+        let given = |lists: [&Option<Vec<f64>>; 2]| lists.iter().any(|l| l.is_some());
+        match (given(secant), given(force)) {
+            (true, true) => Err(format!(
+                "components.{name}: {} (a secant stiffness curve) and {} (a force–deflection curve) are two forms of the spring's loading curve; give one of them",
+                SECANT.join(", "),
+                FORCE.join(", ")
+            )),
+            (false, false) => Err(format!(
+                "components.{name}: the spring's loading curve is missing: give {} (a force–deflection curve) or {} (a secant stiffness curve, F = k(δ)·δ)",
+                FORCE.join(" and "),
+                SECANT.join(" and ")
+            )),
+            (true, false) => {
+                let (b, v) = both(name, SECANT, secant)?;
+                let curve = SecantCurve::new(b, v, policy);
+                curve
+                    .map(LoadingCurve::SecantStiffness)
+                    .map_err(|e| table_error(name, SECANT, &e))
+            }
+            (false, true) => {
+                let (b, v) = both(name, FORCE, force)?;
+                let curve = ForceCurve::new(b, v, policy);
+                curve
+                    .map(LoadingCurve::ForceDeflection)
+                    .map_err(|e| table_error(name, FORCE, &e))
+            }
+        }
+    }
+
+    /// The gap: finite, ≥ 0, and only for a compression-only element.
+    fn gap(&self, name: &str) -> Result<f64, String> {
+        let gap = non_negative(&format!("components.{name}.gap"), self.gap)?;
+        if gap > 0.0 && !self.contact_only {
+            return Err(format!(
+                "components.{name}.gap = {gap} needs contact_only = true: an element that pulls has no gap to open"
+            ));
+        }
+        Ok(gap)
     }
 
     fn unloading(&self, name: &str) -> Result<Unloading, String> {
@@ -377,14 +497,39 @@ impl CrushSection {
     }
 }
 
+/// The breakpoints and values of a table whose keys are `keys`, both given.
+fn both<'a>(
+    name: &str,
+    keys: [&str; 2],
+    lists: [&'a Option<Vec<f64>>; 2],
+) -> Result<(&'a [f64], &'a [f64]), String> {
+    match lists {
+        [Some(b), Some(v)] => Ok((b, v)),
+        [Some(_), None] => Err(format!(
+            "components.{name}.{} is missing: {} needs its values",
+            keys[1], keys[0]
+        )),
+        [None, _] => Err(format!(
+            "components.{name}.{} is missing: {} needs its breakpoints",
+            keys[0], keys[1]
+        )),
+    }
+}
+
+/// A table's problem, at the key of the list it is in.
+fn table_error(name: &str, keys: [&str; 2], e: &TableError) -> String {
+    let key = keys[usize::from(e.in_values())];
+    format!("components.{name}.{key}: {e}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crash::curve::Outside;
 
     fn element(unloading: Unloading) -> CrushElement {
-        let k = Characteristic::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
-        CrushElement::new(k, Characteristic::constant(1.0e3), unloading, -1.0, true)
+        let k = SecantCurve::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
+        let loading = LoadingCurve::SecantStiffness(k);
+        CrushElement::new(loading, SecantCurve::constant(1.0e3), unloading, -1.0, true)
     }
 
     #[test]
