@@ -1,7 +1,7 @@
 //! The figure of a run (SVG): crush, velocity, deceleration, pitch, energy
 //! bookkeeping and the crush force–deflection loop.
 
-use crate::simulate::SimulationResult;
+use crate::simulate::{Sample, SimulationResult};
 use plotters::prelude::*;
 
 /// What to draw beyond the raw coordinates.
@@ -78,18 +78,21 @@ fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
     }
     panels.push(energy_panel(result));
     if !setup.force_deflection.is_empty() {
-        panels.push(force_deflection_panel(result, &setup.force_deflection));
+        panels.push(force_deflection_panel(
+            &result.samples,
+            &setup.force_deflection,
+        ));
     }
     panels
 }
 
-/// Each crush element's force against its own deflection.
-fn force_deflection_panel(result: &SimulationResult, elements: &[(String, usize, usize)]) -> Panel {
+/// Each crush element's force against its own deflection, from the
+/// samples' component columns.
+fn force_deflection_panel(samples: &[Sample], elements: &[(String, usize, usize)]) -> Panel {
     let lines = elements
         .iter()
         .map(|(name, force, deflection)| {
-            let s = &result.samples;
-            let points = s
+            let points = samples
                 .iter()
                 .map(|x| (x.components[*deflection], 1e-3 * x.components[*force]));
             (name.clone(), points.collect())
@@ -177,7 +180,7 @@ fn energy_panel(result: &SimulationResult) -> Panel {
     let s = &result.samples;
     let first = s.first().map_or(0.0, |x| x.potential);
     let kj = 1e-3;
-    let line = |name: &str, value: &dyn Fn(&crate::simulate::Sample) -> f64| -> Series {
+    let line = |name: &str, value: &dyn Fn(&Sample) -> f64| -> Series {
         (
             name.into(),
             s.iter().map(|x| (ms(x.t), kj * value(x))).collect(),
@@ -285,4 +288,43 @@ fn draw_panel<DB: DrawingBackend>(
         .label_font(("sans-serif", 13))
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(components: Vec<f64>) -> Sample {
+        Sample {
+            t: 0.0,
+            q: Vec::new(),
+            v: Vec::new(),
+            a: Vec::new(),
+            kinetic: 0.0,
+            potential: 0.0,
+            dissipated: 0.0,
+            external_work: 0.0,
+            inputs: Vec::new(),
+            components,
+        }
+    }
+
+    #[test]
+    fn each_crush_element_is_drawn_against_its_own_deflection() {
+        // Columns: a.force, a.deflection, b.deflection, b.force.
+        let samples = [
+            sample(vec![1e3, 0.1, 0.5, 4e3]),
+            sample(vec![2e3, 0.2, 0.6, 5e3]),
+        ];
+        let elements = [("a".to_string(), 0, 1), ("b".to_string(), 3, 2)];
+        let (title, _, _, lines) = force_deflection_panel(&samples, &elements);
+        assert_eq!(title, "Crush force against crush");
+        assert_eq!(
+            lines,
+            [
+                ("a".to_string(), vec![(0.1, 1.0), (0.2, 2.0)]),
+                ("b".to_string(), vec![(0.5, 4.0), (0.6, 5.0)]),
+            ]
+        );
+    }
 }

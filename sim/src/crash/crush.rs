@@ -302,8 +302,11 @@ impl Component for CrushElement {
         Ok(())
     }
 
+    /// Applies event `k`; the description gives the crush (the deflection
+    /// plus the gap).
     fn on_event(&mut self, k: usize, _t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let (delta, _) = self.crush(args);
+        let crush = delta + self.gap;
         Ok(match k {
             0 => {
                 let peak_force = self.loading.force(delta)?.0;
@@ -312,21 +315,21 @@ impl Component for CrushElement {
                     peak_force,
                 };
                 format!(
-                    "peak crush {delta:.4} m at {:.1} kN; unloading",
+                    "peak crush {crush:.4} m at {:.1} kN; unloading",
                     peak_force / 1e3
                 )
             }
             1 => {
                 self.phase = Phase::Loading;
-                format!("crush {delta:.4} m passes the previous peak; loading")
+                format!("crush {crush:.4} m passes the previous peak; loading")
             }
             2 => {
                 self.in_contact = false;
-                format!("separation from the barrier at crush {delta:.4} m")
+                format!("separation from the barrier at crush {crush:.4} m")
             }
             _ => {
                 self.in_contact = true;
-                format!("contact with the barrier at crush {delta:.4} m")
+                format!("contact with the barrier at crush {crush:.4} m")
             }
         })
     }
@@ -585,5 +588,134 @@ mod tests {
         // Pressed in but moving away so fast that S + D < 0: separated.
         e.start(Some(&[-0.001, 100.0])).unwrap();
         assert!(!e.in_contact());
+    }
+
+    /// The test curve (0, 0), (0.1 m, 170 kN), (0.5 m, 180 kN), no damping,
+    /// compression positive, with a gap.
+    fn tested(gap: f64, unloading: Unloading) -> CrushElement {
+        let f = ForceCurve::new(&[0.1, 0.5], &[170e3, 180e3], Outside::Hold).unwrap();
+        let loading = LoadingCurve::ForceDeflection(f);
+        CrushElement::new(loading, SecantCurve::constant(0.0), unloading, 1.0, true).with_gap(gap)
+    }
+
+    #[test]
+    fn a_force_deflection_curve_gives_its_force_and_its_segment_slope() {
+        let e = tested(0.0, Unloading::Elastic);
+        // 0.3 m: halfway between 170 and 180 kN; slope 10 kN / 0.4 m.
+        assert!((e.force(&[0.3, 0.0]).unwrap() - 175e3).abs() < 1e-9);
+        assert!((e.force_stiffness(&[0.3, 0.0]).unwrap() - 25e3).abs() < 1e-9);
+        assert!((e.force_stiffness(&[0.05, 0.0]).unwrap() - 1.7e6).abs() < 1e-6);
+        let mut columns = [0.0; 2];
+        e.column_values(&[0.3, 0.0], &mut columns).unwrap();
+        assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
+        assert_eq!(e.force_deflection(), Some((0, 1)));
+        // Compression negative (the paper's r < 0): the input's force is
+        // −P, its derivative the same slope; the columns stay compression
+        // positive.
+        let negative = CrushElement {
+            compression_sign: -1.0,
+            ..e
+        };
+        assert!((negative.force(&[-0.3, 0.0]).unwrap() + 175e3).abs() < 1e-9);
+        assert!((negative.force_stiffness(&[-0.3, 0.0]).unwrap() - 25e3).abs() < 1e-9);
+        negative.column_values(&[-0.3, 0.0], &mut columns).unwrap();
+        assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
+    }
+
+    #[test]
+    fn a_gap_delays_the_contact_and_the_curve_starts_there() {
+        let mut e = tested(0.05, Unloading::Plastic { stiffness: 1.0e7 });
+        // 2 cm of crush, closing: the gap is still open, no force.
+        e.start(Some(&[0.02, 10.0])).unwrap();
+        assert!(!e.in_contact());
+        assert_eq!(e.force(&[0.02, 10.0]).unwrap(), 0.0);
+        let mut columns = [0.0; 2];
+        e.column_values(&[0.02, 10.0], &mut columns).unwrap();
+        assert_eq!(columns, [0.0, 0.02 - 0.05]);
+        // The contact function changes sign where the crush passes the gap.
+        let mut g = [0.0; 4];
+        e.event_values(&[0.049, 10.0], &mut g).unwrap();
+        assert!(g[3] < 0.0);
+        e.event_values(&[0.051, 10.0], &mut g).unwrap();
+        assert!((g[3] - 0.001).abs() < 1e-12, "{g:?}");
+        e.on_event(3, 0.0, &[0.05, 10.0]).unwrap();
+        // 0.35 m of crush is 0.3 m of deflection: 175 kN.
+        assert!((e.force(&[0.35, 1.0]).unwrap() - 175e3).abs() < 1e-9);
+        // Peak there: the permanent deflection is 0.3 − 175 kN / 10 MN/m.
+        let note = e.on_event(0, 0.0, &[0.35, 0.0]).unwrap();
+        assert_eq!(note, "peak crush 0.3500 m at 175.0 kN; unloading");
+        assert!((e.permanent_set().unwrap() - 0.2825).abs() < 1e-12);
+    }
+
+    /// The section's element, or its message.
+    fn section(text: &str) -> Result<CrushElement, String> {
+        let head = "inputs = { force = \"crush\" }\ncompression = \"positive\"\ndamping_breakpoints = [1.0]\ndamping_values = [0.0, 0.0]\n";
+        let section: CrushSection = toml::from_str(&format!("{head}{text}")).unwrap();
+        section.element("fe")
+    }
+
+    #[test]
+    fn the_section_takes_one_form_of_the_loading_curve() {
+        let force = "force_breakpoints = [0.1, 0.5]\nforce_values = [170e3, 180e3]\n";
+        let secant = "stiffness_breakpoints = [0.1]\nstiffness_values = [1e6, 2e6]\n";
+        let e = section(force).unwrap();
+        assert!((e.force(&[0.3, 0.0]).unwrap() - 175e3).abs() < 1e-9);
+        assert_eq!(e.gap, 0.0);
+        let e = section(secant).unwrap();
+        assert!((e.force(&[0.05, 0.0]).unwrap() - 1.5e6 * 0.05).abs() < 1e-9);
+        assert_eq!(
+            section(&format!("{force}{secant}")).unwrap_err(),
+            "components.fe: stiffness_breakpoints, stiffness_values (a secant stiffness curve) and force_breakpoints, force_values (a force–deflection curve) are two forms of the spring's loading curve; give one of them"
+        );
+        assert_eq!(
+            section(&format!("{force}stiffness_values = [1.0]\n")).unwrap_err(),
+            section(&format!("{force}{secant}")).unwrap_err()
+        );
+        assert!(section("").unwrap_err().starts_with(
+            "components.fe: the spring's loading curve is missing: give force_breakpoints and force_values"
+        ));
+        assert_eq!(
+            section("force_breakpoints = [0.1]\n").unwrap_err(),
+            "components.fe.force_values is missing: force_breakpoints needs its values"
+        );
+    }
+
+    #[test]
+    fn bad_tables_and_gaps_are_reported_at_their_key() {
+        let cases = [
+            (
+                "force_breakpoints = [0.1, 0.1]\nforce_values = [1.0, 2.0]\n",
+                "components.fe.force_breakpoints: breakpoint 2 (0.1) must be finite and exceed breakpoint 1 (0.1): breakpoints increase strictly",
+            ),
+            (
+                "force_breakpoints = [0.0, 0.1]\nforce_values = [0.0, 2.0]\n",
+                "components.fe.force_breakpoints: breakpoint 1 (0) must be a positive, finite number (the curve starts at 0)",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0, 2.0]\n",
+                "components.fe.force_values: 1 breakpoint needs 1 value, found 2",
+            ),
+            (
+                "stiffness_breakpoints = [0.1]\nstiffness_values = [1.0, -2.0]\n",
+                "components.fe.stiffness_values: value 2 (-2) must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = -0.01\n",
+                "components.fe.gap = -0.01: must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = nan\n",
+                "components.fe.gap = NaN: must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = 0.02\ncontact_only = false\n",
+                "components.fe.gap = 0.02 needs contact_only = true: an element that pulls has no gap to open",
+            ),
+        ];
+        for (text, message) in cases {
+            assert_eq!(section(text).unwrap_err(), message, "{text}");
+        }
+        let e = section("force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = 0.02\n").unwrap();
+        assert_eq!(e.gap, 0.02);
     }
 }

@@ -282,12 +282,16 @@ impl fmt::Display for TableError {
                 breakpoints,
                 values,
                 expected,
-            } => write!(
-                f,
-                "{breakpoints} breakpoint{} need{} {expected} values, found {values}",
-                if *breakpoints == 1 { "" } else { "s" },
-                if *breakpoints == 1 { "s" } else { "" },
-            ),
+            } => {
+                let plural = |n: usize| if n == 1 { "" } else { "s" };
+                write!(
+                    f,
+                    "{breakpoints} breakpoint{} need{} {expected} value{}, found {values}",
+                    plural(*breakpoints),
+                    if *breakpoints == 1 { "s" } else { "" },
+                    plural(*expected),
+                )
+            }
         }
     }
 }

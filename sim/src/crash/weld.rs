@@ -254,6 +254,9 @@ mod tests {
             (m - 2.1e3).abs() < 1e-9 && dm == 1.0e5 && dc == 100.0,
             "{m} {dm} {dc}"
         );
+        let mut columns = [0.0; 2];
+        weld.column_values(&[0.02, 1.0], &mut columns).unwrap();
+        assert!((columns[0] - 2.1e3).abs() < 1e-9 && columns[1] == 0.02);
         let mut g = [0.0; 2];
         weld.event_values(&[0.05, 0.0], &mut g).unwrap();
         assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");
