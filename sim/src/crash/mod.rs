@@ -1,5 +1,6 @@
 //! Crash components that supply a model's input functions: the crush
-//! element (eqs 1–2, hysteresis, contact), a failing torsional weld,
+//! element (a force–deflection curve or the secant stiffness of eqs 1–2,
+//! hysteresis, contact, gap), a failing torsional weld,
 //! tabulated time histories and constants.
 //!
 //! # The contract of a component
