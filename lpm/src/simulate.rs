@@ -138,20 +138,10 @@ fn write_outputs(
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
     };
-    // The crush force column (the input bound to a crush element's force)
-    // and the element's compression sign.
-    let crush_force = result
-        .input_columns
-        .iter()
-        .enumerate()
-        .find_map(|(column, name)| {
-            let k = model.input_names().iter().position(|n| n == name)?;
-            Some((column, scenario.inputs.crush_force_sign(k)?))
-        });
     let setup = PlotSetup {
         crush: scenario.crush.clone(),
         pitch: scenario.pitch.clone(),
-        crush_force,
+        force_deflection: scenario.inputs.force_deflection_columns(),
         g: result.g,
         title: format!("{} — {}", result.model, scenario_name),
     };

@@ -239,6 +239,10 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "crush [N]",
         "weld [N*m]",
         "barrier_z1 [N]",
+        "front_end.force [N]",
+        "front_end.deflection [m]",
+        "weld.moment [N*m]",
+        "weld.angle [rad]",
     ] {
         assert!(header.contains(column), "{column} missing from {header}");
     }

@@ -2,7 +2,7 @@
 //! bookkeeping and the crush force–deflection loop.
 
 use crate::scenario::Signal;
-use crate::simulate::SimulationResult;
+use crate::simulate::{Sample, SimulationResult};
 use plotters::prelude::*;
 
 /// What to draw beyond the raw coordinates.
@@ -12,8 +12,10 @@ pub struct PlotSetup {
     pub crush: Option<Signal>,
     /// Pitch coordinates (drawn relative to their initial values).
     pub pitch: Vec<usize>,
-    /// Input column of the crush force and the sign that makes compression positive.
-    pub crush_force: Option<(usize, f64)>,
+    /// Each crush element's name and the columns of its force and its
+    /// deflection in [`crate::simulate::Sample::components`]
+    /// ([`crate::crash::BoundInputs::force_deflection_columns`]).
+    pub force_deflection: Vec<(String, usize, usize)>,
     /// The gravitational acceleration the deceleration panel is in [m/s²]
     /// ([`SimulationResult::g`]).
     pub g: f64,
@@ -76,25 +78,33 @@ fn panels_of(result: &SimulationResult, setup: &PlotSetup) -> Vec<Panel> {
         panels.push(pitch_panel(result, &setup.pitch));
     }
     panels.push(energy_panel(result));
-    if let (Some(crush), Some((column, force_sign))) = (&setup.crush, setup.crush_force) {
-        let loop_points = result
-            .samples
-            .iter()
-            .map(|x| {
-                (
-                    crush.of_coordinates(&x.q),
-                    1e-3 * force_sign * x.inputs[column],
-                )
-            })
-            .collect();
-        panels.push((
-            "Crush force against crush".into(),
-            "crush [m]".into(),
-            "force [kN]".into(),
-            vec![("crush force".into(), loop_points)],
+    if !setup.force_deflection.is_empty() {
+        panels.push(force_deflection_panel(
+            &result.samples,
+            &setup.force_deflection,
         ));
     }
     panels
+}
+
+/// Each crush element's force against its own deflection, from the
+/// samples' component columns.
+fn force_deflection_panel(samples: &[Sample], elements: &[(String, usize, usize)]) -> Panel {
+    let lines = elements
+        .iter()
+        .map(|(name, force, deflection)| {
+            let points = samples
+                .iter()
+                .map(|x| (x.components[*deflection], 1e-3 * x.components[*force]));
+            (name.clone(), points.collect())
+        })
+        .collect();
+    (
+        "Crush force against crush".into(),
+        "deflection [m]".into(),
+        "force [kN]".into(),
+        lines,
+    )
 }
 
 /// Crush, velocity towards the barrier and deceleration \[g\] of the crush
@@ -172,7 +182,7 @@ fn energy_panel(result: &SimulationResult) -> Panel {
     let s = &result.samples;
     let first = s.first().map_or(0.0, |x| x.potential);
     let kj = 1e-3;
-    let line = |name: &str, value: &dyn Fn(&crate::simulate::Sample) -> f64| -> Series {
+    let line = |name: &str, value: &dyn Fn(&Sample) -> f64| -> Series {
         (
             name.into(),
             s.iter().map(|x| (ms(x.t), kj * value(x))).collect(),
@@ -280,4 +290,43 @@ fn draw_panel<DB: DrawingBackend>(
         .label_font(("sans-serif", 13))
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(components: Vec<f64>) -> Sample {
+        Sample {
+            t: 0.0,
+            q: Vec::new(),
+            v: Vec::new(),
+            a: Vec::new(),
+            kinetic: 0.0,
+            potential: 0.0,
+            dissipated: 0.0,
+            external_work: 0.0,
+            inputs: Vec::new(),
+            components,
+        }
+    }
+
+    #[test]
+    fn each_crush_element_is_drawn_against_its_own_deflection() {
+        // Columns: a.force, a.deflection, b.deflection, b.force.
+        let samples = [
+            sample(vec![1e3, 0.1, 0.5, 4e3]),
+            sample(vec![2e3, 0.2, 0.6, 5e3]),
+        ];
+        let elements = [("a".to_string(), 0, 1), ("b".to_string(), 3, 2)];
+        let (title, _, _, lines) = force_deflection_panel(&samples, &elements);
+        assert_eq!(title, "Crush force against crush");
+        assert_eq!(
+            lines,
+            [
+                ("a".to_string(), vec![(0.1, 1.0), (0.2, 2.0)]),
+                ("b".to_string(), vec![(0.5, 4.0), (0.6, 5.0)]),
+            ]
+        );
+    }
 }

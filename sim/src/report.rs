@@ -39,7 +39,8 @@ fn with_unit(name: &str, unit: Option<&str>) -> String {
     }
 }
 
-/// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…` per sample.
+/// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…, component
+/// columns…` per sample.
 pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
     let mut header = vec!["t [s]".to_string()];
     let unit = |i: usize, suffix: &str| {
@@ -73,6 +74,9 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
             units.inputs.get(k).cloned().flatten().as_deref(),
         ));
     }
+    for (name, unit) in &result.component_columns {
+        header.push(with_unit(name, unit.as_deref()));
+    }
     let mut out = header.join(",");
     out.push('\n');
     for s in &result.samples {
@@ -89,6 +93,7 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
                 .map(|x| format!("{x:.10e}")),
         );
         row.extend(s.inputs.iter().map(|x| format!("{x:.10e}")));
+        row.extend(s.components.iter().map(|x| format!("{x:.10e}")));
         out.push_str(&row.join(","));
         out.push('\n');
     }

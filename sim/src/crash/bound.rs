@@ -1,5 +1,6 @@
 //! A model's input functions bound to the scenario's components, and the
-//! components' events as one list for the integrator.
+//! components' events and columns as one list each for the integrator and
+//! the trajectory.
 
 use super::curve::OutOfRange;
 use super::{Component, Port};
@@ -38,9 +39,9 @@ pub struct BoundInputs {
     pub components: Vec<NamedComponent>,
     /// One per model input, by input index (`None`: unbound, NaN if called).
     pub bindings: Vec<Option<Binding>>,
-    /// For each component with events: the offset and length of the
-    /// arguments of its value input among the model's input arguments
-    /// (`None`: no events, or an input the dynamics does not call).
+    /// For each component with events or columns: the offset and length of
+    /// the arguments of its value input among the model's input arguments
+    /// (`None`: neither, or an input the dynamics does not call).
     pub event_arguments: Vec<Option<(usize, usize)>>,
     /// The input names, for messages.
     pub input_names: Vec<String>,
@@ -79,7 +80,7 @@ impl BoundInputs {
     }
 
     /// The arguments of component `c`'s value input among the model's input
-    /// `arguments`, if its events see them.
+    /// `arguments`, if its events and columns see them.
     fn arguments_of<'a>(&self, c: usize, arguments: &'a [f64]) -> Option<&'a [f64]> {
         self.event_arguments[c].map(|(start, len)| &arguments[start..start + len])
     }
@@ -177,16 +178,58 @@ impl BoundInputs {
         }
     }
 
-    /// The compression sign of the crush element whose force input `input`
-    /// is, or `None` when it is not one.
-    pub fn crush_force_sign(&self, input: usize) -> Option<f64> {
-        let binding = self.bindings.get(input).copied().flatten()?;
-        match binding.port {
-            Port::Value => self.components[binding.component]
-                .component
-                .compression_sign(),
-            Port::Stiffness | Port::Damping => None,
+    /// The components whose columns are written, each with the index of its
+    /// first column: those whose value input's arguments are known.
+    fn with_columns(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let mut first = 0;
+        (0..self.components.len())
+            .filter(|&c| self.event_arguments[c].is_some())
+            .map(move |c| {
+                let at = first;
+                first += self.components[c].component.columns().len();
+                (c, at)
+            })
+    }
+
+    /// The components' columns, `(NAME.QUANTITY, unit)`, in the order of
+    /// [`BoundInputs::column_values`].
+    pub fn columns(&self) -> Vec<(String, Option<String>)> {
+        let mut columns = Vec::new();
+        for (c, _) in self.with_columns() {
+            let named = &self.components[c];
+            columns.extend(named.component.columns().iter().map(|column| {
+                let name = format!("{}.{}", named.name, column.quantity);
+                (name, Some(column.unit.to_string()))
+            }));
         }
+        columns
+    }
+
+    /// The values of the components' columns, given the model's input
+    /// arguments at one state.
+    pub fn column_values(&self, arguments: &[f64]) -> Result<Vec<f64>, Fault> {
+        let mut values = Vec::new();
+        for (c, first) in self.with_columns() {
+            let component = &self.components[c].component;
+            let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+            values.resize(first + component.columns().len(), 0.0);
+            let result = component.column_values(args, &mut values[first..]);
+            result.map_err(|e| self.out_of_range(c, None, e))?;
+        }
+        Ok(values)
+    }
+
+    /// For each crush element with columns: its name and the indices among
+    /// [`BoundInputs::columns`] of its force and its deflection, for the
+    /// force–crush plot.
+    pub fn force_deflection_columns(&self) -> Vec<(String, usize, usize)> {
+        self.with_columns()
+            .filter_map(|(c, first)| {
+                let named = &self.components[c];
+                let (force, deflection) = named.component.force_deflection()?;
+                Some((named.name.clone(), first + force, first + deflection))
+            })
+            .collect()
     }
 
     /// The time a component named `name` (any component, if `None`) failed,
@@ -231,16 +274,16 @@ impl InputFunctions for BoundInputs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crash::crush::{CrushElement, Unloading};
-    use crate::crash::curve::Characteristic;
+    use crate::crash::crush::{CrushElement, LoadingCurve, Unloading};
+    use crate::crash::curve::SecantCurve;
 
     #[test]
     fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
         // What a compiled model can bring past the scenario check: a crush
         // element's stiffness port on an input of one argument.
         let crush = CrushElement::new(
-            Characteristic::constant(1.0e6),
-            Characteristic::constant(1.0e3),
+            LoadingCurve::SecantStiffness(SecantCurve::constant(1.0e6)),
+            SecantCurve::constant(1.0e3),
             Unloading::Elastic,
             1.0,
             true,

@@ -1,32 +1,67 @@
-//! The front-end crush element: spring and damper of the paper's eqs 1–2,
-//! with plastic unloading and compression-only contact as options.
+//! The crush element: a spring and damper between a vehicle and a barrier
+//! (or two bodies), the paper's eqs 1–2, with plastic unloading,
+//! compression-only contact and a gap as options.
 //!
-//! In terms of the crush `δ` (compression positive) and its rate `δ̇`, the
-//! compressive force is `P = S(δ) + D(δ̇)`:
+//! In terms of the element's deflection `δ` (compression positive: the
+//! crush, less the gap) and its rate `δ̇`, the compressive force is
+//! `P = S(δ) + D(δ̇)`:
 //!
-//! * loading: `S = k(δ)·δ` (eq 1), `D = c(|δ̇|)·δ̇` (eq 2);
+//! * loading: `S(δ)` is the spring's loading curve, in one of two forms
+//!   ([`LoadingCurve`]):
+//!   - a **secant stiffness** curve `k(δ)`, `S = k(δ)·δ` (eq 1; `k` linear
+//!     between breakpoints, so `S` is quadratic there): the paper's form;
+//!   - a **force–deflection** curve: `S` given at breakpoints, linear
+//!     between (what a test's force–deflection curve gives);
+//!
+//!   both odd in `δ` (`S(−δ) = −S(δ)`); `D = c(|δ̇|)·δ̇` (eq 2);
 //! * plastic unloading from the peak `(δ_p, S_p)` reached: `S = S_p − k_u (δ_p − δ)`,
 //!   back along that line on reloading and onto the loading curve beyond `δ_p`
 //!   (permanent set `δ_p − S_p/k_u`). Elastic unloading follows the loading
 //!   curve, which returns all the stored energy (the paper's model);
 //! * compression only: the barrier pushes but never pulls. In contact the
 //!   force is `S + D` until that would pull (`S + D < 0`: the car separates);
-//!   separated it is 0 until the gap closes — the crush reaches the spring's
-//!   zero (0 on the loading curve, the permanent set after plastic
+//!   separated it is 0 until the gap closes — the deflection reaches the
+//!   spring's zero (0 on the loading curve, the permanent set after plastic
 //!   unloading) — while `S + D ≥ 0`. A run that starts with a gap (or moving
-//!   away) starts separated ([`CrushElement::start`]).
+//!   away) starts separated ([`CrushElement::start`]);
+//! * a gap `g` (compression only): the contact opens after an offset. The
+//!   deflection is the crush less the gap, `δ = crush − g`, so there is no
+//!   force until the crush exceeds the gap, and the loading curve starts
+//!   there.
 //!
 //! Each change of regime is an event of the integration, so the force is
-//! smooth within a step.
+//! smooth within a step. The element's force `P` and deflection `δ` are
+//! trajectory columns (`NAME.force [N]`, `NAME.deflection [m]`).
 //!
-//! Its scenario section is `type = "crush"` (`CrushSection`).
+//! Its scenario section is `type = "crush"` (`CrushSection`): the loading
+//! curve is either `stiffness_breakpoints` and `stiffness_values` (secant
+//! stiffness) or `force_breakpoints` and `force_values` (force–deflection),
+//! never both.
 
-use super::curve::{Characteristic, OutOfRange};
-use super::{Binder, Component, Event, Port, Section};
+use super::curve::{ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
+use super::{Binder, Column, Component, Event, Port, Section};
 use crate::ode::Direction;
-use crate::scenario::bind::{Ports, outside};
+use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
-use std::fmt;
+
+/// The loading curve `S(δ)` of the crush spring, in one of its two forms.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadingCurve {
+    /// A secant stiffness `k(|δ|)`: `S = k(|δ|)·δ` (the paper's eq 1).
+    SecantStiffness(SecantCurve),
+    /// A force–deflection curve: `S` at breakpoints, linear between.
+    ForceDeflection(ForceCurve),
+}
+
+impl LoadingCurve {
+    /// `(S(δ), dS/dδ)`: the spring force and its tangent stiffness.
+    pub fn force(&self, delta: f64) -> Result<(f64, f64), OutOfRange> {
+        match self {
+            LoadingCurve::SecantStiffness(k) => k.force(delta),
+            LoadingCurve::ForceDeflection(f) => f.force(delta),
+        }
+    }
+}
 
 /// How the crush spring unloads.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,10 +84,10 @@ enum Phase {
 /// The crush element and its state during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CrushElement {
-    /// The spring's `k(|δ|)` of eq 1.
-    pub stiffness: Characteristic,
+    /// The spring's loading curve `S(δ)`.
+    pub loading: LoadingCurve,
     /// The damper's `c(|δ̇|)` of eq 2.
-    pub damping: Characteristic,
+    pub damping: SecantCurve,
     /// How the spring unloads.
     pub unloading: Unloading,
     /// `+1` if compression is a positive input argument, `−1` if negative
@@ -60,6 +95,9 @@ pub struct CrushElement {
     pub compression_sign: f64,
     /// The barrier pushes but never pulls.
     pub contact_only: bool,
+    /// The crush at which the contact opens \[m\]: the deflection is the
+    /// crush less the gap. 0 unless [`CrushElement::with_gap`] sets it.
+    pub gap: f64,
     phase: Phase,
     in_contact: bool,
 }
@@ -84,24 +122,43 @@ const EVENTS: &[Event] = &[
     },
 ];
 
+/// The element's columns: its compressive force and its deflection.
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "deflection",
+        unit: "m",
+    },
+];
+
 impl CrushElement {
-    /// An element in the undeformed, loading state, in contact.
+    /// An element without a gap in the undeformed, loading state, in contact.
     pub fn new(
-        stiffness: Characteristic,
-        damping: Characteristic,
+        loading: LoadingCurve,
+        damping: SecantCurve,
         unloading: Unloading,
         compression_sign: f64,
         contact_only: bool,
     ) -> CrushElement {
         CrushElement {
-            stiffness,
+            loading,
             damping,
             unloading,
             compression_sign,
             contact_only,
+            gap: 0.0,
             phase: Phase::Loading,
             in_contact: true,
         }
+    }
+
+    /// The element with a gap of `gap` \[m\] (finite, ≥ 0; a gap only opens
+    /// for a compression-only element).
+    pub fn with_gap(self, gap: f64) -> CrushElement {
+        CrushElement { gap, ..self }
     }
 
     /// Whether the element is in contact with the barrier.
@@ -109,8 +166,8 @@ impl CrushElement {
         self.in_contact
     }
 
-    /// The crush at which the spring of the current phase is unloaded: 0 on
-    /// the loading curve, the permanent set after plastic unloading.
+    /// The deflection at which the spring of the current phase is unloaded:
+    /// 0 on the loading curve, the permanent set after plastic unloading.
     fn spring_zero(&self) -> f64 {
         self.permanent_set().unwrap_or(0.0)
     }
@@ -126,10 +183,11 @@ impl CrushElement {
         Ok((delta - self.spring_zero()).min(self.total(delta, rate)?))
     }
 
-    /// The crush `δ` and rate `δ̇` from the input's arguments `(x, v)`.
+    /// The deflection `δ` (the crush less the gap) and its rate `δ̇` from
+    /// the input's arguments `(x, v)`.
     fn crush(&self, args: &[f64]) -> (f64, f64) {
         (
-            self.compression_sign * args[0],
+            self.compression_sign * args[0] - self.gap,
             self.compression_sign * args[1],
         )
     }
@@ -144,7 +202,7 @@ impl CrushElement {
                 },
                 Unloading::Plastic { stiffness },
             ) => Ok((peak_force - stiffness * (peak_crush - delta), stiffness)),
-            _ => self.stiffness.force(delta),
+            _ => self.loading.force(delta),
         }
     }
 
@@ -175,7 +233,8 @@ impl CrushElement {
         Ok(self.compressive(args)?.2)
     }
 
-    /// The permanent crush after plastic unloading from the peak, if any.
+    /// The permanent deflection after plastic unloading from the peak, if
+    /// any (the permanent crush less the gap).
     pub fn permanent_set(&self) -> Option<f64> {
         match (self.phase, self.unloading) {
             (
@@ -243,31 +302,34 @@ impl Component for CrushElement {
         Ok(())
     }
 
+    /// Applies event `k`; the description gives the crush (the deflection
+    /// plus the gap).
     fn on_event(&mut self, k: usize, _t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let (delta, _) = self.crush(args);
+        let crush = delta + self.gap;
         Ok(match k {
             0 => {
-                let peak_force = self.stiffness.force(delta)?.0;
+                let peak_force = self.loading.force(delta)?.0;
                 self.phase = Phase::Unloading {
                     peak_crush: delta,
                     peak_force,
                 };
                 format!(
-                    "peak crush {delta:.4} m at {:.1} kN; unloading",
+                    "peak crush {crush:.4} m at {:.1} kN; unloading",
                     peak_force / 1e3
                 )
             }
             1 => {
                 self.phase = Phase::Loading;
-                format!("crush {delta:.4} m passes the previous peak; loading")
+                format!("crush {crush:.4} m passes the previous peak; loading")
             }
             2 => {
                 self.in_contact = false;
-                format!("separation from the barrier at crush {delta:.4} m")
+                format!("separation from the barrier at crush {crush:.4} m")
             }
             _ => {
                 self.in_contact = true;
-                format!("contact with the barrier at crush {delta:.4} m")
+                format!("contact with the barrier at crush {crush:.4} m")
             }
         })
     }
@@ -288,23 +350,38 @@ impl Component for CrushElement {
         Ok(())
     }
 
-    fn compression_sign(&self) -> Option<f64> {
-        Some(self.compression_sign)
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The compressive force `P` and the deflection `δ`.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.compressive(args)?.0;
+        out[1] = self.crush(args).0;
+        Ok(())
+    }
+
+    fn force_deflection(&self) -> Option<(usize, usize)> {
+        Some((0, 1))
     }
 }
 
-/// `[components.NAME]` with `type = "crush"`: the element's tables, unloading
-/// and contact, and the inputs it supplies (force and, optionally, its
-/// tangent stiffness and damping).
+/// `[components.NAME]` with `type = "crush"`: the element's loading curve
+/// (one of two forms), damper, gap, unloading and contact, and the inputs
+/// it supplies (force and, optionally, its tangent stiffness and damping).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct CrushSection {
     inputs: Ports,
     compression: String,
-    stiffness_breakpoints: Vec<f64>,
-    stiffness_values: Vec<f64>,
+    stiffness_breakpoints: Option<Vec<f64>>,
+    stiffness_values: Option<Vec<f64>>,
+    force_breakpoints: Option<Vec<f64>>,
+    force_values: Option<Vec<f64>>,
     damping_breakpoints: Vec<f64>,
     damping_values: Vec<f64>,
+    #[serde(default)]
+    gap: f64,
     #[serde(default = "elastic")]
     unloading: String,
     unloading_stiffness: Option<f64>,
@@ -332,23 +409,69 @@ impl Section for CrushSection {
     }
 }
 
+/// The keys of the loading curve's secant stiffness form.
+const SECANT: [&str; 2] = ["stiffness_breakpoints", "stiffness_values"];
+/// The keys of the loading curve's force–deflection form.
+const FORCE: [&str; 2] = ["force_breakpoints", "force_values"];
+
 impl CrushSection {
     /// The element `[components.{name}]` describes.
     fn element(&self, name: &str) -> Result<CrushElement, String> {
-        let at = |what: &str, e: &dyn fmt::Display| format!("components.{name}: {what}: {e}");
         let policy = outside(&format!("components.{name}"), &self.outside)?;
-        let stiffness =
-            Characteristic::new(&self.stiffness_breakpoints, &self.stiffness_values, policy)
-                .map_err(|e| at("stiffness table", &e))?;
-        let damping = Characteristic::new(&self.damping_breakpoints, &self.damping_values, policy)
-            .map_err(|e| at("damping table", &e))?;
-        Ok(CrushElement::new(
-            stiffness,
+        let damping = SecantCurve::new(&self.damping_breakpoints, &self.damping_values, policy)
+            .map_err(|e| table_error(name, ["damping_breakpoints", "damping_values"], &e))?;
+        let element = CrushElement::new(
+            self.loading(name, policy)?,
             damping,
             self.unloading(name)?,
             self.compression_sign(name)?,
             self.contact_only,
-        ))
+        );
+        Ok(element.with_gap(self.gap(name)?))
+    }
+
+    /// The loading curve, from the one form the section gives.
+    fn loading(&self, name: &str, policy: Outside) -> Result<LoadingCurve, String> {
+        let secant = [&self.stiffness_breakpoints, &self.stiffness_values];
+        let force = [&self.force_breakpoints, &self.force_values];
+        let given = |lists: [&Option<Vec<f64>>; 2]| lists.iter().any(|l| l.is_some());
+        match (given(secant), given(force)) {
+            (true, true) => Err(format!(
+                "components.{name}: {} (a secant stiffness curve) and {} (a force–deflection curve) are two forms of the spring's loading curve; give one of them",
+                SECANT.join(", "),
+                FORCE.join(", ")
+            )),
+            (false, false) => Err(format!(
+                "components.{name}: the spring's loading curve is missing: give {} (a force–deflection curve) or {} (a secant stiffness curve, F = k(δ)·δ)",
+                FORCE.join(" and "),
+                SECANT.join(" and ")
+            )),
+            (true, false) => {
+                let (b, v) = both(name, SECANT, secant)?;
+                let curve = SecantCurve::new(b, v, policy);
+                curve
+                    .map(LoadingCurve::SecantStiffness)
+                    .map_err(|e| table_error(name, SECANT, &e))
+            }
+            (false, true) => {
+                let (b, v) = both(name, FORCE, force)?;
+                let curve = ForceCurve::new(b, v, policy);
+                curve
+                    .map(LoadingCurve::ForceDeflection)
+                    .map_err(|e| table_error(name, FORCE, &e))
+            }
+        }
+    }
+
+    /// The gap: finite, ≥ 0, and only for a compression-only element.
+    fn gap(&self, name: &str) -> Result<f64, String> {
+        let gap = non_negative(&format!("components.{name}.gap"), self.gap)?;
+        if gap > 0.0 && !self.contact_only {
+            return Err(format!(
+                "components.{name}.gap = {gap} needs contact_only = true: an element that pulls has no gap to open"
+            ));
+        }
+        Ok(gap)
     }
 
     fn unloading(&self, name: &str) -> Result<Unloading, String> {
@@ -377,14 +500,39 @@ impl CrushSection {
     }
 }
 
+/// The breakpoints and values of a table whose keys are `keys`, both given.
+fn both<'a>(
+    name: &str,
+    keys: [&str; 2],
+    lists: [&'a Option<Vec<f64>>; 2],
+) -> Result<(&'a [f64], &'a [f64]), String> {
+    match lists {
+        [Some(b), Some(v)] => Ok((b, v)),
+        [Some(_), None] => Err(format!(
+            "components.{name}.{} is missing: {} needs its values",
+            keys[1], keys[0]
+        )),
+        [None, _] => Err(format!(
+            "components.{name}.{} is missing: {} needs its breakpoints",
+            keys[0], keys[1]
+        )),
+    }
+}
+
+/// A table's problem, at the key of the list it is in.
+fn table_error(name: &str, keys: [&str; 2], e: &TableError) -> String {
+    let key = keys[usize::from(e.in_values())];
+    format!("components.{name}.{key}: {e}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crash::curve::Outside;
 
     fn element(unloading: Unloading) -> CrushElement {
-        let k = Characteristic::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
-        CrushElement::new(k, Characteristic::constant(1.0e3), unloading, -1.0, true)
+        let k = SecantCurve::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
+        let loading = LoadingCurve::SecantStiffness(k);
+        CrushElement::new(loading, SecantCurve::constant(1.0e3), unloading, -1.0, true)
     }
 
     #[test]
@@ -440,5 +588,134 @@ mod tests {
         // Pressed in but moving away so fast that S + D < 0: separated.
         e.start(Some(&[-0.001, 100.0])).unwrap();
         assert!(!e.in_contact());
+    }
+
+    /// The test curve (0, 0), (0.1 m, 170 kN), (0.5 m, 180 kN), no damping,
+    /// compression positive, with a gap.
+    fn tested(gap: f64, unloading: Unloading) -> CrushElement {
+        let f = ForceCurve::new(&[0.1, 0.5], &[170e3, 180e3], Outside::Hold).unwrap();
+        let loading = LoadingCurve::ForceDeflection(f);
+        CrushElement::new(loading, SecantCurve::constant(0.0), unloading, 1.0, true).with_gap(gap)
+    }
+
+    #[test]
+    fn a_force_deflection_curve_gives_its_force_and_its_segment_slope() {
+        let e = tested(0.0, Unloading::Elastic);
+        // 0.3 m: halfway between 170 and 180 kN; slope 10 kN / 0.4 m.
+        assert!((e.force(&[0.3, 0.0]).unwrap() - 175e3).abs() < 1e-9);
+        assert!((e.force_stiffness(&[0.3, 0.0]).unwrap() - 25e3).abs() < 1e-9);
+        assert!((e.force_stiffness(&[0.05, 0.0]).unwrap() - 1.7e6).abs() < 1e-6);
+        let mut columns = [0.0; 2];
+        e.column_values(&[0.3, 0.0], &mut columns).unwrap();
+        assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
+        assert_eq!(e.force_deflection(), Some((0, 1)));
+        // Compression negative (the paper's r < 0): the input's force is
+        // −P, its derivative the same slope; the columns stay compression
+        // positive.
+        let negative = CrushElement {
+            compression_sign: -1.0,
+            ..e
+        };
+        assert!((negative.force(&[-0.3, 0.0]).unwrap() + 175e3).abs() < 1e-9);
+        assert!((negative.force_stiffness(&[-0.3, 0.0]).unwrap() - 25e3).abs() < 1e-9);
+        negative.column_values(&[-0.3, 0.0], &mut columns).unwrap();
+        assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
+    }
+
+    #[test]
+    fn a_gap_delays_the_contact_and_the_curve_starts_there() {
+        let mut e = tested(0.05, Unloading::Plastic { stiffness: 1.0e7 });
+        // 2 cm of crush, closing: the gap is still open, no force.
+        e.start(Some(&[0.02, 10.0])).unwrap();
+        assert!(!e.in_contact());
+        assert_eq!(e.force(&[0.02, 10.0]).unwrap(), 0.0);
+        let mut columns = [0.0; 2];
+        e.column_values(&[0.02, 10.0], &mut columns).unwrap();
+        assert_eq!(columns, [0.0, 0.02 - 0.05]);
+        // The contact function changes sign where the crush passes the gap.
+        let mut g = [0.0; 4];
+        e.event_values(&[0.049, 10.0], &mut g).unwrap();
+        assert!(g[3] < 0.0);
+        e.event_values(&[0.051, 10.0], &mut g).unwrap();
+        assert!((g[3] - 0.001).abs() < 1e-12, "{g:?}");
+        e.on_event(3, 0.0, &[0.05, 10.0]).unwrap();
+        // 0.35 m of crush is 0.3 m of deflection: 175 kN.
+        assert!((e.force(&[0.35, 1.0]).unwrap() - 175e3).abs() < 1e-9);
+        // Peak there: the permanent deflection is 0.3 − 175 kN / 10 MN/m.
+        let note = e.on_event(0, 0.0, &[0.35, 0.0]).unwrap();
+        assert_eq!(note, "peak crush 0.3500 m at 175.0 kN; unloading");
+        assert!((e.permanent_set().unwrap() - 0.2825).abs() < 1e-12);
+    }
+
+    /// The section's element, or its message.
+    fn section(text: &str) -> Result<CrushElement, String> {
+        let head = "inputs = { force = \"crush\" }\ncompression = \"positive\"\ndamping_breakpoints = [1.0]\ndamping_values = [0.0, 0.0]\n";
+        let section: CrushSection = toml::from_str(&format!("{head}{text}")).unwrap();
+        section.element("fe")
+    }
+
+    #[test]
+    fn the_section_takes_one_form_of_the_loading_curve() {
+        let force = "force_breakpoints = [0.1, 0.5]\nforce_values = [170e3, 180e3]\n";
+        let secant = "stiffness_breakpoints = [0.1]\nstiffness_values = [1e6, 2e6]\n";
+        let e = section(force).unwrap();
+        assert!((e.force(&[0.3, 0.0]).unwrap() - 175e3).abs() < 1e-9);
+        assert_eq!(e.gap, 0.0);
+        let e = section(secant).unwrap();
+        assert!((e.force(&[0.05, 0.0]).unwrap() - 1.5e6 * 0.05).abs() < 1e-9);
+        assert_eq!(
+            section(&format!("{force}{secant}")).unwrap_err(),
+            "components.fe: stiffness_breakpoints, stiffness_values (a secant stiffness curve) and force_breakpoints, force_values (a force–deflection curve) are two forms of the spring's loading curve; give one of them"
+        );
+        assert_eq!(
+            section(&format!("{force}stiffness_values = [1.0]\n")).unwrap_err(),
+            section(&format!("{force}{secant}")).unwrap_err()
+        );
+        assert!(section("").unwrap_err().starts_with(
+            "components.fe: the spring's loading curve is missing: give force_breakpoints and force_values"
+        ));
+        assert_eq!(
+            section("force_breakpoints = [0.1]\n").unwrap_err(),
+            "components.fe.force_values is missing: force_breakpoints needs its values"
+        );
+    }
+
+    #[test]
+    fn bad_tables_and_gaps_are_reported_at_their_key() {
+        let cases = [
+            (
+                "force_breakpoints = [0.1, 0.1]\nforce_values = [1.0, 2.0]\n",
+                "components.fe.force_breakpoints: breakpoint 2 (0.1) must be finite and exceed breakpoint 1 (0.1): breakpoints increase strictly",
+            ),
+            (
+                "force_breakpoints = [0.0, 0.1]\nforce_values = [0.0, 2.0]\n",
+                "components.fe.force_breakpoints: breakpoint 1 (0) must be a positive, finite number (the curve starts at 0)",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0, 2.0]\n",
+                "components.fe.force_values: 1 breakpoint needs 1 value, found 2",
+            ),
+            (
+                "stiffness_breakpoints = [0.1]\nstiffness_values = [1.0, -2.0]\n",
+                "components.fe.stiffness_values: value 2 (-2) must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = -0.01\n",
+                "components.fe.gap = -0.01: must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = nan\n",
+                "components.fe.gap = NaN: must be a finite number ≥ 0",
+            ),
+            (
+                "force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = 0.02\ncontact_only = false\n",
+                "components.fe.gap = 0.02 needs contact_only = true: an element that pulls has no gap to open",
+            ),
+        ];
+        for (text, message) in cases {
+            assert_eq!(section(text).unwrap_err(), message, "{text}");
+        }
+        let e = section("force_breakpoints = [0.1]\nforce_values = [1.0]\ngap = 0.02\n").unwrap();
+        assert_eq!(e.gap, 0.02);
     }
 }

@@ -1,5 +1,6 @@
 //! Piecewise-linear curves: tabulated inputs, weld moment curves, and the
-//! crush characteristics of the paper's eqs 1–2.
+//! crush characteristics: the secant form of the paper's eqs 1–2 and
+//! force–deflection curves.
 
 use std::cell::Cell;
 use std::fmt;
@@ -52,16 +53,9 @@ pub enum CurveError {
         /// The abscissa.
         value: f64,
     },
-    /// A stiffness or damping coefficient is negative.
-    Negative {
-        /// Its index, from 0.
-        index: usize,
-        /// The coefficient.
-        value: f64,
-    },
-    /// A characteristic needs one more value than breakpoints.
+    /// Not as many values as abscissae.
     LengthMismatch {
-        /// The number of breakpoints.
+        /// The number of abscissae.
         breakpoints: usize,
         /// The number of values.
         values: usize,
@@ -85,20 +79,12 @@ impl fmt::Display for CurveError {
                 index + 1,
                 index
             ),
-            CurveError::Negative { index, value } => {
-                write!(
-                    f,
-                    "value {} is negative ({value}); stiffness and damping must be ≥ 0",
-                    index + 1
-                )
-            }
             CurveError::LengthMismatch {
                 breakpoints,
                 values,
             } => write!(
                 f,
-                "{breakpoints} breakpoints need {} values (one at 0 and one at each breakpoint), found {values}",
-                breakpoints + 1
+                "{breakpoints} abscissae need as many values, found {values}"
             ),
         }
     }
@@ -227,51 +213,162 @@ impl Curve {
     }
 }
 
-/// A coefficient curve of the paper's eqs 1–2: `k(|x̂|)` is `k_1` at 0, `k_{i+1}`
-/// at breakpoint `x_i` (the last breakpoint is the maximum dynamic crush `C`,
-/// or `v_0` for the damper), linear in between.
+/// What is wrong with the table of a crush characteristic, in terms of its
+/// two lists as written: the breakpoints and the values.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Characteristic {
+pub enum TableError {
+    /// There are no breakpoints.
+    NoBreakpoints,
+    /// A breakpoint that is not a finite number above the one before (above
+    /// 0 for the first): breakpoints increase strictly from 0.
+    Breakpoint {
+        /// Its index, from 0.
+        index: usize,
+        /// The breakpoint.
+        value: f64,
+        /// The breakpoint before it (0 for the first).
+        previous: f64,
+    },
+    /// A value that is negative or not a finite number.
+    Value {
+        /// Its index, from 0.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// The number of values does not fit the number of breakpoints.
+    Count {
+        /// The number of breakpoints.
+        breakpoints: usize,
+        /// The number of values.
+        values: usize,
+        /// The number of values the breakpoints need.
+        expected: usize,
+    },
+}
+
+impl TableError {
+    /// Whether the problem is in the values (else in the breakpoints).
+    pub fn in_values(&self) -> bool {
+        matches!(self, TableError::Value { .. } | TableError::Count { .. })
+    }
+}
+
+impl fmt::Display for TableError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TableError::NoBreakpoints => write!(f, "needs at least one breakpoint"),
+            TableError::Breakpoint {
+                index: 0, value, ..
+            } => write!(
+                f,
+                "breakpoint 1 ({value}) must be a positive, finite number (the curve starts at 0)"
+            ),
+            TableError::Breakpoint {
+                index,
+                value,
+                previous,
+            } => write!(
+                f,
+                "breakpoint {} ({value}) must be finite and exceed breakpoint {index} ({previous}): breakpoints increase strictly",
+                index + 1
+            ),
+            TableError::Value { index, value } => write!(
+                f,
+                "value {} ({value}) must be a finite number ≥ 0",
+                index + 1
+            ),
+            TableError::Count {
+                breakpoints,
+                values,
+                expected,
+            } => {
+                let plural = |n: usize| if n == 1 { "" } else { "s" };
+                write!(
+                    f,
+                    "{breakpoints} breakpoint{} need{} {expected} value{}, found {values}",
+                    plural(*breakpoints),
+                    if *breakpoints == 1 { "s" } else { "" },
+                    plural(*expected),
+                )
+            }
+        }
+    }
+}
+
+/// The curve through `(0, first)` and `(breakpoints[i], values[i + skip])`
+/// after checking the table: `expected` values, breakpoints finite,
+/// positive and strictly increasing, values finite and non-negative.
+fn checked_table(
+    breakpoints: &[f64],
+    values: &[f64],
+    expected: usize,
+    first: Option<f64>,
+    outside: Outside,
+) -> Result<Curve, TableError> {
+    if breakpoints.is_empty() {
+        return Err(TableError::NoBreakpoints);
+    }
+    if values.len() != expected {
+        return Err(TableError::Count {
+            breakpoints: breakpoints.len(),
+            values: values.len(),
+            expected,
+        });
+    }
+    let mut previous = 0.0;
+    for (index, &value) in breakpoints.iter().enumerate() {
+        if !(value.is_finite() && value > previous) {
+            return Err(TableError::Breakpoint {
+                index,
+                value,
+                previous,
+            });
+        }
+        previous = value;
+    }
+    if let Some((index, &value)) =
+        (values.iter().enumerate()).find(|(_, v)| !(**v >= 0.0 && v.is_finite()))
+    {
+        return Err(TableError::Value { index, value });
+    }
+    Ok(Curve {
+        xs: std::iter::once(0.0)
+            .chain(breakpoints.iter().copied())
+            .collect(),
+        ys: first.into_iter().chain(values.iter().copied()).collect(),
+        outside,
+        hint: Cell::new(0),
+    })
+}
+
+/// A coefficient curve in the secant form of the paper's eqs 1–2: the
+/// force is `F(x) = k(|x|)·x`, the coefficient `k` (a secant stiffness, or
+/// a damping coefficient) is `k_1` at 0, `k_{i+1}` at breakpoint `x_i` (the
+/// last breakpoint is the maximum dynamic crush `C`, or `v_0` for the
+/// damper), linear in between. The force is quadratic between breakpoints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SecantCurve {
     curve: Curve,
 }
 
-impl Characteristic {
+impl SecantCurve {
     /// `breakpoints = [x1, …, x5, C]` (positive, increasing) and
-    /// `values = [k1, …, k7]` (non-negative).
+    /// `values = [k1, …, k7]` (non-negative): one value more than
+    /// breakpoints.
     pub fn new(
         breakpoints: &[f64],
         values: &[f64],
         outside: Outside,
-    ) -> Result<Characteristic, CurveError> {
-        if values.len() != breakpoints.len() + 1 {
-            return Err(CurveError::LengthMismatch {
-                breakpoints: breakpoints.len(),
-                values: values.len(),
-            });
-        }
-        if let Some((index, &value)) = values.iter().enumerate().find(|(_, v)| **v < 0.0) {
-            return Err(CurveError::Negative { index, value });
-        }
-        if let Some(&first) = breakpoints.first()
-            && first <= 0.0
-        {
-            return Err(CurveError::NotIncreasing {
-                index: 1,
-                previous: 0.0,
-                value: first,
-            });
-        }
-        let xs = std::iter::once(0.0)
-            .chain(breakpoints.iter().copied())
-            .collect();
-        Ok(Characteristic {
-            curve: Curve::new(xs, values.to_vec(), outside)?,
-        })
+    ) -> Result<SecantCurve, TableError> {
+        let expected = breakpoints.len() + 1;
+        let curve = checked_table(breakpoints, values, expected, None, outside)?;
+        Ok(SecantCurve { curve })
     }
 
     /// A constant coefficient (a linear spring or damper).
-    pub fn constant(value: f64) -> Characteristic {
-        Characteristic {
+    pub fn constant(value: f64) -> SecantCurve {
+        SecantCurve {
             curve: Curve {
                 xs: vec![0.0, 1.0],
                 ys: vec![value, value],
@@ -296,6 +393,35 @@ impl Characteristic {
     /// The last breakpoint (the maximum dynamic crush `C` or velocity `v_0`).
     pub fn range(&self) -> f64 {
         self.curve.xs[self.curve.xs.len() - 1]
+    }
+}
+
+/// A force–deflection curve, as a test measures it: the force `F_i` at
+/// breakpoint `x_i`, 0 at 0, linear in between, so that its slope (the
+/// tangent stiffness) is the slope of the segment. Odd in `x`, like the
+/// secant form: `F(−x) = −F(x)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForceCurve {
+    curve: Curve,
+}
+
+impl ForceCurve {
+    /// `breakpoints = [x1, …, xn]` (positive, increasing) and
+    /// `forces = [F1, …, Fn]` (non-negative): one force per breakpoint.
+    pub fn new(
+        breakpoints: &[f64],
+        forces: &[f64],
+        outside: Outside,
+    ) -> Result<ForceCurve, TableError> {
+        let expected = breakpoints.len();
+        let curve = checked_table(breakpoints, forces, expected, Some(0.0), outside)?;
+        Ok(ForceCurve { curve })
+    }
+
+    /// The force `F(x) = sign(x)·F(|x|)` and its derivative `dF/dx = F'(|x|)`.
+    pub fn force(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let (f, slope) = self.curve.eval(x.abs())?;
+        Ok((if x < 0.0 { -f } else { f }, slope))
     }
 }
 
@@ -324,7 +450,7 @@ mod tests {
     #[test]
     fn eq_1_interpolates_between_breakpoints() {
         // k(x): 10 at 0, 20 at 1, 40 at 2 (C).
-        let k = Characteristic::new(&[1.0, 2.0], &[10.0, 20.0, 40.0], Outside::Hold).unwrap();
+        let k = SecantCurve::new(&[1.0, 2.0], &[10.0, 20.0, 40.0], Outside::Hold).unwrap();
         assert_eq!(k.coefficient(0.5).unwrap(), (15.0, 10.0));
         assert_eq!(k.coefficient(-1.5).unwrap(), (30.0, 20.0));
         // F = k(|x|) x: odd; dF/dx = k + |x| k'.
@@ -332,7 +458,7 @@ mod tests {
         assert_eq!(k.force(-1.5).unwrap().0, -45.0);
         // Beyond C the coefficient holds.
         assert_eq!(k.coefficient(3.0).unwrap(), (40.0, 0.0));
-        let strict = Characteristic::new(&[1.0, 2.0], &[10.0, 20.0, 40.0], Outside::Error).unwrap();
+        let strict = SecantCurve::new(&[1.0, 2.0], &[10.0, 20.0, 40.0], Outside::Error).unwrap();
         assert_eq!(
             strict.coefficient(2.5),
             Err(OutOfRange {
@@ -344,30 +470,87 @@ mod tests {
     }
 
     #[test]
+    fn a_force_deflection_curve_is_linear_between_its_points() {
+        // The points (0, 0), (0.1 m, 170 kN), (0.5 m, 180 kN) of a test.
+        let f = ForceCurve::new(&[0.1, 0.5], &[170e3, 180e3], Outside::Hold).unwrap();
+        // At 0.3 m, halfway along the second segment: 170 + 10/2 kN; the
+        // tangent stiffness is that segment's slope, 10 kN / 0.4 m.
+        let (force, slope) = f.force(0.3).unwrap();
+        assert!((force - 175e3).abs() < 1e-9, "{force}");
+        assert!((slope - 25e3).abs() < 1e-9, "{slope}");
+        // On the first segment: 1.7 MN/m from the origin.
+        let (force, slope) = f.force(0.05).unwrap();
+        assert!((force - 85e3).abs() < 1e-9 && (slope - 1.7e6).abs() < 1e-6);
+        // Odd, like the secant form; beyond the last point the force holds.
+        assert_eq!(f.force(-0.3).unwrap().0, -f.force(0.3).unwrap().0);
+        assert_eq!(f.force(0.0).unwrap().0, 0.0);
+        assert_eq!(f.force(0.7).unwrap(), (180e3, 0.0));
+        // The secant form through the same forces at the breakpoints (k =
+        // F/x: 1.7 MN/m at 0 and 0.1 m, 0.36 MN/m at 0.5 m) is quadratic
+        // between them: k(0.3) = (1.7 + 0.36)/2 MN/m, F = 0.3·1.03 MN = 309 kN.
+        let k = SecantCurve::new(&[0.1, 0.5], &[1.7e6, 1.7e6, 0.36e6], Outside::Hold).unwrap();
+        assert!((k.force(0.5).unwrap().0 - 180e3).abs() < 1e-6);
+        assert!((k.force(0.3).unwrap().0 - 309e3).abs() < 1e-6);
+    }
+
+    #[test]
     fn bad_tables_are_rejected_with_the_offending_entry() {
         assert_eq!(
-            Characteristic::new(&[1.0, 1.0], &[1.0, 2.0, 3.0], Outside::Hold),
-            Err(CurveError::NotIncreasing {
-                index: 2,
+            SecantCurve::new(&[1.0, 1.0], &[1.0, 2.0, 3.0], Outside::Hold),
+            Err(TableError::Breakpoint {
+                index: 1,
                 previous: 1.0,
                 value: 1.0
             })
         );
         assert_eq!(
-            Characteristic::new(&[1.0], &[1.0, -2.0], Outside::Hold),
-            Err(CurveError::Negative {
+            SecantCurve::new(&[1.0], &[1.0, -2.0], Outside::Hold),
+            Err(TableError::Value {
                 index: 1,
                 value: -2.0
             })
         );
         assert_eq!(
-            Characteristic::new(&[1.0, 2.0], &[1.0, 2.0], Outside::Hold),
-            Err(CurveError::LengthMismatch {
+            SecantCurve::new(&[1.0, 2.0], &[1.0, 2.0], Outside::Hold),
+            Err(TableError::Count {
                 breakpoints: 2,
-                values: 2
+                values: 2,
+                expected: 3
             })
         );
-        assert!(Characteristic::new(&[-1.0], &[1.0, 2.0], Outside::Hold).is_err());
+        assert!(SecantCurve::new(&[-1.0], &[1.0, 2.0], Outside::Hold).is_err());
+        // A force–deflection curve: one force per breakpoint, from above 0.
+        assert_eq!(
+            ForceCurve::new(&[0.0, 0.1], &[0.0, 1.0], Outside::Hold),
+            Err(TableError::Breakpoint {
+                index: 0,
+                previous: 0.0,
+                value: 0.0
+            })
+        );
+        assert_eq!(
+            ForceCurve::new(&[0.1, 0.5], &[0.0, 1.0, 2.0], Outside::Hold),
+            Err(TableError::Count {
+                breakpoints: 2,
+                values: 3,
+                expected: 2
+            })
+        );
+        assert!(matches!(
+            ForceCurve::new(&[0.1, f64::NAN], &[1.0, 2.0], Outside::Hold),
+            Err(TableError::Breakpoint { index: 1, previous, value }) if previous == 0.1 && value.is_nan()
+        ));
+        assert_eq!(
+            ForceCurve::new(&[0.1], &[f64::INFINITY], Outside::Hold),
+            Err(TableError::Value {
+                index: 0,
+                value: f64::INFINITY
+            })
+        );
+        assert_eq!(
+            ForceCurve::new(&[], &[], Outside::Hold),
+            Err(TableError::NoBreakpoints)
+        );
         assert_eq!(
             Curve::new(vec![0.0], vec![1.0], Outside::Hold),
             Err(CurveError::TooFewPoints(1))

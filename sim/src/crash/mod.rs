@@ -1,5 +1,6 @@
 //! Crash components that supply a model's input functions: the crush
-//! element (eqs 1–2, hysteresis, contact), a failing torsional weld,
+//! element (a force–deflection curve or the secant stiffness of eqs 1–2,
+//! hysteresis, contact, gap), a failing torsional weld,
 //! tabulated time histories and constants.
 //!
 //! # The contract of a component
@@ -20,13 +21,19 @@
 //!   (peak crush, separation, failure) is an event, so each port is smooth
 //!   within a step;
 //! * starts every run in its initial state ([`Component::start`]);
+//! * lists the quantities worth plotting, with their units
+//!   ([`Component::columns`]: a crush element's force and deflection, a
+//!   weld's moment and angle; none by default) and gives their values at its
+//!   value input's arguments ([`Component::column_values`]): each is a
+//!   trajectory column `NAME.QUANTITY [unit]`;
 //! * answers the queries of the summary and the plots
-//!   ([`Component::compression_sign`], [`Component::failure_time`]).
+//!   ([`Component::force_deflection`], [`Component::failure_time`]).
 //!
 //! A component with events keeps state, which it reads from the arguments
 //! of its value input: that input must be called at one place of the
 //! dynamics (the scenario checks it), and [`BoundInputs`] passes its
-//! arguments to the component's events and to [`Component::start`].
+//! arguments to the component's events, its columns and
+//! [`Component::start`].
 //!
 //! Its scenario section, `[components.NAME]` with `type = "KIND"`, is a
 //! struct that implements the crate's `Section` trait: it reads the
@@ -43,7 +50,9 @@
 //!      method but the two queries is required; a component without events
 //!      returns `&[]` from `events` and has nothing to do in `event_values`
 //!      and `on_event`, one with events lists them in a
-//!      `const EVENTS: &[Event]`;
+//!      `const EVENTS: &[Event]`; one with columns lists them in a
+//!      `const COLUMNS: &[Column]` and overrides `columns` and
+//!      `column_values`;
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
@@ -105,6 +114,16 @@ pub struct Event {
     pub direction: Direction,
 }
 
+/// A quantity of a component worth plotting: the trajectory column
+/// `NAME.QUANTITY [UNIT]` of component `NAME`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Column {
+    /// What it is (`force`, `deflection`).
+    pub quantity: &'static str,
+    /// Its unit, as spec files write units (`N`, `N*m`).
+    pub unit: &'static str,
+}
+
 /// A crash component: the source of one or more of a model's input
 /// functions (see the module documentation for the contract).
 ///
@@ -143,10 +162,22 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// the dynamics does not call that input).
     fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
 
-    /// `+1` if compression is a positive first argument, `−1` if negative,
-    /// for the crush force plot; `None` (the default): the component is not
-    /// a crush element.
-    fn compression_sign(&self) -> Option<f64> {
+    /// The quantities worth plotting, in the order
+    /// [`Component::column_values`] writes them; none by default.
+    fn columns(&self) -> &'static [Column] {
+        &[]
+    }
+
+    /// The values of [`Component::columns`] at its value input's arguments
+    /// `args`, in its current state, into `out` (one per column).
+    fn column_values(&self, _args: &[f64], _out: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    /// For the force–crush plot: the indices among [`Component::columns`]
+    /// of a crush element's force and of its deflection, both positive in
+    /// compression; `None` (the default): not a crush element.
+    fn force_deflection(&self) -> Option<(usize, usize)> {
         None
     }
 

@@ -277,9 +277,9 @@ impl Table {
     /// A curve's complaint about `column`, at the line of the row it names.
     fn curve_error(&self, column: &str, e: CurveError) -> TableError {
         let row = match e {
-            CurveError::NotFinite { index }
-            | CurveError::NotIncreasing { index, .. }
-            | CurveError::Negative { index, .. } => Some(index),
+            CurveError::NotFinite { index } | CurveError::NotIncreasing { index, .. } => {
+                Some(index)
+            }
             CurveError::TooFewPoints(_) | CurveError::LengthMismatch { .. } => None,
         };
         TableError::Malformed {

@@ -3,12 +3,13 @@
 //! Intact, its moment follows a curve of angle plus viscous damping,
 //! `M = M_intact(θ) + c·θ̇`; when `|M_intact(θ)|` reaches the failure moment
 //! (or `|θ|` the failure angle) an event switches it to the post-failure
-//! curve and damping for the rest of the run.
+//! curve and damping for the rest of the run. Its moment and angle are
+//! trajectory columns (`NAME.moment [N*m]`, `NAME.angle [rad]`).
 //!
 //! Its scenario section is `type = "weld"` (`WeldSection`).
 
 use super::curve::{Curve, OutOfRange};
-use super::{Binder, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Event, Port, Section};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside, positive};
 use serde::Deserialize;
@@ -40,6 +41,18 @@ const EVENTS: &[Event] = &[
     Event {
         name: "weld failure (angle)",
         direction: Direction::Rising,
+    },
+];
+
+/// The weld's columns: its moment and its angle.
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "moment",
+        unit: "N*m",
+    },
+    Column {
+        quantity: "angle",
+        unit: "rad",
     },
 ];
 
@@ -144,6 +157,17 @@ impl Component for Weld {
     fn failure_time(&self) -> Option<f64> {
         self.failed_at
     }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The moment `M` (damping included) and the angle `θ`.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.moment(args)?.0;
+        out[1] = args[0];
+        Ok(())
+    }
 }
 
 /// `[components.NAME]` with `type = "weld"`: the intact and post-failure
@@ -230,6 +254,9 @@ mod tests {
             (m - 2.1e3).abs() < 1e-9 && dm == 1.0e5 && dc == 100.0,
             "{m} {dm} {dc}"
         );
+        let mut columns = [0.0; 2];
+        weld.column_values(&[0.02, 1.0], &mut columns).unwrap();
+        assert!((columns[0] - 2.1e3).abs() < 1e-9 && columns[1] == 0.02);
         let mut g = [0.0; 2];
         weld.event_values(&[0.05, 0.0], &mut g).unwrap();
         assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");

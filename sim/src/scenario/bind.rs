@@ -159,14 +159,17 @@ impl<'a> Binder<'a> {
         Ok(())
     }
 
-    /// For each component: where its events find the arguments of its value
-    /// input (the first input bound to its value port) among the model's
-    /// input arguments — `None` for a component without events, or whose
-    /// value input `--set` overrode or the dynamics does not call.
+    /// For each component: where its events and columns find the arguments
+    /// of its value input (the first input bound to its value port) among
+    /// the model's input arguments — `None` for a component with neither,
+    /// or whose value input `--set` overrode or the dynamics does not call.
+    /// A component with events needs that input called at one place; one
+    /// with columns only has none where it is called at several.
     fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, String> {
         let mut arguments = vec![None; self.components.len()];
         for (c, named) in self.components.iter().enumerate() {
-            if named.component.events().is_empty() {
+            let stateful = !named.component.events().is_empty();
+            if !stateful && named.component.columns().is_empty() {
                 continue;
             }
             let value = Some(Binding {
@@ -176,7 +179,10 @@ impl<'a> Binder<'a> {
             let Some(k) = self.bindings.iter().position(|b| *b == value) else {
                 continue; // overridden by --set
             };
-            arguments[c] = self.only_call(k, &named.name)?;
+            arguments[c] = match self.only_call(k, &named.name) {
+                Err(_) if !stateful => None,
+                call => call?,
+            };
         }
         Ok(arguments)
     }

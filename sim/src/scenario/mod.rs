@@ -18,6 +18,31 @@
 //!
 //! Every name is checked against the spec, with a suggestion for typos.
 //!
+//! A `crush` component (see [`crate::crash::crush`]) gives its spring's
+//! loading curve in one of two forms, never both:
+//!
+//! ```toml
+//! # A force–deflection curve, as a test gives it: the force [N] at each
+//! # breakpoint [m] (0 at 0), linear between; its tangent stiffness is the
+//! # slope of the segment.
+//! force_breakpoints = [0.1, 0.5]
+//! force_values = [170e3, 180e3]
+//! # Or the paper's secant stiffness curve (eq 1): k(δ) [N/m] at 0 and at
+//! # each breakpoint, linear between, and the force k(δ)·δ (quadratic
+//! # between breakpoints).
+//! stiffness_breakpoints = [0.05, 0.10, 0.25, 0.45, 0.60, 0.80]
+//! stiffness_values = [2.4e6, 2.4e6, 2.1e6, 0.94e6, 0.567e6, 0.50e6, 0.5625e6]
+//! ```
+//!
+//! with the damper's `damping_breakpoints` \[m/s\] and `damping_values`
+//! \[N·s/m\] in the secant form (eq 2), and optionally `gap` \[m\] (the
+//! contact opens after that much crush, and the curve starts there; needs
+//! `contact_only = true`, the default), `unloading = "plastic"` with
+//! `unloading_stiffness` \[N/m\], and `outside` (what the curves do beyond
+//! their last breakpoint: `hold`, `extrapolate`, `zero`, `error`). Its force
+//! and deflection (compression positive, the deflection measured from the
+//! gap) are trajectory columns `NAME.force [N]`, `NAME.deflection [m]`.
+//!
 //! By phase (private modules): `file` is the file format, `overrides`
 //! applies `--set` settings to the document, `resolve` checks values and
 //! names, and `bind` binds the model's inputs to crash components.

@@ -145,6 +145,28 @@ fn components_need_inputs_of_as_many_arguments_as_they_read() {
 }
 
 #[test]
+fn a_crush_section_with_both_forms_of_its_curve_or_a_bad_gap_names_the_keys() {
+    let front = format!("[components.fe]\ninputs = {{ force = \"crush\" }}\n{CRUSH}");
+    let e = error_for(
+        YARIS,
+        &format!("{front}force_breakpoints = [0.1]\nforce_values = [1e5]\n"),
+        &[],
+    );
+    assert!(
+        e.starts_with("components.fe: stiffness_breakpoints, stiffness_values (a secant stiffness curve) and force_breakpoints, force_values (a force–deflection curve) are two forms"),
+        "{e}"
+    );
+    // A setting reaches the same check.
+    let e = error_for(YARIS, &front, &["components.fe.gap=-0.1"]);
+    assert_eq!(e, "components.fe.gap = -0.1: must be a finite number ≥ 0");
+    let e = error_for(YARIS, &front.replace("[0.1]", "[0.0]"), &[]);
+    assert!(
+        e.starts_with("components.fe.stiffness_breakpoints: breakpoint 1 (0) must be a positive"),
+        "{e}"
+    );
+}
+
+#[test]
 fn the_weld_metric_names_a_weld_component() {
     let weld = "[components.hinge]\ntype = \"weld\"\ninputs = { moment = \"weld\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\n";
     let front = format!("[components.front_end]\ninputs = {{ force = \"crush\" }}\n{CRUSH}");

@@ -47,6 +47,9 @@ pub struct Sample {
     pub external_work: f64,
     /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
     pub inputs: Vec<f64>,
+    /// Values of the components' columns (see
+    /// [`SimulationResult::component_columns`]).
+    pub components: Vec<f64>,
 }
 
 /// Everything a run produced.
@@ -60,6 +63,9 @@ pub struct SimulationResult {
     /// call of the dynamics, so an input called twice is there twice.
     /// Their units travel separately, in [`crate::report::Units`].
     pub input_columns: Vec<String>,
+    /// The name and unit of each column of [`Sample::components`]:
+    /// `NAME.QUANTITY` of a scenario component (`front_end.force`, `N`).
+    pub component_columns: Vec<(String, Option<String>)>,
     /// The coordinates at the start (after the static-equilibrium solve).
     pub initial_q: Vec<f64>,
     /// The output samples, at multiples of the scenario's output interval
@@ -224,6 +230,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
             .map(|s| s.to_string())
             .collect(),
         input_columns,
+        component_columns: scenario.inputs.columns(),
         initial_q: run.initial_q,
         samples: run.samples,
         stats: run.stats,
@@ -426,10 +433,10 @@ impl<const N: usize> Sampler<N> {
         y: &PhaseState<N>,
     ) {
         match sample(problem, t, y, self.keep) {
-            Ok((view, inputs)) => {
+            Ok((view, columns)) => {
                 self.metrics.push(view.as_view());
                 if self.keep {
-                    self.samples.push(view.into_sample(inputs));
+                    self.samples.push(view.into_sample(columns));
                 }
             }
             Err(e) => {
@@ -483,7 +490,7 @@ impl<const N: usize> SampleValues<N> {
         }
     }
 
-    fn into_sample(self, inputs: Vec<f64>) -> Sample {
+    fn into_sample(self, columns: Columns) -> Sample {
         Sample {
             t: self.t,
             q: self.y.q.as_slice().to_vec(),
@@ -493,26 +500,37 @@ impl<const N: usize> SampleValues<N> {
             potential: self.potential,
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
-            inputs,
+            inputs: columns.inputs,
+            components: columns.components,
         }
     }
 }
 
-/// Evaluates a sample, with the input values when `inputs` is set.
+/// The values of a kept sample beyond the state: inputs and components.
+#[derive(Default)]
+struct Columns {
+    inputs: Vec<f64>,
+    components: Vec<f64>,
+}
+
+/// Evaluates a sample, with the input and component values when `columns`
+/// is set.
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
-    inputs: bool,
-) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
-    let a = problem
-        .accelerations(t, &y.q, &y.v)
-        .map_err(|fault| SolverError::Rhs { t, error: fault })?;
+    columns: bool,
+) -> Result<(SampleValues<N>, Columns), SolverError> {
+    let fault = |fault| SolverError::Rhs { t, error: fault };
+    let a = problem.accelerations(t, &y.q, &y.v).map_err(fault)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
-    let values = if inputs {
-        problem.input_values(t, &y.q, &y.v)
+    let values = if columns {
+        Columns {
+            inputs: problem.input_values(t, &y.q, &y.v),
+            components: problem.component_values(t, &y.q, &y.v).map_err(fault)?,
+        }
     } else {
-        Vec::new()
+        Columns::default()
     };
     let sample = SampleValues {
         t,

@@ -184,6 +184,18 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         }
         values
     }
+
+    /// The values of the components' columns at a state (see
+    /// [`BoundInputs::columns`]).
+    pub fn component_values(
+        &mut self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<Vec<f64>, Fault> {
+        self.system.input_arguments(t, q, v, &mut self.arguments);
+        self.inputs.column_values(&self.arguments)
+    }
 }
 
 impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for CrashProblem<'_, N, S> {

@@ -163,3 +163,119 @@ fn a_signal_still_growing_at_the_end_is_flagged() {
     let summary = simulate(&model, &scenario).unwrap().summary;
     assert!(summary.channels.0[0].extreme_at_end);
 }
+
+/// A mass of 860 kg at 10 m/s into a crush element with a gap of 2 cm and
+/// the force–deflection curve (0, 0), (0.1 m, 170 kN), (0.5 m, 180 kN).
+const IMPACT: &str = "model Impact;
+coordinates { x [m], }
+parameters { m [kg] = 860.0, }
+inputs {
+    crush(x [m], v [m/s]) [N] { d(x) = crush_stiffness(x, v), d(v) = crush_damping(x, v), },
+    crush_stiffness(x [m], v [m/s]) [N/m],
+    crush_damping(x [m], v [m/s]) [N*s/m],
+}
+kinetic = 0.5 * m * pow(dot(x), 2);
+force x = -crush(x, dot(x));
+jacobians;
+";
+
+const WALL: &str = "[simulation]
+t_end = 0.1
+rtol = 1e-10
+atol = 1e-12
+[initial]
+velocities = { x = 10.0 }
+[components.wall]
+type = \"crush\"
+inputs = { force = \"crush\", stiffness = \"crush_stiffness\", damping = \"crush_damping\" }
+compression = \"positive\"
+force_breakpoints = [0.1, 0.5]
+force_values = [170e3, 180e3]
+damping_breakpoints = [1.0]
+damping_values = [0.0, 0.0]
+gap = 0.02
+unloading = \"plastic\"
+unloading_stiffness = 1e7
+";
+
+/// The impact model and its scenario, with `settings`.
+fn impact(settings: &[&str]) -> (Interpreted<1>, Scenario) {
+    let model = lagrangian_core::interpret(IMPACT).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
+    let scenario = Scenario::parse(WALL, None, &names, &settings).unwrap();
+    (Interpreted::new(model).unwrap(), scenario)
+}
+
+#[test]
+fn a_force_deflection_curve_behind_a_gap_stops_the_mass_where_its_energy_says() {
+    let (system, scenario) = impact(&[]);
+    let result = simulate(&system, &scenario).unwrap();
+    let columns = [("wall.force", "N"), ("wall.deflection", "m")]
+        .map(|(name, unit)| (name.to_string(), Some(unit.to_string())));
+    assert_eq!(result.component_columns, columns);
+    // ½·860·10² = 43 kJ = ∫F: 8.5 kJ to 0.1 m, then 170 kN·u + 12.5 kN/m·u²
+    // for u = 0.2 m: the peak is at 0.3 m of deflection, 175 kN.
+    let descriptions: Vec<&str> = (result.events.iter())
+        .map(|e| e.description.as_str())
+        .collect();
+    assert_eq!(
+        descriptions,
+        [
+            "contact with the barrier at crush 0.0200 m",
+            "peak crush 0.3200 m at 175.0 kN; unloading",
+            // Unloading at 10 MN/m leaves 0.3 − 0.0175 m of deflection.
+            "separation from the barrier at crush 0.3025 m",
+        ]
+    );
+    assert!(
+        (result.events[0].t - 0.002).abs() < 1e-9,
+        "{:?}",
+        result.events[0]
+    );
+    // The columns: no force while the gap is open, then the curve's force
+    // at the deflection x − gap until the peak.
+    let peak = result.events[1].t;
+    for s in &result.samples {
+        let (force, deflection) = (s.components[0], s.components[1]);
+        assert!((deflection - (s.q[0] - 0.02)).abs() < 1e-15, "t = {}", s.t);
+        let expected = match deflection {
+            d if d <= 0.0 => 0.0,
+            d if d <= 0.1 => 1.7e6 * d,
+            d => 170e3 + 25e3 * (d - 0.1),
+        };
+        if s.t < peak {
+            assert!((force - expected).abs() < 1e-6, "{force} vs {expected}");
+        }
+        // Compression positive: the input's value is the force itself.
+        assert_eq!(force, s.inputs[0]);
+    }
+    let max = (result.samples.iter()).fold(0.0_f64, |m, s| m.max(s.components[1]));
+    assert!((max - 0.3).abs() < 1e-6, "{max}");
+    // The spring gives back ½·k_u·(0.0175 m)²: 1.887 m/s of rebound.
+    let rebound = -result.samples.last().unwrap().v[0];
+    let expected = (1e7 * 0.0175_f64.powi(2) / 860.0).sqrt();
+    assert!(
+        (rebound - expected).abs() < 1e-6 * expected,
+        "{rebound} vs {expected}"
+    );
+}
+
+#[test]
+fn the_tangent_stiffness_of_a_force_deflection_curve_is_its_segment_slope() {
+    use crate::ode::tr_bdf2::AccelerationJacobians;
+    let (system, scenario) = impact(&[]);
+    let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
+    // 0.32 m of crush: 0.3 m of deflection, in contact, on the segment from
+    // (0.1 m, 170 kN) to (0.5 m, 180 kN): ∂ẍ/∂x = −(25 kN/m)/860 kg.
+    let y = PhaseState::new(SVector::from([0.32]), SVector::from([1.0]));
+    problem.start(0.0, &y).unwrap();
+    let (a_q, a_v) = problem.acceleration_jacobians(0.0, &y).unwrap().unwrap();
+    assert!((a_q[(0, 0)] + 25e3 / 860.0).abs() < 1e-9, "{a_q}");
+    assert_eq!(a_v[(0, 0)], 0.0);
+    // TR-BDF2 on those Jacobians finds the same peak as Dormand–Prince.
+    let (system, scenario) = impact(&["simulation.method=\"tr-bdf2\""]);
+    let result = simulate(&system, &scenario).unwrap();
+    let peak = &result.events[1].description;
+    assert_eq!(peak, "peak crush 0.3200 m at 175.0 kN; unloading");
+}
