@@ -214,6 +214,10 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "rejected_steps",
         "rhs_evaluations",
         "energy_balance_error_rel",
+        "permanent_crush_m",
+        "end_of_contact_s",
+        "max_theta1_in_pulse_deg",
+        "max_theta2_in_pulse_deg",
         "channels",
     ];
     expected.sort();

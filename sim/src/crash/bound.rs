@@ -3,7 +3,7 @@
 //! the trajectory.
 
 use super::curve::OutOfRange;
-use super::{Component, Port};
+use super::{Component, Contact, Port};
 use crate::fault::Fault;
 use crate::ode::Direction;
 use lagrangian_model::InputFunctions;
@@ -230,6 +230,24 @@ impl BoundInputs {
                 Some((named.name.clone(), first + force, first + deflection))
             })
             .collect()
+    }
+
+    /// The end of the crash pulse: when the last of the contact elements
+    /// named in `names` (all of them when `names` is empty) lost contact;
+    /// `None` while one is still in contact, or when none ever was.
+    pub fn end_of_contact(&self, names: &[String]) -> Option<f64> {
+        let mut end: Option<f64> = None;
+        for c in &self.components {
+            if !names.is_empty() && !names.contains(&c.name) {
+                continue;
+            }
+            match c.component.contact() {
+                Some(Contact::Touching) => return None,
+                Some(Contact::EndedAt(t)) => end = Some(end.map_or(t, |e| e.max(t))),
+                Some(Contact::Never) | None => {}
+            }
+        }
+        end
     }
 
     /// The time a component named `name` (any component, if `None`) failed,

@@ -39,7 +39,7 @@
 //! never both.
 
 use super::curve::{ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
-use super::{Binder, Column, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Contact, Event, Port, Section};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
@@ -100,6 +100,8 @@ pub struct CrushElement {
     pub gap: f64,
     phase: Phase,
     in_contact: bool,
+    /// When the last contact ended, while out of contact after one.
+    separated_at: Option<f64>,
 }
 
 /// The element's events, in index order (see [`CrushElement::event_values`]).
@@ -152,6 +154,7 @@ impl CrushElement {
             gap: 0.0,
             phase: Phase::Loading,
             in_contact: true,
+            separated_at: None,
         }
     }
 
@@ -304,7 +307,7 @@ impl Component for CrushElement {
 
     /// Applies event `k`; the description gives the crush (the deflection
     /// plus the gap).
-    fn on_event(&mut self, k: usize, _t: f64, args: &[f64]) -> Result<String, OutOfRange> {
+    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         let (delta, _) = self.crush(args);
         let crush = delta + self.gap;
         Ok(match k {
@@ -325,10 +328,12 @@ impl Component for CrushElement {
             }
             2 => {
                 self.in_contact = false;
+                self.separated_at = Some(t);
                 format!("separation from the barrier at crush {crush:.4} m")
             }
             _ => {
                 self.in_contact = true;
+                self.separated_at = None;
                 format!("contact with the barrier at crush {crush:.4} m")
             }
         })
@@ -343,6 +348,7 @@ impl Component for CrushElement {
         let args = args.unwrap_or(&[0.0, 0.0]);
         self.phase = Phase::Loading;
         self.in_contact = true;
+        self.separated_at = None;
         if self.contact_only {
             let (delta, rate) = self.crush(args);
             self.in_contact = self.closing(delta, rate)? >= 0.0;
@@ -363,6 +369,14 @@ impl Component for CrushElement {
 
     fn force_deflection(&self) -> Option<(usize, usize)> {
         Some((0, 1))
+    }
+
+    fn contact(&self) -> Option<Contact> {
+        Some(match (self.in_contact, self.separated_at) {
+            (true, _) => Contact::Touching,
+            (false, Some(t)) => Contact::EndedAt(t),
+            (false, None) => Contact::Never,
+        })
     }
 }
 

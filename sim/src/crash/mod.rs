@@ -186,6 +186,24 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     fn failure_time(&self) -> Option<f64> {
         None
     }
+
+    /// For a contact element (a crush element that only pushes): whether
+    /// it is in contact now, or since when it is not; `None` (the default)
+    /// for a component without contact.
+    fn contact(&self) -> Option<Contact> {
+        None
+    }
+}
+
+/// The state of a contact element's contact (see [`Component::contact`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Contact {
+    /// In contact now.
+    Touching,
+    /// Out of contact since this time \[s\].
+    EndedAt(f64),
+    /// Not in contact in this run so far (it started separated and stayed).
+    Never,
 }
 
 /// Copies a boxed [`Component`]; implemented for every component that is

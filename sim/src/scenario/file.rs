@@ -72,6 +72,7 @@ pub(super) struct MetricsSection {
     pub(super) crush: Option<String>,
     pub(super) pitch: Vec<String>,
     pub(super) weld: Option<String>,
+    pub(super) contact: Vec<String>,
     pub(super) displacement: Vec<String>,
     pub(super) velocity: Vec<String>,
     pub(super) acceleration: Vec<String>,

@@ -233,6 +233,9 @@ pub struct Scenario {
     /// Coordinates whose rotation is reported as pitch, relative to the
     /// start.
     pub pitch: Vec<usize>,
+    /// The contact elements whose contact ends the pulse
+    /// (`metrics.contact`); empty: every contact element.
+    pub contact: Vec<String>,
     /// The weld component whose failure time the summary reports
     /// (`metrics.weld`); it names a weld component of the scenario.
     pub weld: Option<String>,

@@ -135,6 +135,9 @@ pub(super) fn resolve(
     if let Some(weld) = &file.metrics.weld {
         check_weld_metric(weld, &file.components)?;
     }
+    for name in &file.metrics.contact {
+        check_contact_metric(name, &file.components)?;
+    }
     let inputs = bind_components(&file.components, tables, names, constants)?;
     Ok(Scenario {
         file: None,
@@ -152,6 +155,7 @@ pub(super) fn resolve(
         channels,
         pitch,
         weld: file.metrics.weld.clone(),
+        contact: file.metrics.contact.clone(),
         inputs,
     })
 }
@@ -231,6 +235,33 @@ fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>
         }
     }
     Ok(channels)
+}
+
+/// `metrics.contact` names crush components of the file.
+fn check_contact_metric(
+    name: &str,
+    components: &BTreeMap<String, ComponentSection>,
+) -> Result<(), String> {
+    let crush: Vec<&str> = (components.iter())
+        .filter(|(_, c)| c.kind() == "crush")
+        .map(|(n, _)| n.as_str())
+        .collect();
+    match components.get(name) {
+        Some(c) if c.kind() == "crush" => Ok(()),
+        Some(c) => Err(format!(
+            "metrics.contact = \"{name}\": component `{name}` is a {} component; metrics.contact names crush components ({})",
+            c.kind(),
+            match crush.is_empty() {
+                true => "the scenario has none".to_string(),
+                false => crush.join(", "),
+            }
+        )),
+        None => Err(format!(
+            "metrics.contact = \"{name}\": {}",
+            unknown("crush component", name, crush.iter().copied())
+                .replace("does not exist in the spec", "is not in the scenario")
+        )),
+    }
 }
 
 /// `metrics.weld` must name a weld component of the file.

@@ -330,3 +330,17 @@ fn an_unknown_channel_in_a_file_is_reported_at_its_line_and_column() {
         "car.toml:7:3: metrics.acceleration = \"x_dddot\": column `x_dddot` does not exist in the spec; did you mean `x_ddot`?"
     );
 }
+
+#[test]
+fn metrics_contact_names_crush_components() {
+    let e = error(&format!("{PUSH}[metrics]\ncontact = [\"c\"]\n"), &[]);
+    assert_eq!(
+        e,
+        "metrics.contact = \"c\": component `c` is a constant component; metrics.contact names crush components (the scenario has none)"
+    );
+    let e = error(&format!("{PUSH}[metrics]\ncontact = [\"wall\"]\n"), &[]);
+    assert!(
+        e.starts_with("metrics.contact = \"wall\": crush component `wall` is not in the scenario"),
+        "{e}"
+    );
+}

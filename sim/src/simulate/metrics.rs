@@ -84,6 +84,12 @@ pub struct Metrics {
     /// Largest speed away from the barrier since the peak.
     rebound: f64,
     pitch_extremes: Vec<f64>,
+    /// Time and deviations from equilibrium of the pitch coordinates, for
+    /// their extremes within the pulse (whose end is known at the end).
+    pitch_history: Vec<(f64, Vec<f64>)>,
+    /// Time, crush and crush rate of every sample, for the crush at the end
+    /// of contact.
+    crush_history: Vec<CrushPoint>,
     /// Time, crush and crush acceleration of every sample, for the pulse
     /// metrics (filtering needs the whole record).
     pulse: Vec<(f64, f64, f64)>,
@@ -104,6 +110,8 @@ impl Metrics {
         Metrics {
             crush: scenario.crush.clone(),
             pitch_extremes: vec![0.0; pitch.len()],
+            pitch_history: Vec::new(),
+            crush_history: Vec::new(),
             pitch,
             g,
             samples: 0,
@@ -134,11 +142,16 @@ impl Metrics {
         });
         let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
         self.energy_error = self.energy_error.max(balance);
+        let mut deviations = Vec::with_capacity(self.pitch.len());
         for ((k, q0), extreme) in self.pitch.iter().zip(&mut self.pitch_extremes) {
             let d = s.q[*k] - q0;
             if d.abs() > extreme.abs() {
                 *extreme = d;
             }
+            deviations.push(d);
+        }
+        if !deviations.is_empty() {
+            self.pitch_history.push((s.t, deviations));
         }
         if let Some(crush) = &self.crush {
             let point = CrushPoint {
@@ -173,6 +186,7 @@ impl Metrics {
             }
             self.deceleration = self.deceleration.max(-acceleration / self.g);
             self.pulse.push((s.t, point.crush, acceleration));
+            self.crush_history.push(point);
             self.previous = Some(point);
         }
         for channel in &mut self.channels {
@@ -181,11 +195,28 @@ impl Metrics {
         self.samples += 1;
     }
 
-    /// The summary, with the run's statistics and the weld's failure time.
-    pub fn finish(&self, stats: &Stats, weld_failure: Option<f64>) -> Summary {
+    /// The summary, with the run's statistics, the weld's failure time and
+    /// the end of the contact (the end of the pulse).
+    pub fn finish(
+        &self,
+        stats: &Stats,
+        weld_failure: Option<f64>,
+        end_of_contact: Option<f64>,
+    ) -> Summary {
+        let in_pulse = end_of_contact.map(|end| self.pitch_extremes_until(end));
+        let in_pulse = |k: usize| {
+            in_pulse
+                .as_ref()
+                .and_then(|e| e.get(k))
+                .map(|d| d.to_degrees())
+        };
         let mut summary = Summary {
             max_theta1_deg: self.pitch_extremes.first().map(|d| d.to_degrees()),
             max_theta2_deg: self.pitch_extremes.get(1).map(|d| d.to_degrees()),
+            max_theta1_in_pulse_deg: in_pulse(0),
+            max_theta2_in_pulse_deg: in_pulse(1),
+            end_of_contact_s: end_of_contact,
+            permanent_crush_m: end_of_contact.and_then(|t| self.crush_at(t)),
             weld_failure_time_s: weld_failure,
             steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
@@ -212,6 +243,33 @@ impl Metrics {
             }
         }
         summary
+    }
+
+    /// The pitch deviations of largest magnitude up to time `end`.
+    fn pitch_extremes_until(&self, end: f64) -> Vec<f64> {
+        let mut extremes = vec![0.0f64; self.pitch.len()];
+        for (_, deviations) in self.pitch_history.iter().take_while(|(t, _)| *t <= end) {
+            for (extreme, &d) in extremes.iter_mut().zip(deviations) {
+                if d.abs() > extreme.abs() {
+                    *extreme = d;
+                }
+            }
+        }
+        extremes
+    }
+
+    /// The crush at time `t`, by cubic Hermite interpolation of the samples
+    /// around it (crush and rate); `None` outside the samples.
+    fn crush_at(&self, t: f64) -> Option<f64> {
+        let h = &self.crush_history;
+        let k = h.iter().position(|p| p.t >= t)?;
+        if k == 0 {
+            return (h[0].t == t).then_some(h[0].crush);
+        }
+        let (a, b) = (h[k - 1], h[k]);
+        let step = b.t - a.t;
+        let [w0, w1, w2, w3] = hermite_weights((t - a.t) / step, step);
+        Some(w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate)
     }
 
     /// The pulse metrics of the crush coordinate's samples (resampled onto

@@ -298,7 +298,8 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         return Err(e.into());
     }
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
-    let summary = sampler.metrics.finish(&outcome.stats, weld);
+    let end_of_contact = problem.inputs.end_of_contact(&scenario.contact);
+    let summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
     let run = Run {
         initial_q: y0.q.as_slice().to_vec(),
         samples: sampler.samples,

@@ -226,12 +226,23 @@ summary! {
     /// First time the velocity towards the barrier reaches zero \[s\].
     time_to_zero_velocity_s: Option<f64> =>
         Some(Text::line("time to zero velocity", "", 1).in_ms()),
+    /// Crush when the contact ended: the permanent crush after unloading
+    /// \[m\] (none while still in contact at the end of the run).
+    permanent_crush_m: Option<f64> =>
+        Some(Text::line("permanent crush, at", "m", 3)),
+    /// When the last contact element lost contact: the end of the pulse \[s\].
+    end_of_contact_s: Option<f64> => Some(Text::more("", 1).in_ms()),
     /// The first pitch coordinate's deviation of largest magnitude from
     /// equilibrium, signed [°].
     max_theta1_deg: Option<f64> => Some(Text::line("max pitch θ1, θ2", "°", 2)),
     /// The second pitch coordinate's, likewise [°].
     max_theta2_deg: Option<f64> =>
         Some(Text::more("°", 2).note(" (from static equilibrium)")),
+    /// The first pitch coordinate's deviation of largest magnitude up to
+    /// the end of the contact, signed [°].
+    max_theta1_in_pulse_deg: Option<f64> => Some(Text::line("max pitch in the pulse", "°", 2)),
+    /// The second pitch coordinate's, likewise [°].
+    max_theta2_in_pulse_deg: Option<f64> => Some(Text::more("°", 2)),
     /// Largest deceleration, unfiltered \[g\].
     peak_deceleration_g: Option<f64> =>
         Some(Text::line("peak deceleration", "g", 1).note(" (unfiltered)")),
@@ -344,13 +355,15 @@ mod tests {
         assert_eq!(lines[0], "  max dynamic crush      0.547 m");
         assert_eq!(lines[1], "  at                     66.4 ms");
         assert_eq!(lines[2], "  time to zero velocity  –");
+        assert_eq!(lines[3], "  permanent crush, at    –, –");
         assert_eq!(
-            lines[3],
+            lines[4],
             "  max pitch θ1, θ2       -13.61 °, – (from static equilibrium)"
         );
-        assert_eq!(lines[6], "  weld failure           none");
-        assert_eq!(lines[8], "  OLC, ASI               29.5 g, 2.11");
-        assert_eq!(lines[9], "  energy balance error   3.4e-10 (relative)");
-        assert_eq!(lines.len(), 10);
+        assert_eq!(lines[5], "  max pitch in the pulse –, –");
+        assert_eq!(lines[8], "  weld failure           none");
+        assert_eq!(lines[10], "  OLC, ASI               29.5 g, 2.11");
+        assert_eq!(lines[11], "  energy balance error   3.4e-10 (relative)");
+        assert_eq!(lines.len(), 12);
     }
 }

@@ -279,3 +279,25 @@ fn the_tangent_stiffness_of_a_force_deflection_curve_is_its_segment_slope() {
     let peak = &result.events[1].description;
     assert_eq!(peak, "peak crush 0.3200 m at 175.0 kN; unloading");
 }
+
+#[test]
+fn the_crush_when_contact_ends_is_the_permanent_crush() {
+    // The mass of the test above: contact ends at the permanent set of the
+    // plastic unloading, 0.3 − 175 kN / 10 MN/m = 0.2825 m of deflection
+    // behind the 2 cm gap, 0.3025 m of crush.
+    let (system, scenario) = impact(&["metrics.crush=\"x\"", "metrics.contact=[\"wall\"]"]);
+    let result = simulate(&system, &scenario).unwrap();
+    let summary = &result.summary;
+    let separation = result.events[2].t;
+    assert_eq!(summary.end_of_contact_s, Some(separation));
+    let permanent = summary.permanent_crush_m.unwrap();
+    assert!((permanent - 0.3025).abs() < 1e-9, "{permanent}");
+    assert!((summary.max_crush_m.unwrap() - 0.32).abs() < 1e-9);
+    // Still in contact at the end of a shorter run: no permanent crush yet.
+    let (system, scenario) = impact(&["metrics.crush=\"x\"", "simulation.t_end=0.02"]);
+    let summary = simulate(&system, &scenario).unwrap().summary;
+    assert_eq!(
+        (summary.permanent_crush_m, summary.end_of_contact_s),
+        (None, None)
+    );
+}
