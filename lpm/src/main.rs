@@ -16,6 +16,7 @@ mod simulate;
 mod spec;
 mod status;
 mod sweep;
+mod warnings;
 
 use clap::{Parser, Subcommand};
 use failure::{Failure, Outcome};

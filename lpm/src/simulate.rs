@@ -37,6 +37,10 @@ pub struct Args {
     /// Output directory (default lpm-out/NAME, NAME the spec file's stem).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Make warnings (printed on stderr, listed in summary.json) errors:
+    /// the outputs are written, and lpm exits with status 9.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// The method names `--method` takes: [`Method::NAMES`], and the former
@@ -94,7 +98,11 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
         out.display()
     ));
-    Ok(Outcome::success(text))
+    Ok(crate::warnings::outcome(
+        text,
+        &result.warnings,
+        options.strict,
+    ))
 }
 
 /// `simulate` on the model at its dimension.

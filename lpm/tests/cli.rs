@@ -214,6 +214,8 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "rejected_steps",
         "rhs_evaluations",
         "energy_balance_error_rel",
+        // What looked wrong in the run (`[]` here: see trust_cli.rs).
+        "warnings",
     ];
     expected.sort();
     assert_eq!(keys, expected);

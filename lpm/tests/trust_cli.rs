@@ -26,3 +26,157 @@ fn derive_prints_a_specs_warning_on_stderr_and_succeeds() {
     assert_eq!(err.matches("warning:").count(), 1, "{err}");
     assert!(stdout(&out).contains("M[x, x] = m"), "{}", stdout(&out));
 }
+
+/// `lpm simulate` of the paper's model into a fresh folder, with `args`
+/// added; the run's output and its summary.json.
+fn simulate_paper(name: &str, args: &[&str]) -> (std::process::Output, serde_json::Value) {
+    let dir = temporary(name);
+    let out_dir = dir.to_string_lossy().into_owned();
+    let mut all = vec![
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        &out_dir,
+    ];
+    all.extend(args);
+    let out = lpm(&all);
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap_or_default();
+    let summary = serde_json::from_str(&text).unwrap_or(serde_json::Value::Null);
+    (out, summary)
+}
+
+/// The folder [`temporary`] made for `name`, without emptying it.
+fn temporary_path(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("lpm-test-{}-{name}", std::process::id()))
+}
+
+fn warning_kinds(summary: &serde_json::Value) -> Vec<&str> {
+    summary["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["kind"].as_str().unwrap())
+        .collect()
+}
+
+#[test]
+fn the_paper_run_is_clean_and_its_warnings_come_after_the_metrics() {
+    let (out, summary) = simulate_paper("clean", &[]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+    assert_eq!(summary["warnings"], serde_json::json!([]));
+    let text = std::fs::read_to_string(temporary_path("clean").join("summary.json")).unwrap();
+    assert!(text.starts_with("{\n  \"max_crush_m\": "), "{text}");
+    assert!(
+        text.ends_with(
+            "\"energy_balance_error_rel\": 3.444628021938035e-10,\n  \"warnings\": []\n}\n"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn an_impact_velocity_pointing_away_warns_and_strict_fails() {
+    let away = ["--set", "initial.velocities.r=15.5556"];
+    let (out, summary) = simulate_paper("away", &away);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains(
+            "warning: the impact velocity points away from the barrier: the crush coordinate `r` \
+             (crush = −r) starts at rate -15.5556 m/s"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("warning: the crush coordinate `r` (crush = −r) never compresses: its largest value 0.0000e0 m"),
+        "{err}"
+    );
+    assert_eq!(warning_kinds(&summary), ["moving_away", "never_compresses"]);
+    let strict = [&away[..], &["--strict"]].concat();
+    let (out, summary) = simulate_paper("away-strict", &strict);
+    assert_eq!(out.status.code(), Some(9), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("error: --strict: 2 warning(s)"),
+        "{}",
+        stderr(&out)
+    );
+    // The outputs are written, to be looked at.
+    assert_eq!(warning_kinds(&summary).len(), 2);
+}
+
+#[test]
+fn an_energy_balance_beyond_1e_3_warns_and_strict_fails() {
+    let loose = ["--rtol", "0.01", "--atol", "1e-6"];
+    let (out, summary) = simulate_paper("loose", &loose);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let error = summary["energy_balance_error_rel"].as_f64().unwrap();
+    assert!(error > 1e-3, "{error}");
+    let message = summary["warnings"][0]["message"].as_str().unwrap();
+    assert_eq!(
+        message,
+        format!(
+            "energy balance error {error:.1e} (relative) exceeds 1e-3: the results are not \
+             accurate; tighten simulation.rtol and simulation.atol"
+        )
+    );
+    assert!(
+        stderr(&out).contains(&format!("warning: {message}")),
+        "{}",
+        stderr(&out)
+    );
+    let strict = [&loose[..], &["--strict"]].concat();
+    let (out, _) = simulate_paper("loose-strict", &strict);
+    assert_eq!(out.status.code(), Some(9), "{}", stderr(&out));
+}
+
+/// A 20 g half-sine pulse of 100 ms from 15 m/s, its column signed by `sign`.
+fn pulse_file(name: &str, header: &str, sign: f64) -> std::path::PathBuf {
+    let dir = temporary(name);
+    let file = dir.join("pulse.csv");
+    let mut text = format!("t [s],{header}\n");
+    for k in 0..=1000 {
+        let t = k as f64 * 1e-4;
+        let a = -20.0 * 9.80665 * (std::f64::consts::PI * t / 0.1).sin();
+        text.push_str(&format!("{t},{}\n", sign * a));
+    }
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+#[test]
+fn a_flipped_acceleration_column_in_metrics_warns() {
+    let good = pulse_file("pulse-good", "acceleration [m/s^2]", 1.0);
+    let out = lpm(&[
+        "metrics".as_ref(),
+        good.as_os_str(),
+        "--v0".as_ref(),
+        "15".as_ref(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+    // The deceleration written in an acceleration column: +12.49 m/s.
+    let flipped = pulse_file("pulse-flipped", "acceleration [m/s^2]", -1.0);
+    let args = [
+        "metrics".as_ref(),
+        flipped.as_os_str(),
+        "--v0".as_ref(),
+        "15".as_ref(),
+    ];
+    let out = lpm(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains(
+            "warning: the acceleration column `acceleration [m/s^2]` looks flipped: its integral \
+             changes the velocity by +12.486 m/s, speeding the vehicle up into the barrier from \
+             the impact velocity 15.000 m/s"
+        ),
+        "{err}"
+    );
+    let json = lpm(&[&args[..], &["--format".as_ref(), "json".as_ref()]].concat());
+    let value: serde_json::Value = serde_json::from_str(&stdout(&json)).unwrap();
+    assert_eq!(value["warnings"][0]["kind"], "flipped_acceleration");
+    let strict = lpm(&[&args[..], &["--strict".as_ref()]].concat());
+    assert_eq!(strict.status.code(), Some(9));
+}

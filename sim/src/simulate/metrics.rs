@@ -11,6 +11,7 @@ use super::Summary;
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
 use crate::scenario::Scenario;
+use crate::warning::{self, ChannelPoint, Warning};
 
 /// One output sample as the metrics see it.
 #[derive(Clone, Copy, Debug)]
@@ -198,6 +199,22 @@ impl Metrics {
             }
         }
         summary
+    }
+
+    /// The sign-sanity warnings of the crush channel (named `channel` in
+    /// them): moving away from the barrier at the start, never compressing.
+    pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
+        let (Some(&(t, crush, _)), Some(rate)) = (self.pulse.first(), self.first_rate) else {
+            return Vec::new();
+        };
+        let first = ChannelPoint {
+            t,
+            value: crush,
+            rate,
+        };
+        let away = warning::moving_away(channel, first);
+        let flat = warning::never_compresses(channel, first, self.peak_value);
+        away.into_iter().chain(flat).collect()
     }
 
     /// The pulse metrics of the crush coordinate's samples (resampled onto

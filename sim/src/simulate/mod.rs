@@ -17,6 +17,7 @@ use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
 use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
+use crate::warning::{self, Warning};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 
@@ -75,6 +76,9 @@ pub struct SimulationResult {
     /// The gravitational acceleration `g` the summary's decelerations are
     /// in: the model's `g` parameter, or standard gravity without one.
     pub g: f64,
+    /// What looked wrong in the run, in the order found (empty for a
+    /// clean run).
+    pub warnings: Vec<Warning>,
 }
 
 /// Why a run failed.
@@ -229,6 +233,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         summary: run.summary,
         method: scenario.method,
         g: run.g,
+        warnings: run.warnings,
     })
 }
 
@@ -250,6 +255,7 @@ struct Run {
     events: Vec<EventRecord>,
     summary: Summary,
     g: f64,
+    warnings: Vec<Warning>,
 }
 
 /// Runs the scenario, keeping the samples if `keep`; returns the model with
@@ -290,6 +296,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     }
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
     let summary = sampler.metrics.finish(&outcome.stats, weld);
+    let warnings = run_warnings(&model, scenario, &sampler.metrics, &summary);
     let run = Run {
         initial_q: y0.q.as_slice().to_vec(),
         samples: sampler.samples,
@@ -297,8 +304,30 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         events: problem.events,
         summary,
         g,
+        warnings,
     };
     Ok((model, run))
+}
+
+/// The warnings of a finished run: the crush channel's sign sanity, then
+/// the energy balance.
+fn run_warnings<const N: usize, S: LagrangianSystem<N>>(
+    model: &S,
+    scenario: &Scenario,
+    metrics: &Metrics,
+    summary: &Summary,
+) -> Vec<Warning> {
+    let mut warnings = Vec::new();
+    if let Some((k, sign)) = scenario.crush {
+        let name = model.coordinate_names()[k];
+        let channel = match sign < 0.0 {
+            true => format!("crush coordinate `{name}` (crush = −{name})"),
+            false => format!("crush coordinate `{name}`"),
+        };
+        warnings.extend(metrics.crush_warnings(&channel));
+    }
+    warnings.extend(warning::energy_balance(summary.energy_balance_error_rel));
+    warnings
 }
 
 /// A copy of `system` with the scenario's parameter overrides.
