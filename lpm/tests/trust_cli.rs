@@ -180,3 +180,36 @@ fn a_flipped_acceleration_column_in_metrics_warns() {
     let strict = lpm(&[&args[..], &["--strict".as_ref()]].concat());
     assert_eq!(strict.status.code(), Some(9));
 }
+
+#[test]
+fn tolerances_out_of_range_are_scenario_errors_and_nothing_is_written() {
+    for (args, message) in [
+        (
+            ["--rtol", "1e6"],
+            "error: specs/scenarios/yaris_full_frontal.toml: simulation.rtol = 1000000: must be in (0, 0.1]",
+        ),
+        (
+            ["--rtol", "0.9"],
+            "error: specs/scenarios/yaris_full_frontal.toml: simulation.rtol = 0.9: must be in (0, 0.1]",
+        ),
+        (
+            ["--atol", "1e6"],
+            "error: specs/scenarios/yaris_full_frontal.toml: simulation.atol = 1000000: must be small against the state's scale, at most \
+             1.56e-2 (1e-3 × the largest initial coordinate or velocity, 15.5556, or 1)",
+        ),
+    ] {
+        let (out, summary) = simulate_paper("tolerance", &args);
+        assert_eq!(out.status.code(), Some(4), "{args:?}: {}", stderr(&out));
+        assert!(
+            stderr(&out).starts_with(message),
+            "{args:?}: {}",
+            stderr(&out)
+        );
+        assert!(summary.is_null(), "{args:?}: nothing written");
+    }
+    // The loosest rtol allowed runs (it starts: the first step used to
+    // underflow at loose tolerances) and warns of its energy balance.
+    let (out, summary) = simulate_paper("loosest", &["--rtol", "0.1", "--atol", "1e-6"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(warning_kinds(&summary), ["energy_balance"]);
+}
