@@ -11,6 +11,7 @@ mod eval;
 mod failure;
 mod fit;
 mod generate;
+mod mass;
 mod metrics;
 mod simulate;
 mod spec;

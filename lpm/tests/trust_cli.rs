@@ -213,3 +213,76 @@ fn tolerances_out_of_range_are_scenario_errors_and_nothing_is_written() {
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(warning_kinds(&summary), ["energy_balance"]);
 }
+
+#[test]
+fn eval_takes_a_state_starting_with_a_minus_sign() {
+    for args in [
+        ["eval", "specs/double_pendulum.lpm", "--state", "-0.1,0,0,0"],
+        [
+            "eval",
+            "specs/double_pendulum.lpm",
+            "--state=-0.1,0,0,0",
+            "--time=0",
+        ],
+    ] {
+        let out = lpm(&args);
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+        let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+        // M[0][1] = m2 l1 l2 cos(θ1 − θ2) with unit masses and lengths.
+        let m01 = json["mass_matrix"][0][1].as_f64().unwrap();
+        assert!((m01 - 0.1f64.cos()).abs() < 1e-15, "{m01}");
+    }
+    let out = lpm(&["eval", "specs/double_pendulum.lpm", "--state", "-0.1,x,0,0"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--state: `x` is not a number"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn eval_with_a_scenario_binds_its_inputs_and_parameters() {
+    let state = "-0.1,0,0,-15,0,0";
+    let args = ["eval", "specs/yaris_double_pendulum.lpm", "--state", state];
+    let without = lpm(&args);
+    assert_eq!(without.status.code(), Some(2), "the inputs need values");
+    let scenario = ["--scenario", "specs/scenarios/yaris_full_frontal.toml"];
+    let out = lpm(&[&args[..], &scenario[..]].concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    // M[r, r] = m1 + m2; the scenario's I1, I2 in M[θ1, θ1] = m2 (r + l0 +
+    // l1)² + m1 (r + l0)² + I1 at r = −0.1.
+    assert_eq!(json["mass_matrix"][0][0].as_f64(), Some(539.0 + 629.0));
+    let m11 = 629.0 * (0.81f64 + 0.57).powi(2) + 539.0 * 0.81f64.powi(2) + 244.6;
+    let got = json["mass_matrix"][1][1].as_f64().unwrap();
+    assert!((got - m11).abs() < 1e-9 * m11, "{got} vs {m11}");
+    // f[r] holds the force of the scenario's front_end at 0.1 m of crush
+    // (a few hundred kN), which only the bound components supply.
+    let f_r = json["forcing"][0].as_f64().unwrap();
+    assert!(f_r > 1e4, "{f_r}");
+    // --set applies on top of the scenario, as in simulate.
+    let heavier = lpm(&[&args[..], &scenario[..], &["--set", "m1=600"]].concat());
+    let json: serde_json::Value = serde_json::from_str(&stdout(&heavier)).unwrap();
+    assert_eq!(json["mass_matrix"][0][0].as_f64(), Some(600.0 + 629.0));
+}
+
+#[test]
+fn a_negative_mass_names_the_parameter_that_set_it() {
+    let out = lpm(&[
+        "eval",
+        "specs/double_pendulum.lpm",
+        "--state",
+        "0.1,0,0,0",
+        "--set",
+        "m1=-180",
+        "--set",
+        "l1=2",
+    ]);
+    assert_eq!(out.status.code(), Some(10));
+    assert_eq!(
+        stderr(&out),
+        "error: the mass matrix is singular or not positive definite at this state: made so by \
+         `m1 = -180` (with m1 = 1 it is positive definite at this state); check the sign of `m1`\n"
+    );
+}
