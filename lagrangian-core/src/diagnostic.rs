@@ -136,7 +136,16 @@ impl Diagnostic {
     /// Positions come from the span, so the source must have been parsed
     /// outside a procedural macro (proc-macro2's own span tracking).
     pub fn render(&self, file: &str, source: &str) -> String {
-        let mut out = format!("error: {}\n", self.message);
+        self.render_as("error", file, source)
+    }
+
+    /// As [`Diagnostic::render`], for a warning: `warning: …`.
+    pub fn render_warning(&self, file: &str, source: &str) -> String {
+        self.render_as("warning", file, source)
+    }
+
+    fn render_as(&self, level: &str, file: &str, source: &str) -> String {
+        let mut out = format!("{level}: {}\n", self.message);
         out.push_str(&snippet(file, source, self.span));
         if let Some((note, span)) = self.note.as_deref() {
             out.push_str(&format!("note: {note}\n"));

@@ -164,6 +164,14 @@ fn specs_without_units_are_not_checked() {
         compiled.model.coordinate_dimensions,
         vec![Some(Dimension::LENGTH)]
     );
+    // … and says so.
+    let warnings = &compiled.model.warnings;
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].message.contains("not for `k`:"),
+        "{}",
+        warnings[0].message
+    );
 }
 
 #[test]
@@ -198,4 +206,84 @@ fn wrong_arities_are_reported_not_a_panic_of_the_checker() {
         let text = error_of(&format!("potential = m * g * l * {call};"));
         assert!(text.contains("argument(s) but"), "{call}: {text}");
     }
+}
+
+#[test]
+fn a_literal_zero_takes_the_dimension_its_place_needs() {
+    let zeros = [
+        "potential = 0.0;",
+        "dissipation = 0.0;",
+        "dissipation = -0.0;",
+        "force x = 0;",
+        "force theta = (0.0);",
+        "force at (x, l) = (0.0, push(t));",
+        "potential = 0.5 * k * pow(x, 2) + 0.0 - 0;",
+        "dissipation = 0.0 * pow(dot(x), 2);",
+    ];
+    for statement in zeros {
+        let source = format!("{HEADER}{statement}");
+        let compiled = Compiled::from_source(&source)
+            .unwrap_or_else(|e| panic!("{statement}: {}", e.render("cart.lpm", &source)));
+        assert!(compiled.model.warnings.is_empty(), "{statement}");
+    }
+    // A zero beside a term of the wrong dimension does not hide it, and a
+    // literal that is not zero stays dimensionless.
+    let text = error_of("potential = k * x + 0.0;");
+    assert!(
+        text.contains("the potential energy has dimension N, but must have J"),
+        "{text}"
+    );
+    let text = error_of("dissipation = 1.0;");
+    assert!(
+        text.contains("the dissipation function has dimension 1 (dimensionless), but must have W"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_spec_without_any_unit_is_not_checked_nor_warned_about() {
+    let source = "model P; coordinates { q } parameters { m = 1.0 }
+        kinetic = 0.5 * m * pow(dot(q), 2); potential = 1.0 - cos(q); dissipation = 2.0;";
+    let compiled = Compiled::from_source(source).unwrap();
+    assert!(compiled.model.warnings.is_empty());
+    assert_eq!(compiled.model.coordinate_dimensions, vec![None]);
+}
+
+#[test]
+fn names_without_units_among_names_with_units_are_listed_in_one_warning() {
+    let source = "model A;
+coordinates { x [m], y }
+parameters { m [kg] = 1.0, k = 2.0 }
+inputs { push(s) [N] }
+kinetic = 0.5 * m * pow(dot(x), 2) + 0.5 * m * pow(dot(y), 2);
+potential = 0.5 * k * pow(x, 2);
+force x = push(x);";
+    let compiled = Compiled::from_source(source).unwrap();
+    let warnings = &compiled.model.warnings;
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let text = warnings[0].render_warning("a.lpm", source);
+    assert!(
+        text.starts_with(
+            "warning: units are declared for some names but not for `y`, `k`, `s` (argument of `push`): \
+             the terms that use them are not checked for dimensions\n"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("--> a.lpm:2:22"), "at `y`: {text}");
+    assert!(
+        text.contains("help: declare a unit for each name (e.g. `k [N/m]`), or for none"),
+        "{text}"
+    );
+    // With every unit declared the spec compiles without a warning.
+    let full = source
+        .replace("y }", "y [m] }")
+        .replace("k = 2.0", "k [N/m] = 2.0")
+        .replace("push(s)", "push(s [m])");
+    assert!(
+        Compiled::from_source(&full)
+            .unwrap()
+            .model
+            .warnings
+            .is_empty()
+    );
 }

@@ -1,9 +1,11 @@
 //! `lpm eval`: `M` and `f` at one state, by the interpreter, as JSON.
 
 use crate::failure::{Failure, Outcome};
+use crate::mass;
 use crate::spec::compile;
-use lagrangian_model::{ConstantInputs, InterpretedModel};
-use lagrangian_sim::scenario::{ModelNames, Setting};
+use crate::status::ExitStatus;
+use lagrangian_model::{ConstantInputs, InputFunctions, InterpretedModel};
+use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
 use std::path::PathBuf;
 
 /// Options of `lpm eval`.
@@ -11,46 +13,49 @@ use std::path::PathBuf;
 pub struct Args {
     /// The spec file (`.lpm`).
     spec: PathBuf,
-    /// Coordinates then velocities: q1,…,qN,q̇1,…,q̇N.
+    /// Coordinates then velocities: q1,…,qN,q̇1,…,q̇N (values may start
+    /// with '-': `--state -0.1,0`).
     #[arg(
         long,
-        value_delimiter = ',',
-        allow_negative_numbers = true,
-        required = true
+        required = true,
+        allow_hyphen_values = true,
+        value_name = "Q1,…,QN,V1,…,VN"
     )]
-    state: Vec<f64>,
+    state: String,
     /// Time.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     time: f64,
-    /// Set a parameter, or give an input function a constant value: name=value.
+    /// A scenario: its parameters apply and its components supply the
+    /// inputs, as in `simulate` (put in the state `--state` starts a run in).
+    #[arg(long)]
+    scenario: Option<PathBuf>,
+    /// Set a parameter, or give an input function a constant value:
+    /// name=value (with --scenario, anything `simulate --set` takes).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
 }
 
 /// Runs `lpm eval`.
 pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let mut model = compile(&args.spec)?.interpreted();
+    let compiled = compile(&args.spec)?;
+    let defaults = compiled.default_parameters();
+    let mut model = compiled.interpreted();
+    let state = parse_state(&args.state, &model)?;
+    let (q, qd) = state.split_at(model.dimension());
+    let (inputs, set): (Box<dyn InputFunctions>, Vec<usize>) = match &args.scenario {
+        Some(path) => scenario_inputs(&mut model, path, &args.set, (args.time, q, qd))?,
+        None => apply_settings(&mut model, &args.set)?,
+    };
+    let (mass, forcing) = evaluate(&model, (args.time, q, qd), &*inputs)?;
+    if !mass::positive_definite(&model, (args.time, q, qd)) {
+        let why = mass::blame(&model, &defaults, &set, (args.time, q, qd))
+            .map_or(String::new(), |why| format!(": {why}"));
+        return Err(Failure::new(
+            ExitStatus::SingularMassMatrix,
+            format!("the mass matrix is singular or not positive definite at this state{why}"),
+        ));
+    }
     let n = model.dimension();
-    if args.state.len() != 2 * n {
-        return Err(Failure::usage(format!(
-            "--state needs {} values (coordinates {} then their velocities), got {}",
-            2 * n,
-            model.coordinates().join(", "),
-            args.state.len()
-        )));
-    }
-    let inputs = apply_settings(&mut model, &args.set)?;
-    let (q, qd) = args.state.split_at(n);
-    let (mut mass, mut forcing) = (vec![0.0; n * n], vec![0.0; n]);
-    model
-        .evaluate_dynamics(args.time, q, qd, &inputs, &mut mass, &mut forcing)
-        .map_err(|e| Failure::evaluation(e.to_string()))?;
-    if mass.iter().chain(&forcing).any(|v| !v.is_finite()) {
-        return Err(Failure::evaluation(format!(
-            "M or f is not finite at t = {}, state {:?}",
-            args.time, args.state
-        )));
-    }
     let rows: Vec<Vec<f64>> = mass.chunks(n).map(<[f64]>::to_vec).collect();
     let json = serde_json::json!({ "mass_matrix": rows, "forcing": forcing });
     Ok(Outcome::success(format!(
@@ -59,19 +64,93 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     )))
 }
 
+/// The values of `--state`, two per coordinate.
+fn parse_state(text: &str, model: &InterpretedModel) -> Result<Vec<f64>, Failure> {
+    let values = (text.split(','))
+        .map(|v| {
+            v.trim()
+                .parse::<f64>()
+                .map_err(|_| Failure::usage(format!("--state: `{}` is not a number", v.trim())))
+        })
+        .collect::<Result<Vec<f64>, Failure>>()?;
+    let n = model.dimension();
+    if values.len() != 2 * n {
+        return Err(Failure::usage(format!(
+            "--state needs {} values (coordinates {} then their velocities), got {}",
+            2 * n,
+            model.coordinates().join(", "),
+            values.len()
+        )));
+    }
+    Ok(values)
+}
+
+/// `M` (row-major) and `f` at `state`, finite.
+fn evaluate(
+    model: &InterpretedModel,
+    (t, q, qd): mass::State,
+    inputs: &dyn InputFunctions,
+) -> Result<(Vec<f64>, Vec<f64>), Failure> {
+    let n = model.dimension();
+    let (mut mass, mut forcing) = (vec![0.0; n * n], vec![0.0; n]);
+    model
+        .evaluate_dynamics(t, q, qd, inputs, &mut mass, &mut forcing)
+        .map_err(|e| Failure::evaluation(e.to_string()))?;
+    if mass.iter().chain(&forcing).any(|v| !v.is_finite()) {
+        return Err(Failure::evaluation(format!(
+            "M or f is not finite at t = {t}, state {q:?}, {qd:?}"
+        )));
+    }
+    Ok((mass, forcing))
+}
+
+/// The scenario at `path` (with `settings`) applied to `model`: its
+/// parameters set, its components bound to the inputs and put in the state
+/// a run from `state` starts in. Returns the inputs and the indices of the
+/// parameters it sets.
+fn scenario_inputs(
+    model: &mut InterpretedModel,
+    path: &std::path::Path,
+    settings: &[String],
+    (t, q, qd): mass::State,
+) -> Result<(Box<dyn InputFunctions>, Vec<usize>), Failure> {
+    let names = ModelNames::of_interpreted(model);
+    let scenario = Scenario::load(path, &names, settings).map_err(|e| Failure::scenario(&e))?;
+    for &(i, value) in &scenario.parameters {
+        model
+            .set_parameter(&names.parameters[i], value)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    let mut arguments = vec![0.0; model.input_sites().iter().map(|s| s.1).sum()];
+    model
+        .evaluate_input_arguments(t, q, qd, &mut arguments)
+        .map_err(|e| Failure::evaluation(e.to_string()))?;
+    let mut inputs = scenario.inputs.clone();
+    inputs
+        .start(&arguments)
+        .map_err(|fault| Failure::evaluation(fault.to_string()))?;
+    let set = scenario.parameters.iter().map(|&(i, _)| i).collect();
+    Ok((Box::new(inputs), set))
+}
+
 /// Applies the `--set` settings: parameters to the model, input constants
-/// to the inputs returned. Every input the dynamics calls needs a value.
+/// to the inputs returned, with the indices of the parameters set. Every
+/// input the dynamics calls needs a value.
 fn apply_settings(
     model: &mut InterpretedModel,
     settings: &[String],
-) -> Result<ConstantInputs, Failure> {
+) -> Result<(Box<dyn InputFunctions>, Vec<usize>), Failure> {
     let names = ModelNames::of_interpreted(model);
     let mut inputs = vec![None; names.inputs.len()];
+    let mut set = Vec::new();
     for setting in settings {
         match Setting::parse(setting, &names).map_err(Failure::usage)? {
-            Setting::Parameter { name, value } => model
-                .set_parameter(&name, value)
-                .map_err(|e| Failure::usage(e.to_string()))?,
+            Setting::Parameter { name, value } => {
+                model
+                    .set_parameter(&name, value)
+                    .map_err(|e| Failure::usage(e.to_string()))?;
+                set.extend(names.parameters.iter().position(|p| *p == name));
+            }
             Setting::InputConstant { name, value } => {
                 if let Some(k) = names.inputs.iter().position(|i| *i == name) {
                     inputs[k] = Some(value);
@@ -79,7 +158,7 @@ fn apply_settings(
             }
             Setting::Entry { key, .. } => {
                 return Err(Failure::usage(format!(
-                    "--set {key}: eval takes parameters and input constants, not scenario entries"
+                    "--set {key}: eval takes parameters and input constants (scenario entries need --scenario)"
                 )));
             }
         }
@@ -92,11 +171,10 @@ fn apply_settings(
         .collect();
     if !missing.is_empty() {
         return Err(Failure::usage(format!(
-            "input function(s) {} have no value; give constants with --set NAME=VALUE",
+            "input function(s) {} have no value; give constants with --set NAME=VALUE or use --scenario",
             missing.join(", ")
         )));
     }
-    Ok(ConstantInputs(
-        inputs.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect(),
-    ))
+    let constants = ConstantInputs(inputs.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect());
+    Ok((Box::new(constants), set))
 }

@@ -78,6 +78,12 @@ impl Failure {
         Failure::usage(e.to_string())
     }
 
+    /// The same failure with `why` after its message (`message: why`).
+    pub fn because(mut self, why: &str) -> Failure {
+        self.message = format!("{}: {why}", self.message.trim_end());
+        self
+    }
+
     /// What stderr gets (without the details).
     pub fn text(&self) -> String {
         let message = self.message.trim_end();

@@ -11,11 +11,13 @@ mod eval;
 mod failure;
 mod fit;
 mod generate;
+mod mass;
 mod metrics;
 mod simulate;
 mod spec;
 mod status;
 mod sweep;
+mod warnings;
 
 use clap::{Parser, Subcommand};
 use failure::{Failure, Outcome};

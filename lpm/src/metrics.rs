@@ -3,6 +3,7 @@
 use crate::failure::{Failure, Outcome};
 use lagrangian_sim::pulse::channels::{Quantity, read_time_histories};
 use lagrangian_sim::pulse::{Pulse, PulseMetrics};
+use lagrangian_sim::warning::{self, Warning};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -16,6 +17,9 @@ pub struct Args {
     v0: Option<f64>,
     #[arg(long, value_parser = ["text", "json"], default_value = "text")]
     format: String,
+    /// Make warnings (a flipped acceleration column) errors: exit status 9.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// Runs `lpm metrics`.
@@ -43,17 +47,27 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
             "impact velocity {v0} is not a number"
         )));
     }
+    let warnings: Vec<Warning> =
+        warning::flipped_acceleration(&acceleration.header, &histories.t, &acceleration.values, v0)
+            .into_iter()
+            .collect();
     let crush = histories
         .channel(Quantity::Crush)
         .map(|c| c.values.as_slice());
     let metrics = Pulse::resampled(&histories.t, &acceleration.values, v0, crush)
         .and_then(|p| p.metrics())
         .map_err(|e| Failure::evaluation(format!("{}: {e}", file.display())))?;
-    Ok(Outcome::success(if json {
-        serde_json::to_string_pretty(&metrics).unwrap_or_default() + "\n"
+    let text = if json {
+        json_text(&metrics, &warnings)
     } else {
         text(&metrics, file)
-    }))
+    };
+    Ok(crate::warnings::outcome(text, &warnings, args.strict))
+}
+
+/// The metrics as JSON, then their `warnings` (`[]` when none).
+fn json_text(metrics: &PulseMetrics, warnings: &[Warning]) -> String {
+    warning::json_with_warnings(metrics, warnings)
 }
 
 fn text(m: &PulseMetrics, file: &Path) -> String {

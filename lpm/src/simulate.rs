@@ -3,11 +3,12 @@
 use crate::failure::{Failure, Outcome};
 use crate::spec::{compile, find_scenario, out_dir};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
 use lagrangian_sim::plot::{PlotSetup, figure_svg};
 use lagrangian_sim::report::{Units, summary_json, text_summary, trajectory_csv, write_atomically};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
-use lagrangian_sim::simulate::{SimulationResult, simulate};
+use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
 use std::path::{Path, PathBuf};
 
 /// Options of `lpm simulate`.
@@ -37,6 +38,10 @@ pub struct Args {
     /// Output directory (default lpm-out/NAME, NAME the spec file's stem).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Make warnings (printed on stderr, listed in summary.json) errors:
+    /// the outputs are written, and lpm exits with status 9.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// The method names `--method` takes: [`Method::NAMES`], and the former
@@ -94,7 +99,11 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
         out.display()
     ));
-    Ok(Outcome::success(text))
+    Ok(crate::warnings::outcome(
+        text,
+        &result.warnings,
+        options.strict,
+    ))
 }
 
 /// `simulate` on the model at its dimension.
@@ -106,9 +115,41 @@ impl WithDimension for Simulate<'_> {
     type Output = Result<SimulationResult, Failure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        simulate(&system, self.scenario)
-            .map_err(|e| Failure::simulation(&e, system.inner().coordinates()))
+        simulate(&system, self.scenario).map_err(|e| {
+            let failure = Failure::simulation(&e, system.inner().coordinates());
+            match mass_cause(&e, system.inner(), self.scenario) {
+                Some(why) => failure.because(&why),
+                None => failure,
+            }
+        })
     }
+}
+
+/// Which of the scenario's parameters made the mass matrix not positive
+/// definite where the run failed on it (`model`: at its defaults).
+fn mass_cause(
+    e: &SimulationError,
+    model: &InterpretedModel,
+    scenario: &Scenario,
+) -> Option<String> {
+    let SimulationError::Solver {
+        error: SolverError::Rhs { t, error: fault },
+        ..
+    } = e
+    else {
+        return None;
+    };
+    let Fault::SingularMassMatrix { q, qd } = fault else {
+        return None;
+    };
+    let defaults = model.parameters().to_vec();
+    let mut with_scenario = model.clone();
+    let names = model.parameter_names().to_vec();
+    for &(i, value) in &scenario.parameters {
+        with_scenario.set_parameter(&names[i], value).ok()?;
+    }
+    let set: Vec<usize> = scenario.parameters.iter().map(|&(i, _)| i).collect();
+    crate::mass::blame(&with_scenario, &defaults, &set, (*t, q, qd))
 }
 
 fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, Failure> {

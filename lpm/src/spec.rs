@@ -7,16 +7,18 @@ use lagrangian_core::Compiled;
 use lagrangian_sim::scenario::scenarios_for;
 use std::path::{Path, PathBuf};
 
-/// Reads and compiles a spec, rendering errors as `file:line:col` snippets.
+/// Reads and compiles a spec, rendering errors as `file:line:col` snippets;
+/// the spec's warnings go to stderr, rendered the same way.
 pub fn compile(path: &Path) -> Result<Compiled, Failure> {
     let source = std::fs::read_to_string(path)
         .map_err(|e| Failure::io(format!("cannot read {}: {e}", path.display())))?;
-    Compiled::from_source(&source).map_err(|e| {
-        Failure::rendered(
-            ExitStatus::Spec,
-            e.render(&path.display().to_string(), &source),
-        )
-    })
+    let file = path.display().to_string();
+    let compiled = Compiled::from_source(&source)
+        .map_err(|e| Failure::rendered(ExitStatus::Spec, e.render(&file, &source)))?;
+    for warning in &compiled.model.warnings {
+        eprint!("{}", warning.render_warning(&file, &source));
+    }
+    Ok(compiled)
 }
 
 /// The scenario beside a spec (`<spec dir>/scenarios/*.toml` whose `spec`

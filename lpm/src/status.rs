@@ -24,6 +24,8 @@ pub enum ExitStatus {
     DataFile,
     /// The model cannot be evaluated at the given state.
     Evaluation,
+    /// A run warned, and `--strict` makes warnings errors.
+    Warnings,
     /// A singular or indefinite mass matrix.
     SingularMassMatrix,
     /// NaN or ∞.
@@ -50,7 +52,7 @@ pub enum ExitStatus {
 
 impl ExitStatus {
     /// Every status, in the order of their numbers.
-    pub const ALL: [ExitStatus; 20] = [
+    pub const ALL: [ExitStatus; 21] = [
         ExitStatus::Success,
         ExitStatus::Io,
         ExitStatus::Usage,
@@ -60,6 +62,7 @@ impl ExitStatus {
         ExitStatus::Stale,
         ExitStatus::DataFile,
         ExitStatus::Evaluation,
+        ExitStatus::Warnings,
         ExitStatus::SingularMassMatrix,
         ExitStatus::NonFinite,
         ExitStatus::StepSizeUnderflow,
@@ -85,6 +88,7 @@ impl ExitStatus {
             ExitStatus::Stale => 6,
             ExitStatus::DataFile => 7,
             ExitStatus::Evaluation => 8,
+            ExitStatus::Warnings => 9,
             ExitStatus::SingularMassMatrix => 10,
             ExitStatus::NonFinite => 11,
             ExitStatus::StepSizeUnderflow => 12,
@@ -112,6 +116,7 @@ impl ExitStatus {
             ExitStatus::Stale => "generated files are stale (generate --check)",
             ExitStatus::DataFile => "a data file (CSV) is missing columns, non-numeric or unsorted",
             ExitStatus::Evaluation => "the model cannot be evaluated at the given state (eval)",
+            ExitStatus::Warnings => "a run or pulse warned and --strict makes warnings errors",
             ExitStatus::SingularMassMatrix => {
                 "the mass matrix is singular or not positive definite"
             }

@@ -219,6 +219,8 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "max_theta1_in_pulse_deg",
         "max_theta2_in_pulse_deg",
         "channels",
+        // What looked wrong in the run (`[]` here: see trust_cli.rs).
+        "warnings",
     ];
     expected.sort();
     assert_eq!(keys, expected);

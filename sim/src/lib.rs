@@ -10,7 +10,8 @@
 //! * [`sweep`] (feature `sweep`): a scenario run many times in parallel, to a
 //!   CSV or Parquet table; [`fit`] (feature `fit`): identification of the crush
 //!   characteristic by Levenberg–Marquardt; [`plot`] (feature `plot`): SVG
-//!   figures.
+//!   figures; [`warning`]: what a run does not stop at but should not be
+//!   trusted without a look.
 //!
 //! ```no_run
 //! use lagrangian_model::LagrangianSystem;
@@ -41,3 +42,4 @@ pub mod scenario;
 pub mod simulate;
 #[cfg(feature = "sweep")]
 pub mod sweep;
+pub mod warning;

@@ -101,9 +101,10 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
 }
 
 /// `summary.json`: the run's [`Summary`](crate::simulate::Summary) as
-/// pretty-printed JSON, one line per metric, ending in a newline.
+/// pretty-printed JSON, one line per metric, then its `warnings` (`[]` for
+/// a clean run), ending in a newline.
 pub fn summary_json(result: &SimulationResult) -> String {
-    serde_json::to_string_pretty(&result.summary).unwrap_or_else(|_| "{}".to_string()) + "\n"
+    crate::warning::json_with_warnings(&result.summary, &result.warnings)
 }
 
 /// The one-screen summary printed after a run.

@@ -581,3 +581,30 @@ fn tr_bdf2_failures_say_why_the_step_shrank() {
     );
     assert!(err.to_string().contains("iteration matrix"), "{err}");
 }
+
+#[test]
+fn every_adaptive_method_starts_at_loose_tolerances() {
+    // `x = 15 sin t` from x = 0: with rtol 0.9 the weighted size of the
+    // state is at most 1/rtol, and the rate of the coordinate that starts
+    // at zero is weighed by atol alone, so Hairer's probe 0.01‖y‖/‖f‖ came
+    // out near 1e-17 s and the first step below the minimum step, at t = 0.
+    let options = Options {
+        rtol: 0.9,
+        atol: 1e-14,
+        ..Options::default()
+    };
+    for method in Method::ALL.into_iter().filter(|m| m.is_adaptive()) {
+        let outcome = solve(
+            method,
+            &mut Problem::new(OSCILLATOR),
+            (0.0, 15.0),
+            3.0,
+            &options,
+        )
+        .unwrap_or_else(|e| panic!("{method}: {e}"));
+        assert_eq!(outcome.t, 3.0, "{method}");
+        // Loose, but a solution: within a third of the amplitude.
+        let error = (outcome.y.q[0] - 15.0 * 3.0f64.sin()).abs();
+        assert!(error < 5.0, "{method}: error {error}");
+    }
+}

@@ -3,8 +3,10 @@
 //! Dimensions are inferred on the syntax tree, so a mismatch is reported at
 //! the term the user wrote: in a sum, the terms whose dimension differs from
 //! that of most terms. A name without a declared unit has an unknown
-//! dimension, and checks involving it are skipped, so specs without units
-//! are not checked at all.
+//! dimension, and checks involving it are skipped (a spec without any unit
+//! is not checked at all: see the lowering's `units`). A literal zero takes
+//! whatever dimension its place needs: it has an unknown dimension, and a
+//! sum does not count it among its terms.
 
 use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange};
@@ -62,6 +64,7 @@ impl DimensionScope {
 
     pub fn infer(&self, expr: &Expr) -> Result<Option<Dimension>, Diagnostic> {
         Ok(match expr {
+            Expr::Lit(_) if is_zero(expr) => None,
             Expr::Lit(_) => Some(Dimension::NONE),
             Expr::Paren(p) => self.infer(&p.expr)?,
             Expr::Group(g) => self.infer(&g.expr)?,
@@ -208,6 +211,7 @@ impl DimensionScope {
     fn sum(&self, expr: &Expr) -> Result<Option<Dimension>, Diagnostic> {
         let mut terms = Vec::new();
         addends(expr, &mut terms);
+        terms.retain(|term| !is_zero(term));
         let mut known: Vec<(&Expr, Dimension)> = Vec::new();
         for term in &terms {
             if let Some(d) = self.infer(term)? {
@@ -230,6 +234,22 @@ impl DimensionScope {
         } else {
             None
         })
+    }
+}
+
+/// Whether `expr` is a literal zero (`0`, `0.0`, `-0.0`, `(0)`): zero in
+/// any unit, so of whatever dimension its place needs.
+fn is_zero(expr: &Expr) -> bool {
+    match expr {
+        Expr::Lit(l) => match &l.lit {
+            syn::Lit::Int(i) => i.base10_parse::<u128>().is_ok_and(|v| v == 0),
+            syn::Lit::Float(f) => f.base10_parse::<f64>().is_ok_and(|v| v == 0.0),
+            _ => false,
+        },
+        Expr::Paren(p) => is_zero(&p.expr),
+        Expr::Group(g) => is_zero(&g.expr),
+        Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => is_zero(&u.expr),
+        _ => false,
     }
 }
 

@@ -50,6 +50,8 @@ struct Lowering {
     /// The declared input functions' names, by index.
     input_names: Vec<String>,
     problems: Problems,
+    /// Warnings: what does not stop the spec compiling but a user should know.
+    warnings: Vec<Diagnostic>,
 }
 
 /// Resolves the names of `ast` and validates it: the model, or every
@@ -74,6 +76,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     let coordinate_dimensions = coordinate_dimensions(&dimensions, &declared.coordinates);
     let hand_derived = lowering.hand_derived(&items.statements, &declared, &mut dimensions);
     let [kinetic, potential, dissipation] = dynamics.energies;
+    let warnings = std::mem::take(&mut lowering.warnings);
     let (store, time, kinetic) = lowering.finish(&header.name, kinetic)?;
     Ok(Model {
         name: header.name.to_string(),
@@ -93,6 +96,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         jacobians_span: dynamics.jacobians_span,
         hand_derived,
         coordinate_dimensions,
+        warnings,
     })
 }
 
@@ -116,6 +120,7 @@ impl Lowering {
                 .map(|d| d.decl.name.to_string())
                 .collect(),
             problems,
+            warnings: Vec::new(),
         }
     }
 
@@ -138,7 +143,8 @@ impl Lowering {
         self.problems.take(lowering.lower(expr))
     }
 
-    /// Checks dimensional consistency where units are declared; returns the
+    /// Checks dimensional consistency where units are declared (nothing
+    /// when no name has a unit; a warning when some lack one); returns the
     /// dimensions of the declared and defined names.
     fn units(
         &mut self,
@@ -150,6 +156,11 @@ impl Lowering {
         let mut unit_problems = Vec::new();
         let mut dimensions =
             super::unit_check::scope(coordinates, parameters, inputs, &mut unit_problems);
+        let coverage = super::unit_check::UnitCoverage::of(coordinates, parameters, inputs);
+        if coverage.none() {
+            return dimensions;
+        }
+        self.warnings.extend(coverage.warning());
         let checked = super::unit_check::check(&mut dimensions, statements, inputs, coordinates);
         for d in unit_problems.into_iter().chain(checked) {
             self.problems.push(d);

@@ -135,6 +135,11 @@ pub struct Model {
     pub hand_derived: Option<HandDerived>,
     /// Dimensions of the coordinates, where declared.
     pub coordinate_dimensions: Vec<Option<crate::units::Dimension>>,
+    /// What does not stop the spec compiling but its author should know
+    /// (e.g. names without units among names with units). `lpm` prints
+    /// them; the `lagrangian!` macro cannot (a procedural macro has no
+    /// warnings on stable Rust), so they show with `lpm derive`.
+    pub warnings: Vec<crate::diagnostic::Diagnostic>,
 }
 
 impl Model {

@@ -54,6 +54,76 @@ pub(super) fn scope(
     scope
 }
 
+/// The declared names (coordinates, parameters, input functions and their
+/// arguments) with and without a unit.
+pub(super) struct UnitCoverage {
+    /// How many declared names have a unit.
+    pub with_unit: usize,
+    /// The names without one, as listed in messages, with where each is declared.
+    pub without_unit: Vec<(String, proc_macro2::Span)>,
+}
+
+impl UnitCoverage {
+    /// Sorts the declarations by whether they have a unit.
+    pub fn of(coordinates: &[Coordinate], parameters: &[Parameter], inputs: &[InputDecl]) -> Self {
+        let mut coverage = UnitCoverage {
+            with_unit: 0,
+            without_unit: Vec::new(),
+        };
+        for c in coordinates {
+            coverage.add(&c.unit, || format!("`{}`", c.name), c.span);
+        }
+        for p in parameters {
+            coverage.add(&p.unit, || format!("`{}`", p.name), p.span);
+        }
+        for i in inputs {
+            let name = &i.decl.name;
+            coverage.add(&i.decl.unit, || format!("`{name}`"), name.span());
+            for a in &i.arguments {
+                let what = || format!("`{}` (argument of `{name}`)", a.name);
+                coverage.add(&a.unit, what, a.name.span());
+            }
+        }
+        coverage
+    }
+
+    fn add(
+        &mut self,
+        unit: &Option<UnitText>,
+        name: impl FnOnce() -> String,
+        span: proc_macro2::Span,
+    ) {
+        match unit {
+            Some(_) => self.with_unit += 1,
+            None => self.without_unit.push((name(), span)),
+        }
+    }
+
+    /// Whether no name has a unit: then nothing is checked (a literal such
+    /// as `1.0` would otherwise be a dimensionless energy).
+    pub fn none(&self) -> bool {
+        self.with_unit == 0
+    }
+
+    /// One warning when some names have units and others not: the terms
+    /// that use the latter are not checked, which a user should know.
+    pub fn warning(&self) -> Option<Diagnostic> {
+        let (_, first) = self.without_unit.first()?;
+        if self.none() {
+            return None;
+        }
+        let names: Vec<&str> = self.without_unit.iter().map(|(n, _)| n.as_str()).collect();
+        let message = format!(
+            "units are declared for some names but not for {}: the terms that use {} are not checked for dimensions",
+            names.join(", "),
+            if names.len() == 1 { "it" } else { "them" }
+        );
+        Some(Diagnostic::new(*first, message).with_help(
+            "declare a unit for each name (e.g. `k [N/m]`), or for none to switch the check off",
+        ))
+    }
+}
+
 /// Energy per unit of a coordinate of dimension `d` (a generalized force's
 /// dimension). `None`, and so no check rather than a wrong one, only when an
 /// exponent leaves exact 128-bit fractions, which takes an absurd declared

@@ -294,10 +294,16 @@ pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
     // The error norm's weights with the scale of y alone.
     let scaled = |v: &Y| error_norm(v, y, y, options);
     let (d0, d1) = (scaled(y), scaled(f0));
+    // The probe is no shorter than the driver's smallest step. With a loose
+    // rtol the weighted size of y saturates (|y|/(atol + rtol|y|) < 1/rtol),
+    // while the rate of a component that starts at zero is weighed by atol
+    // alone: 0.01·d0/d1 then says nothing about y's time scale (4e-18 s for
+    // the paper's crash at rtol 0.9) and 100 such probes, the cap below, is
+    // a first step the driver refuses at t = 0.
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
         1e-6
     } else {
-        0.01 * d0 / d1
+        (0.01 * d0 / d1).max(options.min_step)
     }
     .min(span);
     let mut y1 = y.clone();

@@ -5,10 +5,23 @@
 /// `(line, column)`, from 1, of the entry `message` starts with
 /// (`section.key = "value": …` or `section.key: …`): the quoted value when
 /// the message quotes one and the text has it on the entry's lines, else
-/// the key. `None` when the text has no such entry (a `--set` setting).
-pub(super) fn locate(text: &str, message: &str) -> Option<(usize, usize)> {
+/// the key. `None` when the text has no such entry, or when one of the
+/// `settings` (`key=value`) set it: then the value is not the file's.
+pub(super) fn locate(text: &str, message: &str, settings: &[String]) -> Option<(usize, usize)> {
     let end = message.find([' ', ':'])?;
     let key = &message[..end];
+    let set_by = |s: &String| {
+        let set = s
+            .split('=')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .trim_end_matches('*');
+        set == key || key.starts_with(&format!("{set}."))
+    };
+    if settings.iter().any(set_by) {
+        return None;
+    }
     let (section, name) = key.rsplit_once('.')?;
     let value = quoted_value(&message[end..]);
     let lines: Vec<&str> = text.lines().collect();
@@ -59,11 +72,13 @@ mod tests {
     #[test]
     fn an_entry_is_found_at_its_value_or_its_key() {
         let text = "spec = \"x.lpm\"\n[metrics]\ncrush = \"-r\"\nacceleration = [\n  \"a\",\n  \"occupant\",\n]\n[initial]\nspeed = 3.0\n";
-        let at = |m: &str| locate(text, m);
+        let at = |m: &str| locate(text, m, &[]);
         assert_eq!(at("metrics.crush = \"-r\": bad"), Some((3, 9)));
         assert_eq!(at("metrics.acceleration = \"occupant\": x"), Some((6, 3)));
         assert_eq!(at("initial.speed = 3: x"), Some((9, 1)));
         assert_eq!(at("initial.moving: x"), None);
         assert_eq!(at("no key here"), None);
+        let set = ["initial.speed=4".to_string()];
+        assert_eq!(locate(text, "initial.speed = 4: x", &set), None);
     }
 }

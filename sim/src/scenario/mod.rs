@@ -333,7 +333,7 @@ impl Scenario {
         })?;
         resolve(parsed, base, names, constants, &tables)
             .map_err(|message| ScenarioError {
-                location: locate::locate(text, &message),
+                location: locate::locate(text, &message, settings),
                 ..error(message)
             })
             .map(|mut s| {

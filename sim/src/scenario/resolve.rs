@@ -116,6 +116,7 @@ pub(super) fn resolve(
     let initial_coordinates = initial("coordinates", &file.initial.coordinates)?;
     let mut initial_velocities = initial("velocities", &file.initial.velocities)?;
     initial_velocities.extend(moving_with_the_vehicle(&file.initial, names)?);
+    absolute_tolerance(s.atol, &initial_coordinates, &initial_velocities)?;
     let equilibrium = file
         .initial
         .equilibrium
@@ -297,9 +298,54 @@ fn check_weld_metric(
     }
 }
 
+/// The loosest relative tolerance a run may have: beyond it the local
+/// error control no longer makes a run accurate to any digit.
+pub const LOOSEST_RTOL: f64 = 0.1;
+
+/// The largest absolute tolerance against the state's scale (the largest
+/// initial coordinate or velocity, or 1 for a state that starts smaller).
+pub const ATOL_PER_SCALE: f64 = 1e-3;
+
+/// `simulation.rtol` in (0, [`LOOSEST_RTOL`]].
+fn relative_tolerance(rtol: f64) -> Result<f64, String> {
+    if rtol > 0.0 && rtol <= LOOSEST_RTOL {
+        return Ok(rtol);
+    }
+    Err(format!(
+        "simulation.rtol = {}: must be in (0, {LOOSEST_RTOL}]: a looser relative tolerance gives no \
+         accurate result (1e-6 to 1e-10 is usual)",
+        number(rtol)
+    ))
+}
+
+/// `simulation.atol` (already positive) small against the state's scale:
+/// at most [`ATOL_PER_SCALE`] times the largest initial coordinate or
+/// velocity (or 1). Above it the error control of the state's smaller
+/// components is off.
+fn absolute_tolerance(
+    atol: f64,
+    coordinates: &[(usize, f64)],
+    velocities: &[(usize, f64)],
+) -> Result<f64, String> {
+    let largest = coordinates
+        .iter()
+        .chain(velocities)
+        .fold(0.0f64, |m, &(_, x)| m.max(x.abs()));
+    let limit = ATOL_PER_SCALE * largest.max(1.0);
+    if atol <= limit {
+        return Ok(atol);
+    }
+    Err(format!(
+        "simulation.atol = {}: must be small against the state's scale, at most {limit:.2e} \
+         ({ATOL_PER_SCALE:e} × the largest initial coordinate or velocity, {}, or 1)",
+        number(atol),
+        number(largest)
+    ))
+}
+
 /// The method and solver options of `[simulation]`, each value checked
-/// (positive step sizes and times, tolerances ≥ 0, at most [`MAX_SAMPLES`]
-/// output samples).
+/// (positive step sizes and times, rtol in (0, [`LOOSEST_RTOL`]], atol
+/// positive, at most [`MAX_SAMPLES`] output samples).
 fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Options), String> {
     let method: Method = s.method.parse().map_err(|_| {
         format!(
@@ -319,8 +365,8 @@ fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Option
             number(s.t_end)
         ));
     }
-    non_negative("simulation.rtol", s.rtol)?;
-    non_negative("simulation.atol", s.atol)?;
+    relative_tolerance(s.rtol)?;
+    positive("simulation.atol", s.atol)?;
     if let Some(h) = s.max_step {
         positive("simulation.max_step", h)?;
     }

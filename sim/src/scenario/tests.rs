@@ -344,3 +344,58 @@ fn metrics_contact_names_crush_components() {
         "{e}"
     );
 }
+
+#[test]
+fn tolerances_outside_a_sensible_range_name_their_key_and_value() {
+    let paper_start = "[initial]\nvelocities = { x = -15.5 }\n";
+    let cases = [
+        (
+            "rtol = 0.9",
+            "simulation.rtol = 0.9: must be in (0, 0.1]: a looser relative tolerance gives no \
+             accurate result (1e-6 to 1e-10 is usual)",
+        ),
+        (
+            "rtol = 1e6",
+            "simulation.rtol = 1000000: must be in (0, 0.1]: a looser relative tolerance gives no \
+             accurate result (1e-6 to 1e-10 is usual)",
+        ),
+        ("rtol = 0.0", "simulation.rtol = 0: must be in (0, 0.1]"),
+        (
+            "atol = 0.0",
+            "simulation.atol = 0: must be a positive, finite number",
+        ),
+        (
+            "atol = 1e6",
+            "simulation.atol = 1000000: must be small against the state's scale, at most 1.55e-2 \
+             (1e-3 × the largest initial coordinate or velocity, 15.5, or 1)",
+        ),
+        (
+            "atol = 0.016",
+            "simulation.atol = 0.016: must be small against the state's scale, at most 1.55e-2",
+        ),
+    ];
+    for (setting, message) in cases {
+        let text = format!("[simulation]\n{setting}\n{paper_start}{PUSH}");
+        let e = error(&text, &[]);
+        assert!(e.starts_with(message), "{setting}: {e}");
+    }
+    // The same through --set, as `lpm simulate --rtol` gives it.
+    let e = error(&format!("{paper_start}{PUSH}"), &["simulation.rtol=0.9"]);
+    assert!(
+        e.starts_with("simulation.rtol = 0.9: must be in (0, 0.1]"),
+        "{e}"
+    );
+    // At the edges: accepted. A state at rest is scaled by 1.
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    for text in [
+        format!("[simulation]\nrtol = 0.1\natol = 0.0155\n{paper_start}{PUSH}"),
+        format!("[simulation]\nrtol = 1e-12\natol = 1e-3\n{PUSH}"),
+    ] {
+        Scenario::parse(&text, None, &names, &[]).unwrap_or_else(|e| panic!("{text}: {e}"));
+    }
+    let e = error(&format!("[simulation]\natol = 2e-3\n{PUSH}"), &[]);
+    assert!(
+        e.contains("at most 1.00e-3 (1e-3 × the largest initial coordinate or velocity, 0, or 1)"),
+        "{e}"
+    );
+}

@@ -12,6 +12,7 @@ use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
 use crate::scenario::{Scenario, Signal};
+use crate::warning::{self, ChannelPoint, Warning};
 
 /// One output sample as the metrics see it.
 #[derive(Clone, Copy, Debug)]
@@ -270,6 +271,22 @@ impl Metrics {
         let step = b.t - a.t;
         let [w0, w1, w2, w3] = hermite_weights((t - a.t) / step, step);
         Some(w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate)
+    }
+
+    /// The sign-sanity warnings of the crush channel (named `channel` in
+    /// them): moving away from the barrier at the start, never compressing.
+    pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
+        let (Some(&(t, crush, _)), Some(rate)) = (self.pulse.first(), self.first_rate) else {
+            return Vec::new();
+        };
+        let first = ChannelPoint {
+            t,
+            value: crush,
+            rate,
+        };
+        let away = warning::moving_away(channel, first);
+        let flat = warning::never_compresses(channel, first, self.peak_value);
+        away.into_iter().chain(flat).collect()
     }
 
     /// The pulse metrics of the crush coordinate's samples (resampled onto

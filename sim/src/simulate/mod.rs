@@ -19,6 +19,7 @@ use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
 use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
+use crate::warning::{self, Warning};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 
@@ -83,6 +84,9 @@ pub struct SimulationResult {
     /// The gravitational acceleration `g` the summary's decelerations are
     /// in: the model's `g` parameter, or standard gravity without one.
     pub g: f64,
+    /// What looked wrong in the run, in the order found (empty for a
+    /// clean run).
+    pub warnings: Vec<Warning>,
 }
 
 /// Why a run failed.
@@ -238,6 +242,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         summary: run.summary,
         method: scenario.method,
         g: run.g,
+        warnings: run.warnings,
     })
 }
 
@@ -259,6 +264,7 @@ struct Run {
     events: Vec<EventRecord>,
     summary: Summary,
     g: f64,
+    warnings: Vec<Warning>,
 }
 
 /// Runs the scenario, keeping the samples if `keep`; returns the model with
@@ -300,6 +306,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
     let end_of_contact = problem.inputs.end_of_contact(&scenario.contact);
     let summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
+    let warnings = run_warnings(scenario, &sampler.metrics, &summary);
     let run = Run {
         initial_q: y0.q.as_slice().to_vec(),
         samples: sampler.samples,
@@ -307,8 +314,21 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         events: problem.events,
         summary,
         g,
+        warnings,
     };
     Ok((model, run))
+}
+
+/// The warnings of a finished run: the crush channel's sign sanity, then
+/// the energy balance.
+fn run_warnings(scenario: &Scenario, metrics: &Metrics, summary: &Summary) -> Vec<Warning> {
+    let mut warnings = Vec::new();
+    if let Some(crush) = &scenario.crush {
+        let channel = format!("crush channel `{}`", crush.name);
+        warnings.extend(metrics.crush_warnings(&channel));
+    }
+    warnings.extend(warning::energy_balance(summary.energy_balance_error_rel));
+    warnings
 }
 
 /// A copy of `system` with the scenario's parameter overrides.
