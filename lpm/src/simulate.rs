@@ -137,6 +137,7 @@ fn write_outputs(
     let units = Units {
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
+        outputs: model.output_units().to_vec(),
     };
     // The crush force column (the input bound to a crush element's force)
     // and the element's compression sign.

@@ -31,6 +31,9 @@ pub struct SampleView<'a> {
     pub dissipated: f64,
     /// Work of the generalized forces since the start \[J\].
     pub external_work: f64,
+    /// The model's outputs, in the order of
+    /// [`SimulationResult::output_columns`](super::SimulationResult::output_columns).
+    pub outputs: &'a [f64],
 }
 
 impl<'a> From<&'a Sample> for SampleView<'a> {
@@ -44,6 +47,7 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             potential: s.potential,
             dissipated: s.dissipated,
             external_work: s.external_work,
+            outputs: &s.outputs,
         }
     }
 }
