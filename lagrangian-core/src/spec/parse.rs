@@ -132,14 +132,7 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
     } else if look.peek(kw::force) {
         parse_force(input)
     } else if look.peek(kw::output) {
-        input.parse::<kw::output>()?;
-        let name = input.parse()?;
-        let unit = parse_unit(input)?;
-        input.parse::<Token![=]>()?;
-        let value = input.parse()?;
-        input.parse::<Token![;]>()?;
-        let decl = Declaration { doc, name, unit };
-        Ok(Item::Output(OutputDecl { decl, value }))
+        parse_output(input, doc)
     } else if look.peek(kw::jacobians) {
         let keyword = input.parse::<kw::jacobians>()?.span;
         input.parse::<Token![;]>()?;
@@ -186,6 +179,18 @@ fn parse_force(input: ParseStream) -> syn::Result<Item> {
             value,
         })
     }
+}
+
+/// `output NAME [unit] = EXPR;`, its doc lines already read.
+fn parse_output(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
+    input.parse::<kw::output>()?;
+    let name = input.parse()?;
+    let unit = parse_unit(input)?;
+    input.parse::<Token![=]>()?;
+    let value = input.parse()?;
+    input.parse::<Token![;]>()?;
+    let decl = Declaration { doc, name, unit };
+    Ok(Item::Output(OutputDecl { decl, value }))
 }
 
 fn parse_tuple(input: ParseStream) -> syn::Result<(Vec<Expr>, Span)> {
