@@ -171,6 +171,12 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 
             );
             offset += arity;
         }
+        assert_eq!(compiled.output_names(), interpreted.output_names());
+        let count = compiled.output_names().len();
+        let (mut oc, mut oi) = (vec![0.0; count], vec![0.0; count]);
+        compiled.outputs(t, &q, &qd, &qdd, &inputs, &mut oc);
+        interpreted.outputs(t, &q, &qd, &qdd, &inputs, &mut oi);
+        assert_close("outputs", &oc, &oi, &mut worst);
         let (mut jc, mut ji) = (Jacobians::<N>::default(), Jacobians::<N>::default());
         let rc = compiled.jacobians(t, &q, &qd, &qdd, &inputs, &mut jc);
         let ri = interpreted.jacobians(t, &q, &qd, &qdd, &inputs, &mut ji);
@@ -210,6 +216,65 @@ fn every_spec_agrees() {
         compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
     ];
     println!("worst ulp difference per spec: {worst:?}");
+}
+
+/// A model with outputs that call an input at their own arguments and use
+/// the accelerations and the time (the double pendulum's have neither input
+/// nor time).
+mod with_outputs {
+    lagrangian::lagrangian! {
+        model Cart;
+        coordinates { x, th }
+        parameters { m = 2.0, c = 0.5 }
+        inputs { push(s) }
+        kinetic = 0.5 * m * pow(dot(x), 2) + 0.5 * pow(dot(th), 2) + c * dot(x) * dot(th) * cos(th);
+        potential = m * (1.0 - cos(th));
+        force x = push(x + th);
+        /// Mass times acceleration plus a push.
+        output a = m * ddot(x) + push(2.0 * x);
+        output b [rad/s^2] = c * pow(dot(th), 2) + t * ddot(th) / 3.0;
+    }
+}
+
+/// Outputs, compiled and interpreted, are equal bit for bit at the
+/// accelerations the equations give.
+#[test]
+fn outputs_agree_bit_for_bit() {
+    fn outputs_of<const N: usize, M: LagrangianSystem<N>>(model: &M, rng: &mut Lcg) -> Vec<f64> {
+        let t = rng.symmetric().abs();
+        let (q, qd) = (random_vector::<N>(rng, 1.0), random_vector::<N>(rng, 3.0));
+        let qdd = model.accelerations(t, &q, &qd, &inputs).unwrap();
+        let mut out = vec![0.0; model.output_names().len()];
+        model.outputs(t, &q, &qd, &qdd, &inputs, &mut out);
+        out
+    }
+    fn same<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) {
+        let interpreted = Interpreted::<N>::new(lagrangian_core::interpret(spec).unwrap()).unwrap();
+        let compiled = M::default();
+        assert_eq!(compiled.output_names(), interpreted.output_names());
+        assert!(!compiled.output_names().is_empty());
+        let (mut a, mut b) = (Lcg::new(11), Lcg::new(11));
+        for _ in 0..200 {
+            let (c, i) = (
+                outputs_of(&compiled, &mut a),
+                outputs_of(&interpreted, &mut b),
+            );
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&c), bits(&i), "compiled {c:?} vs interpreted {i:?}");
+        }
+    }
+    let double = std::fs::read_to_string("specs/double_pendulum.lpm").unwrap();
+    same::<2, models::DoublePendulum>(&double);
+    let cart = "model Cart; coordinates { x, th } parameters { m = 2.0, c = 0.5 }
+        inputs { push(s) }
+        kinetic = 0.5 * m * pow(dot(x), 2) + 0.5 * pow(dot(th), 2) + c * dot(x) * dot(th) * cos(th);
+        potential = m * (1.0 - cos(th));
+        force x = push(x + th);
+        /// Mass times acceleration plus a push.
+        output a = m * ddot(x) + push(2.0 * x);
+        output b [rad/s^2] = c * pow(dot(th), 2) + t * ddot(th) / 3.0;";
+    same::<2, with_outputs::Cart>(cart);
+    assert_eq!(with_outputs::Cart::OUTPUTS, ["a", "b"]);
 }
 
 #[test]

@@ -44,6 +44,15 @@ impl DoublePendulum {
     pub const PARAMETERS: &'static [&'static str] = &["m1", "m2", "l1", "l2", "g"];
     /// Names of the input functions, in order of their indices.
     pub const INPUTS: &'static [&'static str] = &[];
+    /// Names of the outputs (`LagrangianSystem::outputs`), in order:
+    /// - `x2_position` \[m\]: Horizontal position of the lower bob.
+    /// - `y2_position` \[m\]: Vertical position of the lower bob (up is positive).
+    /// - `a2_magnitude` \[m/s^2\]: Magnitude of the lower bob's acceleration.
+    pub const OUTPUTS: &'static [&'static str] = &[
+        "x2_position",
+        "y2_position",
+        "a2_magnitude",
+    ];
 }
 #[automatically_derived]
 #[allow(
@@ -93,6 +102,9 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
     }
     fn input_sites(&self) -> &'static [(usize, usize)] {
         &[]
+    }
+    fn output_names(&self) -> ::std::vec::Vec<&str> {
+        Self::OUTPUTS.to_vec()
     }
     #[inline]
     fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
@@ -194,4 +206,35 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         out: &mut [f64],
     ) {}
+    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        qdd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        let l1 = self.l1;
+        let l2 = self.l2;
+        let theta1 = q[0];
+        let theta2 = q[1];
+        let theta1_dot = qd[0];
+        let theta2_dot = qd[1];
+        let theta1_ddot = qdd[0];
+        let theta2_ddot = qdd[1];
+        let (x0, x1) = theta1.sin_cos();
+        let (x2, x3) = theta2.sin_cos();
+        let x4 = theta2_dot * theta2_dot;
+        let x5 = theta1_dot * theta1_dot;
+        out[0] = l1 * x0 + l2 * x2;
+        out[1] = -(l1 * x1 + l2 * x3);
+        out[2] = (l1
+            * (l2
+                * (((x1 * x3 + x0 * x2) * (x4 * x5 + theta2_ddot * theta1_ddot)
+                    + (x0 * x3 - x1 * x2) * (x4 * theta1_ddot - x5 * theta2_ddot)) * 2.0)
+                + l1 * (theta1_dot.powi(4) + theta1_ddot * theta1_ddot))
+            + l2 * (l2 * (theta2_dot.powi(4) + theta2_ddot * theta2_ddot)))
+            .sqrt();
+    }
 }

@@ -40,6 +40,9 @@ pub struct Derivation {
     pub external_power: ExprId,
     /// The Jacobians, when the spec asks for them (`jacobians;`).
     pub jacobians: Option<Jacobians>,
+    /// The value of each output (`output name = …;`), in declaration
+    /// order: functions of `t`, `q`, `q̇`, `q̈`, the parameters and inputs.
+    pub outputs: Vec<ExprId>,
 }
 
 /// Row-major `n × n` Jacobians of the equations of motion.
@@ -68,6 +71,7 @@ pub fn derive(model: &mut Model) -> Result<Derivation, SpecErrors> {
         let (mass, forcing) = (&derivation.mass_matrix, &derivation.forcing);
         derivation.jacobians = Some(Deriver::new(model).jacobians(mass, forcing)?);
     }
+    derivation.outputs = model.outputs.iter().map(|o| o.statement.value).collect();
     Ok(derivation)
 }
 
@@ -149,6 +153,7 @@ impl<'a> Deriver<'a> {
             damping_power,
             external_power,
             jacobians: None,
+            outputs: Vec::new(),
         })
     }
 

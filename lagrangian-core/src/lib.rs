@@ -84,6 +84,8 @@ impl Compiled {
                 .collect(),
             input_units: model.inputs.iter().map(|i| unit(&i.unit)).collect(),
             input_sites: self.program.input_sites.clone(),
+            outputs: model.outputs.iter().map(|o| o.name.clone()).collect(),
+            output_units: model.outputs.iter().map(|o| unit(&o.unit)).collect(),
         }
     }
 

@@ -185,6 +185,11 @@ impl Builder<'_> {
                 .collect();
             outputs.push((RoutineKind::Jacobians, regs));
         }
+        // Last, so that a model without outputs gets the same program.
+        if !derivation.outputs.is_empty() {
+            let regs = derivation.outputs.iter().map(|&e| self.output(e)).collect();
+            outputs.push((RoutineKind::Outputs, regs));
+        }
         outputs
     }
 

@@ -98,6 +98,11 @@ int main(void)
 #endif
         {prefix}_input_arguments(p, t, q, qd, NULL, NULL, arguments);
         print(arguments, {upper}_INPUT_ARGUMENTS);
+#ifdef {upper}_OUTPUTS
+        double outputs[{upper}_OUTPUTS];
+        {prefix}_outputs(p, t, q, qd, qdd, inputs, &scale, outputs);
+        print(outputs, {upper}_OUTPUTS);
+#endif
     }}
     return 0;
 }}
@@ -195,6 +200,11 @@ fn expected(
         .evaluate_input_arguments(t, q, qd, &mut arguments)
         .unwrap();
     out.extend(arguments);
+    let mut outputs = vec![0.0; model.output_names().len()];
+    model
+        .evaluate_outputs((t, q, qd, qdd), &inputs, &mut outputs)
+        .unwrap();
+    out.extend(outputs);
     out
 }
 
@@ -292,6 +302,25 @@ fn powers_and_functions_in_c_match_the_interpreter() {
             + odd_powi * pow(x, 3) + odd_input * y;
         jacobians;";
     check("odd", source);
+}
+
+/// Outputs with accelerations, input calls at their own arguments and the
+/// time; a parameter named like the function's output argument.
+#[test]
+fn outputs_in_c_match_the_interpreter() {
+    check(
+        "double_pendulum",
+        include_str!("../../specs/double_pendulum.lpm"),
+    );
+    let source = "model Cart; coordinates { x, th }
+        parameters { m = 2.0, outputs = 0.5 }
+        inputs { push(s) }
+        kinetic = 0.5 * m * pow(dot(x), 2) + 0.5 * pow(dot(th), 2) + outputs * dot(x) * dot(th) * cos(th);
+        potential = m * (1.0 - cos(th));
+        force x = push(x + th);
+        output a = m * ddot(x) + push(2.0 * x);
+        output b = outputs * pow(dot(th), 2) + t * ddot(th);";
+    check("cart", source);
 }
 
 /// The emitted C names its functions after the model unless told otherwise.

@@ -178,6 +178,7 @@ fn write_outputs(
     let units = Units {
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
+        outputs: model.output_units().to_vec(),
     };
     let setup = PlotSetup {
         crush: scenario.crush.clone(),

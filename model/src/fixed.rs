@@ -99,6 +99,24 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         self.0.input_sites()
     }
 
+    fn output_names(&self) -> Vec<&str> {
+        self.0.output_names().iter().map(String::as_str).collect()
+    }
+
+    fn outputs<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        qdd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        // The dimension is N by construction, so this cannot fail.
+        let state = (t, q.as_slice(), qd.as_slice(), qdd.as_slice());
+        let _ = self.0.evaluate_outputs(state, inputs, out);
+    }
+
     fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]) {
         // The dimension is N by construction, so this cannot fail.
         let _ = self

@@ -31,6 +31,10 @@ pub struct ModelDescription {
     /// `(input index, number of arguments)` of every distinct input call of
     /// the dynamics, ordered by input index.
     pub input_sites: Vec<(usize, usize)>,
+    /// The spec's outputs (`output NAME [unit] = expr;`), in order.
+    pub outputs: Vec<String>,
+    /// The unit of each output as written in the spec, if any.
+    pub output_units: Vec<Option<String>>,
 }
 
 impl ModelDescription {
@@ -54,6 +58,12 @@ impl ModelDescription {
                 self.inputs.len(),
             ),
             ("input units", self.input_units.len(), self.inputs.len()),
+            ("output units", self.output_units.len(), self.outputs.len()),
+            (
+                "outputs",
+                self.outputs.len(),
+                tape.output_count(RoutineKind::Outputs),
+            ),
         ];
         for (what, found, expected) in lengths {
             if found != expected {
@@ -63,7 +73,14 @@ impl ModelDescription {
             }
         }
         for kind in RoutineKind::ALL.into_iter().filter(|&k| tape.has(k)) {
-            let expected = kind.output_count(n).unwrap_or(arguments);
+            let expected = match kind {
+                RoutineKind::InputArguments => arguments,
+                RoutineKind::Outputs => self.outputs.len(),
+                RoutineKind::Dynamics
+                | RoutineKind::Energies
+                | RoutineKind::Jacobians
+                | RoutineKind::DynamicsAndPowers => kind.output_count(n).unwrap_or(0),
+            };
             if tape.output_count(kind) != expected {
                 return Err(ModelError::InconsistentModel(format!(
                     "routine {kind:?} has {} outputs, not {expected}",
@@ -151,6 +168,16 @@ impl InterpretedModel {
     /// Units of the input functions' values as written in the spec.
     pub fn input_units(&self) -> &[Option<String>] {
         &self.description.input_units
+    }
+
+    /// Names of the spec's outputs, in order.
+    pub fn output_names(&self) -> &[String] {
+        &self.description.outputs
+    }
+
+    /// Units of the outputs as written in the spec.
+    pub fn output_units(&self) -> &[Option<String>] {
+        &self.description.output_units
     }
 
     /// Current parameter values, in the order of
@@ -275,6 +302,24 @@ impl InterpretedModel {
     ) -> Result<(), ModelError> {
         self.check(state.3)?;
         self.run(RoutineKind::Jacobians, state, inputs, |values| {
+            out[..values.len()].copy_from_slice(values)
+        })
+    }
+
+    /// The outputs at `(t, q, q̇, q̈)`, in the order of
+    /// [`InterpretedModel::output_names`], into `out`; nothing for a model
+    /// without outputs.
+    pub fn evaluate_outputs<I: InputFunctions + ?Sized>(
+        &self,
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        if !self.tape.has(RoutineKind::Outputs) {
+            return Ok(());
+        }
+        self.check(state.3)?;
+        self.run(RoutineKind::Outputs, state, inputs, |values| {
             out[..values.len()].copy_from_slice(values)
         })
     }

@@ -20,6 +20,11 @@ pub enum RoutineKind {
     /// dissipated energy and the work of the forces, sharing the operations
     /// and input calls the two groups have in common.
     DynamicsAndPowers,
+    /// The spec's `output` statements, in declaration order, at
+    /// `(t, q, q̇, q̈)`: the accelerations are inputs, so the outputs are
+    /// evaluated after the equations of motion are solved. Only models that
+    /// declare outputs have this routine.
+    Outputs,
 }
 
 /// `(i, j)` of the entries of `M` among the dynamics outputs, in order: the
@@ -132,6 +137,9 @@ pub enum OutputSlot {
     /// Value `k` of the concatenated arguments of the input calls
     /// ([`RoutineKind::InputArguments`]).
     InputArgument(usize),
+    /// The value of the spec's output `k`, in declaration order
+    /// ([`RoutineKind::Outputs`]).
+    Output(usize),
 }
 
 /// One field of [`Energies`].
@@ -202,17 +210,19 @@ impl JacobianBlock {
 
 impl RoutineKind {
     /// Every routine a program can have.
-    pub const ALL: [RoutineKind; 5] = [
+    pub const ALL: [RoutineKind; 6] = [
         RoutineKind::Dynamics,
         RoutineKind::Energies,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::DynamicsAndPowers,
+        RoutineKind::Outputs,
     ];
 
     /// The number of outputs of the routine for a model with `n`
-    /// coordinates; `None` for [`RoutineKind::InputArguments`], whose count
-    /// depends on the model's input calls.
+    /// coordinates; `None` for [`RoutineKind::InputArguments`] and
+    /// [`RoutineKind::Outputs`], whose counts depend on the model's input
+    /// calls and output statements.
     pub fn output_count(self, n: usize) -> Option<usize> {
         let mass = n * (n + 1) / 2;
         match self {
@@ -220,7 +230,7 @@ impl RoutineKind {
             RoutineKind::DynamicsAndPowers => Some(mass + n + 2),
             RoutineKind::Energies => Some(Energy::ALL.len()),
             RoutineKind::Jacobians => Some(JacobianBlock::ALL.len() * n * n),
-            RoutineKind::InputArguments => None,
+            RoutineKind::InputArguments | RoutineKind::Outputs => None,
         }
     }
 
@@ -249,6 +259,7 @@ impl RoutineKind {
                 column: k % n,
             },
             RoutineKind::InputArguments => OutputSlot::InputArgument(k),
+            RoutineKind::Outputs => OutputSlot::Output(k),
         })
     }
 }
@@ -324,6 +335,11 @@ mod tests {
         assert_eq!(
             RoutineKind::InputArguments.output_slot(n, 7),
             Some(OutputSlot::InputArgument(7))
+        );
+        assert_eq!(RoutineKind::Outputs.output_count(n), None);
+        assert_eq!(
+            RoutineKind::Outputs.output_slot(n, 2),
+            Some(OutputSlot::Output(2))
         );
     }
 }

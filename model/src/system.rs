@@ -109,6 +109,29 @@ pub trait LagrangianSystem<const N: usize> {
         Err(ModelError::JacobiansNotDerived)
     }
 
+    /// Names of the spec's outputs (`output NAME [unit] = expr;`), in
+    /// declaration order; empty for a model without outputs.
+    fn output_names(&self) -> Vec<&str> {
+        Vec::new()
+    }
+
+    /// Writes the value of each output of [`LagrangianSystem::output_names`]
+    /// to `out` (which holds at least as many values), at the state
+    /// `(t, q, q̇)` with the accelerations `qdd` (those the equations of
+    /// motion give there, for the outputs to mean what the spec says). A
+    /// model without outputs writes nothing.
+    fn outputs<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        qdd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        let _ = (t, q, qd, qdd, inputs, out);
+    }
+
     /// `M(q, t)` (convenience over [`LagrangianSystem::mass_matrix_and_forcing`]).
     fn mass_matrix<I: InputFunctions + ?Sized>(
         &self,

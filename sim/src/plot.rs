@@ -307,6 +307,7 @@ mod tests {
             dissipated: 0.0,
             external_work: 0.0,
             inputs: Vec::new(),
+            outputs: Vec::new(),
             components,
         }
     }

@@ -30,6 +30,9 @@ pub struct Units {
     /// The unit of each column of [`SimulationResult::input_columns`], in
     /// the same order.
     pub inputs: Vec<Option<String>>,
+    /// The unit of each column of [`SimulationResult::output_columns`], in
+    /// the same order.
+    pub outputs: Vec<Option<String>>,
 }
 
 fn with_unit(name: &str, unit: Option<&str>) -> String {
@@ -39,8 +42,8 @@ fn with_unit(name: &str, unit: Option<&str>) -> String {
     }
 }
 
-/// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…, component
-/// columns…` per sample.
+/// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…, outputs…,
+/// component columns…` per sample.
 pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
     let mut header = vec!["t [s]".to_string()];
     let unit = |i: usize, suffix: &str| {
@@ -74,6 +77,10 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
             units.inputs.get(k).cloned().flatten().as_deref(),
         ));
     }
+    for (k, name) in result.output_columns.iter().enumerate() {
+        let unit = units.outputs.get(k).cloned().flatten();
+        header.push(with_unit(name, unit.as_deref()));
+    }
     for (name, unit) in &result.component_columns {
         header.push(with_unit(name, unit.as_deref()));
     }
@@ -93,6 +100,7 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
                 .map(|x| format!("{x:.10e}")),
         );
         row.extend(s.inputs.iter().map(|x| format!("{x:.10e}")));
+        row.extend(s.outputs.iter().map(|x| format!("{x:.10e}")));
         row.extend(s.components.iter().map(|x| format!("{x:.10e}")));
         out.push_str(&row.join(","));
         out.push('\n');

@@ -33,6 +33,12 @@
 //!                   double *forcing_q, double *forcing_qd, double *mass_times_acceleration_q);
 //! void <p>_input_arguments(const double *p, double t, const double *q, const double *qd,
 //!                   lagrangian_input input, void *context, double *arguments);
+//!
+//! /* Only for a spec with outputs (`output NAME [unit] = expr;`): */
+//! #define <P>_OUTPUTS          /* the number of outputs */
+//! extern const char *const <p>_output_names[];
+//! void <p>_outputs(const double *p, double t, const double *q, const double *qd,
+//!                   const double *qdd, lagrangian_input input, void *context, double *outputs);
 //! ```
 //!
 //! * `p` holds the parameters in declaration order; `q`, `qd` (and `qdd`)
@@ -46,6 +52,8 @@
 //!   function exists when `<P>_HAS_JACOBIANS` is 1.
 //! * `arguments` receives the arguments of every input call of the
 //!   dynamics, concatenated in the order of the model's input sites.
+//! * `outputs` receives the value of each output, in declaration order, at
+//!   `(t, q, q̇, q̈)`: pass the accelerations the dynamics give there.
 //! * Input functions are called as `input(context, index, args, count)`
 //!   with the index in declaration order; `context` is passed through
 //!   untouched. With `input == NULL` every input call yields NaN.
@@ -109,6 +117,7 @@ fn emit_c_deep(compiled: &Compiled, options: &COptions) -> String {
         RoutineKind::DynamicsAndPowers,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
+        RoutineKind::Outputs,
     ] {
         if let Some(routine) = compiled.program.routine(kind) {
             let schedule = schedule(&compiled.program, routine);
@@ -182,6 +191,7 @@ fn metadata(compiled: &Compiled, prefix: &str) -> String {
             items.join(", ")
         );
     }
+    out.push_str(&output_metadata(model, prefix));
     let _ = writeln!(out, "\n/* The parameters' default values, into p. */");
     let _ = writeln!(out, "void {prefix}_default_parameters(double *p)\n{{");
     for (i, parameter) in model.parameters.iter().enumerate() {
@@ -189,6 +199,22 @@ fn metadata(compiled: &Compiled, prefix: &str) -> String {
     }
     out.push_str("}\n");
     out
+}
+
+/// The number and names of the outputs, for a model with outputs (the code
+/// of the others stays as it was).
+fn output_metadata(model: &crate::spec::Model, prefix: &str) -> String {
+    if model.outputs.is_empty() {
+        return String::new();
+    }
+    let mut items: Vec<String> = model.outputs.iter().map(|o| string(&o.name)).collect();
+    items.push("NULL".to_string());
+    format!(
+        "#define {}_OUTPUTS {}\nconst char *const {prefix}_output_names[] = {{{}}};\n",
+        prefix.to_uppercase(),
+        model.outputs.len(),
+        items.join(", ")
+    )
 }
 
 /// The input-call and integer-power helpers, where the routines use them.
@@ -238,6 +264,7 @@ fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
         }
         RoutineKind::Jacobians => ("jacobians", jacobians),
         RoutineKind::InputArguments => ("input_arguments", vec!["arguments"]),
+        RoutineKind::Outputs => ("outputs", vec!["outputs"]),
     }
 }
 
@@ -245,7 +272,7 @@ fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
 fn routine_function(syntax: &CSyntax, schedule: &Schedule, n: usize) -> String {
     let (name, outputs) = signature(schedule.kind);
     let mut inputs = vec!["p", "t", "q", "qd"];
-    if schedule.kind == RoutineKind::Jacobians {
+    if matches!(schedule.kind, RoutineKind::Jacobians | RoutineKind::Outputs) {
         inputs.push("qdd");
     }
     inputs.extend(["input", "context"]);
@@ -303,6 +330,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
             )]
         }
         OutputSlot::InputArgument(k) => vec![format!("arguments[{k}] = {value};")],
+        OutputSlot::Output(k) => vec![format!("outputs[{k}] = {value};")],
     }
 }
 
@@ -310,7 +338,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
 const RESERVED: [&str; 3] = [
     // The parameters and types of the generated functions.
     "p t q qd qdd input context mass forcing energies forcing_q forcing_qd
-     mass_times_acceleration_q arguments lagrangian_input",
+     mass_times_acceleration_q arguments outputs lagrangian_input",
     // The keywords of C99 to C23 (and GNU's `asm`).
     "auto break case char const continue default do double else enum extern float for goto if
      inline int long register restrict return short signed sizeof static struct switch typedef

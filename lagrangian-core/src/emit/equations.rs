@@ -1,4 +1,5 @@
-//! The derived equations as a document: `lpm derive --format text|latex`.
+//! The derived equations (and the outputs) as a document: `lpm derive
+//! --format text|latex`.
 
 use super::notation::{Notation, Printer, latex_name};
 use crate::Compiled;
@@ -20,6 +21,7 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
         })
         .collect();
     let n = names.len();
+    let outputs = output_labels(model, notation);
     let d = compiled.derivation.clone();
     let out = heading(model, notation);
     let mut doc = Document {
@@ -48,6 +50,14 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
     doc.section("Energies:");
     for (label, e) in [("T", d.kinetic), ("V", d.potential), ("D", d.dissipation)] {
         doc.equation(label.to_string(), e);
+    }
+    if !outputs.is_empty() {
+        doc.section(
+            "Outputs (evaluated after the solve, at the accelerations the equations give):",
+        );
+        for (label, &e) in outputs.into_iter().zip(&d.outputs) {
+            doc.equation(label, e);
+        }
     }
     if notation == Notation::Latex {
         doc.out.push_str("\\end{aligned}\n");
@@ -81,6 +91,28 @@ fn heading(model: &Model, notation: Notation) -> String {
         }
     }
     out
+}
+
+/// Each output's name with its unit: `a2 [m/s^2]` (text) or
+/// `\mathrm{a2}\;[\mathrm{m/s^2}]` (LaTeX).
+fn output_labels(model: &Model, notation: Notation) -> Vec<String> {
+    let label = |o: &crate::spec::Output| {
+        let unit = o.unit.as_ref().map(|u| u.text.as_str());
+        match notation {
+            Notation::Text => match unit {
+                Some(u) => format!("{} [{u}]", o.name),
+                None => o.name.clone(),
+            },
+            Notation::Latex => {
+                let name = format!("\\mathrm{{{}}}", o.name.replace('_', "\\_"));
+                match unit {
+                    Some(u) => format!("{name}\\;[\\mathrm{{{u}}}]"),
+                    None => name,
+                }
+            }
+        }
+    };
+    model.outputs.iter().map(label).collect()
 }
 
 /// `M[a, b]` (text) or `M_{a b}` (LaTeX).

@@ -62,12 +62,37 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let names: Vec<String> = (model.coordinates.iter())
         .map(|c| latex_name(&c.name))
         .collect();
+    let outputs: Vec<String> = (model.outputs.iter())
+        .map(|o| output_name(&o.name))
+        .collect();
     let d = compiled.derivation.clone();
     let mut p = Printer {
         store: &mut compiled.model.store,
         notation: Notation::Latex,
     };
     out.push_str(&sections(&mut p, &d, &names));
+    out.push_str(&outputs_section(&mut p, &d, &outputs));
+    out
+}
+
+/// An output's name in LaTeX, upright (a name, not a product of symbols).
+fn output_name(name: &str) -> String {
+    format!("\\mathrm{{{}}}", name.replace('_', "\\_"))
+}
+
+/// The outputs' expressions (`names` in LaTeX); nothing without outputs.
+fn outputs_section(p: &mut Printer, d: &Derivation, names: &[String]) -> String {
+    let mut out = String::new();
+    if names.is_empty() {
+        return out;
+    }
+    let _ = writeln!(
+        out,
+        "\n## Outputs\n\nEvaluated after the solve, at the accelerations $\\ddot q$ the equations give:\n"
+    );
+    for (name, &value) in names.iter().zip(&d.outputs) {
+        out.push_str(&equation(p, name, value));
+    }
     out
 }
 
@@ -89,7 +114,7 @@ fn preamble(model: &Model, source: &str) -> String {
     out
 }
 
-/// The tables of coordinates, parameters and input functions.
+/// The tables of coordinates, parameters, input functions and outputs.
 fn tables(model: &Model) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "| coordinate | unit | description |\n|---|---|---|");
@@ -134,6 +159,21 @@ fn tables(model: &Model) -> String {
                 doc(&i.doc)
             );
         }
+    }
+    out.push_str(&outputs_table(model));
+    out
+}
+
+/// The table of outputs; nothing without outputs.
+fn outputs_table(model: &Model) -> String {
+    let mut out = String::new();
+    if model.outputs.is_empty() {
+        return out;
+    }
+    let _ = writeln!(out, "\n| output | unit | description |\n|---|---|---|");
+    for o in &model.outputs {
+        let (name, unit, doc) = (output_name(&o.name), unit(&o.unit), doc(&o.doc));
+        let _ = writeln!(out, "| ${name}$ | {unit} | {doc} |");
     }
     out
 }

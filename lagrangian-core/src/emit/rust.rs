@@ -152,6 +152,7 @@ fn associated_constants(model: &Model, names: &Names, ty: &Ident) -> TokenStream
     let coordinate_names = model.coordinates.iter().map(|c| c.name.as_str());
     let parameter_names = model.parameters.iter().map(|p| p.name.as_str());
     let input_names = model.inputs.iter().map(|i| i.name.as_str());
+    let outputs = output_names_constant(model);
     quote! {
         #[allow(non_camel_case_types)]
         impl #ty {
@@ -161,7 +162,44 @@ fn associated_constants(model: &Model, names: &Names, ty: &Ident) -> TokenStream
             pub const PARAMETERS: &'static [&'static str] = &[#(#parameter_names),*];
             /// Names of the input functions, in order of their indices.
             pub const INPUTS: &'static [&'static str] = &[#(#input_names),*];
+            #outputs
             #(#input_consts)*
+        }
+    }
+}
+
+/// `OUTPUTS`, the names of the outputs, with their units and doc lines in
+/// its doc; nothing for a model without outputs (whose code stays as it was).
+fn output_names_constant(model: &Model) -> TokenStream {
+    if model.outputs.is_empty() {
+        return TokenStream::new();
+    }
+    let mut doc = vec!["Names of the outputs (`LagrangianSystem::outputs`), in order:".to_string()];
+    for o in &model.outputs {
+        let unit = (o.unit.as_ref())
+            .map(|u| format!(" \\[{}\\]", u.text))
+            .unwrap_or_default();
+        let text = o.doc.join(" ");
+        let separator = if text.is_empty() { "" } else { ": " };
+        doc.push(format!("- `{}`{unit}{separator}{text}", o.name));
+    }
+    let doc = doc_lines(&doc);
+    let names = model.outputs.iter().map(|o| o.name.as_str());
+    quote! {
+        #(#[doc = #doc])*
+        pub const OUTPUTS: &'static [&'static str] = &[#(#names),*];
+    }
+}
+
+/// `output_names`, for a model with outputs (the trait's default, no
+/// names, is right for the others).
+fn output_names_method(model: &Model) -> TokenStream {
+    if model.outputs.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        fn output_names(&self) -> ::std::vec::Vec<&str> {
+            Self::OUTPUTS.to_vec()
         }
     }
 }
@@ -189,8 +227,10 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
         RoutineKind::DynamicsAndPowers,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
+        RoutineKind::Outputs,
     ]
     .map(|kind| routine_method(compiled, names, kind, rt));
+    let output_names = output_names_method(model);
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, non_snake_case, clippy::all, clippy::pedantic, clippy::nursery)]
@@ -227,6 +267,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
                 &[#(#sites),*]
             }
 
+            #output_names
             #(#routines)*
         }
     }
@@ -290,6 +331,15 @@ fn routine_method(
                 #(#writes)*
             }
         },
+        RoutineKind::Outputs => quote! {
+            fn outputs<I: #rt::InputFunctions + ?Sized>(
+                &self, t: f64, q: &#vector, qd: &#vector, qdd: &#vector, inputs: &I,
+                out: &mut [f64],
+            ) {
+                #(#statements)*
+                #(#writes)*
+            }
+        },
         RoutineKind::Jacobians => quote! {
             fn jacobians<I: #rt::InputFunctions + ?Sized>(
                 &self, t: f64, q: &#vector, qd: &#vector, qdd: &#vector, inputs: &I,
@@ -341,7 +391,7 @@ fn place_outputs(schedule: &Schedule, values: Vec<TokenStream>) -> PlacedOutputs
                     .writes
                     .push(quote! { out.#field[(#i, #k)] = #value; });
             }
-            OutputSlot::InputArgument(k) => {
+            OutputSlot::InputArgument(k) | OutputSlot::Output(k) => {
                 let k = index(k);
                 placed.writes.push(quote! { out[#k] = #value; });
             }

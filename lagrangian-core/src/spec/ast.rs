@@ -38,6 +38,12 @@ pub struct InputDecl {
     pub derivatives: Vec<(Ident, Expr)>,
 }
 
+/// `output NAME [unit] = expr;`, with its `///` doc lines.
+pub struct OutputDecl {
+    pub decl: Declaration,
+    pub value: Expr,
+}
+
 /// The three scalar functions a spec may give, each at most once.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum EnergyKind {
@@ -106,6 +112,9 @@ pub enum Item {
         components: Vec<Expr>,
         components_span: Span,
     },
+    /// `output NAME [unit] = expr;` — a quantity computed at every sample
+    /// after the solve, which may use the accelerations `ddot(q)`.
+    Output(OutputDecl),
     /// `jacobians;` — also derive ∂f/∂q, ∂f/∂q̇ and ∂(M a)/∂q.
     Jacobians {
         keyword: Span,

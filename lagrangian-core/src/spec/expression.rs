@@ -23,6 +23,8 @@ pub(super) enum Binding {
     Input(usize, usize),
     /// A `let` whose definition has an error (reported there).
     Failed,
+    /// An output: computed after the solve, not a value expressions can use.
+    Output,
 }
 
 /// Name resolution and the model's symbols, shared by all statements.
@@ -58,7 +60,7 @@ pub(super) struct ExpressionLowering<'a> {
     pub scope: &'a Scope,
     pub input_names: &'a [String],
     input_calls: Vec<(usize, SpanRange)>,
-    /// `ddot(q)` is allowed (hand-derived equations only).
+    /// `ddot(q)` is allowed (outputs and hand-derived equations only).
     accelerations: bool,
 }
 
@@ -73,7 +75,8 @@ impl<'a> ExpressionLowering<'a> {
         }
     }
 
-    /// Allows `ddot(q)`, the second time derivative (hand-derived equations).
+    /// Allows `ddot(q)`, the second time derivative (outputs and
+    /// hand-derived equations).
     pub fn with_accelerations(mut self) -> Self {
         self.accelerations = true;
         self
@@ -222,6 +225,12 @@ impl<'a> ExpressionLowering<'a> {
                 format!("input function `{name}` must be called with its {arity} argument(s)"),
             )
             .with_note(format!("`{name}` is declared here"), *decl)),
+            Some((Binding::Output, decl)) => Err(Diagnostic::new(
+                ident.span(),
+                format!("`{name}` is an output, which expressions cannot use"),
+            )
+            .with_note(format!("`{name}` is declared here"), *decl)
+            .with_help("name the expression with `let` and use that name in both places")),
             None if FUNCTIONS.iter().any(|(f, _)| *f == name) => Err(Diagnostic::new(
                 ident.span(),
                 format!("`{name}` is a function; call it as `{name}(…)`"),
@@ -301,8 +310,7 @@ impl<'a> ExpressionLowering<'a> {
             "sqrt" => self.store.sqrt(x),
             "ddot" => {
                 if !self.accelerations {
-                    return Err(Diagnostic::new(span, "`ddot` is only available in `hand_derived` equations")
-                        .with_help("accelerations are what the derivation solves for; T, V, D and forces cannot contain them"));
+                    return Err(acceleration_outside_outputs(span));
                 }
                 let velocity = self.dot(x, span)?;
                 let d =
@@ -408,6 +416,20 @@ impl<'a> ExpressionLowering<'a> {
         self.check_engine(span, "`dot`")?;
         Ok(d)
     }
+}
+
+/// `ddot` where accelerations are not available: everywhere but in outputs
+/// and `hand_derived` equations.
+fn acceleration_outside_outputs(span: SpanRange) -> Diagnostic {
+    Diagnostic::new(
+        span,
+        "`ddot` is only available in `hand_derived` equations and in outputs: \
+         accelerations are what the equations of motion solve for, not an input to them",
+    )
+    .with_help(
+        "T, V, D, forces and `let` definitions cannot contain them; to report an \
+         acceleration, write `output name = ddot(…);` (a `let` may name the position)",
+    )
 }
 
 /// `sqrt` and `ln` of a constant outside their domain would only show at

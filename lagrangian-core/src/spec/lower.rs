@@ -2,13 +2,15 @@
 //!
 //! A pipeline of phases over one [`Lowering`] state: item collection
 //! ([`items`]), symbols and declarations ([`declarations`]), `let`
-//! definitions, energies and forces ([`statements`]), units, the
+//! definitions, energies and forces ([`statements`]), outputs
+//! ([`outputs`]), units, the
 //! `hand_derived` section, and assembly. Lowering goes on after an error
 //! where it can, so one pass reports every independent problem; the checks
 //! of names and of things given twice are in [`validate`].
 
 mod declarations;
 mod items;
+mod outputs;
 mod statements;
 mod validate;
 
@@ -71,7 +73,9 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     lowering.bind_time_and_pi(symbols.pi);
     lowering.input_derivatives(&items.inputs, &mut declared.inputs);
     let definitions = lowering.definitions(&items.statements);
+    lowering.declare_outputs(&items.statements);
     let dynamics = lowering.dynamics(&items.statements, &declared.coordinates);
+    let outputs = lowering.outputs(&items.statements);
     let mut dimensions = lowering.units(&items.statements, &items.inputs, &declared);
     let coordinate_dimensions = coordinate_dimensions(&dimensions, &declared.coordinates);
     let hand_derived = lowering.hand_derived(&items.statements, &declared, &mut dimensions);
@@ -91,6 +95,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         potential,
         dissipation,
         forces: dynamics.forces,
+        outputs,
         definitions,
         jacobians: dynamics.jacobians_span.is_some(),
         jacobians_span: dynamics.jacobians_span,

@@ -98,6 +98,22 @@ pub struct ForceStatement {
     pub input_calls: Vec<(usize, SpanRange)>,
 }
 
+/// An output: `output name [unit] = value;`, computed at `(t, q, q̇, q̈)`
+/// after the solve.
+#[derive(Clone, Debug)]
+pub struct Output {
+    /// The name, as declared.
+    pub name: String,
+    /// Its `///` doc lines.
+    pub doc: Vec<String>,
+    /// Its unit, when declared.
+    pub unit: Option<UnitText>,
+    /// Where it is declared.
+    pub span: Span,
+    /// Its value, which may contain the acceleration symbols.
+    pub statement: Statement,
+}
+
 /// A resolved model: symbols and expressions ready for derivation.
 pub struct Model {
     /// The name given by `model Name;`, the emitted type's name.
@@ -125,6 +141,8 @@ pub struct Model {
     pub dissipation: Option<Statement>,
     /// The force statements, in order.
     pub forces: Vec<ForceStatement>,
+    /// The outputs, in declaration order.
+    pub outputs: Vec<Output>,
     /// `let` definitions, in order, for documentation.
     pub definitions: Vec<(String, ExprId)>,
     /// Whether the spec asks for the Jacobians (`jacobians;`).

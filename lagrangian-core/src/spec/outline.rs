@@ -43,6 +43,7 @@ impl Outline {
                 | Item::Energy { .. }
                 | Item::GeneralizedForce { .. }
                 | Item::PointForce { .. }
+                | Item::Output(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_) => {}
             }

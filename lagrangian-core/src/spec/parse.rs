@@ -10,6 +10,7 @@
 //!                    | ("kinetic" | "potential" | "dissipation") "=" EXPR ";"
 //!                    | "force" IDENT "=" EXPR ";"
 //!                    | "force" "at" "(" EXPR,* ")" "=" "(" EXPR,* ")" ";"
+//!                    | "output" decl "=" EXPR ";"   (EXPR may use ddot(q))
 //!                    | "jacobians" ";"
 //!                    | "hand_derived" "{" hand-entry* "}" )
 //! decl        = doc* IDENT unit?
@@ -37,6 +38,7 @@ mod kw {
     syn::custom_keyword!(force);
     syn::custom_keyword!(at);
     syn::custom_keyword!(jacobians);
+    syn::custom_keyword!(output);
     syn::custom_keyword!(d);
     syn::custom_keyword!(hand_derived);
     syn::custom_keyword!(convention);
@@ -129,6 +131,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         })
     } else if look.peek(kw::force) {
         parse_force(input)
+    } else if look.peek(kw::output) {
+        parse_output(input, doc)
     } else if look.peek(kw::jacobians) {
         let keyword = input.parse::<kw::jacobians>()?.span;
         input.parse::<Token![;]>()?;
@@ -175,6 +179,18 @@ fn parse_force(input: ParseStream) -> syn::Result<Item> {
             value,
         })
     }
+}
+
+/// `output NAME [unit] = EXPR;`, its doc lines already read.
+fn parse_output(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
+    input.parse::<kw::output>()?;
+    let name = input.parse()?;
+    let unit = parse_unit(input)?;
+    input.parse::<Token![=]>()?;
+    let value = input.parse()?;
+    input.parse::<Token![;]>()?;
+    let decl = Declaration { doc, name, unit };
+    Ok(Item::Output(OutputDecl { decl, value }))
 }
 
 fn parse_tuple(input: ParseStream) -> syn::Result<(Vec<Expr>, Span)> {

@@ -1,9 +1,9 @@
 //! The dimensional checks of a spec: T and V are energies, D a power, a
 //! generalized force times its coordinate's rate a power, a point force
 //! times its point's displacement an energy, a declared derivative the
-//! input's value over its argument.
+//! input's value over its argument, an output its declared unit.
 
-use super::ast::{EnergyKind, InputDecl, Item, UnitText};
+use super::ast::{EnergyKind, InputDecl, Item, OutputDecl, UnitText};
 use super::dimensions::{DimensionScope, InputDimensions};
 use super::{Coordinate, Parameter};
 use crate::diagnostic::Diagnostic;
@@ -215,6 +215,15 @@ impl Checker<'_> {
         }
     }
 
+    /// `output name [unit] = value;`: the value against the declared unit.
+    fn output(&mut self, output: &OutputDecl) {
+        let Some(expected) = parse(&output.decl.unit, &mut self.problems) else {
+            return;
+        };
+        let what = format!("the output `{}`", output.decl.name);
+        self.take(self.scope.check(&output.value, Some(expected), &what));
+    }
+
     /// An energy or force statement against the dimension it must have
     /// (`coordinates`: each coordinate's name and dimension).
     fn statement(&mut self, item: &Item, coordinates: &[(String, Option<Dimension>)]) {
@@ -249,6 +258,7 @@ impl Checker<'_> {
                     self.take(self.scope.check(f, expected, what));
                 }
             }
+            Item::Output(output) => self.output(output),
             Item::Let { .. }
             | Item::Jacobians { .. }
             | Item::HandDerived(_)

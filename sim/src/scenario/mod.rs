@@ -107,6 +107,8 @@ impl ModelNames {
             inputs: own(system.input_names()),
             input_arguments: vec![None; system.input_names().len()],
             input_sites: system.input_sites().to_vec(),
+            outputs: own(system.output_names()),
+            output_units: vec![None; system.output_names().len()],
             ..ModelNames::default()
         }
     }
@@ -120,7 +122,8 @@ impl ModelNames {
             input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
             input_sites: model.input_sites().to_vec(),
             coordinate_units: model.coordinate_units().to_vec(),
-            ..ModelNames::default()
+            outputs: model.output_names().to_vec(),
+            output_units: model.output_units().to_vec(),
         }
     }
 

@@ -33,7 +33,8 @@ pub struct SampleView<'a> {
     pub dissipated: f64,
     /// Work of the generalized forces since the start \[J\].
     pub external_work: f64,
-    /// The spec's declared outputs.
+    /// The model's outputs, in the order of
+    /// [`SimulationResult::output_columns`](super::SimulationResult::output_columns).
     pub outputs: &'a [f64],
 }
 
@@ -48,7 +49,7 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             potential: s.potential,
             dissipated: s.dissipated,
             external_work: s.external_work,
-            outputs: &[],
+            outputs: &s.outputs,
         }
     }
 }

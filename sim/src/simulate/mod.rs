@@ -48,6 +48,10 @@ pub struct Sample {
     pub external_work: f64,
     /// Values of the inputs the dynamics calls (see [`SimulationResult::input_columns`]).
     pub inputs: Vec<f64>,
+    /// Values of the model's outputs (`output NAME [unit] = expr;`), in the
+    /// order of [`SimulationResult::output_columns`], at the accelerations
+    /// [`Sample::a`].
+    pub outputs: Vec<f64>,
     /// Values of the components' columns (see
     /// [`SimulationResult::component_columns`]).
     pub components: Vec<f64>,
@@ -64,6 +68,9 @@ pub struct SimulationResult {
     /// call of the dynamics, so an input called twice is there twice.
     /// Their units travel separately, in [`crate::report::Units`].
     pub input_columns: Vec<String>,
+    /// The name of each of the model's outputs, in the order of
+    /// [`Sample::outputs`]; their units travel in [`crate::report::Units`].
+    pub output_columns: Vec<String>,
     /// The name and unit of each column of [`Sample::components`]:
     /// `NAME.QUANTITY` of a scenario component (`front_end.force`, `N`).
     pub component_columns: Vec<(String, Option<String>)>,
@@ -234,6 +241,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
             .map(|s| s.to_string())
             .collect(),
         input_columns,
+        output_columns: model.output_names().iter().map(|s| s.to_string()).collect(),
         component_columns: scenario.inputs.columns(),
         initial_q: run.initial_q,
         samples: run.samples,
@@ -248,7 +256,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
 
 /// The summary of a run only — what a sweep records: the same numbers as
 /// `simulate(…).summary`, without keeping the samples or evaluating the
-/// inputs at them.
+/// inputs at them (the outputs are evaluated, for the metrics to read).
 pub fn simulate_summary<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     scenario: &Scenario,
@@ -487,13 +495,14 @@ fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
         .map_or(STANDARD_GRAVITY, |i| model.parameters()[i])
 }
 
-/// The state, accelerations and energies at one output time.
+/// The state, accelerations, energies and outputs at one output time.
 struct SampleValues<const N: usize> {
     t: f64,
     y: PhaseState<N>,
     a: SVector<f64, N>,
     kinetic: f64,
     potential: f64,
+    outputs: Vec<f64>,
 }
 
 impl<const N: usize> SampleValues<N> {
@@ -507,7 +516,7 @@ impl<const N: usize> SampleValues<N> {
             potential: self.potential,
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
-            outputs: &[],
+            outputs: &self.outputs,
         }
     }
 
@@ -522,12 +531,14 @@ impl<const N: usize> SampleValues<N> {
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
             inputs: columns.inputs,
+            outputs: self.outputs,
             components: columns.components,
         }
     }
 }
 
-/// The values of a kept sample beyond the state: inputs and components.
+/// The values of a kept sample beyond the state and the outputs: inputs
+/// and components.
 #[derive(Default)]
 struct Columns {
     inputs: Vec<f64>,
@@ -535,7 +546,7 @@ struct Columns {
 }
 
 /// Evaluates a sample, with the input and component values when `columns`
-/// is set.
+/// is set; the outputs always, at the accelerations of the sample.
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
@@ -545,6 +556,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     let fault = |fault| SolverError::Rhs { t, error: fault };
     let a = problem.accelerations(t, &y.q, &y.v).map_err(fault)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
+    let mut outputs = vec![0.0; problem.system.output_names().len()];
+    (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);
     let values = if columns {
         Columns {
             inputs: problem.input_values(t, &y.q, &y.v),
@@ -559,6 +572,7 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         a,
         kinetic: energies.kinetic,
         potential: energies.potential,
+        outputs,
     };
     Ok((sample, values))
 }

@@ -301,3 +301,31 @@ fn the_crush_when_contact_ends_is_the_permanent_crush() {
         (None, None)
     );
 }
+
+const DOUBLE_PENDULUM: &str = include_str!("../../../specs/double_pendulum.lpm");
+
+/// A run that keeps only its summary (a sweep's) evaluates the outputs too,
+/// for the metrics, to the values a full run records.
+#[test]
+fn outputs_are_evaluated_in_summary_only_runs_too() {
+    let model = lagrangian_core::interpret(DOUBLE_PENDULUM).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    let system = Interpreted::<2>::new(model).unwrap();
+    let text = "[simulation]\nt_end = 0.05\n[initial.coordinates]\ntheta1 = 0.5\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    let full = simulate(&system, &scenario).unwrap();
+    let columns = ["x2_position", "y2_position", "a2_magnitude"];
+    assert_eq!(full.output_columns, columns);
+    let last = full.samples.last().unwrap();
+    assert_eq!(last.outputs.len(), 3);
+    let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
+    let q = SVector::from_column_slice(&last.q);
+    let v = SVector::from_column_slice(&last.v);
+    let (values, columns) = sample(&mut problem, last.t, &PhaseState::new(q, v), false).unwrap();
+    assert!(columns.inputs.is_empty() && columns.components.is_empty());
+    assert_eq!(values.as_view().outputs, &last.outputs[..]);
+    // At rest the lower bob hangs 2 m below the pivot, unaccelerated.
+    let rest = Scenario::parse("[simulation]\nt_end = 0.01\n", None, &names, &[]).unwrap();
+    let at_rest = simulate(&system, &rest).unwrap();
+    assert_eq!(at_rest.samples[0].outputs, [0.0, -2.0, 0.0]);
+}

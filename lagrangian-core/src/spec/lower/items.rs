@@ -53,6 +53,7 @@ impl Items {
                 | Item::Energy { .. }
                 | Item::GeneralizedForce { .. }
                 | Item::PointForce { .. }
+                | Item::Output(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_)) => items.statements.push(other),
             }

@@ -86,6 +86,7 @@ impl Lowering {
                     dynamics.jacobians_span.get_or_insert(*keyword);
                 }
                 Item::Let { .. }
+                | Item::Output(_)
                 | Item::HandDerived(_)
                 | Item::Model { .. }
                 | Item::Coordinates { .. }
