@@ -8,12 +8,18 @@
 
 #![warn(missing_docs)]
 
+/// Generated from `specs/car_to_car.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod car_to_car;
 /// Generated from `specs/double_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod double_pendulum;
 /// Generated from `specs/elastic_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod elastic_pendulum;
+/// Generated from `specs/kamal_1970.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod kamal_1970;
 /// Generated from `specs/pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod pendulum;
@@ -29,3 +35,6 @@ pub mod spring_mass_damper;
 /// Generated from `specs/yaris_double_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod yaris_double_pendulum;
+/// Generated from `specs/yaris_occupant.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod yaris_occupant;

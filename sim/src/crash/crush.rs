@@ -329,12 +329,12 @@ impl Component for CrushElement {
             2 => {
                 self.in_contact = false;
                 self.separated_at = Some(t);
-                format!("separation from the barrier at crush {crush:.4} m")
+                format!("separation at crush {crush:.4} m")
             }
             _ => {
                 self.in_contact = true;
                 self.separated_at = None;
-                format!("contact with the barrier at crush {crush:.4} m")
+                format!("contact at crush {crush:.4} m")
             }
         })
     }
