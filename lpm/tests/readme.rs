@@ -270,3 +270,27 @@ fn the_dependency_snippet_names_the_crate_and_its_features() {
     assert_eq!(manifest["package"]["name"].as_str(), Some("lagrangian"));
     assert!(features.contains_key("sim"));
 }
+
+#[test]
+fn every_excerpt_is_in_the_file_it_names() {
+    let readme = readme();
+    let mut count = 0;
+    for block in blocks(&readme) {
+        let mut lines = block.text.lines();
+        let first = lines.next().unwrap_or("");
+        let Some(path) = (first.strip_prefix("// ").or(first.strip_prefix("# ")))
+            .and_then(|l| l.strip_suffix(" (excerpt)"))
+        else {
+            continue;
+        };
+        let file = std::fs::read_to_string(Path::new(ROOT).join(path)).unwrap();
+        let excerpt: String = lines.map(|l| format!("{l}\n")).collect();
+        assert!(
+            file.contains(&excerpt),
+            "README line {}: the excerpt is not in {path}:\n{excerpt}",
+            block.line
+        );
+        count += 1;
+    }
+    assert!(count >= 2, "{count} excerpts");
+}
