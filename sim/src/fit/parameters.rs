@@ -2,8 +2,9 @@
 //! and the model, the transforms that keep them feasible, and the settings
 //! that apply a set of values to the scenario.
 //!
-//! Names: `stiffness` / `damping` (the values k1…k7 / c1…c7 of the
-//! scenario's crush component; `front_end.stiffness` when there are several),
+//! Names: `stiffness` / `damping` / `force` (the values k1…k7 / c1…c7 of
+//! the scenario's crush component, or the forces of a force–deflection
+//! curve; `front_end.stiffness` when there are several),
 //! a dotted scenario entry holding a number or a list of numbers
 //! (`components.front_end.unloading_stiffness`), or a spec parameter (`k_f`).
 //!
@@ -103,10 +104,12 @@ fn crush_values_key(
     let short = |component: &str, what: &str| match what {
         "stiffness" => Some((format!("components.{component}.stiffness_values"), "k")),
         "damping" => Some((format!("components.{component}.damping_values"), "c")),
+        "force" => Some((format!("components.{component}.force_values"), "F")),
         _ => None,
     };
     let crush = crush_components(document);
-    if name == "stiffness" || name == "damping" {
+    const WHAT: [&str; 3] = ["stiffness", "damping", "force"];
+    if WHAT.contains(&name) {
         match crush.as_slice() {
             [one] => Ok(short(one, name).map(|(k, l)| (k, format!("{one}.{l}")))),
             [] => Err(format!(
@@ -120,7 +123,7 @@ fn crush_values_key(
         }
     } else if let Some((component, what)) = name.split_once('.')
         && crush.iter().any(|c| c == component)
-        && (what == "stiffness" || what == "damping")
+        && WHAT.contains(&what)
     {
         Ok(short(component, what).map(|(k, l)| (k, format!("{component}.{l}"))))
     } else {
@@ -157,7 +160,7 @@ impl Parameters {
             let value = lookup(document, &key).ok_or_else(|| {
                 let parameters = model.parameters.join(", ");
                 format!(
-                    "--fit {name}: not a spec parameter ({parameters}), `stiffness`, `damping`, or an entry of the scenario"
+                    "--fit {name}: not a spec parameter ({parameters}), `stiffness`, `damping`, `force` (of a crush component with that curve), or an entry of the scenario"
                 )
             })?;
             match value {
@@ -450,5 +453,26 @@ mod tests {
         let none: toml::Table = "".parse().unwrap();
         let e = Parameters::resolve(&["damping".into()], &none, &names(), &[1.0, 1.0]).unwrap_err();
         assert!(e.contains("no crush component"), "{e}");
+    }
+
+    #[test]
+    fn the_forces_of_a_force_deflection_curve_are_fitted_by_name() {
+        let doc: toml::Table = r#"
+            [components.rails]
+            type = "crush"
+            force_breakpoints = [0.1, 0.6]
+            force_values = [1.8e5, 2.2e5]
+        "#
+        .parse()
+        .unwrap();
+        let p = Parameters::resolve(&["rails.force".into()], &doc, &names(), &[1.0, 1.0]);
+        let p = p.unwrap();
+        let labels: Vec<&str> = p.entries.iter().map(|e| e.label.as_str()).collect();
+        assert_eq!(labels, ["rails.F1", "rails.F2"]);
+        let base = p.base_values();
+        assert_eq!(
+            p.settings(&base)[0],
+            "components.rails.force_values=[180000.0, 220000.0]"
+        );
     }
 }
