@@ -67,10 +67,18 @@ fn the_paper_run_is_clean_and_its_warnings_come_after_the_metrics() {
     assert_eq!(summary["warnings"], serde_json::json!([]));
     let text = std::fs::read_to_string(temporary_path("clean").join("summary.json")).unwrap();
     assert!(text.starts_with("{\n  \"max_crush_m\": "), "{text}");
-    assert!(
-        text.ends_with("\"channels\": {},\n  \"warnings\": []\n}\n"),
-        "{text}"
-    );
+    assert!(text.ends_with("\n  },\n  \"warnings\": []\n}\n"), "{text}");
+    // The paper's pitch is still growing at t_end (−13.6° over the run,
+    // −4.8° within the pulse): its channels say so.
+    for pitch in ["theta1", "theta2"] {
+        assert_eq!(
+            summary["channels"][pitch]["extreme_at_end"], true,
+            "{pitch}"
+        );
+    }
+    let in_pulse = summary["max_theta1_in_pulse_deg"].as_f64().unwrap();
+    let over_run = summary["max_theta1_deg"].as_f64().unwrap();
+    assert!(in_pulse.abs() < over_run.abs(), "{in_pulse} vs {over_run}");
 }
 
 #[test]

@@ -222,9 +222,21 @@ fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, String> {
     Ok(signal)
 }
 
-/// The channels of `metrics.displacement`, `velocity` and `acceleration`.
+/// The channels of `metrics.displacement`, `velocity`, `acceleration` and
+/// `force`; the pitch coordinates are displacement channels too (the
+/// summary flags a pitch still growing at the end of the run), unless
+/// listed.
 fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>, String> {
     let mut channels: Vec<Channel> = Vec::new();
+    for pitch in &metrics.pitch {
+        if !metrics.displacement.contains(pitch) {
+            let signal = Signal::parse("metrics.pitch", pitch, names)?;
+            channels.push(Channel {
+                role: Role::Displacement,
+                signal,
+            });
+        }
+    }
     for role in Role::ALL {
         for text in metrics.channels(role) {
             let key = format!("metrics.{}", role.name());
