@@ -68,7 +68,7 @@ pub(crate) use overrides::split_setting;
 use overrides::with_settings;
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
-pub use signal::{Channel, Column, Role, Signal};
+pub use signal::{Channel, Column, Columns, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -95,6 +95,9 @@ pub struct ModelNames {
     pub outputs: Vec<String>,
     /// The unit of each output, where declared.
     pub output_units: Vec<Option<String>>,
+    /// The columns of the scenario's components (`front_end.force`) with
+    /// their units, once they are bound (see [`ModelNames::with_components`]).
+    pub component_columns: Vec<(String, Option<String>)>,
 }
 
 impl ModelNames {
@@ -124,6 +127,15 @@ impl ModelNames {
             coordinate_units: model.coordinate_units().to_vec(),
             outputs: model.output_names().to_vec(),
             output_units: model.output_units().to_vec(),
+            component_columns: Vec::new(),
+        }
+    }
+
+    /// The names with the columns of the components bound in `inputs`.
+    pub fn with_components(&self, inputs: &BoundInputs) -> ModelNames {
+        ModelNames {
+            component_columns: inputs.columns(),
+            ..self.clone()
         }
     }
 

@@ -126,7 +126,6 @@ pub(super) fn resolve(
     let crush = (file.metrics.crush.as_deref())
         .map(|text| crush_channel(text, names))
         .transpose()?;
-    let channels = channels(&file.metrics, names)?;
     let pitch = file
         .metrics
         .pitch
@@ -140,6 +139,7 @@ pub(super) fn resolve(
         check_contact_metric(name, &file.components)?;
     }
     let inputs = bind_components(&file.components, tables, names, constants)?;
+    let channels = channels(&file.metrics, &names.with_components(&inputs))?;
     Ok(Scenario {
         file: None,
         spec: file.spec.as_ref().map(|s| base.join(s)),

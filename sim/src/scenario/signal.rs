@@ -17,16 +17,49 @@ pub enum Column {
     Acceleration(usize),
     /// Declared output `k` of the spec.
     Output(usize),
+    /// Column `k` of the scenario's components (`front_end.force`).
+    Component(usize),
 }
 
 impl Column {
     /// The column's value in a sample.
-    pub fn value(self, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) -> f64 {
+    pub fn value(self, s: &Columns) -> f64 {
+        let at = |values: &[f64], k: usize| values.get(k).copied().unwrap_or(f64::NAN);
         match self {
-            Column::Coordinate(k) => q[k],
-            Column::Velocity(k) => v[k],
-            Column::Acceleration(k) => a[k],
-            Column::Output(k) => outputs.get(k).copied().unwrap_or(f64::NAN),
+            Column::Coordinate(k) => at(s.q, k),
+            Column::Velocity(k) => at(s.v, k),
+            Column::Acceleration(k) => at(s.a, k),
+            Column::Output(k) => at(s.outputs, k),
+            Column::Component(k) => at(s.components, k),
+        }
+    }
+}
+
+/// The columns of one sample that a signal may read.
+#[derive(Clone, Copy, Debug)]
+pub struct Columns<'a> {
+    /// Coordinates.
+    pub q: &'a [f64],
+    /// Velocities.
+    pub v: &'a [f64],
+    /// Accelerations.
+    pub a: &'a [f64],
+    /// The spec's outputs.
+    pub outputs: &'a [f64],
+    /// The components' columns.
+    pub components: &'a [f64],
+}
+
+impl<'a> Columns<'a> {
+    /// The columns of coordinates only: `values` stands for `q`, `q̇` and
+    /// `q̈` alike.
+    pub fn coordinates(values: &'a [f64]) -> Columns<'a> {
+        Columns {
+            q: values,
+            v: values,
+            a: values,
+            outputs: &[],
+            components: &[],
         }
     }
 }
@@ -46,13 +79,13 @@ pub struct Signal {
 impl Signal {
     /// The value in a sample; the first term's product starts the sum, so
     /// that `-r` is exactly `−1·r`.
-    pub fn value(&self, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) -> f64 {
+    pub fn value(&self, s: &Columns) -> f64 {
         let mut terms = self.terms.iter();
         let Some(&(c, first)) = terms.next() else {
             return f64::NAN;
         };
-        terms.fold(c * first.value(q, v, a, outputs), |sum, &(c, column)| {
-            sum + c * column.value(q, v, a, outputs)
+        terms.fold(c * first.value(s), |sum, &(c, column)| {
+            sum + c * column.value(s)
         })
     }
 
@@ -92,7 +125,7 @@ impl Signal {
     /// per coordinate: the signal itself for `q`, its rate for `q̇`, its
     /// acceleration for `q̈`.
     pub fn of_coordinates(&self, values: &[f64]) -> f64 {
-        self.value(values, values, values, &[])
+        self.value(&Columns::coordinates(values))
     }
 }
 
@@ -155,7 +188,7 @@ fn split_terms<'t>(key: &str, text: &'t str) -> Result<Vec<(f64, &'t str)>, Stri
             rest = r.trim_start();
             continue;
         }
-        let end = rest.find(['+', '-']).unwrap_or(rest.len());
+        let end = next_sign(rest);
         let (term, after) = rest.split_at(end);
         let (factor, name) = match term.split_once('*') {
             Some((f, n)) => {
@@ -178,6 +211,21 @@ fn split_terms<'t>(key: &str, text: &'t str) -> Result<Vec<(f64, &'t str)>, Stri
     }
 }
 
+/// Where the next term starts in `rest`: its first `+` or `-` that is not
+/// the sign of a number's exponent (`1e-3 * x`).
+fn next_sign(rest: &str) -> usize {
+    let bytes = rest.as_bytes();
+    (1..bytes.len())
+        .find(|&k| {
+            let exponent = matches!(bytes[k - 1], b'e' | b'E')
+                && k >= 2
+                && bytes[k - 2].is_ascii_digit()
+                && !rest[..k - 1].ends_with(|c: char| c.is_ascii_alphabetic());
+            matches!(bytes[k], b'+' | b'-') && !exponent
+        })
+        .unwrap_or(rest.len())
+}
+
 /// The column `name` reads, with its unit.
 fn column(
     key: &str,
@@ -193,6 +241,9 @@ fn column(
     if let Some(k) = find(&names.outputs, name) {
         let unit = names.output_units.get(k).cloned().flatten();
         return Ok((Column::Output(k), unit));
+    }
+    if let Some(k) = names.component_columns.iter().position(|(c, _)| c == name) {
+        return Ok((Column::Component(k), names.component_columns[k].1.clone()));
     }
     if let Some(k) = find(&names.coordinates, name) {
         return Ok((Column::Coordinate(k), coordinate(k, "")));
@@ -217,6 +268,7 @@ fn column(
 /// Every column name a signal may read, for suggestions.
 fn known_columns(names: &ModelNames) -> Vec<String> {
     let mut known = names.outputs.clone();
+    known.extend(names.component_columns.iter().map(|(c, _)| c.clone()));
     for c in &names.coordinates {
         known.extend([c.clone(), format!("{c}_dot"), format!("{c}_ddot")]);
     }

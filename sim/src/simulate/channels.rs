@@ -4,7 +4,7 @@
 //! CFC 60 and CFC 180 filtering and its 3 ms clip, in units of `g`.
 
 use crate::pulse::{Pulse, cfc_filter, clip_3ms};
-use crate::scenario::{Channel, Role};
+use crate::scenario::{Channel, Columns, Role};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
 /// The names of a channel's metrics, in the order of `summary.json` and the
@@ -149,10 +149,9 @@ impl ChannelRecord {
     }
 
     /// Adds the channel's value at time `t` (in time order).
-    pub fn push(&mut self, t: f64, q: &[f64], v: &[f64], a: &[f64], outputs: &[f64]) {
+    pub fn push(&mut self, t: f64, columns: &Columns) {
         self.t.push(t);
-        self.values
-            .push(self.channel.signal.value(q, v, a, outputs));
+        self.values.push(self.channel.signal.value(columns));
     }
 
     /// The channel's metrics; accelerations in units of `g`.

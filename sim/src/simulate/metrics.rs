@@ -11,7 +11,7 @@ use super::Summary;
 use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
-use crate::scenario::{Scenario, Signal};
+use crate::scenario::{Columns, Scenario, Signal};
 use crate::warning::{self, ChannelPoint, Warning};
 
 /// One output sample as the metrics see it.
@@ -36,6 +36,8 @@ pub struct SampleView<'a> {
     /// The model's outputs, in the order of
     /// [`SimulationResult::output_columns`](super::SimulationResult::output_columns).
     pub outputs: &'a [f64],
+    /// The values of the scenario's component columns.
+    pub components: &'a [f64],
 }
 
 impl<'a> From<&'a Sample> for SampleView<'a> {
@@ -50,6 +52,7 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             dissipated: s.dissipated,
             external_work: s.external_work,
             outputs: &s.outputs,
+            components: &s.components,
         }
     }
 }
@@ -191,8 +194,15 @@ impl Metrics {
             self.crush_history.push(point);
             self.previous = Some(point);
         }
+        let columns = Columns {
+            q: s.q,
+            v: s.v,
+            a: s.a,
+            outputs: s.outputs,
+            components: s.components,
+        };
         for channel in &mut self.channels {
-            channel.push(s.t, s.q, s.v, s.a, s.outputs);
+            channel.push(s.t, &columns);
         }
         self.samples += 1;
     }

@@ -503,6 +503,8 @@ struct SampleValues<const N: usize> {
     kinetic: f64,
     potential: f64,
     outputs: Vec<f64>,
+    /// The components' columns (for channels that read them).
+    components: Vec<f64>,
 }
 
 impl<const N: usize> SampleValues<N> {
@@ -517,10 +519,11 @@ impl<const N: usize> SampleValues<N> {
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
             outputs: &self.outputs,
+            components: &self.components,
         }
     }
 
-    fn into_sample(self, columns: Columns) -> Sample {
+    fn into_sample(self, inputs: Vec<f64>) -> Sample {
         Sample {
             t: self.t,
             q: self.y.q.as_slice().to_vec(),
@@ -530,41 +533,31 @@ impl<const N: usize> SampleValues<N> {
             potential: self.potential,
             dissipated: self.y.work[0],
             external_work: self.y.work[1],
-            inputs: columns.inputs,
+            inputs,
             outputs: self.outputs,
-            components: columns.components,
+            components: self.components,
         }
     }
 }
 
-/// The values of a kept sample beyond the state and the outputs: inputs
-/// and components.
-#[derive(Default)]
-struct Columns {
-    inputs: Vec<f64>,
-    components: Vec<f64>,
-}
-
-/// Evaluates a sample, with the input and component values when `columns`
-/// is set; the outputs always, at the accelerations of the sample.
+/// Evaluates a sample, with the input values when `inputs` is set; the
+/// outputs (at the accelerations of the sample) and the components'
+/// columns always, for the channels.
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
-    columns: bool,
-) -> Result<(SampleValues<N>, Columns), SolverError> {
+    inputs: bool,
+) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
     let a = problem.accelerations(t, &y.q, &y.v).map_err(fault)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
     let mut outputs = vec![0.0; problem.system.output_names().len()];
     (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);
-    let values = if columns {
-        Columns {
-            inputs: problem.input_values(t, &y.q, &y.v),
-            components: problem.component_values(t, &y.q, &y.v).map_err(fault)?,
-        }
-    } else {
-        Columns::default()
+    let components = problem.component_values(t, &y.q, &y.v).map_err(fault)?;
+    let values = match inputs {
+        true => problem.input_values(t, &y.q, &y.v),
+        false => Vec::new(),
     };
     let sample = SampleValues {
         t,
@@ -573,6 +566,7 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         kinetic: energies.kinetic,
         potential: energies.potential,
         outputs,
+        components,
     };
     Ok((sample, values))
 }

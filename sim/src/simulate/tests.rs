@@ -321,11 +321,39 @@ fn outputs_are_evaluated_in_summary_only_runs_too() {
     let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
     let q = SVector::from_column_slice(&last.q);
     let v = SVector::from_column_slice(&last.v);
-    let (values, columns) = sample(&mut problem, last.t, &PhaseState::new(q, v), false).unwrap();
-    assert!(columns.inputs.is_empty() && columns.components.is_empty());
+    let (values, inputs) = sample(&mut problem, last.t, &PhaseState::new(q, v), false).unwrap();
+    assert!(inputs.is_empty());
     assert_eq!(values.as_view().outputs, &last.outputs[..]);
     // At rest the lower bob hangs 2 m below the pivot, unaccelerated.
     let rest = Scenario::parse("[simulation]\nt_end = 0.01\n", None, &names, &[]).unwrap();
     let at_rest = simulate(&system, &rest).unwrap();
     assert_eq!(at_rest.samples[0].outputs, [0.0, -2.0, 0.0]);
+}
+
+#[test]
+fn a_channel_reads_a_components_column_in_a_summary_only_run_too() {
+    // The peak force of the crush element above: 175 kN at 0.3 m.
+    let settings = [
+        "metrics.force=[\"wall.force\"]",
+        "metrics.displacement=[\"1e-3 * wall.deflection\"]",
+    ];
+    let (system, scenario) = impact(&settings);
+    let summary = simulate_summary(&system, &scenario).unwrap();
+    let [deflection, force] = &summary.channels.0[..] else {
+        panic!("{:?}", summary.channels)
+    };
+    assert_eq!(force.unit.as_deref(), Some("N"));
+    assert!((force.get("max").unwrap() - 175e3).abs() < 1.0, "{force:?}");
+    assert!(
+        (deflection.get("max").unwrap() - 0.3e-3).abs() < 1e-9,
+        "{deflection:?}"
+    );
+    let error = Scenario::parse(
+        WALL,
+        None,
+        &ModelNames::of(&system),
+        &["metrics.force=[\"wall.forse\"]".into()],
+    );
+    let error = error.unwrap_err().to_string();
+    assert!(error.contains("did you mean `wall.force`?"), "{error}");
 }
