@@ -228,11 +228,44 @@ fn draw_panel<DB: DrawingBackend>(
     }
     chart
         .configure_series_labels()
+        .position(legend_corner(&panel.lines, ((x0, x1), (y0, y1))))
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 13))
         .draw()?;
     Ok(())
+}
+
+/// The corner of the plot area the fewest points fall in (a box of 45 %
+/// of the width and 40 % of the height), for the legend: the first of
+/// equals in the order upper right, lower right, upper left, lower left.
+fn legend_corner(
+    lines: &[Line],
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> SeriesLabelPosition {
+    let (right, upper) = (x1 - 0.45 * (x1 - x0), y1 - 0.4 * (y1 - y0));
+    let (left, lower) = (x0 + 0.45 * (x1 - x0), y0 + 0.4 * (y1 - y0));
+    let corners = [
+        (SeriesLabelPosition::UpperRight, (right, x1), (upper, y1)),
+        (SeriesLabelPosition::LowerRight, (right, x1), (y0, lower)),
+        (SeriesLabelPosition::UpperLeft, (x0, left), (upper, y1)),
+        (SeriesLabelPosition::LowerLeft, (x0, left), (y0, lower)),
+    ];
+    let inside = |(a, b): (f64, f64), v: f64| a <= v && v <= b;
+    let count = |xs, ys| {
+        (lines.iter().flat_map(|l| &l.points))
+            .filter(|&&(x, y)| inside(xs, x) && inside(ys, y))
+            .count()
+    };
+    let [first, rest @ ..] = corners;
+    let best = rest.into_iter().fold(
+        (first.0, count(first.1, first.2)),
+        |best, (corner, xs, ys)| {
+            let n = count(xs, ys);
+            if n < best.1 { (corner, n) } else { best }
+        },
+    );
+    best.0
 }
 
 /// One line with its legend entry.

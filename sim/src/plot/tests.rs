@@ -289,3 +289,29 @@ fn the_grid_grows_by_rows_of_three() {
     let height = PANEL_SIZE.1 + TITLE_HEIGHT;
     assert!(svg.starts_with(&format!("<svg width=\"{width}\" height=\"{height}\"")));
 }
+
+#[test]
+fn the_legend_goes_to_the_emptiest_corner() {
+    let line = |points: Vec<(f64, f64)>| Line::solid("a", points, 0);
+    let bounds = ((0.0, 10.0), (0.0, 1.0));
+    // A rise to a plateau: the lower right is empty.
+    let plateau = line(
+        (0..=10)
+            .map(|k| (k as f64, (k as f64 / 3.0).min(1.0)))
+            .collect(),
+    );
+    assert!(matches!(
+        legend_corner(&[plateau], bounds),
+        SeriesLabelPosition::LowerRight
+    ));
+    // A pulse near the start: the upper right is empty.
+    let pulse = line(
+        (0..=10)
+            .map(|k| (k as f64, if k == 2 { 1.0 } else { 0.0 }))
+            .collect(),
+    );
+    assert!(matches!(
+        legend_corner(&[pulse], bounds),
+        SeriesLabelPosition::UpperRight
+    ));
+}
