@@ -124,14 +124,17 @@ const COLORS: [RGBColor; 5] = [
 
 /// Panels a row of the figure.
 const COLUMNS: usize = 3;
-/// Size of one panel in pixels.
+/// Size of one panel of the figure in pixels.
 const PANEL_SIZE: (u32, u32) = (500, 420);
+/// Size of one panel of [`panels_svg`] in pixels.
+const WIDE_PANEL_SIZE: (u32, u32) = (700, 460);
 /// Height of the figure's title in pixels.
 const TITLE_HEIGHT: u32 = 40;
 
 /// The figure as SVG text.
 pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String, String> {
-    draw_grid(&setup.title, &panels::panels_of(result, setup), COLUMNS)
+    let panels = panels::panels_of(result, setup);
+    draw_grid(&setup.title, &panels, COLUMNS, PANEL_SIZE)
 }
 
 /// Panels of lines side by side, one row: `(title, x label, y label, lines)`.
@@ -149,15 +152,21 @@ pub fn panels_svg(
                 .collect(),
         })
         .collect();
-    draw_grid(title, &panels, panels.len().max(1))
+    draw_grid(title, &panels, panels.len().max(1), WIDE_PANEL_SIZE)
 }
 
-/// `panels` under `title`, `columns` a row, as many rows as they need.
-fn draw_grid(title: &str, panels: &[Panel], columns: usize) -> Result<String, String> {
+/// `panels` of `panel_size` pixels under `title`, `columns` a row, as many
+/// rows as they need.
+fn draw_grid(
+    title: &str,
+    panels: &[Panel],
+    columns: usize,
+    panel_size: (u32, u32),
+) -> Result<String, String> {
     let rows = panels.len().div_ceil(columns).max(1);
     let size = (
-        PANEL_SIZE.0 * columns as u32,
-        PANEL_SIZE.1 * rows as u32 + TITLE_HEIGHT,
+        panel_size.0 * columns as u32,
+        panel_size.1 * rows as u32 + TITLE_HEIGHT,
     );
     let mut svg = String::new();
     {

@@ -315,3 +315,15 @@ fn the_legend_goes_to_the_emptiest_corner() {
         SeriesLabelPosition::UpperRight
     ));
 }
+
+#[test]
+fn panels_side_by_side_keep_their_size() {
+    let series = vec![("a".to_string(), vec![(0.0, 1.0), (1.0, 2.0)])];
+    let panel = ("P".to_string(), "x".to_string(), "y".to_string(), series);
+    let svg = panels_svg("Two", &[panel.clone(), panel]).unwrap();
+    assert!(
+        svg.starts_with("<svg width=\"1400\" height=\"500\""),
+        "{}",
+        &svg[..60]
+    );
+}
