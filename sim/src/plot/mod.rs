@@ -3,8 +3,8 @@
 //! pitch, energy bookkeeping and the crush force–deflection loop, three
 //! panels a row.
 //!
-//! This module lays the panels out and draws them; [`panels`] decides what
-//! they show.
+//! This module lays the panels out and draws them; its `panels`, `crush`
+//! and `channels` submodules decide what they show.
 
 mod channels;
 mod crush;
