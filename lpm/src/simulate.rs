@@ -182,10 +182,11 @@ fn write_outputs(
     };
     let setup = PlotSetup {
         crush: scenario.crush.clone(),
+        channels: scenario.channels.clone(),
         pitch: scenario.pitch.clone(),
         force_deflection: scenario.inputs.force_deflection_columns(),
         g: result.g,
-        title: format!("{} — {}", result.model, scenario_name),
+        title: figure_title(&result.model, scenario, scenario_name),
     };
     let svg =
         figure_svg(result, &setup).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
@@ -200,4 +201,13 @@ fn write_outputs(
             .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(())
+}
+
+/// `model — description` of the scenario, or `model — scenario file` for a
+/// scenario without a description.
+fn figure_title(model: &str, scenario: &Scenario, scenario_name: &str) -> String {
+    match scenario.description.trim() {
+        "" => format!("{model} — {scenario_name}"),
+        description => format!("{model} — {description}"),
+    }
 }

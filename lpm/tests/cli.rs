@@ -255,6 +255,17 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
     assert_eq!(csv.lines().count(), 1 + 1501, "0–150 ms at 0.1 ms");
     let svg = std::fs::read_to_string(out.join("plots.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("Crush force against crush"));
+    for line in ["permanent crush", "deceleration, CFC 60"] {
+        assert!(svg.contains(line), "{line} missing from plots.svg");
+    }
+    let readme_figure =
+        std::fs::read_to_string(format!("{}/docs/yaris_full_frontal.svg", common::ROOT)).unwrap();
+    assert!(
+        svg == readme_figure,
+        "docs/yaris_full_frontal.svg (the README's figure) is not this run's plots.svg: \
+         copy lpm-out/yaris_double_pendulum/plots.svg there after `cargo run -p lpm -- simulate \
+         specs/yaris_double_pendulum.lpm`"
+    );
     let _ = std::fs::remove_dir_all(&out);
 }
 
