@@ -36,7 +36,7 @@ fn role_panel(result: &SimulationResult, role: Role, channels: &[&Channel], g: f
     let mut lines = Vec::new();
     for (i, channel) in channels.iter().enumerate() {
         let values: Vec<f64> = (result.samples.iter())
-            .map(|x| scale * channel.signal.value(&x.q, &x.v, &x.a, &x.outputs))
+            .map(|x| scale * channel.signal.value(&x.columns()))
             .collect();
         let name = with_unit(&channel.signal.name, unit(channel).as_deref());
         match accelerations {

@@ -57,6 +57,19 @@ pub struct Sample {
     pub components: Vec<f64>,
 }
 
+impl Sample {
+    /// The columns a channel's signal reads.
+    pub fn columns(&self) -> crate::scenario::Columns<'_> {
+        crate::scenario::Columns {
+            q: &self.q,
+            v: &self.v,
+            a: &self.a,
+            outputs: &self.outputs,
+            components: &self.components,
+        }
+    }
+}
+
 /// Everything a run produced.
 #[derive(Clone, Debug)]
 pub struct SimulationResult {
