@@ -180,3 +180,14 @@ fn deep_input_in_the_macro_is_a_compile_error() {
     assert!(out.contains("brackets nested more than 256 deep"));
     assert!(!out.contains("struct Deep"), "no stand-in past the limits");
 }
+
+#[test]
+fn a_double_star_power_is_explained_like_the_caret() {
+    let text = error_of("potential = 0.5 * k * x ** 2;");
+    assert!(
+        text.contains("`**` is not a power in Rust syntax"),
+        "{text}"
+    );
+    assert!(text.contains("write the power as `pow(x, 2)`"), "{text}");
+    assert!(text.contains("spring.lpm:5:26"), "{text}");
+}

@@ -125,6 +125,12 @@ impl<'a> ExpressionLowering<'a> {
                     let v = self.expr(&u.expr)?;
                     Ok(self.store.neg(v))
                 }
+                UnOp::Deref(_) => Err(Diagnostic::new(
+                    SpanRange::of(expr),
+                    "`**` is not a power in Rust syntax: `x ** 2` reads as `x * (*2)`, \
+                     a product with a dereference",
+                )
+                .with_help("write the power as `pow(x, 2)` or `x.powi(2)`")),
                 _ => Err(unsupported(expr, "this unary operator")),
             },
             Expr::Binary(b) => self.binary(b),

@@ -78,11 +78,13 @@ impl Lowering {
             .enumerate()
             .map(|(i, decl)| self.coordinate(decl, i, symbols))
             .collect();
-        let parameters = parameters
-            .iter()
-            .zip(&symbols.parameters)
-            .map(|(decl, &symbol)| self.parameter(decl, symbol, symbols.pi))
-            .collect();
+        let mut lowered: Vec<Parameter> = Vec::with_capacity(parameters.len());
+        for (k, (decl, &symbol)) in parameters.iter().zip(&symbols.parameters).enumerate() {
+            let around = (&lowered[..], &parameters[k + 1..]);
+            let parameter = self.parameter(decl, symbol, symbols.pi, around);
+            lowered.push(parameter);
+        }
+        let parameters = lowered;
         let inputs = inputs.iter().map(|decl| self.input(decl)).collect();
         Declarations {
             coordinates,
@@ -114,14 +116,18 @@ impl Lowering {
         }
     }
 
+    /// Parameter `p`; its default may use the parameters declared before
+    /// it (`earlier`), at their defaults, but not those below (`later`).
     fn parameter(
         &mut self,
         p: &ParameterDecl,
         (symbol, expr): (SymbolId, ExprId),
         pi: ExprId,
+        (earlier, later): (&[Parameter], &[ParameterDecl]),
     ) -> Parameter {
         self.declare(&p.decl.name, Binding::Value(expr));
-        let default = constant_value(&mut self.store, p, pi, self.scope.time);
+        let default = constant_value(&mut self.store, p, pi, self.scope.time, earlier)
+            .map_err(|problem| declared_below(problem, later));
         Parameter {
             name: p.decl.name.to_string(),
             doc: p.decl.doc.clone(),
@@ -236,12 +242,37 @@ fn numbered(
         .collect()
 }
 
-/// Evaluates a parameter's default value, which must be a constant expression.
+/// Explains an unknown name in a parameter's default that is a parameter
+/// declared below it (`later`): a default may use only those above it.
+fn declared_below(problem: Diagnostic, later: &[ParameterDecl]) -> Diagnostic {
+    let name = (problem.message.strip_prefix("unknown name `"))
+        .and_then(|rest| rest.strip_suffix('`'))
+        .map(str::to_string);
+    match name.and_then(|name| later.iter().find(|p| p.decl.name == name)) {
+        Some(below) => {
+            let name = &below.decl.name;
+            Diagnostic::new(
+                problem.span,
+                format!("parameter `{name}` is declared below"),
+            )
+            .with_note("declared here", name.span())
+            .with_help(format!(
+                "a default may use only the parameters declared before it: move `{name}` up"
+            ))
+        }
+        None => problem,
+    }
+}
+
+/// Evaluates a parameter's default value: a constant expression of
+/// numbers, `pi` and the parameters declared before it (`earlier`, at their
+/// defaults).
 fn constant_value(
     store: &mut Store,
     p: &ParameterDecl,
     pi: ExprId,
     time: SymbolId,
+    earlier: &[Parameter],
 ) -> Result<f64, Diagnostic> {
     let Some(value) = &p.value else {
         return Err(Diagnostic::new(
@@ -263,18 +294,27 @@ fn constant_value(
     scope
         .names
         .insert("pi".into(), (Binding::Value(pi), Span::call_site()));
+    for e in earlier {
+        (scope.names).insert(e.name.clone(), (Binding::Value(e.expr), e.span));
+    }
     let lowered = ExpressionLowering::new(store, &scope, &[]).lower(value)?;
+    let is_earlier = |s: SymbolId| earlier.iter().any(|e| e.symbol == s);
     let free = store.free_symbols(lowered.value);
     if free
         .iter()
-        .any(|s| store.symbol_info(*s).kind != SymbolKind::Pi)
+        .any(|s| store.symbol_info(*s).kind != SymbolKind::Pi && !is_earlier(*s))
     {
         return Err(Diagnostic::new(
             SpanRange::of(value),
             "a parameter default must be a constant",
-        ));
+        )
+        .with_help("it may use numbers, `pi` and the parameters declared before it"));
     }
-    let result = Evaluator::new(store, Vec::new(), &no_inputs).eval(lowered.value);
+    let mut values = vec![0.0; store.symbols().len()];
+    for e in earlier {
+        values[e.symbol.index()] = e.default;
+    }
+    let result = Evaluator::new(store, values, &no_inputs).eval(lowered.value);
     if result.is_finite() {
         Ok(result)
     } else {
