@@ -64,6 +64,7 @@ pub use discover::{scenarios_for, spec_named_by};
 use file::File;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};
 pub use overrides::Setting;
+#[cfg(any(feature = "sweep", test))]
 pub(crate) use overrides::split_setting;
 use overrides::with_settings;
 pub use resolve::MAX_SAMPLES;
