@@ -10,6 +10,7 @@
 //!                    | ("kinetic" | "potential" | "dissipation") "=" EXPR ";"
 //!                    | "force" IDENT "=" EXPR ";"
 //!                    | "force" "at" "(" EXPR,* ")" "=" "(" EXPR,* ")" ";"
+//!                    | "torque" "(" EXPR ")" "=" EXPR ";"   (T about the angle EXPR)
 //!                    | "output" decl "=" EXPR ";"   (EXPR may use ddot(q))
 //!                    | "jacobians" ";"
 //!                    | "hand_derived" "{" hand-entry* "}" )
@@ -39,6 +40,7 @@ mod kw {
     syn::custom_keyword!(at);
     syn::custom_keyword!(jacobians);
     syn::custom_keyword!(output);
+    syn::custom_keyword!(torque);
     syn::custom_keyword!(d);
     syn::custom_keyword!(hand_derived);
     syn::custom_keyword!(convention);
@@ -131,6 +133,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         })
     } else if look.peek(kw::force) {
         parse_force(input)
+    } else if look.peek(kw::torque) {
+        parse_torque(input)
     } else if look.peek(kw::output) {
         parse_output(input, doc)
     } else if look.peek(kw::jacobians) {
@@ -179,6 +183,33 @@ fn parse_force(input: ParseStream) -> syn::Result<Item> {
             value,
         })
     }
+}
+
+/// `torque (φ) = T;`: a torque `T` about the angle `φ(q, t)`, whose virtual
+/// work `T·δφ` gives `Q_i = T ∂φ/∂q_i` — a force at a point of one
+/// coordinate, the angle.
+fn parse_torque(input: ParseStream) -> syn::Result<Item> {
+    input.parse::<kw::torque>()?;
+    let (angle, point_span) = parse_tuple(input)?;
+    if angle.len() != 1 {
+        return Err(syn::Error::new(
+            point_span,
+            format!(
+                "a torque acts about one angle, not {} (write `torque (theta2 - theta1) = T;`)",
+                angle.len()
+            ),
+        ));
+    }
+    input.parse::<Token![=]>()?;
+    let value: Expr = input.parse()?;
+    let components_span = value.span();
+    input.parse::<Token![;]>()?;
+    Ok(Item::PointForce {
+        point: angle,
+        point_span,
+        components: vec![value],
+        components_span,
+    })
 }
 
 /// `output NAME [unit] = EXPR;`, its doc lines already read.
