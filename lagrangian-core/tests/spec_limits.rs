@@ -191,3 +191,18 @@ fn a_double_star_power_is_explained_like_the_caret() {
     assert!(text.contains("write the power as `pow(x, 2)`"), "{text}");
     assert!(text.contains("spring.lpm:5:26"), "{text}");
 }
+
+#[test]
+fn a_let_used_before_its_definition_says_where_it_is() {
+    let text = error_of("let v = 2.0 * w;\nlet w = x;\npotential = 0.5 * k * pow(v, 2);");
+    assert!(
+        text.contains("error: `w` is defined below, by a later `let`"),
+        "{text}"
+    );
+    assert!(text.contains("spring.lpm:5:15"), "{text}");
+    assert!(
+        text.contains("note: defined here\n --> spring.lpm:6:5"),
+        "{text}"
+    );
+    assert!(text.contains("move `let w` up"), "{text}");
+}

@@ -26,19 +26,33 @@ impl Lowering {
     /// Lowers the `let` definitions in order (each may use the ones before
     /// it); returns `(name, value)` of each that lowered.
     pub(super) fn definitions(&mut self, statements: &[Item]) -> Vec<(String, ExprId)> {
+        let lets: Vec<(&Ident, &Expr)> = (statements.iter())
+            .filter_map(|item| match item {
+                Item::Let { name, value } => Some((name, value)),
+                _ => None,
+            })
+            .collect();
         let mut definitions = Vec::new();
-        for item in statements {
-            if let Item::Let { name, value } = item
-                && let Some(definition) = self.definition(name, value)
-            {
+        for (k, &(name, value)) in lets.iter().enumerate() {
+            let below: Vec<&Ident> = lets[k + 1..].iter().map(|(n, _)| *n).collect();
+            if let Some(definition) = self.definition(name, value, &below) {
                 definitions.push(definition);
             }
         }
         definitions
     }
 
-    fn definition(&mut self, name: &Ident, syntax: &Expr) -> Option<(String, ExprId)> {
-        let Some(Lowered { value, input_calls }) = self.lower_expression(syntax) else {
+    /// Lowers `let name = syntax;`; a use of a `let` of `below` (defined
+    /// after it) is an error that says where that one is.
+    fn definition(
+        &mut self,
+        name: &Ident,
+        syntax: &Expr,
+        below: &[&Ident],
+    ) -> Option<(String, ExprId)> {
+        let lowering = ExpressionLowering::new(&mut self.store, &self.scope, &self.input_names);
+        let lowered = lowering.lower(syntax).map_err(|d| defined_below(d, below));
+        let Some(Lowered { value, input_calls }) = self.problems.take(lowered) else {
             // Its uses fail quietly: the definition's error says it all.
             self.declare(name, Binding::Failed);
             return None;
@@ -205,6 +219,25 @@ impl Lowering {
             ),
         )
         .with_help("a point is a position: a function of the coordinates and time"))
+    }
+}
+
+/// An unknown name that is a `let` defined further down (`below`): said so,
+/// with a note at its definition.
+fn defined_below(problem: Diagnostic, below: &[&Ident]) -> Diagnostic {
+    let name = (problem.message.strip_prefix("unknown name `"))
+        .and_then(|rest| rest.strip_suffix('`'))
+        .map(str::to_string);
+    match name.and_then(|name| below.iter().find(|b| **b == name.as_str())) {
+        Some(definition) => Diagnostic::new(
+            problem.span,
+            format!("`{definition}` is defined below, by a later `let`"),
+        )
+        .with_note("defined here", definition.span())
+        .with_help(format!(
+            "a `let` may use only those before it: move `let {definition}` up"
+        )),
+        None => problem,
     }
 }
 
