@@ -93,6 +93,12 @@ impl Diagnostic {
         self.follows_earlier
     }
 
+    /// The name of an "unknown name `x`" error of an expression, so that
+    /// a caller that knows where `x` is declared can say so.
+    pub(crate) fn unknown_name(&self) -> Option<&str> {
+        (self.message.strip_prefix("unknown name `")).and_then(|rest| rest.strip_suffix('`'))
+    }
+
     /// Adds how to fix the problem.
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
         self.help = Some(help.into());

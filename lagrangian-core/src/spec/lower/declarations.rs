@@ -245,9 +245,7 @@ fn numbered(
 /// Explains an unknown name in a parameter's default that is a parameter
 /// declared below it (`later`): a default may use only those above it.
 fn declared_below(problem: Diagnostic, later: &[ParameterDecl]) -> Diagnostic {
-    let name = (problem.message.strip_prefix("unknown name `"))
-        .and_then(|rest| rest.strip_suffix('`'))
-        .map(str::to_string);
+    let name = problem.unknown_name();
     match name.and_then(|name| later.iter().find(|p| p.decl.name == name)) {
         Some(below) => {
             let name = &below.decl.name;

@@ -225,10 +225,8 @@ impl Lowering {
 /// An unknown name that is a `let` defined further down (`below`): said so,
 /// with a note at its definition.
 fn defined_below(problem: Diagnostic, below: &[&Ident]) -> Diagnostic {
-    let name = (problem.message.strip_prefix("unknown name `"))
-        .and_then(|rest| rest.strip_suffix('`'))
-        .map(str::to_string);
-    match name.and_then(|name| below.iter().find(|b| **b == name.as_str())) {
+    let name = problem.unknown_name();
+    match name.and_then(|name| below.iter().find(|b| **b == name)) {
         Some(definition) => Diagnostic::new(
             problem.span,
             format!("`{definition}` is defined below, by a later `let`"),
