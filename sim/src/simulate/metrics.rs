@@ -88,16 +88,16 @@ pub struct Metrics {
     deceleration: f64,
     /// Largest speed away from the barrier since the peak.
     rebound: f64,
-    pitch_extremes: Vec<f64>,
     /// Time and deviations from equilibrium of the pitch coordinates, for
-    /// their extremes within the pulse (whose end is known at the end).
+    /// their extremes over the run and within the pulse (whose end is
+    /// known at the end).
     pitch_history: Vec<(f64, Vec<f64>)>,
-    /// Time, crush and crush rate of every sample, for the crush at the end
-    /// of contact.
+    /// Time, crush and crush rate of every sample, for the pulse metrics
+    /// (filtering needs the whole record) and the crush at the end of
+    /// contact.
     crush_history: Vec<CrushPoint>,
-    /// Time, crush and crush acceleration of every sample, for the pulse
-    /// metrics (filtering needs the whole record).
-    pulse: Vec<(f64, f64, f64)>,
+    /// The crush acceleration of every sample of `crush_history`.
+    crush_acceleration: Vec<f64>,
     /// The records of the scenario's channels.
     channels: Vec<ChannelRecord>,
 }
@@ -114,7 +114,6 @@ impl Metrics {
             .collect();
         Metrics {
             crush: scenario.crush.clone(),
-            pitch_extremes: vec![0.0; pitch.len()],
             pitch_history: Vec::new(),
             crush_history: Vec::new(),
             pitch,
@@ -130,7 +129,7 @@ impl Metrics {
             first_rate: None,
             deceleration: f64::NEG_INFINITY,
             rebound: 0.0,
-            pulse: Vec::new(),
+            crush_acceleration: Vec::new(),
             channels: (scenario.channels.iter().cloned())
                 .map(ChannelRecord::new)
                 .collect(),
@@ -147,14 +146,7 @@ impl Metrics {
         });
         let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
         self.energy_error = self.energy_error.max(balance);
-        let mut deviations = Vec::with_capacity(self.pitch.len());
-        for ((k, q0), extreme) in self.pitch.iter().zip(&mut self.pitch_extremes) {
-            let d = s.q[*k] - q0;
-            if d.abs() > extreme.abs() {
-                *extreme = d;
-            }
-            deviations.push(d);
-        }
+        let deviations: Vec<f64> = self.pitch.iter().map(|(k, q0)| s.q[*k] - q0).collect();
         if !deviations.is_empty() {
             self.pitch_history.push((s.t, deviations));
         }
@@ -190,7 +182,7 @@ impl Metrics {
                 self.first_zero = Some(p.t + f * (point.t - p.t));
             }
             self.deceleration = self.deceleration.max(-acceleration / self.g);
-            self.pulse.push((s.t, point.crush, acceleration));
+            self.crush_acceleration.push(acceleration);
             self.crush_history.push(point);
             self.previous = Some(point);
         }
@@ -215,6 +207,7 @@ impl Metrics {
         weld_failure: Option<f64>,
         end_of_contact: Option<f64>,
     ) -> Summary {
+        let over_run = self.pitch_extremes_until(f64::INFINITY);
         let in_pulse = end_of_contact.map(|end| self.pitch_extremes_until(end));
         let in_pulse = |k: usize| {
             in_pulse
@@ -223,8 +216,8 @@ impl Metrics {
                 .map(|d| d.to_degrees())
         };
         let mut summary = Summary {
-            max_theta1_deg: self.pitch_extremes.first().map(|d| d.to_degrees()),
-            max_theta2_deg: self.pitch_extremes.get(1).map(|d| d.to_degrees()),
+            max_theta1_deg: over_run.first().map(|d| d.to_degrees()),
+            max_theta2_deg: over_run.get(1).map(|d| d.to_degrees()),
             max_theta1_in_pulse_deg: in_pulse(0),
             max_theta2_in_pulse_deg: in_pulse(1),
             end_of_contact_s: end_of_contact,
@@ -287,12 +280,12 @@ impl Metrics {
     /// The sign-sanity warnings of the crush channel (named `channel` in
     /// them): moving away from the barrier at the start, never compressing.
     pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
-        let (Some(&(t, crush, _)), Some(rate)) = (self.pulse.first(), self.first_rate) else {
+        let (Some(start), Some(rate)) = (self.crush_history.first(), self.first_rate) else {
             return Vec::new();
         };
         let first = ChannelPoint {
-            t,
-            value: crush,
+            t: start.t,
+            value: start.crush,
             rate,
         };
         let away = warning::moving_away(channel, first);
@@ -305,11 +298,10 @@ impl Metrics {
     /// `None` for fewer than 3 samples or a record the CFC 60 filter cannot
     /// take (sampled slower than 250 Hz).
     fn pulse_metrics(&self) -> Option<PulseMetrics> {
-        let t: Vec<f64> = self.pulse.iter().map(|p| p.0).collect();
-        let crush: Vec<f64> = self.pulse.iter().map(|p| p.1).collect();
-        let acceleration: Vec<f64> = self.pulse.iter().map(|p| p.2).collect();
+        let t: Vec<f64> = self.crush_history.iter().map(|p| p.t).collect();
+        let crush: Vec<f64> = self.crush_history.iter().map(|p| p.crush).collect();
         let v0 = self.first_rate?;
-        Pulse::resampled(&t, &acceleration, v0, Some(&crush))
+        Pulse::resampled(&t, &self.crush_acceleration, v0, Some(&crush))
             .and_then(|p| p.metrics())
             .ok()
     }
