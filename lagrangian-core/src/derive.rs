@@ -43,6 +43,8 @@ pub struct Derivation {
     /// The value of each output (`output name = …;`), in declaration
     /// order: functions of `t`, `q`, `q̇`, `q̈`, the parameters and inputs.
     pub outputs: Vec<ExprId>,
+    /// `g`, `g_t`, `G` and `γ` of the holonomic constraints (empty without).
+    pub constraints: crate::constraints::ConstraintTerms,
 }
 
 /// Row-major `n × n` Jacobians of the equations of motion.
@@ -72,6 +74,7 @@ pub fn derive(model: &mut Model) -> Result<Derivation, SpecErrors> {
         derivation.jacobians = Some(Deriver::new(model).jacobians(mass, forcing)?);
     }
     derivation.outputs = model.outputs.iter().map(|o| o.statement.value).collect();
+    derivation.constraints = crate::constraints::derive(model)?;
     Ok(derivation)
 }
 
@@ -154,6 +157,7 @@ impl<'a> Deriver<'a> {
             external_power,
             jacobians: None,
             outputs: Vec::new(),
+            constraints: Default::default(),
         })
     }
 

@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 pub mod audit;
+pub mod constraints;
 pub mod depth;
 pub mod derive;
 pub mod diagnostic;
@@ -86,6 +87,10 @@ impl Compiled {
             input_sites: self.program.input_sites.clone(),
             outputs: model.outputs.iter().map(|o| o.name.clone()).collect(),
             output_units: model.outputs.iter().map(|o| unit(&o.unit)).collect(),
+            constraints: model.constraints.iter().map(|c| c.name.clone()).collect(),
+            multiplier_units: (model.constraints.iter())
+                .map(|c| c.multiplier_unit())
+                .collect(),
         }
     }
 

@@ -190,6 +190,15 @@ impl Builder<'_> {
             let regs = derivation.outputs.iter().map(|&e| self.output(e)).collect();
             outputs.push((RoutineKind::Outputs, regs));
         }
+        // After the outputs, for the same reason.
+        if !derivation.constraints.residual.is_empty() {
+            let regs = derivation
+                .constraints
+                .outputs()
+                .map(|e| self.output(e))
+                .collect();
+            outputs.push((RoutineKind::Constraints, regs));
+        }
         outputs
     }
 

@@ -2,7 +2,7 @@
 //! recompiling, with the same numbers as the compiled code.
 
 use crate::error::ModelError;
-use crate::layout::{Energies, RoutineKind, unpack_dynamics};
+use crate::layout::{ConstraintLayout, Energies, RoutineKind, unpack_dynamics};
 use crate::tape::Tape;
 use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
@@ -35,6 +35,11 @@ pub struct ModelDescription {
     pub outputs: Vec<String>,
     /// The unit of each output as written in the spec, if any.
     pub output_units: Vec<Option<String>>,
+    /// The spec's holonomic constraints (`constraint NAME = expr;`), in order.
+    pub constraints: Vec<String>,
+    /// The unit of each constraint's multiplier `λ` (energy per unit of the
+    /// constraint), where the spec's units are checked.
+    pub multiplier_units: Vec<Option<String>>,
 }
 
 impl ModelDescription {
@@ -64,6 +69,16 @@ impl ModelDescription {
                 self.outputs.len(),
                 tape.output_count(RoutineKind::Outputs),
             ),
+            (
+                "multiplier units",
+                self.multiplier_units.len(),
+                self.constraints.len(),
+            ),
+            (
+                "constraint terms",
+                self.constraint_layout(n).len(),
+                tape.output_count(RoutineKind::Constraints),
+            ),
         ];
         for (what, found, expected) in lengths {
             if found != expected {
@@ -76,6 +91,7 @@ impl ModelDescription {
             let expected = match kind {
                 RoutineKind::InputArguments => arguments,
                 RoutineKind::Outputs => self.outputs.len(),
+                RoutineKind::Constraints => self.constraint_layout(n).len(),
                 RoutineKind::Dynamics
                 | RoutineKind::Energies
                 | RoutineKind::Jacobians
@@ -89,6 +105,14 @@ impl ModelDescription {
             }
         }
         Ok(())
+    }
+
+    /// Where the terms of the constraint routine are, for `n` coordinates.
+    fn constraint_layout(&self, n: usize) -> ConstraintLayout {
+        ConstraintLayout {
+            m: self.constraints.len(),
+            n,
+        }
     }
 }
 
@@ -173,6 +197,16 @@ impl InterpretedModel {
     /// Names of the spec's outputs, in order.
     pub fn output_names(&self) -> &[String] {
         &self.description.outputs
+    }
+
+    /// Names of the spec's constraints, in order.
+    pub fn constraint_names(&self) -> &[String] {
+        &self.description.constraints
+    }
+
+    /// Units of the constraints' multipliers, where known.
+    pub fn multiplier_units(&self) -> &[Option<String>] {
+        &self.description.multiplier_units
     }
 
     /// Units of the outputs as written in the spec.
@@ -322,5 +356,27 @@ impl InterpretedModel {
         self.run(RoutineKind::Outputs, state, inputs, |values| {
             out[..values.len()].copy_from_slice(values)
         })
+    }
+
+    /// The constraint terms `g`, `g_t`, `G`, `γ` at `(t, q, q̇)` (in the
+    /// order of [`ConstraintLayout`]) into `out`; nothing for a model
+    /// without constraints.
+    pub fn evaluate_constraints<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        inputs: &I,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        if !self.tape.has(RoutineKind::Constraints) {
+            return Ok(());
+        }
+        self.run(
+            RoutineKind::Constraints,
+            (t, q, qd, &[]),
+            inputs,
+            |values| out[..values.len()].copy_from_slice(values),
+        )
     }
 }

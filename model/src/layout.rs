@@ -25,6 +25,54 @@ pub enum RoutineKind {
     /// evaluated after the equations of motion are solved. Only models that
     /// declare outputs have this routine.
     Outputs,
+    /// The holonomic constraints `g(q, t) = 0` at `(t, q, q̇)`: `g`, `∂g/∂t`,
+    /// `G = ∂g/∂q` (row-major) and `γ` (`G q̈ = γ` along a motion that keeps
+    /// them), in the order of [`ConstraintLayout`]. Only models that declare
+    /// constraints have this routine.
+    Constraints,
+}
+
+/// Where each term of [`RoutineKind::Constraints`] is among its outputs, for
+/// `m` constraints on `n` coordinates: `g` (`m`), `g_t` (`m`), `G` (`m × n`,
+/// row-major), `γ` (`m`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConstraintLayout {
+    /// The number of constraints.
+    pub m: usize,
+    /// The number of coordinates.
+    pub n: usize,
+}
+
+impl ConstraintLayout {
+    /// The number of outputs, `m (n + 3)`.
+    pub fn len(self) -> usize {
+        self.m * (self.n + 3)
+    }
+
+    /// Whether there are no constraints.
+    pub fn is_empty(self) -> bool {
+        self.m == 0
+    }
+
+    /// The residuals `g`.
+    pub fn residual(self) -> std::ops::Range<usize> {
+        0..self.m
+    }
+
+    /// The time partials `∂g/∂t`.
+    pub fn time_rate(self) -> std::ops::Range<usize> {
+        self.m..2 * self.m
+    }
+
+    /// `G`, row-major `m × n`.
+    pub fn jacobian(self) -> std::ops::Range<usize> {
+        2 * self.m..self.m * (2 + self.n)
+    }
+
+    /// `γ`.
+    pub fn acceleration(self) -> std::ops::Range<usize> {
+        self.m * (2 + self.n)..self.len()
+    }
 }
 
 /// `(i, j)` of the entries of `M` among the dynamics outputs, in order: the
@@ -140,6 +188,9 @@ pub enum OutputSlot {
     /// The value of the spec's output `k`, in declaration order
     /// ([`RoutineKind::Outputs`]).
     Output(usize),
+    /// Value `k` of the constraint terms, in the order of
+    /// [`ConstraintLayout`] ([`RoutineKind::Constraints`]).
+    Constraint(usize),
 }
 
 /// One field of [`Energies`].
@@ -210,19 +261,20 @@ impl JacobianBlock {
 
 impl RoutineKind {
     /// Every routine a program can have.
-    pub const ALL: [RoutineKind; 6] = [
+    pub const ALL: [RoutineKind; 7] = [
         RoutineKind::Dynamics,
         RoutineKind::Energies,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::DynamicsAndPowers,
         RoutineKind::Outputs,
+        RoutineKind::Constraints,
     ];
 
     /// The number of outputs of the routine for a model with `n`
     /// coordinates; `None` for [`RoutineKind::InputArguments`] and
-    /// [`RoutineKind::Outputs`], whose counts depend on the model's input
-    /// calls and output statements.
+    /// [`RoutineKind::Outputs`] and [`RoutineKind::Constraints`], whose
+    /// counts depend on the model's input calls, outputs and constraints.
     pub fn output_count(self, n: usize) -> Option<usize> {
         let mass = n * (n + 1) / 2;
         match self {
@@ -230,7 +282,7 @@ impl RoutineKind {
             RoutineKind::DynamicsAndPowers => Some(mass + n + 2),
             RoutineKind::Energies => Some(Energy::ALL.len()),
             RoutineKind::Jacobians => Some(JacobianBlock::ALL.len() * n * n),
-            RoutineKind::InputArguments | RoutineKind::Outputs => None,
+            RoutineKind::InputArguments | RoutineKind::Outputs | RoutineKind::Constraints => None,
         }
     }
 
@@ -260,6 +312,7 @@ impl RoutineKind {
             },
             RoutineKind::InputArguments => OutputSlot::InputArgument(k),
             RoutineKind::Outputs => OutputSlot::Output(k),
+            RoutineKind::Constraints => OutputSlot::Constraint(k),
         })
     }
 }

@@ -18,6 +18,8 @@
 //! depends on nothing.
 #![warn(missing_docs)]
 
+#[cfg(feature = "nalgebra")]
+pub mod constrained;
 mod error;
 #[cfg(feature = "nalgebra")]
 mod fixed;

@@ -132,6 +132,35 @@ pub trait LagrangianSystem<const N: usize> {
         let _ = (t, q, qd, qdd, inputs, out);
     }
 
+    /// Names of the spec's holonomic constraints (`constraint NAME = g;`,
+    /// `g(q, t) = 0`), in declaration order; empty for a model without
+    /// constraints.
+    fn constraint_names(&self) -> Vec<&str> {
+        Vec::new()
+    }
+
+    /// The number of constraints, `m`.
+    fn constraint_count(&self) -> usize {
+        self.constraint_names().len()
+    }
+
+    /// Writes the constraint terms at `(t, q, q̇)` to `out` (which holds at
+    /// least `m (N + 3)` values): `g`, `∂g/∂t`, `G = ∂g/∂q` (row-major
+    /// `m × N`) and `γ`, with `G q̈ = γ` along a motion that keeps the
+    /// constraints, in the order of [`crate::layout::ConstraintLayout`]. A
+    /// model without constraints writes nothing. The constrained equations
+    /// of motion are `M q̈ = f + Gᵀλ`, `G q̈ = γ` ([`crate::constrained`]).
+    fn constraints<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        let _ = (t, q, qd, inputs, out);
+    }
+
     /// `M(q, t)` (convenience over [`LagrangianSystem::mass_matrix_and_forcing`]).
     fn mass_matrix<I: InputFunctions + ?Sized>(
         &self,

@@ -39,6 +39,12 @@
 //! extern const char *const <p>_output_names[];
 //! void <p>_outputs(const double *p, double t, const double *q, const double *qd,
 //!                   const double *qdd, lagrangian_input input, void *context, double *outputs);
+//!
+//! /* Only for a spec with constraints (`constraint NAME = expr;`): */
+//! #define <P>_CONSTRAINTS      /* m, the number of constraints */
+//! extern const char *const <p>_constraint_names[];
+//! void <p>_constraints(const double *p, double t, const double *q, const double *qd,
+//!                   lagrangian_input input, void *context, double *constraints);
 //! ```
 //!
 //! * `p` holds the parameters in declaration order; `q`, `qd` (and `qdd`)
@@ -54,6 +60,9 @@
 //!   dynamics, concatenated in the order of the model's input sites.
 //! * `outputs` receives the value of each output, in declaration order, at
 //!   `(t, q, q̇, q̈)`: pass the accelerations the dynamics give there.
+//! * `constraints` receives `g` (m), `∂g/∂t` (m), `G = ∂g/∂q` (m × n,
+//!   row-major) and `γ` (m, with `G q̈ = γ`), concatenated; the constrained
+//!   equations are `M q̈ = f + Gᵀλ`, `G q̈ = γ`.
 //! * Input functions are called as `input(context, index, args, count)`
 //!   with the index in declaration order; `context` is passed through
 //!   untouched. With `input == NULL` every input call yields NaN.
@@ -118,6 +127,7 @@ fn emit_c_deep(compiled: &Compiled, options: &COptions) -> String {
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Constraints,
     ] {
         if let Some(routine) = compiled.program.routine(kind) {
             let schedule = schedule(&compiled.program, routine);
@@ -192,6 +202,7 @@ fn metadata(compiled: &Compiled, prefix: &str) -> String {
         );
     }
     out.push_str(&output_metadata(model, prefix));
+    out.push_str(&constraint_metadata(model, prefix));
     let _ = writeln!(out, "\n/* The parameters' default values, into p. */");
     let _ = writeln!(out, "void {prefix}_default_parameters(double *p)\n{{");
     for (i, parameter) in model.parameters.iter().enumerate() {
@@ -213,6 +224,22 @@ fn output_metadata(model: &crate::spec::Model, prefix: &str) -> String {
         "#define {}_OUTPUTS {}\nconst char *const {prefix}_output_names[] = {{{}}};\n",
         prefix.to_uppercase(),
         model.outputs.len(),
+        items.join(", ")
+    )
+}
+
+/// The number and names of the constraints, for a model with constraints
+/// (the code of the others stays as it was).
+fn constraint_metadata(model: &crate::spec::Model, prefix: &str) -> String {
+    if model.constraints.is_empty() {
+        return String::new();
+    }
+    let mut items: Vec<String> = model.constraints.iter().map(|c| string(&c.name)).collect();
+    items.push("NULL".to_string());
+    format!(
+        "#define {}_CONSTRAINTS {}\nconst char *const {prefix}_constraint_names[] = {{{}}};\n",
+        prefix.to_uppercase(),
+        model.constraints.len(),
         items.join(", ")
     )
 }
@@ -265,6 +292,7 @@ fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
         RoutineKind::Jacobians => ("jacobians", jacobians),
         RoutineKind::InputArguments => ("input_arguments", vec!["arguments"]),
         RoutineKind::Outputs => ("outputs", vec!["outputs"]),
+        RoutineKind::Constraints => ("constraints", vec!["constraints"]),
     }
 }
 
@@ -331,6 +359,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
         }
         OutputSlot::InputArgument(k) => vec![format!("arguments[{k}] = {value};")],
         OutputSlot::Output(k) => vec![format!("outputs[{k}] = {value};")],
+        OutputSlot::Constraint(k) => vec![format!("constraints[{k}] = {value};")],
     }
 }
 
@@ -338,7 +367,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
 const RESERVED: [&str; 3] = [
     // The parameters and types of the generated functions.
     "p t q qd qdd input context mass forcing energies forcing_q forcing_qd
-     mass_times_acceleration_q arguments outputs lagrangian_input",
+     mass_times_acceleration_q arguments outputs constraints lagrangian_input",
     // The keywords of C99 to C23 (and GNU's `asm`).
     "auto break case char const continue default do double else enum extern float for goto if
      inline int long register restrict return short signed sizeof static struct switch typedef

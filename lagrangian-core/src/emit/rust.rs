@@ -153,6 +153,7 @@ fn associated_constants(model: &Model, names: &Names, ty: &Ident) -> TokenStream
     let parameter_names = model.parameters.iter().map(|p| p.name.as_str());
     let input_names = model.inputs.iter().map(|i| i.name.as_str());
     let outputs = output_names_constant(model);
+    let constraints = constraint_names_constant(model);
     quote! {
         #[allow(non_camel_case_types)]
         impl #ty {
@@ -163,6 +164,7 @@ fn associated_constants(model: &Model, names: &Names, ty: &Ident) -> TokenStream
             /// Names of the input functions, in order of their indices.
             pub const INPUTS: &'static [&'static str] = &[#(#input_names),*];
             #outputs
+            #constraints
             #(#input_consts)*
         }
     }
@@ -204,6 +206,42 @@ fn output_names_method(model: &Model) -> TokenStream {
     }
 }
 
+/// `CONSTRAINTS`, the names of the constraints, with their doc lines in its
+/// doc; nothing for a model without constraints (whose code stays as it was).
+fn constraint_names_constant(model: &Model) -> TokenStream {
+    if model.constraints.is_empty() {
+        return TokenStream::new();
+    }
+    let mut doc = vec![
+        "Names of the holonomic constraints (`LagrangianSystem::constraints`), in order:"
+            .to_string(),
+    ];
+    for c in &model.constraints {
+        let text = c.doc.join(" ");
+        let separator = if text.is_empty() { "" } else { ": " };
+        doc.push(format!("- `{}`{separator}{text}", c.name));
+    }
+    let doc = doc_lines(&doc);
+    let names = model.constraints.iter().map(|c| c.name.as_str());
+    quote! {
+        #(#[doc = #doc])*
+        pub const CONSTRAINTS: &'static [&'static str] = &[#(#names),*];
+    }
+}
+
+/// `constraint_names`, for a model with constraints (the trait's default,
+/// no names, is right for the others).
+fn constraint_names_method(model: &Model) -> TokenStream {
+    if model.constraints.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        fn constraint_names(&self) -> ::std::vec::Vec<&str> {
+            Self::CONSTRAINTS.to_vec()
+        }
+    }
+}
+
 /// `impl LagrangianSystem<N>`: the names, parameter access and the routines.
 fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) -> TokenStream {
     let model = &compiled.model;
@@ -228,9 +266,11 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Constraints,
     ]
     .map(|kind| routine_method(compiled, names, kind, rt));
     let output_names = output_names_method(model);
+    let constraint_names = constraint_names_method(model);
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, non_snake_case, clippy::all, clippy::pedantic, clippy::nursery)]
@@ -268,6 +308,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
             }
 
             #output_names
+            #constraint_names
             #(#routines)*
         }
     }
@@ -340,6 +381,14 @@ fn routine_method(
                 #(#writes)*
             }
         },
+        RoutineKind::Constraints => quote! {
+            fn constraints<I: #rt::InputFunctions + ?Sized>(
+                &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
+            ) {
+                #(#statements)*
+                #(#writes)*
+            }
+        },
         RoutineKind::Jacobians => quote! {
             fn jacobians<I: #rt::InputFunctions + ?Sized>(
                 &self, t: f64, q: &#vector, qd: &#vector, qdd: &#vector, inputs: &I,
@@ -391,7 +440,7 @@ fn place_outputs(schedule: &Schedule, values: Vec<TokenStream>) -> PlacedOutputs
                     .writes
                     .push(quote! { out.#field[(#i, #k)] = #value; });
             }
-            OutputSlot::InputArgument(k) | OutputSlot::Output(k) => {
+            OutputSlot::InputArgument(k) | OutputSlot::Output(k) | OutputSlot::Constraint(k) => {
                 let k = index(k);
                 placed.writes.push(quote! { out[#k] = #value; });
             }

@@ -44,6 +44,13 @@ pub struct OutputDecl {
     pub value: Expr,
 }
 
+/// `constraint NAME = expr;`, with its `///` doc lines: `expr(q, t) = 0`.
+pub struct ConstraintDecl {
+    pub doc: Vec<String>,
+    pub name: Ident,
+    pub value: Expr,
+}
+
 /// The three scalar functions a spec may give, each at most once.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum EnergyKind {
@@ -115,6 +122,9 @@ pub enum Item {
     /// `output NAME [unit] = expr;` — a quantity computed at every sample
     /// after the solve, which may use the accelerations `ddot(q)`.
     Output(OutputDecl),
+    /// `constraint NAME = expr;` — a holonomic constraint `expr(q, t) = 0`,
+    /// held by a Lagrange multiplier.
+    Constraint(ConstraintDecl),
     /// `jacobians;` — also derive ∂f/∂q, ∂f/∂q̇ and ∂(M a)/∂q.
     Jacobians {
         keyword: Span,

@@ -25,6 +25,9 @@ pub(super) enum Binding {
     Failed,
     /// An output: computed after the solve, not a value expressions can use.
     Output,
+    /// A constraint's name: it names the equation and its multiplier, not a
+    /// value expressions can use.
+    Constraint,
 }
 
 /// Name resolution and the model's symbols, shared by all statements.
@@ -234,6 +237,12 @@ impl<'a> ExpressionLowering<'a> {
             Some((Binding::Output, decl)) => Err(Diagnostic::new(
                 ident.span(),
                 format!("`{name}` is an output, which expressions cannot use"),
+            )
+            .with_note(format!("`{name}` is declared here"), *decl)
+            .with_help("name the expression with `let` and use that name in both places")),
+            Some((Binding::Constraint, decl)) => Err(Diagnostic::new(
+                ident.span(),
+                format!("`{name}` is a constraint, which expressions cannot use"),
             )
             .with_note(format!("`{name}` is declared here"), *decl)
             .with_help("name the expression with `let` and use that name in both places")),

@@ -3,11 +3,12 @@
 //! A pipeline of phases over one [`Lowering`] state: item collection
 //! ([`items`]), symbols and declarations ([`declarations`]), `let`
 //! definitions, energies and forces ([`statements`]), outputs
-//! ([`outputs`]), units, the
+//! ([`outputs`]), constraints ([`constraints`]), units, the
 //! `hand_derived` section, and assembly. Lowering goes on after an error
 //! where it can, so one pass reports every independent problem; the checks
 //! of names and of things given twice are in [`validate`].
 
+mod constraints;
 mod declarations;
 mod items;
 mod outputs;
@@ -74,9 +75,18 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     lowering.input_derivatives(&items.inputs, &mut declared.inputs);
     let definitions = lowering.definitions(&items.statements);
     lowering.declare_outputs(&items.statements);
+    lowering.declare_constraints(&items.statements);
     let dynamics = lowering.dynamics(&items.statements, &declared.coordinates);
     let outputs = lowering.outputs(&items.statements);
+    let mut constraints = lowering.constraints(&items.statements);
     let mut dimensions = lowering.units(&items.statements, &items.inputs, &declared);
+    let checked = !super::unit_check::UnitCoverage::of(
+        &declared.coordinates,
+        &declared.parameters,
+        &items.inputs,
+    )
+    .none();
+    constraints::dimensions(&mut constraints, &items.statements, &dimensions, checked);
     let coordinate_dimensions = coordinate_dimensions(&dimensions, &declared.coordinates);
     let hand_derived = lowering.hand_derived(&items.statements, &declared, &mut dimensions);
     let [kinetic, potential, dissipation] = dynamics.energies;
@@ -96,6 +106,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         dissipation,
         forces: dynamics.forces,
         outputs,
+        constraints,
         definitions,
         jacobians: dynamics.jacobians_span.is_some(),
         jacobians_span: dynamics.jacobians_span,

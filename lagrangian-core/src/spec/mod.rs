@@ -114,6 +114,32 @@ pub struct Output {
     pub statement: Statement,
 }
 
+/// A holonomic constraint `constraint name = g;`: `g(q, t) = 0`, held by a
+/// Lagrange multiplier `λ`, whose generalized force `Gᵀλ` (`G = ∂g/∂q`) is
+/// added to `f`.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    /// The name, as declared.
+    pub name: String,
+    /// Its `///` doc lines.
+    pub doc: Vec<String>,
+    /// Where it is declared.
+    pub span: Span,
+    /// `g`, a function of the coordinates, time, parameters and inputs.
+    pub statement: Statement,
+    /// The dimension of `g`, when the spec's units are checked.
+    pub dimension: Option<crate::units::Dimension>,
+}
+
+impl Constraint {
+    /// The unit of the multiplier `λ`, energy per unit of `g`, when the
+    /// spec's units are checked.
+    pub fn multiplier_unit(&self) -> Option<String> {
+        let d = crate::units::Dimension::ENERGY.checked_div(self.dimension?)?;
+        Some(d.to_string())
+    }
+}
+
 /// A resolved model: symbols and expressions ready for derivation.
 pub struct Model {
     /// The name given by `model Name;`, the emitted type's name.
@@ -143,6 +169,8 @@ pub struct Model {
     pub forces: Vec<ForceStatement>,
     /// The outputs, in declaration order.
     pub outputs: Vec<Output>,
+    /// The holonomic constraints, in declaration order.
+    pub constraints: Vec<Constraint>,
     /// `let` definitions, in order, for documentation.
     pub definitions: Vec<(String, ExprId)>,
     /// Whether the spec asks for the Jacobians (`jacobians;`).

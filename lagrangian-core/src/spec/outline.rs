@@ -44,6 +44,7 @@ impl Outline {
                 | Item::GeneralizedForce { .. }
                 | Item::PointForce { .. }
                 | Item::Output(_)
+                | Item::Constraint(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_) => {}
             }

@@ -12,6 +12,7 @@
 //!                    | "force" "at" "(" EXPR,* ")" "=" "(" EXPR,* ")" ";"
 //!                    | "torque" "(" EXPR ")" "=" EXPR ";"   (T about the angle EXPR)
 //!                    | "output" decl "=" EXPR ";"   (EXPR may use ddot(q))
+//!                    | "constraint" IDENT "=" EXPR ";"   (EXPR(q, t) = 0)
 //!                    | "jacobians" ";"
 //!                    | "hand_derived" "{" hand-entry* "}" )
 //! decl        = doc* IDENT unit?
@@ -40,6 +41,7 @@ mod kw {
     syn::custom_keyword!(at);
     syn::custom_keyword!(jacobians);
     syn::custom_keyword!(output);
+    syn::custom_keyword!(constraint);
     syn::custom_keyword!(torque);
     syn::custom_keyword!(d);
     syn::custom_keyword!(hand_derived);
@@ -137,6 +139,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         parse_torque(input)
     } else if look.peek(kw::output) {
         parse_output(input, doc)
+    } else if look.peek(kw::constraint) {
+        parse_constraint(input, doc)
     } else if look.peek(kw::jacobians) {
         let keyword = input.parse::<kw::jacobians>()?.span;
         input.parse::<Token![;]>()?;
@@ -210,6 +214,16 @@ fn parse_torque(input: ParseStream) -> syn::Result<Item> {
         components: vec![value],
         components_span,
     })
+}
+
+/// `constraint NAME = EXPR;`, its doc lines already read.
+fn parse_constraint(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
+    input.parse::<kw::constraint>()?;
+    let name = input.parse()?;
+    input.parse::<Token![=]>()?;
+    let value = input.parse()?;
+    input.parse::<Token![;]>()?;
+    Ok(Item::Constraint(ConstraintDecl { doc, name, value }))
 }
 
 /// `output NAME [unit] = EXPR;`, its doc lines already read.

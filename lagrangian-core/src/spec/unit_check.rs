@@ -259,6 +259,10 @@ impl Checker<'_> {
                 }
             }
             Item::Output(output) => self.output(output),
+            Item::Constraint(constraint) => {
+                // Any dimension will do; its terms must agree.
+                self.take(self.scope.infer(&constraint.value));
+            }
             Item::Let { .. }
             | Item::Jacobians { .. }
             | Item::HandDerived(_)

@@ -54,6 +54,7 @@ impl Items {
                 | Item::GeneralizedForce { .. }
                 | Item::PointForce { .. }
                 | Item::Output(_)
+                | Item::Constraint(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_)) => items.statements.push(other),
             }

@@ -58,6 +58,7 @@ fn output_declarations(statements: &[Item]) -> impl Iterator<Item = &OutputDecl>
         | Item::Energy { .. }
         | Item::GeneralizedForce { .. }
         | Item::PointForce { .. }
+        | Item::Constraint(_)
         | Item::Jacobians { .. }
         | Item::HandDerived(_) => None,
     })

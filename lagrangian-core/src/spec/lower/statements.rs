@@ -101,6 +101,7 @@ impl Lowering {
                 }
                 Item::Let { .. }
                 | Item::Output(_)
+                | Item::Constraint(_)
                 | Item::HandDerived(_)
                 | Item::Model { .. }
                 | Item::Coordinates { .. }
