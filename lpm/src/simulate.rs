@@ -179,6 +179,7 @@ fn write_outputs(
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
         outputs: model.output_units().to_vec(),
+        multipliers: model.multiplier_units().to_vec(),
     };
     let setup = PlotSetup {
         crush: scenario.crush.clone(),

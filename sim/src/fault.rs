@@ -48,6 +48,20 @@ pub enum Fault {
         /// The last abscissa of the table.
         max: f64,
     },
+    /// The constraints `names` depend on the ones declared before them at
+    /// this state: `G M⁻¹ Gᵀ` (and with it `[[M, Gᵀ], [G, 0]]`) is singular.
+    #[error(
+        "redundant constraints at q = {q:?}: {} (each depends on the constraints declared before it)",
+        names.join(", ")
+    )]
+    RedundantConstraints {
+        /// The redundant constraints' names, in backticks.
+        names: Vec<String>,
+        /// The coordinates (\[m\] or \[rad\]).
+        q: Vec<f64>,
+        /// The velocities ([m/s] or [rad/s]).
+        qd: Vec<f64>,
+    },
     /// Anything else a component reports (an input with no value, an input
     /// called with the wrong number of arguments).
     #[error("{0}")]
@@ -65,7 +79,9 @@ impl Fault {
     /// The coordinates and velocities at the fault, when it has them.
     pub fn state(&self) -> Option<(&[f64], &[f64])> {
         match self {
-            Fault::SingularMassMatrix { q, qd } | Fault::NonFinite { q, qd, .. } => Some((q, qd)),
+            Fault::SingularMassMatrix { q, qd }
+            | Fault::NonFinite { q, qd, .. }
+            | Fault::RedundantConstraints { q, qd, .. } => Some((q, qd)),
             _ => None,
         }
     }

@@ -33,6 +33,9 @@ pub struct Units {
     /// The unit of each column of [`SimulationResult::output_columns`], in
     /// the same order.
     pub outputs: Vec<Option<String>>,
+    /// The unit of each constraint's multiplier `λ`, in the order of
+    /// [`crate::simulate::ConstraintReport::names`].
+    pub multipliers: Vec<Option<String>>,
 }
 
 fn with_unit(name: &str, unit: Option<&str>) -> String {
@@ -43,7 +46,8 @@ fn with_unit(name: &str, unit: Option<&str>) -> String {
 }
 
 /// `t, q…, q̇…, q̈…, T, V, dissipated, external work, inputs…, outputs…,
-/// component columns…` per sample.
+/// component columns…, constraint multipliers…` per sample; the multiplier
+/// of constraint `NAME` is the column `NAME.lambda`.
 pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
     let mut header = vec!["t [s]".to_string()];
     let unit = |i: usize, suffix: &str| {
@@ -84,6 +88,11 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
     for (name, unit) in &result.component_columns {
         header.push(with_unit(name, unit.as_deref()));
     }
+    let constraints = result.constraints.iter().flat_map(|c| &c.names);
+    for (k, name) in constraints.enumerate() {
+        let unit = units.multipliers.get(k).cloned().flatten();
+        header.push(with_unit(&format!("{name}.lambda"), unit.as_deref()));
+    }
     let mut out = header.join(",");
     out.push('\n');
     for s in &result.samples {
@@ -102,6 +111,7 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
         row.extend(s.inputs.iter().map(|x| format!("{x:.10e}")));
         row.extend(s.outputs.iter().map(|x| format!("{x:.10e}")));
         row.extend(s.components.iter().map(|x| format!("{x:.10e}")));
+        row.extend(s.multipliers.iter().map(|x| format!("{x:.10e}")));
         out.push_str(&row.join(","));
         out.push('\n');
     }
@@ -111,8 +121,57 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
 /// `summary.json`: the run's [`Summary`](crate::simulate::Summary) as
 /// pretty-printed JSON, one line per metric, then its `warnings` (`[]` for
 /// a clean run), ending in a newline.
+///
+/// A model with constraints adds `constraint_drift_max`, the largest
+/// `|g|` over the run's samples (each constraint in its own unit), and
+/// `constraint_drift`, that of each constraint by name, after the metrics;
+/// the summary of a model without constraints has neither.
 pub fn summary_json(result: &SimulationResult) -> String {
-    crate::warning::json_with_warnings(&result.summary, &result.warnings)
+    let Some(constraints) = &result.constraints else {
+        return crate::warning::json_with_warnings(&result.summary, &result.warnings);
+    };
+    #[derive(serde::Serialize)]
+    struct WithDrift<'a> {
+        #[serde(flatten)]
+        summary: &'a crate::simulate::Summary,
+        constraint_drift_max: f64,
+        constraint_drift: std::collections::BTreeMap<&'a str, f64>,
+    }
+    let drift = (constraints.names.iter().map(String::as_str))
+        .zip(constraints.drift.iter().copied())
+        .collect();
+    let with_drift = WithDrift {
+        summary: &result.summary,
+        constraint_drift_max: constraints.drift_max(),
+        constraint_drift: drift,
+    };
+    crate::warning::json_with_warnings(&with_drift, &result.warnings)
+}
+
+/// The lines of the text summary on a model's constraints: the projection
+/// of the initial state, the stabilization and the drift.
+fn constraint_lines(result: &SimulationResult) -> String {
+    let Some(c) = &result.constraints else {
+        return String::new();
+    };
+    let p = &c.projection;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "  constraints            {}: initial state projected (|g| was {:.1e}; |Δq| = {:.1e}, |Δq̇| = {:.1e})",
+        c.names.join(", "),
+        p.residual_before,
+        p.coordinate_change,
+        p.velocity_change
+    );
+    let _ = writeln!(
+        out,
+        "  constraint drift       {:.1e} max |g| (Baumgarte α = {} /s, β = {} /s)",
+        c.drift_max(),
+        c.stabilization.alpha,
+        c.stabilization.beta
+    );
+    out
 }
 
 /// The one-screen summary printed after a run.
@@ -127,6 +186,7 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
             let _ = writeln!(out, "    {}", channel.text_line());
         }
     }
+    out.push_str(&constraint_lines(result));
     let _ = writeln!(
         out,
         "  solver                 {}: {} steps, {} rejected, {} right-hand sides",

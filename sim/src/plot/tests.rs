@@ -19,6 +19,7 @@ fn sample(components: Vec<f64>) -> Sample {
         inputs: Vec::new(),
         outputs: Vec::new(),
         components,
+        multipliers: Vec::new(),
     }
 }
 
@@ -96,6 +97,7 @@ fn result() -> SimulationResult {
         method: Method::Dopri5,
         g: 10.0,
         warnings: Vec::new(),
+        constraints: None,
     }
 }
 

@@ -22,6 +22,27 @@ pub(super) struct File {
     pub(super) metrics: MetricsSection,
     #[serde(default)]
     pub(super) components: BTreeMap<String, ComponentSection>,
+    #[serde(default)]
+    pub(super) constraints: ConstraintsSection,
+}
+
+/// `[constraints]`: Baumgarte's stabilization of a model's constraints
+/// (`crate::simulate::constrained`), `α` and `β` [1/s].
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub(super) struct ConstraintsSection {
+    pub(super) alpha: f64,
+    pub(super) beta: f64,
+}
+
+impl Default for ConstraintsSection {
+    fn default() -> Self {
+        let d = crate::simulate::constrained::DEFAULT_STABILIZATION;
+        ConstraintsSection {
+            alpha: d.alpha,
+            beta: d.beta,
+        }
+    }
 }
 
 #[derive(Deserialize)]

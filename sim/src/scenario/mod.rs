@@ -258,6 +258,9 @@ pub struct Scenario {
     /// The model's inputs bound to the scenario's crash components (and
     /// `--set` constants).
     pub inputs: BoundInputs,
+    /// Baumgarte's stabilization of the model's constraints (`[constraints]
+    /// alpha`, `beta`); unused for a model without constraints.
+    pub stabilization: lagrangian_model::constrained::Baumgarte,
 }
 
 impl Scenario {

@@ -158,6 +158,24 @@ pub(super) fn resolve(
         weld: file.metrics.weld.clone(),
         contact: file.metrics.contact.clone(),
         inputs,
+        stabilization: stabilization(&file.constraints)?,
+    })
+}
+
+/// `[constraints] alpha`, `beta`: finite and not negative.
+fn stabilization(
+    section: &super::file::ConstraintsSection,
+) -> Result<lagrangian_model::constrained::Baumgarte, String> {
+    for (name, value) in [("alpha", section.alpha), ("beta", section.beta)] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(format!(
+                "constraints.{name} must be finite and not negative (a rate in 1/s), not {value}"
+            ));
+        }
+    }
+    Ok(lagrangian_model::constrained::Baumgarte {
+        alpha: section.alpha,
+        beta: section.beta,
     })
 }
 

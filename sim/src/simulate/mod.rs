@@ -2,6 +2,7 @@
 //! samples, summary metrics.
 
 mod channels;
+pub mod constrained;
 mod equilibrium;
 mod metrics;
 mod problem;
@@ -10,6 +11,7 @@ mod summary;
 mod tests;
 
 pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channels, metric_names};
+pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
 pub use metrics::{Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
@@ -55,6 +57,9 @@ pub struct Sample {
     /// Values of the components' columns (see
     /// [`SimulationResult::component_columns`]).
     pub components: Vec<f64>,
+    /// The multiplier `λ` of each of the model's constraints (empty
+    /// without constraints), in the order of [`ConstraintReport::names`].
+    pub multipliers: Vec<f64>,
 }
 
 impl Sample {
@@ -107,6 +112,9 @@ pub struct SimulationResult {
     /// What looked wrong in the run, in the order found (empty for a
     /// clean run).
     pub warnings: Vec<Warning>,
+    /// The constraints' projection, stabilization and drift, for a model
+    /// with constraints.
+    pub constraints: Option<ConstraintReport>,
 }
 
 /// Why a run failed.
@@ -118,6 +126,10 @@ pub enum SimulationError {
     /// Newton's method found no static equilibrium.
     #[error("no static equilibrium: {0}")]
     Equilibrium(String),
+    /// The initial state cannot be projected onto the constraints (one is
+    /// not satisfiable near it, or some are redundant).
+    #[error("{0}")]
+    Constraints(String),
     /// The integration stopped; `reached` is where its last accepted step
     /// ended (`None` when it failed before the first step).
     #[error("integration failed: {error}")]
@@ -185,7 +197,7 @@ impl SimulationError {
     /// sweep's `status` column.
     pub fn kind(&self) -> FailureKind {
         match self {
-            SimulationError::Model(_) => FailureKind::Scenario,
+            SimulationError::Model(_) | SimulationError::Constraints(_) => FailureKind::Scenario,
             SimulationError::Equilibrium(_) => FailureKind::NoEquilibrium,
             SimulationError::Solver { error, .. } => match error {
                 SolverError::StepSizeUnderflow { .. }
@@ -196,7 +208,9 @@ impl SimulationError {
                 SolverError::EventNotLocated { .. } => FailureKind::EventNotLocated,
                 SolverError::InvalidOptions(_) => FailureKind::Scenario,
                 SolverError::Rhs { error: fault, .. } => match fault {
-                    Fault::SingularMassMatrix { .. } => FailureKind::SingularMassMatrix,
+                    Fault::SingularMassMatrix { .. } | Fault::RedundantConstraints { .. } => {
+                        FailureKind::SingularMassMatrix
+                    }
                     Fault::NonFinite { .. } => FailureKind::NonFinite,
                     Fault::OutOfRange { .. } => FailureKind::TableOutOfRange,
                     Fault::Component(_) => FailureKind::Component,
@@ -264,6 +278,7 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         method: scenario.method,
         g: run.g,
         warnings: run.warnings,
+        constraints: run.constraints,
     })
 }
 
@@ -286,6 +301,7 @@ struct Run {
     summary: Summary,
     g: f64,
     warnings: Vec<Warning>,
+    constraints: Option<ConstraintReport>,
 }
 
 /// Runs the scenario, keeping the samples if `keep`; returns the model with
@@ -297,7 +313,8 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
 ) -> Result<(S, Run), SimulationError> {
     let model = with_parameters(system, scenario)?;
     let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
-    let y0 = initial_state(&mut problem, scenario)?;
+    problem.stabilization = scenario.stabilization;
+    let (y0, projection) = initial_state(&mut problem, scenario)?;
     let g = gravity(&model);
     let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
     let mut sampler = Sampler::new(scenario, metrics, keep);
@@ -328,6 +345,12 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let end_of_contact = problem.inputs.end_of_contact(&scenario.contact);
     let summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
     let warnings = run_warnings(scenario, &sampler.metrics, &summary);
+    let constraints = projection.map(|projection| ConstraintReport {
+        names: own(model.constraint_names()),
+        projection,
+        stabilization: scenario.stabilization,
+        drift: sampler.drift.clone(),
+    });
     let run = Run {
         initial_q: y0.q.as_slice().to_vec(),
         samples: sampler.samples,
@@ -336,6 +359,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         summary,
         g,
         warnings,
+        constraints,
     };
     Ok((model, run))
 }
@@ -364,13 +388,19 @@ fn with_parameters<const N: usize, S: LagrangianSystem<N> + Clone>(
     Ok(model)
 }
 
+fn own(names: Vec<&str>) -> Vec<String> {
+    names.into_iter().map(str::to_string).collect()
+}
+
 /// The state the run starts from: the scenario's initial coordinates and
 /// velocities (0 where it gives none), with the equilibrium coordinates
-/// solved for; the components are put in the state that goes with it.
+/// solved for, then projected onto the model's constraints (what the
+/// projection changed, for a model with constraints); the components are
+/// put in the state that goes with it.
 fn initial_state<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     scenario: &Scenario,
-) -> Result<PhaseState<N>, SimulationError> {
+) -> Result<(PhaseState<N>, Option<Projection>), SimulationError> {
     let mut q = SVector::<f64, N>::zeros();
     let mut v = SVector::<f64, N>::zeros();
     for &(i, value) in &scenario.initial_coordinates {
@@ -385,9 +415,19 @@ fn initial_state<const N: usize, S: LagrangianSystem<N>>(
     if !scenario.equilibrium.is_empty() {
         q = static_equilibrium(problem, 0.0, q, &scenario.equilibrium)?;
     }
+    let projection = match problem.system.constraint_count() {
+        0 => None,
+        _ => Some(constrained::project(
+            problem.system,
+            &problem.inputs,
+            0.0,
+            &mut q,
+            &mut v,
+        )?),
+    };
     let y0 = PhaseState::new(q, v);
     problem.start(0.0, &y0)?;
-    Ok(y0)
+    Ok((y0, projection))
 }
 
 /// Takes a run's output samples from the dense output of its steps: at
@@ -411,6 +451,8 @@ struct Sampler<const N: usize> {
     last: usize,
     /// The end of the last accepted step, for the report of a failure.
     reached: Option<(f64, PhaseState<N>)>,
+    /// `max |g_k|` over the samples so far, by constraint.
+    drift: Vec<f64>,
 }
 
 impl<const N: usize> Sampler<N> {
@@ -432,6 +474,7 @@ impl<const N: usize> Sampler<N> {
             next: 0,
             last,
             reached: None,
+            drift: Vec::new(),
         }
     }
 
@@ -476,6 +519,10 @@ impl<const N: usize> Sampler<N> {
     ) {
         match sample(problem, t, y, self.keep) {
             Ok((view, columns)) => {
+                self.drift.resize(view.residual.len(), 0.0);
+                for (d, g) in self.drift.iter_mut().zip(&view.residual) {
+                    *d = d.max(g.abs());
+                }
                 self.metrics.push(view.as_view());
                 if self.keep {
                     self.samples.push(view.into_sample(columns));
@@ -518,6 +565,9 @@ struct SampleValues<const N: usize> {
     outputs: Vec<f64>,
     /// The components' columns (for channels that read them).
     components: Vec<f64>,
+    /// `λ` and `g` of the constraints.
+    multipliers: Vec<f64>,
+    residual: Vec<f64>,
 }
 
 impl<const N: usize> SampleValues<N> {
@@ -549,6 +599,7 @@ impl<const N: usize> SampleValues<N> {
             inputs,
             outputs: self.outputs,
             components: self.components,
+            multipliers: self.multipliers,
         }
     }
 }
@@ -563,7 +614,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     inputs: bool,
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
-    let a = problem.accelerations(t, &y.q, &y.v).map_err(fault)?;
+    let (a, multipliers, residual) =
+        (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
     let mut outputs = vec![0.0; problem.system.output_names().len()];
     (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);
@@ -580,6 +632,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         potential: energies.potential,
         outputs,
         components,
+        multipliers,
+        residual,
     };
     Ok((sample, values))
 }

@@ -5,6 +5,7 @@ use crate::crash::BoundInputs;
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
+use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{
     InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix,
 };
@@ -33,6 +34,8 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     pub events: Vec<EventRecord>,
     /// A failure inside an event handler, reported after the run.
     pub failure: Option<Fault>,
+    /// The stabilization of the model's constraints, if it has any.
+    pub stabilization: Baumgarte,
     arguments: Vec<f64>,
 }
 
@@ -46,6 +49,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             inputs,
             events: Vec::new(),
             failure: None,
+            stabilization: super::constrained::DEFAULT_STABILIZATION,
             arguments,
         }
     }
@@ -79,7 +83,62 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         self.system
             .mass_matrix_and_forcing(t, q, v, &self.inputs, &mut mass, &mut forcing);
         self.input_failure()?;
-        self.solve(q, v, &mass, &forcing)
+        Ok(self.solve_dynamics((t, q, v), &mass, &forcing)?.0)
+    }
+
+    /// `q̈`, with the multipliers `λ` and residuals `g` of the model's
+    /// constraints (empty without constraints).
+    pub fn accelerations_and_multipliers(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Result<(SVector<f64, N>, Vec<f64>, Vec<f64>), Fault> {
+        let (mass, forcing) = self
+            .system
+            .mass_matrix_and_forcing_pair(t, q, v, &self.inputs);
+        self.input_failure()?;
+        if self.system.constraint_count() == 0 {
+            return Ok((self.solve(q, v, &mass, &forcing)?, Vec::new(), Vec::new()));
+        }
+        let state = (t, q, v);
+        let solution = self.solve_constrained(state, &mass, &forcing)?;
+        let residual = solution.values.residual().to_vec();
+        Ok((solution.a, solution.lambda, residual))
+    }
+
+    /// `q̈` and the power of the constraint forces: `M q̈ = f` (by
+    /// [`CrashProblem::solve`]), or with constraints the constrained solve.
+    fn solve_dynamics(
+        &self,
+        state: (f64, &SVector<f64, N>, &SVector<f64, N>),
+        mass: &SMatrix<f64, N, N>,
+        forcing: &SVector<f64, N>,
+    ) -> Result<(SVector<f64, N>, f64), Fault> {
+        if self.system.constraint_count() == 0 {
+            let (_, q, v) = state;
+            return Ok((self.solve(q, v, mass, forcing)?, 0.0));
+        }
+        let solution = self.solve_constrained(state, mass, forcing)?;
+        Ok((solution.a, solution.power))
+    }
+
+    fn solve_constrained(
+        &self,
+        state: (f64, &SVector<f64, N>, &SVector<f64, N>),
+        mass: &SMatrix<f64, N, N>,
+        forcing: &SVector<f64, N>,
+    ) -> Result<super::constrained::Solution<N>, Fault> {
+        let solution = super::constrained::solve(
+            self.system,
+            &self.inputs,
+            self.stabilization,
+            state,
+            mass,
+            forcing,
+        );
+        self.input_failure()?;
+        solution
     }
 
     /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
@@ -135,7 +194,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     }
 
     /// `q̈` and the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` at a state, in one pass
-    /// of the model.
+    /// of the model; the power of the constraint forces `λᵀ G q̇` counts
+    /// with that of the generalized forces.
     fn accelerations_and_powers(
         &self,
         t: f64,
@@ -153,7 +213,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             &mut forcing,
         );
         self.input_failure()?;
-        let a = self.solve(q, v, &mass, &forcing)?;
+        let (a, constraint_power) = self.solve_dynamics((t, q, v), &mass, &forcing)?;
+        let powers = [powers[0], powers[1] + constraint_power];
         for (power, name) in powers
             .iter()
             .zip(["dissipated power", "power of the forces"])
@@ -243,12 +304,17 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
 
 impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashProblem<'_, N, S> {
     /// `∂a/∂q = M⁻¹ (∂f/∂q − ∂(M a)/∂q)`, `∂a/∂v = M⁻¹ ∂f/∂q̇` from the
-    /// model's derived Jacobians; `None` when the spec did not ask for them.
+    /// model's derived Jacobians; `None` when the spec did not ask for them
+    /// or has constraints.
     fn acceleration_jacobians(
         &mut self,
         t: f64,
         y: &PhaseState<N>,
     ) -> Result<Option<AccelerationJacobian<N>>, Fault> {
+        if self.system.constraint_count() > 0 {
+            // Those of M q̈ = f; the constrained ones are not derived.
+            return Ok(None);
+        }
         let a = self.accelerations(t, &y.q, &y.v)?;
         let mut j = Jacobians::<N>::default();
         match self
