@@ -121,3 +121,35 @@ fn the_terms_of_a_driven_constraint() {
         assert!((found - expected).abs() < 1e-14, "{out:?} vs {expected:?}");
     }
 }
+
+/// `lpm derive` (text and Markdown) and the audit show `g`, the nonzero
+/// entries of `G` and `γ`; a model without constraints shows none.
+#[test]
+fn the_equations_and_the_audit_show_the_constraints() {
+    use lagrangian_core::audit::{audit, markdown};
+    use lagrangian_core::emit::{Notation, render_equations, render_markdown};
+    let source = format!("{PENDULUM}constraint rod = x * x + y * y - l * l;\n");
+    let mut compiled = Compiled::from_source(&source).unwrap();
+    let text = render_equations(&mut compiled, Notation::Text);
+    for line in [
+        "Constraints g(q, t) = 0, held by multipliers λ",
+        "  g[rod] = x^2 + y^2 - l^2\n",
+        "  G[rod, x] = 2*x\n",
+        "  G[rod, y] = 2*y\n",
+        "  γ[rod] = -2*dot(x)^2 - 2*dot(y)^2\n",
+    ] {
+        assert!(text.contains(line), "{line} in\n{text}");
+    }
+    let md = render_markdown(&mut compiled, "p.lpm");
+    assert!(md.contains("## Constraints"), "{md}");
+    assert!(md.contains("\\gamma_{\\mathrm{rod}}"), "{md}");
+    let hand = "hand_derived { x = m * ddot(x); y = m * ddot(y) + m * g; }";
+    let mut compiled = Compiled::from_source(&format!("{source}{hand}")).unwrap();
+    let report = audit(&mut compiled).unwrap();
+    assert!(!report.disagrees());
+    let md = markdown(&report, "p.lpm");
+    assert!(md.contains("without the constraint forces"), "{md}");
+    assert!(md.contains("G_{\\mathrm{rod},\\,x}"), "{md}");
+    let mut plain = Compiled::from_source(PENDULUM).unwrap();
+    assert!(!render_equations(&mut plain, Notation::Text).contains("Constraints"));
+}

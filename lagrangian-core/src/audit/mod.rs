@@ -102,6 +102,10 @@ pub struct AuditReport {
     pub audits: Vec<EquationAudit>,
     /// Number of random states of the residuals.
     pub states: usize,
+    /// The model's constraints `g`, `G` and `γ` as a Markdown section
+    /// (empty without constraints): the audited equations are those without
+    /// the constraint forces `Gᵀλ`, which the solve adds.
+    pub constraints: String,
 }
 
 impl AuditReport {
@@ -126,6 +130,7 @@ pub fn audit(compiled: &mut Compiled) -> Option<AuditReport> {
 
 fn audit_deep(compiled: &mut Compiled) -> Option<AuditReport> {
     let hand = compiled.model.hand_derived.clone()?;
+    let constraints = crate::emit::render_constraints(compiled);
     let n = compiled.derivation.dimension;
     let d = compiled.derivation.clone();
     let model = &mut compiled.model;
@@ -198,6 +203,7 @@ fn audit_deep(compiled: &mut Compiled) -> Option<AuditReport> {
         small_angle_order: hand.small_angle_order,
         assumptions,
         audits,
+        constraints,
         states: states.len(),
     })
 }

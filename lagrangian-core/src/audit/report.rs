@@ -61,6 +61,10 @@ pub fn markdown(report: &AuditReport, spec: &str) -> String {
     for a in &report.audits {
         section(&mut out, a, report.small_angle_order);
     }
+    if !report.constraints.is_empty() {
+        out.push_str("\nThe equations above are those without the constraint forces $G^T \\lambda$, which the solve adds.\n");
+        out.push_str(&report.constraints);
+    }
     out
 }
 

@@ -22,6 +22,12 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
         .collect();
     let n = names.len();
     let outputs = output_labels(model, notation);
+    let constraints: Vec<String> = (model.constraints.iter())
+        .map(|c| match notation {
+            Notation::Text => c.name.clone(),
+            Notation::Latex => format!("\\mathrm{{{}}}", c.name.replace('_', "\\_")),
+        })
+        .collect();
     let d = compiled.derivation.clone();
     let out = heading(model, notation);
     let mut doc = Document {
@@ -59,6 +65,7 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
             doc.equation(label, e);
         }
     }
+    doc.constraints(&constraints, &names, &d.constraints);
     if notation == Notation::Latex {
         doc.out.push_str("\\end{aligned}\n");
     }
@@ -136,6 +143,40 @@ impl Document<'_> {
             Notation::Text => writeln!(self.out, "\n{heading}"),
             Notation::Latex => writeln!(self.out, "&\\text{{{heading}}} \\\\"),
         };
+    }
+
+    /// `g`, the nonzero entries of `G` and `γ` of each constraint
+    /// (`constraints` and `coordinates` their names in the notation);
+    /// nothing without constraints.
+    fn constraints(
+        &mut self,
+        constraints: &[String],
+        coordinates: &[String],
+        terms: &crate::constraints::ConstraintTerms,
+    ) {
+        if constraints.is_empty() {
+            return;
+        }
+        self.section(
+            "Constraints g(q, t) = 0, held by multipliers λ: M q̈ = f + Gᵀλ, G q̈ = γ (G = ∂g/∂q):",
+        );
+        let n = coordinates.len();
+        let notation = self.printer.notation;
+        let gamma = if notation == Notation::Text {
+            "γ"
+        } else {
+            "\\gamma"
+        };
+        for (k, name) in constraints.iter().enumerate() {
+            self.equation(label(notation, "g", &[name]), terms.residual[k]);
+            for (j, coordinate) in coordinates.iter().enumerate() {
+                let entry = terms.jacobian[k * n + j];
+                if entry != Store::ZERO {
+                    self.equation(label(notation, "G", &[name, coordinate]), entry);
+                }
+            }
+            self.equation(label(notation, gamma, &[name]), terms.acceleration[k]);
+        }
     }
 
     fn equation(&mut self, lhs: String, e: ExprId) {

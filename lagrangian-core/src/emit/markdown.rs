@@ -65,6 +65,9 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let outputs: Vec<String> = (model.outputs.iter())
         .map(|o| output_name(&o.name))
         .collect();
+    let constraints: Vec<String> = (model.constraints.iter())
+        .map(|c| output_name(&c.name))
+        .collect();
     let d = compiled.derivation.clone();
     let mut p = Printer {
         store: &mut compiled.model.store,
@@ -72,7 +75,59 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     };
     out.push_str(&sections(&mut p, &d, &names));
     out.push_str(&outputs_section(&mut p, &d, &outputs));
+    out.push_str(&constraints_section(&mut p, &d, &constraints, &names));
     out
+}
+
+/// Each constraint's `g`, the nonzero entries of its row of `G` and its
+/// `γ` (`names` and `coordinates` in LaTeX); nothing without constraints.
+fn constraints_section(
+    p: &mut Printer,
+    d: &Derivation,
+    names: &[String],
+    coordinates: &[String],
+) -> String {
+    let mut out = String::new();
+    if names.is_empty() {
+        return out;
+    }
+    let _ = writeln!(
+        out,
+        "\n## Constraints\n\n$g(q, t) = 0$, held by multipliers $\\lambda$: \
+         $M \\ddot q = f + G^T \\lambda$, $G \\ddot q = \\gamma$, with $G = \\partial g / \\partial q$:\n"
+    );
+    let (n, terms) = (coordinates.len(), &d.constraints);
+    for (k, name) in names.iter().enumerate() {
+        out.push_str(&equation(p, &format!("g_{{{name}}}"), terms.residual[k]));
+        for (j, coordinate) in coordinates.iter().enumerate() {
+            let entry = terms.jacobian[k * n + j];
+            if entry != crate::expr::Store::ZERO {
+                let lhs = format!("G_{{{name},\\,{coordinate}}}");
+                out.push_str(&equation(p, &lhs, entry));
+            }
+        }
+        let lhs = format!("\\gamma_{{{name}}}");
+        out.push_str(&equation(p, &lhs, terms.acceleration[k]));
+    }
+    out
+}
+
+/// The constraints section of [`render_markdown`] alone (empty without
+/// constraints), for the audit.
+pub fn render_constraints(compiled: &mut Compiled) -> String {
+    let model = &compiled.model;
+    let names: Vec<String> = (model.coordinates.iter())
+        .map(|c| latex_name(&c.name))
+        .collect();
+    let constraints: Vec<String> = (model.constraints.iter())
+        .map(|c| output_name(&c.name))
+        .collect();
+    let d = compiled.derivation.clone();
+    let mut p = Printer {
+        store: &mut compiled.model.store,
+        notation: Notation::Latex,
+    };
+    constraints_section(&mut p, &d, &constraints, &names)
 }
 
 /// An output's name in LaTeX, upright (a name, not a product of symbols).

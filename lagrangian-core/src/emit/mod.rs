@@ -18,7 +18,7 @@ pub mod schedule;
 mod stub;
 
 pub use equations::render_equations;
-pub use markdown::render_markdown;
+pub use markdown::{render_constraints, render_markdown};
 pub use notation::{Notation, Printer, latex_name};
 pub use rust::{RustOptions, emit_file, emit_model};
 pub(crate) use stub::emit_stub;
