@@ -17,6 +17,9 @@ pub mod double_pendulum;
 /// Generated from `specs/elastic_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod elastic_pendulum;
+/// Generated from `specs/four_bar_linkage.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod four_bar_linkage;
 /// Generated from `specs/kamal_1970.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod kamal_1970;
@@ -29,6 +32,9 @@ pub mod pendulum_chain_10;
 /// Generated from `specs/simple_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod simple_pendulum;
+/// Generated from `specs/slider_crank.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod slider_crank;
 /// Generated from `specs/spring_mass_damper.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod spring_mass_damper;
