@@ -12,6 +12,8 @@ mod models {
     lagrangian::lagrangian!(file = "specs/elastic_pendulum.lpm");
     lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
     lagrangian::lagrangian!(file = "specs/pendulum_chain_10.lpm");
+    lagrangian::lagrangian!(file = "specs/four_bar_linkage.lpm");
+    lagrangian::lagrangian!(file = "specs/slider_crank.lpm");
 }
 
 /// Random specs from the property tests' generator (`lagrangian-core/tests/
@@ -214,6 +216,8 @@ fn every_spec_agrees() {
         compare::<2, models::ElasticPendulum>("specs/elastic_pendulum.lpm"),
         compare::<3, models::YarisDoublePendulum>("specs/yaris_double_pendulum.lpm"),
         compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
+        compare::<3, models::FourBarLinkage>("specs/four_bar_linkage.lpm"),
+        compare::<3, models::SliderCrank>("specs/slider_crank.lpm"),
     ];
     println!("worst ulp difference per spec: {worst:?}");
 }
@@ -307,4 +311,49 @@ fn the_yaris_model_has_jacobians_and_input_constants() {
         &mut Jacobians::default(),
     );
     assert_eq!(err, Err(lagrangian::ModelError::JacobiansNotDerived));
+}
+
+/// A driven constraint that calls an input and depends on time.
+mod with_constraints {
+    lagrangian::lagrangian! {
+        model Driven;
+        coordinates { x, y }
+        parameters { m = 2.0, a = 0.3 }
+        inputs { lift(s) { d(s) = 2.0 * s } }
+        kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(y), 2));
+        potential = m * 9.81 * y;
+        constraint track = y - a * sin(3.0 * t) * x - lift(x);
+    }
+}
+
+/// The constraint terms `g`, `g_t`, `G`, `γ`, compiled and interpreted, are
+/// equal bit for bit.
+#[test]
+fn constraints_agree_bit_for_bit() {
+    fn terms<const N: usize, M: LagrangianSystem<N>>(model: &M, rng: &mut Lcg) -> Vec<u64> {
+        let t = rng.symmetric().abs();
+        let (q, qd) = (random_vector::<N>(rng, 1.0), random_vector::<N>(rng, 3.0));
+        let mut out = vec![0.0; model.constraint_count() * (N + 3)];
+        model.constraints(t, &q, &qd, &inputs, &mut out);
+        out.iter().map(|x| x.to_bits()).collect()
+    }
+    fn same<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) {
+        let interpreted = Interpreted::<N>::new(lagrangian_core::interpret(spec).unwrap()).unwrap();
+        let compiled = M::default();
+        assert_eq!(compiled.constraint_names(), interpreted.constraint_names());
+        assert!(compiled.constraint_count() > 0);
+        let (mut a, mut b) = (Lcg::new(5), Lcg::new(5));
+        for _ in 0..200 {
+            assert_eq!(terms(&compiled, &mut a), terms(&interpreted, &mut b));
+        }
+    }
+    let read = |name: &str| std::fs::read_to_string(format!("specs/{name}.lpm")).unwrap();
+    same::<3, models::FourBarLinkage>(&read("four_bar_linkage"));
+    same::<3, models::SliderCrank>(&read("slider_crank"));
+    let driven = "model Driven; coordinates { x, y } parameters { m = 2.0, a = 0.3 }
+        inputs { lift(s) { d(s) = 2.0 * s } }
+        kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(y), 2));
+        potential = m * 9.81 * y;
+        constraint track = y - a * sin(3.0 * t) * x - lift(x);";
+    same::<2, with_constraints::Driven>(driven);
 }
