@@ -614,8 +614,11 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     inputs: bool,
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
-    let (a, multipliers, residual) =
-        (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?;
+    let problem::Accelerations {
+        a,
+        multipliers,
+        residual,
+    } = (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?;
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
     let mut outputs = vec![0.0; problem.system.output_names().len()];
     (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);

@@ -23,6 +23,17 @@ pub struct EventRecord {
     pub description: String,
 }
 
+/// The accelerations at a state, with the multipliers and residuals of the
+/// model's constraints (empty without constraints).
+pub struct Accelerations<const N: usize> {
+    /// `q̈`.
+    pub a: SVector<f64, N>,
+    /// `λ`, by constraint.
+    pub multipliers: Vec<f64>,
+    /// `g`, by constraint.
+    pub residual: Vec<f64>,
+}
+
 /// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`.
 pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// The model, with the scenario's parameters.
@@ -93,18 +104,25 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         t: f64,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
-    ) -> Result<(SVector<f64, N>, Vec<f64>, Vec<f64>), Fault> {
+    ) -> Result<Accelerations<N>, Fault> {
         let (mass, forcing) = self
             .system
             .mass_matrix_and_forcing_pair(t, q, v, &self.inputs);
         self.input_failure()?;
         if self.system.constraint_count() == 0 {
-            return Ok((self.solve(q, v, &mass, &forcing)?, Vec::new(), Vec::new()));
+            return Ok(Accelerations {
+                a: self.solve(q, v, &mass, &forcing)?,
+                multipliers: Vec::new(),
+                residual: Vec::new(),
+            });
         }
         let state = (t, q, v);
         let solution = self.solve_constrained(state, &mass, &forcing)?;
-        let residual = solution.values.residual().to_vec();
-        Ok((solution.a, solution.lambda, residual))
+        Ok(Accelerations {
+            residual: solution.values.residual().to_vec(),
+            a: solution.a,
+            multipliers: solution.lambda,
+        })
     }
 
     /// `q̈` and the power of the constraint forces: `M q̈ = f` (by
