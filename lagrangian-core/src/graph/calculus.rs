@@ -5,12 +5,9 @@
 //! [`Store::diff`].
 
 use super::{Graph, GraphId, GraphNode};
-use crate::expr::{ExprId, Func, Node, Store, SymbolId};
+use crate::expr::{CoordinateSymbols, ExprId, Func, Node, Store, SymbolId};
 use crate::rational::Rational;
 use rustc_hash::FxHashMap;
-
-/// A direction of differentiation: `Σ_s ∂/∂s · seed_s`.
-pub type Seeds = [(SymbolId, GraphId)];
 
 impl Graph {
     /// `∂g/∂s`.
@@ -40,25 +37,32 @@ impl Graph {
         d
     }
 
-    /// `Σ_s ∂g/∂s · seed_s` for every node of `roots` (one pass, shared).
-    pub fn directional(
-        &mut self,
-        store: &mut Store,
-        roots: &[GraphId],
-        seeds: &Seeds,
-    ) -> Vec<GraphId> {
-        let mut memo = FxHashMap::default();
-        roots
-            .iter()
-            .map(|&g| self.directional_memo(store, g, seeds, &mut memo))
-            .collect()
-    }
-
-    fn directional_memo(
+    /// `dg/dt = Σ_i ∂g/∂q_i q̇_i + ∂g/∂t`, without the `∂g/∂q̇ q̈` part:
+    /// the time derivative of a position, and of the momenta less `M q̈`.
+    /// Memoized for the life of the graph.
+    pub fn time_derivative(
         &mut self,
         store: &mut Store,
         g: GraphId,
-        seeds: &Seeds,
+        coordinates: &[CoordinateSymbols],
+    ) -> GraphId {
+        let mut seeds: FxHashMap<SymbolId, GraphId> = FxHashMap::default();
+        for c in coordinates {
+            seeds.insert(c.position, self.leaf(store, c.velocity_expr));
+        }
+        seeds.insert(self.time, self.leaf(store, Store::ONE));
+        let mut memo = std::mem::take(&mut self.dot_memo);
+        let d = self.directional(store, g, &seeds, &mut memo);
+        self.dot_memo = memo;
+        d
+    }
+
+    /// `Σ_s ∂g/∂s · seed_s`.
+    fn directional(
+        &mut self,
+        store: &mut Store,
+        g: GraphId,
+        seeds: &FxHashMap<SymbolId, GraphId>,
         memo: &mut FxHashMap<GraphId, GraphId>,
     ) -> GraphId {
         if let Some(&d) = memo.get(&g) {
@@ -67,8 +71,8 @@ impl Graph {
         let mut terms = Vec::new();
         match self.node(g) {
             GraphNode::Leaf(e) => {
-                for &(s, seed) in seeds {
-                    if store.may_depend_on(e, s) {
+                for &s in self.symbols_of_leaf(store, e).iter() {
+                    if let Some(&seed) = seeds.get(&s) {
                         let d = store.diff(e, s);
                         let d = self.leaf(store, d);
                         terms.push(self.mul(store, d, seed));
@@ -77,7 +81,7 @@ impl Graph {
             }
             node => {
                 for (child, partial) in self.partials(store, node) {
-                    let dc = self.directional_memo(store, child, seeds, memo);
+                    let dc = self.directional(store, child, seeds, memo);
                     terms.push(self.mul(store, partial, dc));
                 }
             }
@@ -92,6 +96,8 @@ impl Graph {
     pub fn gradient(&mut self, store: &mut Store, g: GraphId, wrt: &[SymbolId]) -> Vec<GraphId> {
         let zero = self.leaf(store, Store::ZERO);
         let mut gradient = vec![zero; wrt.len()];
+        let position: FxHashMap<SymbolId, usize> =
+            wrt.iter().enumerate().map(|(k, &s)| (s, k)).collect();
         let mut adjoints: FxHashMap<GraphId, GraphId> = FxHashMap::default();
         let one = self.leaf(store, Store::ONE);
         adjoints.insert(g, one);
@@ -101,8 +107,8 @@ impl Graph {
             };
             match self.node(node) {
                 GraphNode::Leaf(e) => {
-                    for (k, &s) in wrt.iter().enumerate() {
-                        if store.may_depend_on(e, s) {
+                    for &s in self.symbols_of_leaf(store, e).iter() {
+                        if let Some(&k) = position.get(&s) {
                             let d = store.diff(e, s);
                             let d = self.leaf(store, d);
                             let term = self.mul(store, adjoint, d);

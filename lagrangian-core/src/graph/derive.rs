@@ -56,6 +56,7 @@ pub fn derive_graph(model: &mut Model) -> Result<GraphDerivation, SpecErrors> {
         .map(|c| c.symbols.velocity)
         .collect();
     let forces = generalized_forces(model);
+    let coordinates = model.coordinate_symbols();
     let (graph, store) = (&mut model.graph, &mut model.store);
     let lagrangian = graph.sub(store, kinetic, potential);
     let momenta = graph.gradient(store, lagrangian, &velocities);
@@ -68,15 +69,9 @@ pub fn derive_graph(model: &mut Model) -> Result<GraphDerivation, SpecErrors> {
         }
     }
     let dl_dq = graph.gradient(store, lagrangian, &positions);
-    let mut seeds = Vec::with_capacity(n + 1);
-    for c in &model.coordinates {
-        seeds.push((
-            c.symbols.position,
-            graph.leaf(store, c.symbols.velocity_expr),
-        ));
-    }
-    seeds.push((model.time, graph.leaf(store, Store::ONE)));
-    let momenta_rate = graph.directional(store, &momenta, &seeds);
+    let momenta_rate: Vec<GraphId> = (momenta.iter())
+        .map(|&p| graph.time_derivative(store, p, &coordinates))
+        .collect();
     let dd_dqd = graph.gradient(store, dissipation, &velocities);
     let mut forcing = Vec::with_capacity(n);
     let mut damping_terms = Vec::with_capacity(n);

@@ -17,7 +17,6 @@
 mod calculus;
 mod derive;
 
-pub use calculus::Seeds;
 pub use derive::{GraphDerivation, derive_graph};
 
 use crate::expr::{ExprId, Func, Node, Store, SymbolId};
@@ -64,6 +63,10 @@ pub struct Graph {
     masks: Vec<u64>,
     index: FxHashMap<GraphNode, GraphId>,
     diff_memo: FxHashMap<(GraphId, SymbolId), GraphId>,
+    /// The time derivatives taken so far ([`Graph::time_derivative`]).
+    dot_memo: FxHashMap<GraphId, GraphId>,
+    /// The symbols each leaf contains, exactly, as they are asked for.
+    leaf_symbols: FxHashMap<ExprId, std::rc::Rc<[SymbolId]>>,
 }
 
 impl Graph {
@@ -75,6 +78,8 @@ impl Graph {
             masks: Vec::new(),
             index: FxHashMap::default(),
             diff_memo: FxHashMap::default(),
+            dot_memo: FxHashMap::default(),
+            leaf_symbols: FxHashMap::default(),
         }
     }
 
@@ -106,6 +111,14 @@ impl Graph {
     /// May `g` depend on `s`? `false` is certain.
     pub fn may_depend_on(&self, g: GraphId, s: SymbolId) -> bool {
         self.masks[g.index()] & (1u64 << (s.index() % 64)) != 0
+    }
+
+    /// The symbols leaf `e` contains (exact, unlike the masks).
+    fn symbols_of_leaf(&mut self, store: &Store, e: ExprId) -> std::rc::Rc<[SymbolId]> {
+        let symbols = self.leaf_symbols.entry(e);
+        symbols
+            .or_insert_with(|| store.free_symbols(e).into())
+            .clone()
     }
 
     /// Does `g` contain symbol `s`? Exact.

@@ -127,12 +127,9 @@ impl GraphLowering<'_> {
         if (scope.velocities.iter()).any(|&v| self.graph.depends_on(store, x, v)) {
             return None;
         }
-        let (graph, store) = (&mut *self.graph, &mut *self.store);
-        let mut seeds = Vec::with_capacity(scope.coordinates.len() + 1);
-        for c in &scope.coordinates {
-            seeds.push((c.position, graph.leaf(store, c.velocity_expr)));
-        }
-        seeds.push((scope.time, graph.leaf(store, Store::ONE)));
-        graph.directional(store, &[x], &seeds).pop()
+        Some(
+            self.graph
+                .time_derivative(self.store, x, &scope.coordinates),
+        )
     }
 }
