@@ -1,8 +1,10 @@
 //! The Euler–Lagrange compiler as a plain library.
 //!
 //! Pipeline: spec text or tokens → [`spec::Model`] (names resolved, expressions
-//! in canonical form) → [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians)
-//! → [`program::Program`] (optimized straight-line code) → Rust source
+//! in canonical form, the energies also on the derivation [`graph`]) →
+//! [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians), or
+//! [`graph::GraphDerivation`] for a model too large for the canonical form →
+//! [`program::Program`] (optimized straight-line code) → Rust source
 //! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
 //! [`tape::lower`]).
 

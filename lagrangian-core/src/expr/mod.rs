@@ -260,7 +260,7 @@ pub struct Store {
     /// The total size of the nodes created so far: their terms, factors
     /// and arguments.
     size: usize,
-    /// The most [`Store::size`](Self) may reach (unbounded unless a caller
+    /// The most `size` may reach (unbounded unless a caller
     /// sets a budget, [`Store::set_budget`]).
     size_limit: usize,
     /// Whether an expansion or the budget stopped an operation since
