@@ -65,7 +65,13 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let outputs: Vec<String> = (model.outputs.iter())
         .map(|o| output_name(&o.name))
         .collect();
-    let d = compiled.derivation.clone();
+    let d = match compiled.canonical() {
+        Ok(d) => d.clone(),
+        Err(too_large) => {
+            out.push_str(&super::equations::too_large_to_print(&too_large));
+            return out;
+        }
+    };
     let mut p = Printer {
         store: &mut compiled.model.store,
         notation: Notation::Latex,

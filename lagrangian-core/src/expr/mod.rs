@@ -257,6 +257,15 @@ pub struct Store {
     diff_memo: FxHashMap<(ExprId, SymbolId), ExprId>,
     mul_memo: FxHashMap<(ExprId, ExprId), ExprId>,
     errors: Vec<EngineError>,
+    /// The total size of the nodes created so far: their terms, factors
+    /// and arguments.
+    size: usize,
+    /// The most `size` may reach (unbounded unless a caller
+    /// sets a budget, [`Store::set_budget`]).
+    size_limit: usize,
+    /// Whether an expansion or the budget stopped an operation since
+    /// the last [`Store::take_size_limit`].
+    size_limit_hit: bool,
 }
 
 impl Default for Store {
@@ -282,6 +291,9 @@ impl Store {
             diff_memo: FxHashMap::default(),
             mul_memo: FxHashMap::default(),
             errors: Vec::new(),
+            size: 0,
+            size_limit: usize::MAX,
+            size_limit_hit: false,
         };
         let zero = store.intern(Node::Num(Rational::ZERO));
         let one = store.intern(Node::Num(Rational::ONE));
@@ -361,6 +373,12 @@ impl Store {
         self.nodes.len()
     }
 
+    /// The total size of the nodes created (their terms, factors and
+    /// arguments): the measure of [`Store::set_budget`].
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
     /// Never true for a store made by [`Store::new`], which holds 0 and 1.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
@@ -376,6 +394,12 @@ impl Store {
     /// expression that keeps failing stays linear (a 100 000-factor product
     /// records an exponent error at every factor).
     pub(crate) fn record(&mut self, error: EngineError) {
+        self.size_limit_hit |= matches!(
+            error,
+            EngineError::ExpansionTooLarge { .. }
+                | EngineError::ProductTooLarge { .. }
+                | EngineError::ModelTooLarge
+        );
         if self.errors.len() < MAX_RECORDED_ERRORS && !self.errors.contains(&error) {
             self.errors.push(error);
         }
@@ -471,11 +495,36 @@ impl Store {
         seen.len()
     }
 
+    /// Limits the nodes created from now on to a total size (terms,
+    /// factors, arguments) of `extra` (`None`: no limit but [`MAX_NODES`]);
+    /// past it, operations record [`EngineError::ModelTooLarge`] as at
+    /// [`MAX_NODES`]. The size measures the work that expansion does, so a
+    /// long sum written out stays within a budget that a product of long
+    /// sums exceeds.
+    pub fn set_budget(&mut self, extra: Option<usize>) {
+        self.size_limit = extra.map_or(usize::MAX, |e| self.size.saturating_add(e));
+    }
+
+    /// Whether an expansion limit or the budget stopped an operation
+    /// since the last call (which clears it): the canonical form of what
+    /// was being built is incomplete because it is too large, not wrong.
+    ///
+    /// The operations memoized since may hold results cut short by the
+    /// limit, so a hit forgets them all.
+    pub fn take_size_limit(&mut self) -> bool {
+        let hit = std::mem::take(&mut self.size_limit_hit);
+        if hit {
+            self.diff_memo.clear();
+            self.mul_memo.clear();
+        }
+        hit
+    }
+
     fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
-        if self.nodes.len() >= MAX_NODES {
+        if self.nodes.len() >= MAX_NODES || self.size >= self.size_limit {
             // Past the budget every new node is zero: the work that follows
             // collapses to nodes that exist, and the error is reported.
             self.record(EngineError::ModelTooLarge);
@@ -486,6 +535,11 @@ impl Store {
             _ => 0,
         };
         node.for_each_child(|c| mask |= self.masks[c.index()]);
+        self.size += match &node {
+            Node::Add(items) | Node::Mul(items) => items.len(),
+            Node::Input(_, args) => args.len(),
+            Node::Num(_) | Node::Sym(_) | Node::Func(..) => 1,
+        };
         let id = ExprId(self.nodes.len() as u32);
         self.nodes.push(node.clone());
         self.masks.push(mask);

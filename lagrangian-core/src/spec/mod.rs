@@ -4,6 +4,7 @@ mod ast;
 mod constant;
 mod dimensions;
 mod expression;
+mod graph_lowering;
 mod hand;
 mod lower;
 mod outline;
@@ -153,6 +154,15 @@ pub struct Model {
     pub hand_derived: Option<HandDerived>,
     /// Dimensions of the coordinates, where declared.
     pub coordinate_dimensions: Vec<Option<crate::units::Dimension>>,
+    /// The derivation graph, holding `T`, `V` and `D` as shared nodes
+    /// ([`crate::graph`]).
+    pub graph: crate::graph::Graph,
+    /// `T`, `V`, `D` as nodes of [`Model::graph`], where they lowered to it.
+    pub energy_graph: [Option<crate::graph::GraphId>; 3],
+    /// Why `T`, `V` or `D` has no canonical form (it would exceed the
+    /// engine's limits on expansion): then that statement's value is a
+    /// placeholder 0, and only the graph derives the model.
+    pub canonical_limit: Option<crate::diagnostic::Diagnostic>,
     /// What does not stop the spec compiling but its author should know
     /// (e.g. names without units among names with units). `lpm` prints
     /// them; the `lagrangian!` macro cannot (a procedural macro has no
@@ -183,6 +193,25 @@ impl Model {
     /// The number of generalized coordinates.
     pub fn dimension(&self) -> usize {
         self.coordinates.len()
+    }
+
+    /// `T`, `V`, `D` as graph nodes: the lowered ones, else leaves of their
+    /// canonical values (0 for an energy the spec does not give).
+    pub fn energy_nodes(&mut self) -> [crate::graph::GraphId; 3] {
+        let values = [
+            Some(&self.kinetic),
+            self.potential.as_ref(),
+            self.dissipation.as_ref(),
+        ]
+        .map(|s| s.map_or(Store::ZERO, |s| s.value));
+        let mut nodes = [None; 3];
+        for (k, node) in nodes.iter_mut().enumerate() {
+            *node = Some(match self.energy_graph[k] {
+                Some(g) => g,
+                None => self.graph.leaf(&self.store, values[k]),
+            });
+        }
+        nodes.map(|n| n.expect("set above"))
     }
 
     /// The symbols of every coordinate, in order.
