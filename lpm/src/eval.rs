@@ -86,7 +86,7 @@ fn parse_state(text: &str, model: &InterpretedModel) -> Result<Vec<f64>, Failure
 }
 
 /// `M` (row-major) and `f` at `state`, finite.
-fn evaluate(
+pub fn evaluate(
     model: &InterpretedModel,
     (t, q, qd): mass::State,
     inputs: &dyn InputFunctions,
@@ -136,7 +136,7 @@ fn scenario_inputs(
 /// Applies the `--set` settings: parameters to the model, input constants
 /// to the inputs returned, with the indices of the parameters set. Every
 /// input the dynamics calls needs a value.
-fn apply_settings(
+pub fn apply_settings(
     model: &mut InterpretedModel,
     settings: &[String],
 ) -> Result<(Box<dyn InputFunctions>, Vec<usize>), Failure> {

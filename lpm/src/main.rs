@@ -4,23 +4,9 @@
 //! One module per subcommand, each with its `Args` and `run`; the exit
 //! statuses are [`status::ExitStatus`] (`lpm --help` prints them).
 
-mod audit;
-mod chain;
-mod derive;
-mod eval;
-mod failure;
-mod fit;
-mod generate;
-mod mass;
-mod metrics;
-mod simulate;
-mod spec;
-mod status;
-mod sweep;
-mod warnings;
-
 use clap::{Parser, Subcommand};
-use failure::{Failure, Outcome};
+use lpm::failure::{Failure, Outcome};
+use lpm::{audit, chain, derive, eval, fit, generate, metrics, simulate, status, sweep};
 use std::process::ExitCode;
 
 #[derive(Parser)]

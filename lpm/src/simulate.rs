@@ -71,19 +71,44 @@ fn settings(options: &Args) -> Vec<String> {
     settings
 }
 
-/// Runs `lpm simulate`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let compiled = compile(&options.spec)?;
+/// A finished simulation with what its report needs.
+pub struct Simulated {
+    /// The run.
+    pub result: SimulationResult,
+    /// The model run (interpreted), for names and units.
+    pub model: InterpretedModel,
+    /// The scenario it ran under.
+    pub scenario: Scenario,
+    /// The scenario's file, or that there was none.
+    pub scenario_name: String,
+}
+
+impl Simulated {
+    /// The trajectory as CSV, with units in the column names (trajectory.csv).
+    pub fn trajectory_csv(&self) -> String {
+        trajectory_csv(&self.result, &units(&self.result, &self.model))
+    }
+}
+
+/// Compiles the spec at `spec`, loads its scenario (`scenario`, else the one
+/// beside the spec that names it, else the defaults) with `settings`
+/// (`--set` entries) and simulates it: what `lpm simulate` does before it
+/// writes its files.
+pub fn simulate_spec(
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[String],
+) -> Result<Simulated, Failure> {
+    let compiled = compile(spec)?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match &options.scenario {
-        Some(p) => Some(p.clone()),
-        None => find_scenario(&options.spec)?,
+    let scenario_path = match scenario {
+        Some(p) => Some(p.to_path_buf()),
+        None => find_scenario(spec)?,
     };
-    let settings = settings(&options);
     let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, &settings),
-        None => Scenario::defaults(&names, &settings),
+        Some(path) => Scenario::load(path, &names, settings),
+        None => Scenario::defaults(&names, settings),
     }
     .map_err(|e| Failure::scenario(&e))?;
     let result = dispatch(model.clone(), &scenario)?;
@@ -92,16 +117,28 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         .map_or("default scenario (no scenario file)".to_string(), |p| {
             p.display().to_string()
         });
+    Ok(Simulated {
+        result,
+        model,
+        scenario,
+        scenario_name,
+    })
+}
+
+/// Runs `lpm simulate`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let settings = settings(&options);
+    let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)?;
     let out = out_dir(options.out.clone(), &options.spec, "");
-    write_outputs(&out, &result, &model, &scenario, &scenario_name)?;
-    let mut text = text_summary(&result, &scenario_name);
+    write_outputs(&out, &simulated)?;
+    let mut text = text_summary(&simulated.result, &simulated.scenario_name);
     text.push_str(&format!(
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
         out.display()
     ));
     Ok(crate::warnings::outcome(
         text,
-        &result.warnings,
+        &simulated.result.warnings,
         options.strict,
     ))
 }
@@ -158,15 +195,8 @@ fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationRe
         .map_err(Failure::model)?
 }
 
-fn write_outputs(
-    out: &Path,
-    result: &SimulationResult,
-    model: &InterpretedModel,
-    scenario: &Scenario,
-    scenario_name: &str,
-) -> Result<(), Failure> {
-    std::fs::create_dir_all(out)
-        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
+/// The units of the trajectory's columns.
+fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
     let input_units = result
         .input_columns
         .iter()
@@ -175,11 +205,22 @@ fn write_outputs(
             model.input_units()[k].clone()
         })
         .collect();
-    let units = Units {
+    Units {
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
         outputs: model.output_units().to_vec(),
-    };
+    }
+}
+
+fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
+    let Simulated {
+        result,
+        model: _,
+        scenario,
+        scenario_name,
+    } = simulated;
+    std::fs::create_dir_all(out)
+        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
     let setup = PlotSetup {
         crush: scenario.crush.clone(),
         channels: scenario.channels.clone(),
@@ -191,7 +232,7 @@ fn write_outputs(
     let svg =
         figure_svg(result, &setup).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
     let files = [
-        ("trajectory.csv", trajectory_csv(result, &units)),
+        ("trajectory.csv", simulated.trajectory_csv()),
         ("summary.json", summary_json(result)),
         ("plots.svg", svg),
     ];

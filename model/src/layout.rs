@@ -88,6 +88,17 @@ impl Energies {
         "external_power",
     ];
 
+    /// The values in the order of [`Energies::FIELDS`].
+    pub fn values(&self) -> [f64; 5] {
+        [
+            self.kinetic,
+            self.potential,
+            self.dissipation,
+            self.damping_power,
+            self.external_power,
+        ]
+    }
+
     /// The energies from the outputs of an energies routine, in the order of
     /// [`Energies::FIELDS`].
     pub fn from_outputs(out: &[f64; 5]) -> Energies {
