@@ -11,6 +11,7 @@ mod eval;
 mod failure;
 mod fit;
 mod generate;
+mod linearize;
 mod mass;
 mod metrics;
 mod simulate;
@@ -78,6 +79,10 @@ enum Command {
     Metrics(metrics::Args),
     /// Print the spec of an N-link planar pendulum chain.
     Chain(chain::Args),
+    /// Linearize a spec about its static equilibrium (or a given state):
+    /// the state-space matrices A and B of x = (q, q̇) and the modes of A
+    /// (natural frequency, damping ratio, unstable or overdamped).
+    Linearize(linearize::Args),
 }
 
 fn run(command: Command) -> Result<Outcome, Failure> {
@@ -91,6 +96,7 @@ fn run(command: Command) -> Result<Outcome, Failure> {
         Command::Fit(args) => fit::run(args),
         Command::Metrics(args) => metrics::run(args),
         Command::Chain(args) => chain::run(args),
+        Command::Linearize(args) => linearize::run(args),
     }
 }
 

@@ -168,3 +168,50 @@ fn the_json_report_has_the_keys_of_its_fields_in_order() {
         "{text}"
     );
 }
+
+const YARIS: &str = include_str!("../../../specs/yaris_double_pendulum.lpm");
+const FULL_FRONTAL: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../specs/scenarios/yaris_full_frontal.toml"
+);
+
+/// The eigenvalues of `a`, sorted by imaginary then real part.
+fn eigenvalues(a: &DMatrix<f64>) -> Vec<nalgebra::Complex<f64>> {
+    let mut values: Vec<_> = a.clone().complex_eigenvalues().iter().copied().collect();
+    values.sort_by(|x, y| x.im.total_cmp(&y.im).then(x.re.total_cmp(&y.re)));
+    values
+}
+
+#[test]
+fn the_paper_model_about_its_equilibrium_has_the_modes_of_its_differenced_accelerations() {
+    let (yaris, names) = model::<3>(YARIS);
+    let path = std::path::Path::new(FULL_FRONTAL);
+    let scenario = Scenario::load(path, &names, &[]).unwrap();
+    let l = linearize(&yaris, &scenario, &At::Equilibrium).unwrap();
+    assert_eq!(l.source, StateMatrixSource::DerivedJacobians);
+    assert_eq!(l.modes.len(), 3);
+    for m in &l.modes {
+        assert!(
+            m.frequency_hz.is_finite() && m.damping_ratio.is_finite(),
+            "{m:?}"
+        );
+    }
+    // A by central differences of the interpreter's q̈ at the same point.
+    let mut model = yaris.clone();
+    scenario.apply_parameters(&mut model).unwrap();
+    let mut problem = CrashProblem::new(&model, held_inputs(&scenario.inputs));
+    let (y, _) = operating_state(&mut problem, &scenario, &At::Equilibrium).unwrap();
+    let (a_q, a_v) = differenced_jacobians(&problem, &y).unwrap();
+    let mut differenced = l.a.clone();
+    differenced.view_mut((3, 0), (3, 3)).copy_from(&a_q);
+    differenced.view_mut((3, 3), (3, 3)).copy_from(&a_v);
+    let scale = l.a.amax();
+    assert!(
+        (&differenced - &l.a).amax() <= 1e-6 * scale,
+        "{differenced} vs {}",
+        l.a
+    );
+    for (d, e) in eigenvalues(&differenced).iter().zip(eigenvalues(&l.a)) {
+        assert!((d - e).norm() <= 1e-6 * e.norm(), "{d} vs {e}");
+    }
+}
