@@ -121,13 +121,14 @@ pub fn markdown(l: &Linearization, title: &str) -> String {
     text.push_str("\n## Modes\n\n| # | frequency [Hz] | damping ratio | eigenvalue [1/s] | kind |\n|---|---|---|---|---|\n");
     for (k, m) in l.modes.iter().enumerate() {
         let ratio = finite(m.damping_ratio).as_f64().map_or("—".into(), number);
+        let eigenvalue = match m.eigenvalue.im {
+            0.0 => number(m.eigenvalue.re),
+            im => format!("{} ± {}i", number(m.eigenvalue.re), number(im)),
+        };
         text.push_str(&format!(
-            "| {} | {} | {ratio} | {} {} {}i | {} |\n",
+            "| {} | {} | {ratio} | {eigenvalue} | {} |\n",
             k + 1,
             number(m.frequency_hz),
-            number(m.eigenvalue.re),
-            if m.eigenvalue.im < 0.0 { "−" } else { "±" },
-            number(m.eigenvalue.im.abs()),
             m.kind.description(),
         ));
     }

@@ -169,6 +169,26 @@ fn the_json_report_has_the_keys_of_its_fields_in_order() {
     );
 }
 
+#[test]
+fn the_crush_springs_of_a_scenario_stiffen_the_system() {
+    // Kamal's car with its scenario: at zero crush the crush curves rise
+    // linearly to 180 kN (rails) and 60 kN (front) at 0.1 m, and their
+    // tangent stiffness adds to the engine mounts' in A.
+    let (kamal, names) = model::<2>(KAMAL);
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../specs/scenarios/kamal_1970.toml"
+    );
+    let scenario = Scenario::load(std::path::Path::new(path), &names, &[]).unwrap();
+    let l = linearize(&kamal, &scenario, &At::Equilibrium).unwrap();
+    let (mb, me, k_eb) = (1050.0, 200.0, 1.5e6);
+    close(l.a[(2, 0)], -(k_eb + 180e3 / 0.1) / mb, 1e-12);
+    close(l.a[(3, 1)], -(k_eb + 60e3 / 0.1) / me, 1e-12);
+    close(l.a[(2, 1)], k_eb / mb, 1e-12);
+    assert!(l.inputs.is_empty() && l.b.ncols() == 0);
+    assert!(l.modes.iter().all(|m| m.kind == ModeKind::Underdamped));
+}
+
 const YARIS: &str = include_str!("../../../specs/yaris_double_pendulum.lpm");
 const FULL_FRONTAL: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
