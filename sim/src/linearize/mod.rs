@@ -68,6 +68,8 @@ pub struct Equilibrium {
 /// One column of `B`: an input of the dynamics held at a value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InputColumn {
+    /// The input's index, in the model's order of inputs.
+    pub input: usize,
     /// The input's name.
     pub name: String,
     /// Its value at the operating point.
@@ -150,14 +152,21 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
     let (a, source) = state_matrix(&mut problem, &y).map_err(fault)?;
     let inputs = input_columns(&model, &problem.inputs);
     let b = input_matrix(&model, &problem.inputs, &y, &inputs).map_err(fault)?;
-    let modes = modes(&a).ok_or_else(|| match a.iter().all(|x| x.is_finite()) {
-        true => LinearizeError::Eigenvalues("the Schur decomposition did not converge".into()),
-        false => LinearizeError::Eigenvalues(format!("A is not finite: {a}")),
-    })?;
     let names = model.coordinate_names();
-    let state_names = (names.iter().map(|n| n.to_string()))
+    let state_names: Vec<String> = (names.iter().map(|n| n.to_string()))
         .chain(names.iter().map(|n| format!("dot({n})")))
         .collect();
+    let modes = modes(&a).ok_or_else(|| {
+        LinearizeError::Eigenvalues(match a.iter().position(|x| !x.is_finite()) {
+            // Column-major: entry k is row k mod 2n of column k / 2n.
+            Some(k) => {
+                let (i, j) = (k % (2 * N), k / (2 * N));
+                let (row, column) = (&state_names[i], &state_names[j]);
+                format!("A[{row}, {column}] is {}", a[(i, j)])
+            }
+            None => "the Schur decomposition did not converge".into(),
+        })
+    })?;
     Ok(Linearization {
         state_names,
         modes,
@@ -308,6 +317,7 @@ fn input_columns<const N: usize, S: LagrangianSystem<N>>(
         .filter_map(|k| {
             let named = constant(k)?;
             Some(InputColumn {
+                input: k,
                 name: names[k].to_string(),
                 value: inputs.value(k, &[]),
                 source: named.name.clone(),
@@ -324,14 +334,12 @@ fn input_matrix<const N: usize, S: LagrangianSystem<N>>(
     y: &PhaseState<N>,
     columns: &[InputColumn],
 ) -> Result<DMatrix<f64>, Fault> {
-    let names = model.input_names();
     let mut b = DMatrix::zeros(2 * N, columns.len());
     for (j, column) in columns.iter().enumerate() {
-        let input = names.iter().position(|n| *n == column.name).unwrap_or(0);
         let shifted = |h: f64| {
             let held = Shifted {
                 inputs,
-                input,
+                input: column.input,
                 value: column.value + h,
             };
             accelerations(model, y, &held)
