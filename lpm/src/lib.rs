@@ -9,6 +9,7 @@ pub mod eval;
 pub mod failure;
 pub mod fit;
 pub mod generate;
+pub mod linearize;
 pub mod mass;
 pub mod metrics;
 pub mod simulate;

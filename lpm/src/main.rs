@@ -6,7 +6,7 @@
 
 use clap::{Parser, Subcommand};
 use lpm::failure::{Failure, Outcome};
-use lpm::{audit, chain, derive, eval, fit, generate, metrics, simulate, status, sweep};
+use lpm::{audit, chain, derive, eval, fit, generate, linearize, metrics, simulate, status, sweep};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -64,6 +64,10 @@ enum Command {
     Metrics(metrics::Args),
     /// Print the spec of an N-link planar pendulum chain.
     Chain(chain::Args),
+    /// Linearize a spec about its static equilibrium (or a given state):
+    /// the state-space matrices A and B of x = (q, q̇) and the modes of A
+    /// (natural frequency, damping ratio, unstable or overdamped).
+    Linearize(linearize::Args),
 }
 
 fn run(command: Command) -> Result<Outcome, Failure> {
@@ -77,6 +81,7 @@ fn run(command: Command) -> Result<Outcome, Failure> {
         Command::Fit(args) => fit::run(args),
         Command::Metrics(args) => metrics::run(args),
         Command::Chain(args) => chain::run(args),
+        Command::Linearize(args) => linearize::run(args),
     }
 }
 
