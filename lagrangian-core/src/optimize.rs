@@ -249,7 +249,7 @@ impl Builder<'_> {
                 };
                 Signed::plus(self.op(op))
             }
-            Node::Func(f, u) => self.function(f, u),
+            Node::Func(f, args) => self.function(f, &args),
             Node::Input(index, args) => {
                 let regs = args.iter().map(|&a| self.output(a)).collect();
                 Signed::plus(self.op(Op::Input { index, args: regs }))
@@ -263,7 +263,8 @@ impl Builder<'_> {
         s
     }
 
-    fn function(&mut self, f: Func, u: ExprId) -> Signed {
+    fn function(&mut self, f: Func, args: &[ExprId]) -> Signed {
+        let u = args[0];
         if matches!(f, Func::Sin | Func::Cos)
             && let Some(linear) = self.integer_linear_form(u)
         {
@@ -281,6 +282,23 @@ impl Builder<'_> {
             Func::Ln => {
                 let a = self.materialize(arg);
                 Signed::plus(self.op(Op::Ln(a)))
+            }
+            Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => {
+                let first = self.materialize(arg);
+                let mut regs = vec![first];
+                regs.extend(args[1..].iter().map(|&a| self.output(a)));
+                Signed::plus(self.op(Op::Call(f, regs.into_boxed_slice())))
             }
         }
     }

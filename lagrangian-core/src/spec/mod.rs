@@ -193,5 +193,6 @@ impl Model {
 
 /// Names that the spec language gives a meaning of its own.
 pub const RESERVED_NAMES: &[&str] = &[
-    "t", "pi", "dot", "ddot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow",
+    "t", "pi", "dot", "ddot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow", "cot", "sec",
+    "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "hypot", "abs", "sign", "min", "max",
 ];
