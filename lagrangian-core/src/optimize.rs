@@ -94,6 +94,16 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
         .collect();
     let (arguments, input_sites) = input_arguments(&b.ops, &routines[0]);
     routines.push(arguments);
+    // Last, so that a smooth model gets the same program.
+    let switching = crate::switching::switching_functions(b.store, derivation);
+    if !switching.is_empty() {
+        let outputs: Vec<Reg> = switching.iter().map(|&e| b.output(e)).collect();
+        routines.push(Routine {
+            kind: RoutineKind::Switching,
+            ops: dependency_closure(&b.ops, &outputs),
+            outputs,
+        });
+    }
     Program {
         dimension: derivation.dimension,
         ops: b.ops,

@@ -118,6 +118,7 @@ fn emit_c_deep(compiled: &Compiled, options: &COptions) -> String {
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
     ] {
         if let Some(routine) = compiled.program.routine(kind) {
             let schedule = schedule(&compiled.program, routine);
@@ -295,6 +296,7 @@ fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
         RoutineKind::Jacobians => ("jacobians", jacobians),
         RoutineKind::InputArguments => ("input_arguments", vec!["arguments"]),
         RoutineKind::Outputs => ("outputs", vec!["outputs"]),
+        RoutineKind::Switching => ("switching_functions", vec!["switching"]),
     }
 }
 
@@ -361,6 +363,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
         }
         OutputSlot::InputArgument(k) => vec![format!("arguments[{k}] = {value};")],
         OutputSlot::Output(k) => vec![format!("outputs[{k}] = {value};")],
+        OutputSlot::Switching(k) => vec![format!("switching[{k}] = {value};")],
     }
 }
 

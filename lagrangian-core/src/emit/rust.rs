@@ -228,6 +228,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
     ]
     .map(|kind| routine_method(compiled, names, kind, rt));
     let output_names = output_names_method(model);
@@ -340,6 +341,21 @@ fn routine_method(
                 #(#writes)*
             }
         },
+        RoutineKind::Switching => {
+            let count = Literal::usize_unsuffixed(routine.outputs.len());
+            quote! {
+                fn switching_count(&self) -> usize {
+                    #count
+                }
+
+                fn switching_functions<I: #rt::InputFunctions + ?Sized>(
+                    &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
+                ) {
+                    #(#statements)*
+                    #(#writes)*
+                }
+            }
+        }
         RoutineKind::Jacobians => quote! {
             fn jacobians<I: #rt::InputFunctions + ?Sized>(
                 &self, t: f64, q: &#vector, qd: &#vector, qdd: &#vector, inputs: &I,
@@ -391,7 +407,7 @@ fn place_outputs(schedule: &Schedule, values: Vec<TokenStream>) -> PlacedOutputs
                     .writes
                     .push(quote! { out.#field[(#i, #k)] = #value; });
             }
-            OutputSlot::InputArgument(k) | OutputSlot::Output(k) => {
+            OutputSlot::InputArgument(k) | OutputSlot::Output(k) | OutputSlot::Switching(k) => {
                 let k = index(k);
                 placed.writes.push(quote! { out[#k] = #value; });
             }
