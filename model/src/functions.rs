@@ -169,13 +169,6 @@ impl Func {
         }
     }
 
-    /// Whether the function is undefined for some finite arguments (`ln`
-    /// of a negative number, `asin` and `acos` outside `[−1, 1]`): a call
-    /// the fault report checks.
-    pub fn restricts_domain(self) -> bool {
-        matches!(self, Func::Ln | Func::Asin | Func::Acos)
-    }
-
     /// The value at `a` (and `b`, the second argument of a two-argument
     /// function; ignored by the others).
     #[inline(always)]

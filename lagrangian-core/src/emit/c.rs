@@ -193,6 +193,11 @@ fn metadata(compiled: &Compiled, prefix: &str) -> String {
         );
     }
     out.push_str(&output_metadata(model, prefix));
+    // Only models with non-smooth functions have switching functions (the
+    // code of the others stays as it was).
+    if let Some(switching) = compiled.program.routine(RoutineKind::Switching) {
+        let _ = writeln!(out, "#define {upper}_SWITCHING {}", switching.outputs.len());
+    }
     let _ = writeln!(out, "\n/* The parameters' default values, into p. */");
     let _ = writeln!(out, "void {prefix}_default_parameters(double *p)\n{{");
     for (i, parameter) in model.parameters.iter().enumerate() {

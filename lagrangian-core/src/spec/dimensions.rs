@@ -159,7 +159,8 @@ impl DimensionScope {
         args: &[&Expr],
         span: SpanRange,
     ) -> Result<Option<Dimension>, Diagnostic> {
-        if let Some(f) = Func::named(name) {
+        let declared = self.names.contains_key(name) || self.inputs.contains_key(name);
+        if let Some(f) = Func::named(name).filter(|_| !declared) {
             return self.function(f, args);
         }
         let arity = match name {

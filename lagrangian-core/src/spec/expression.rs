@@ -1,6 +1,7 @@
 //! Translating `syn` expressions into canonical symbolic expressions.
 
 use super::constant::{self, Constants};
+use super::domain::{Domain, DomainCheck};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{
     CoordinateSymbols, EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, MAX_NODES,
@@ -35,6 +36,8 @@ pub(super) struct Scope {
     pub velocities: Vec<SymbolId>,
     /// Values of the constant `let`s, for exponents.
     pub constants: Constants,
+    /// The calls with a restricted domain lowered so far, in order.
+    pub domain_checks: std::cell::RefCell<Vec<DomainCheck>>,
 }
 
 /// The result of lowering one expression.
@@ -222,6 +225,8 @@ impl<'a> ExpressionLowering<'a> {
                 if rhs == Store::ZERO {
                     return Err(Diagnostic::new(SpanRange::of(&b.right), "division by zero"));
                 }
+                let divisor = SpanRange::of(&b.right);
+                self.restricted(Domain::NonZero, "the divisor", rhs, divisor);
                 Ok(self.store.div(lhs, rhs))
             }
             _ => Err(Diagnostic::new(
@@ -279,7 +284,10 @@ impl<'a> ExpressionLowering<'a> {
         span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         let name = ident.to_string();
-        if let Some(arity) = builtin_arity(&name) {
+        // A declared name hides a function that is not reserved.
+        if !self.scope.names.contains_key(&name)
+            && let Some(arity) = builtin_arity(&name)
+        {
             check_arity(ident, &name, arity, args.len(), span)?;
             return self.builtin(&name, args, span);
         }
@@ -330,7 +338,10 @@ impl<'a> ExpressionLowering<'a> {
                 let c = self.store.cos(x);
                 self.store.pow(c, Rational::MINUS_ONE)
             }
-            "sqrt" => self.store.sqrt(x),
+            "sqrt" => {
+                self.restricted(Domain::NonNegative, "the argument of", x, span);
+                self.store.sqrt(x)
+            }
             "ddot" => {
                 if !self.accelerations {
                     return Err(acceleration_outside_outputs(span));
@@ -351,10 +362,28 @@ impl<'a> ExpressionLowering<'a> {
         let values = (args.iter())
             .map(|a| self.expr(a))
             .collect::<Result<Vec<_>, _>>()?;
-        if let Some(c) = self.store.as_num(values[0]) {
-            check_constant_argument(f.name(), c, span)?;
+        match self.store.as_num(values[0]) {
+            Some(c) => check_constant_argument(f.name(), c, span)?,
+            None => {
+                if let Some(domain) = Domain::of(f) {
+                    self.restricted(domain, "the argument of", values[0], span);
+                }
+            }
         }
         Ok(self.store.apply(f, &values))
+    }
+
+    /// Records a call whose `argument` must lie in `domain`.
+    fn restricted(&self, domain: Domain, what: &'static str, argument: ExprId, span: SpanRange) {
+        if self.store.as_num(argument).is_none() {
+            let check = DomainCheck {
+                domain,
+                what,
+                argument,
+                span,
+            };
+            self.scope.domain_checks.borrow_mut().push(check);
+        }
     }
 
     fn method(
@@ -402,6 +431,11 @@ impl<'a> ExpressionLowering<'a> {
     ) -> Result<ExprId, Diagnostic> {
         if base == Store::ZERO && exponent.is_negative() {
             return Err(Diagnostic::new(span, "zero raised to a negative power"));
+        }
+        if !exponent.is_integer() {
+            self.restricted(Domain::NonNegative, "the base of", base, span);
+        } else if exponent.is_negative() {
+            self.restricted(Domain::NonZero, "the base of", base, span);
         }
         let value = self.store.pow(base, exponent);
         self.check_engine(span, "this power")?;

@@ -81,6 +81,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     let hand_derived = lowering.hand_derived(&items.statements, &declared, &mut dimensions);
     let [kinetic, potential, dissipation] = dynamics.energies;
     let warnings = std::mem::take(&mut lowering.warnings);
+    let domain_checks = lowering.scope.domain_checks.take();
     let (store, time, kinetic) = lowering.finish(&header.name, kinetic)?;
     Ok(Model {
         name: header.name.to_string(),
@@ -102,6 +103,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         hand_derived,
         coordinate_dimensions,
         warnings,
+        domain_checks,
     })
 }
 
@@ -118,6 +120,7 @@ impl Lowering {
                 time,
                 velocities: Vec::new(),
                 constants: Default::default(),
+                domain_checks: Default::default(),
             },
             input_names: items
                 .inputs
