@@ -55,12 +55,12 @@ fn arguments_must_have_the_dimension_the_function_needs() {
         ),
         (
             "potential = k * l * min(x, theta);",
-            "argument 2 of `min` has dimension 1, but must have m",
+            "argument 2 of `min` has dimension 1 (dimensionless), but must have m",
         ),
         // hypot, abs and max return the dimension of their arguments.
         (
             "potential = k * hypot(x, y);",
-            "the potential energy has dimension kg·m^2·s^-2",
+            "the potential energy has dimension N, but must have J",
         ),
         (
             "potential = k * l * abs(x) * max(x, y);",
@@ -133,11 +133,11 @@ fn calls_with_a_restricted_domain_are_named_at_a_failing_state() {
     assert_eq!(value, 1.5);
     assert_eq!(
         check.describe("cart.lpm", &source, value),
-        "cart.lpm:5:25: the argument of `acos(x / l)` is 1.5 but must be in [-1, 1]"
+        "cart.lpm:5:26: the argument of `acos(x / l)` is 1.5 but must be in [-1, 1]"
     );
     let (check, value) = at(0.5, -1.0).unwrap();
     assert_eq!(
         check.describe("cart.lpm", &source, value),
-        "cart.lpm:5:39: the argument of `ln(y / l)` is -1 but must be positive"
+        "cart.lpm:5:40: the argument of `ln(y / l)` is -1 but must be positive"
     );
 }

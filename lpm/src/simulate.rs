@@ -131,7 +131,7 @@ impl WithDimension for Simulate<'_> {
                 SimulationError::Solver {
                     error: SolverError::Rhs { t, error },
                     ..
-                } => Some((t, error)),
+                } => Some(Box::new((t, error))),
                 _ => None,
             };
             (failure, fault)
@@ -148,7 +148,7 @@ fn domain_cause(
     scenario: &Scenario,
     spec: &Path,
 ) -> Option<String> {
-    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_ref()? else {
+    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
         return None;
     };
     let model = &compiled.model;
@@ -189,7 +189,7 @@ fn mass_cause(
 }
 
 /// The run, or its failure with the fault and the time it happened at.
-type RunFailure = (Failure, Option<(f64, Fault)>);
+type RunFailure = (Failure, Option<Box<(f64, Fault)>>);
 
 fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, RunFailure> {
     model

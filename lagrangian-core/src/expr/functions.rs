@@ -3,7 +3,7 @@
 //!
 //! * Smooth: `asin`, `acos`, `atan`, `atan2`, `sinh`, `cosh`, `tanh`,
 //!   `hypot`; each derivative is written in the function's own atoms and
-//!   powers of its arguments (`d tanh u = (1 − tanh²u) du`,
+//!   powers of its arguments (`d tanh u = cosh⁻²u du`,
 //!   `∂ hypot(x, y)/∂x = x · hypot(x, y)⁻¹`).
 //! * Non-smooth, differentiated by branch: `d|u| = sign(u) du`,
 //!   `d sign(u) = 0`, and `min`/`max` pick the branch with
@@ -97,8 +97,9 @@ impl Store {
             Func::Sinh => vec![self.call(Func::Cosh, args)],
             Func::Cosh => vec![self.call(Func::Sinh, args)],
             Func::Tanh => {
-                let square = self.pow(call, Rational::integer(2));
-                vec![self.sub(Store::ONE, square)]
+                // cosh⁻²u rather than 1 − tanh²u, which cancels for large |u|.
+                let cosh = self.call(Func::Cosh, args);
+                vec![self.pow(cosh, Rational::integer(-2))]
             }
             Func::Hypot => {
                 let inverse = self.pow(call, Rational::MINUS_ONE);
