@@ -25,6 +25,7 @@ pub mod program;
 pub mod random;
 pub mod rational;
 pub mod spec;
+pub mod switching;
 pub mod tape;
 pub mod units;
 

@@ -93,6 +93,7 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
             blocks.into_iter().flatten().copied().collect()
         }),
         outputs: derivation.outputs.clone(),
+        switching: crate::switching::switching_functions(store, derivation),
     };
     let mut b = Builder::new(store);
     assemble(&mut b, &outputs, |b, e| b.output(e))
@@ -110,6 +111,9 @@ struct RoutineOutputs<E> {
     /// `∂f/∂q`, `∂f/∂q̇`, `∂(M a)/∂q`, each row-major, one after the other.
     jacobians: Option<Vec<E>>,
     outputs: Vec<E>,
+    /// The switching functions of the non-smooth functions (`abs`, `sign`,
+    /// `min`, `max`) of the dynamics.
+    switching: Vec<E>,
 }
 
 /// The program computing `outputs`, each value made a register by `output`.
@@ -129,6 +133,15 @@ fn assemble<'s, E: Copy>(
         .collect();
     let (arguments, input_sites) = input_arguments(&b.ops, &routines[0]);
     routines.push(arguments);
+    // Last, so that a smooth model gets the same program.
+    if !outputs.switching.is_empty() {
+        let outputs: Vec<Reg> = (outputs.switching.iter()).map(|&e| output(b, e)).collect();
+        routines.push(Routine {
+            kind: RoutineKind::Switching,
+            ops: dependency_closure(&b.ops, &outputs),
+            outputs,
+        });
+    }
     Program {
         dimension: outputs.dimension,
         ops: std::mem::take(&mut b.ops),
@@ -297,7 +310,7 @@ impl<'a> Builder<'a> {
                 };
                 Signed::plus(self.op(op))
             }
-            Node::Func(f, u) => self.function(f, u),
+            Node::Func(f, args) => self.function(f, &args),
             Node::Input(index, args) => {
                 let regs = args.iter().map(|&a| self.output(a)).collect();
                 Signed::plus(self.op(Op::Input { index, args: regs }))
@@ -311,19 +324,21 @@ impl<'a> Builder<'a> {
         s
     }
 
-    fn function(&mut self, f: Func, u: ExprId) -> Signed {
+    fn function(&mut self, f: Func, args: &[ExprId]) -> Signed {
+        let u = args[0];
         if matches!(f, Func::Sin | Func::Cos)
             && let Some(linear) = self.integer_linear_form(u)
         {
             let (sin, cos) = self.sincos(&linear);
             return if f == Func::Sin { sin } else { cos };
         }
-        let arg = self.expr(u);
-        self.apply(f, arg)
+        let args: Vec<Signed> = args.iter().map(|&a| self.expr(a)).collect();
+        self.apply(f, &args)
     }
 
-    /// `f(arg)` for an argument already in a register.
-    fn apply(&mut self, f: Func, arg: Signed) -> Signed {
+    /// `f(args)` for arguments already in registers.
+    fn apply(&mut self, f: Func, args: &[Signed]) -> Signed {
+        let arg = args[0];
         match f {
             Func::Sin => Signed::plus(self.op(Op::Sin(arg.reg))).flip(arg.negative),
             Func::Cos => Signed::plus(self.op(Op::Cos(arg.reg))),
@@ -334,6 +349,21 @@ impl<'a> Builder<'a> {
             Func::Ln => {
                 let a = self.materialize(arg);
                 Signed::plus(self.op(Op::Ln(a)))
+            }
+            Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => {
+                let regs: Vec<Reg> = args.iter().map(|&a| self.materialize(a)).collect();
+                Signed::plus(self.op(Op::Call(f, regs.into_boxed_slice())))
             }
         }
     }

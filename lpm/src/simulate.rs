@@ -2,6 +2,7 @@
 
 use crate::failure::{Failure, Outcome};
 use crate::spec::{compile, find_scenario, out_dir};
+use lagrangian_core::Compiled;
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
@@ -111,7 +112,12 @@ pub fn simulate_spec(
         None => Scenario::defaults(&names, settings),
     }
     .map_err(|e| Failure::scenario(&e))?;
-    let result = dispatch(model.clone(), &scenario)?;
+    let result = dispatch(model.clone(), &scenario).map_err(|failure| {
+        match domain_cause(&failure, &compiled, &scenario, spec) {
+            Some(why) => failure.0.because(&why),
+            None => failure.0,
+        }
+    })?;
     let scenario_name = scenario_path
         .as_ref()
         .map_or("default scenario (no scenario file)".to_string(), |p| {
@@ -149,17 +155,47 @@ struct Simulate<'a> {
 }
 
 impl WithDimension for Simulate<'_> {
-    type Output = Result<SimulationResult, Failure>;
+    type Output = Result<SimulationResult, RunFailure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
         simulate(&system, self.scenario).map_err(|e| {
             let failure = Failure::simulation(&e, system.inner().coordinates());
-            match mass_cause(&e, system.inner(), self.scenario) {
+            let failure = match mass_cause(&e, system.inner(), self.scenario) {
                 Some(why) => failure.because(&why),
                 None => failure,
-            }
+            };
+            let fault = match e {
+                SimulationError::Solver {
+                    error: SolverError::Rhs { t, error },
+                    ..
+                } => Some(Box::new((t, error))),
+                _ => None,
+            };
+            (failure, fault)
         })
     }
+}
+
+/// Which call of the spec left its domain where the run turned non-finite
+/// (`acos` of 2, `ln` of a negative number, a division by zero), with its
+/// file:line and the value of its argument there.
+fn domain_cause(
+    failure: &RunFailure,
+    compiled: &Compiled,
+    scenario: &Scenario,
+    spec: &Path,
+) -> Option<String> {
+    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
+        return None;
+    };
+    let model = &compiled.model;
+    let mut parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
+    for &(i, value) in &scenario.parameters {
+        parameters[i] = value;
+    }
+    let (check, value) = model.domain_violation(*t, q, qd, &parameters)?;
+    let source = std::fs::read_to_string(spec).ok()?;
+    Some(check.describe(&spec.display().to_string(), &source, value))
 }
 
 /// Which of the scenario's parameters made the mass matrix not positive
@@ -189,10 +225,13 @@ fn mass_cause(
     crate::mass::blame(&with_scenario, &defaults, &set, (*t, q, qd))
 }
 
-fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, Failure> {
+/// The run, or its failure with the fault and the time it happened at.
+type RunFailure = (Failure, Option<Box<(f64, Fault)>>);
+
+fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, RunFailure> {
     model
         .with_dimension(Simulate { scenario })
-        .map_err(Failure::model)?
+        .map_err(|e| (Failure::model(e), None))?
 }
 
 /// The units of the trajectory's columns.

@@ -117,6 +117,22 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         let _ = self.0.evaluate_outputs(state, inputs, out);
     }
 
+    fn switching_count(&self) -> usize {
+        self.0.switching_count()
+    }
+
+    fn switching_functions<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        // The dimension is N by construction, so this cannot fail.
+        let _ = (self.0).evaluate_switching(t, q.as_slice(), qd.as_slice(), inputs, out);
+    }
+
     fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]) {
         // The dimension is N by construction, so this cannot fail.
         let _ = self

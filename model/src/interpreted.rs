@@ -76,6 +76,8 @@ impl ModelDescription {
             let expected = match kind {
                 RoutineKind::InputArguments => arguments,
                 RoutineKind::Outputs => self.outputs.len(),
+                // The compiler decides how many; any count is consistent.
+                RoutineKind::Switching => tape.output_count(kind),
                 RoutineKind::Dynamics
                 | RoutineKind::Energies
                 | RoutineKind::Jacobians
@@ -302,6 +304,30 @@ impl InterpretedModel {
     ) -> Result<(), ModelError> {
         self.check(state.3)?;
         self.run(RoutineKind::Jacobians, state, inputs, |values| {
+            out[..values.len()].copy_from_slice(values)
+        })
+    }
+
+    /// The number of switching functions (0 for a smooth model; see
+    /// [`RoutineKind::Switching`]).
+    pub fn switching_count(&self) -> usize {
+        self.tape.output_count(RoutineKind::Switching)
+    }
+
+    /// The switching functions at `(t, q, q̇)` into `out`; nothing for a
+    /// smooth model.
+    pub fn evaluate_switching<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        inputs: &I,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        if !self.tape.has(RoutineKind::Switching) {
+            return Ok(());
+        }
+        self.run(RoutineKind::Switching, (t, q, qd, &[]), inputs, |values| {
             out[..values.len()].copy_from_slice(values)
         })
     }

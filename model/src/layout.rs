@@ -25,6 +25,12 @@ pub enum RoutineKind {
     /// evaluated after the equations of motion are solved. Only models that
     /// declare outputs have this routine.
     Outputs,
+    /// The switching functions of the dynamics: the argument of each `abs`
+    /// and `sign`, `a − b` of each `min(a, b)` and `max(a, b)`, at
+    /// `(t, q, q̇)`. The integrator locates each sign change as an event, so
+    /// that no step straddles a kink. Only models with non-smooth functions
+    /// have this routine.
+    Switching,
 }
 
 /// `(i, j)` of the entries of `M` among the dynamics outputs, in order: the
@@ -151,6 +157,8 @@ pub enum OutputSlot {
     /// The value of the spec's output `k`, in declaration order
     /// ([`RoutineKind::Outputs`]).
     Output(usize),
+    /// Switching function `k` ([`RoutineKind::Switching`]).
+    Switching(usize),
 }
 
 /// One field of [`Energies`].
@@ -221,19 +229,20 @@ impl JacobianBlock {
 
 impl RoutineKind {
     /// Every routine a program can have.
-    pub const ALL: [RoutineKind; 6] = [
+    pub const ALL: [RoutineKind; 7] = [
         RoutineKind::Dynamics,
         RoutineKind::Energies,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::DynamicsAndPowers,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
     ];
 
     /// The number of outputs of the routine for a model with `n`
-    /// coordinates; `None` for [`RoutineKind::InputArguments`] and
-    /// [`RoutineKind::Outputs`], whose counts depend on the model's input
-    /// calls and output statements.
+    /// coordinates; `None` for [`RoutineKind::InputArguments`],
+    /// [`RoutineKind::Outputs`] and [`RoutineKind::Switching`], whose counts
+    /// depend on the model's input calls, output statements and functions.
     pub fn output_count(self, n: usize) -> Option<usize> {
         let mass = n * (n + 1) / 2;
         match self {
@@ -241,7 +250,7 @@ impl RoutineKind {
             RoutineKind::DynamicsAndPowers => Some(mass + n + 2),
             RoutineKind::Energies => Some(Energy::ALL.len()),
             RoutineKind::Jacobians => Some(JacobianBlock::ALL.len() * n * n),
-            RoutineKind::InputArguments | RoutineKind::Outputs => None,
+            RoutineKind::InputArguments | RoutineKind::Outputs | RoutineKind::Switching => None,
         }
     }
 
@@ -271,6 +280,7 @@ impl RoutineKind {
             },
             RoutineKind::InputArguments => OutputSlot::InputArgument(k),
             RoutineKind::Outputs => OutputSlot::Output(k),
+            RoutineKind::Switching => OutputSlot::Switching(k),
         })
     }
 }

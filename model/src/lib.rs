@@ -21,6 +21,7 @@
 mod error;
 #[cfg(feature = "nalgebra")]
 mod fixed;
+pub mod functions;
 mod inputs;
 mod interpreted;
 pub mod layout;
@@ -34,6 +35,7 @@ pub mod tape;
 pub use error::ModelError;
 #[cfg(feature = "nalgebra")]
 pub use fixed::{Interpreted, MAX_INTERPRETED_DIMENSION, WithDimension};
+pub use functions::Func;
 pub use inputs::{ConstantInputs, InputFunctions, NoInputs};
 pub use interpreted::{InterpretedModel, ModelDescription};
 pub use layout::Energies;

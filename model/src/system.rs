@@ -132,6 +132,28 @@ pub trait LagrangianSystem<const N: usize> {
         let _ = (t, q, qd, qdd, inputs, out);
     }
 
+    /// The number of switching functions: one per distinct kink of a
+    /// non-smooth function (`abs`, `sign`, `min`, `max`) in the dynamics;
+    /// 0 for a smooth model.
+    fn switching_count(&self) -> usize {
+        0
+    }
+
+    /// Writes the value of each switching function at `(t, q, q̇)` to `out`
+    /// (which holds at least [`LagrangianSystem::switching_count`] values).
+    /// The dynamics are smooth between the sign changes of these values; an
+    /// integrator locates each one as an event. A smooth model writes nothing.
+    fn switching_functions<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        let _ = (t, q, qd, inputs, out);
+    }
+
     /// `M(q, t)` (convenience over [`LagrangianSystem::mass_matrix_and_forcing`]).
     fn mass_matrix<I: InputFunctions + ?Sized>(
         &self,

@@ -50,6 +50,7 @@ mod arith;
 mod calculus;
 mod display;
 mod eval;
+mod functions;
 mod laurent;
 pub mod pretty;
 mod trig;
@@ -118,31 +119,9 @@ pub struct Symbol {
     pub kind: SymbolKind,
 }
 
-/// Elementary functions kept as atoms.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
-pub enum Func {
-    /// The sine, of an argument in radians.
-    Sin,
-    /// The cosine, of an argument in radians.
-    Cos,
-    /// The exponential.
-    Exp,
-    /// The natural logarithm.
-    Ln,
-}
-
-impl Func {
-    /// The name in the spec language and in emitted code (`sin`, `cos`,
-    /// `exp`, `ln`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Exp => "exp",
-            Func::Ln => "ln",
-        }
-    }
-}
+/// Elementary functions kept as atoms (defined with the runtime, which
+/// evaluates them the same way).
+pub use lagrangian_model::functions::Func;
 
 /// An interned node. See the module documentation for the invariants.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
@@ -156,8 +135,9 @@ pub enum Node {
     Add(Box<[(ExprId, Rational)]>),
     /// `Π base_k ^ e_k`, sorted by base id, with no numeric coefficient.
     Mul(Box<[(ExprId, Rational)]>),
-    /// An elementary function of an expression.
-    Func(Func, ExprId),
+    /// An elementary function of its arguments (as many as its
+    /// [`Func::arity`]).
+    Func(Func, Box<[ExprId]>),
     /// A call of a run-time input function.
     Input(u32, Box<[ExprId]>),
 }
@@ -171,8 +151,7 @@ impl Node {
         match self {
             Node::Num(_) | Node::Sym(_) => {}
             Node::Add(items) | Node::Mul(items) => items.iter().for_each(|&(t, _)| visit(t)),
-            Node::Func(_, u) => visit(*u),
-            Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
+            Node::Func(_, args) | Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
         }
     }
 }
@@ -566,10 +545,18 @@ impl Store {
         }
     }
 
-    /// The sine, cosine, exponential or logarithm node `f(u)` as built, if `e` is one.
+    /// The one-argument function node `f(u)` as built, if `e` is one.
     pub fn as_func(&self, e: ExprId) -> Option<(Func, ExprId)> {
         match self.node(e) {
-            Node::Func(f, u) => Some((*f, *u)),
+            Node::Func(f, args) if args.len() == 1 => Some((*f, args[0])),
+            _ => None,
+        }
+    }
+
+    /// The function node `f(args…)` as built, if `e` is one.
+    pub fn as_call(&self, e: ExprId) -> Option<(Func, &[ExprId])> {
+        match self.node(e) {
+            Node::Func(f, args) => Some((*f, args)),
             _ => None,
         }
     }

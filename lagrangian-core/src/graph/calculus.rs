@@ -175,7 +175,7 @@ impl Graph {
     fn outer_derivative(&mut self, store: &mut Store, f: Func, a: GraphId) -> GraphId {
         let x = self.time;
         let x_expr = store.symbol_expr(x);
-        let fx = store.apply(f, x_expr);
+        let fx = store.apply(f, &[x_expr]);
         let derivative = store.diff(fx, x);
         self.substitute(store, derivative, x, a)
     }
@@ -204,10 +204,17 @@ impl Graph {
                 }
                 product
             }
-            Node::Func(f, u) => {
-                let u = self.substitute(store, u, x, a);
-                self.apply(store, f, u)
-            }
+            Node::Func(f, args) => match *args {
+                [u] => {
+                    let u = self.substitute(store, u, x, a);
+                    self.apply(store, f, u)
+                }
+                // The graph's functions are those of one argument, whose
+                // derivative rules use one-argument functions only.
+                _ => unreachable!(
+                    "the derivative of a one-argument function calls {f:?} with several"
+                ),
+            },
             // Numbers depend on no symbol; an input call in a derivative
             // rule would be an input of the argument, which rules do not make.
             Node::Num(_) | Node::Input(..) => self.leaf(store, e),

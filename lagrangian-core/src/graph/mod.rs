@@ -298,7 +298,7 @@ impl Graph {
     /// `f(a)`.
     pub fn apply(&mut self, store: &mut Store, f: Func, a: GraphId) -> GraphId {
         if let Some(x) = self.as_leaf(a) {
-            let e = store.apply(f, x);
+            let e = store.apply(f, &[x]);
             return self.leaf(store, e);
         }
         self.intern(store, GraphNode::Func(f, a))

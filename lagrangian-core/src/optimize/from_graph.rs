@@ -26,6 +26,10 @@ pub fn build_program_from_graph(
         energies: derivation.energies,
         jacobians: (derivation.jacobians.as_ref()).map(|j| j.iter().flatten().copied().collect()),
         outputs: derivation.outputs.clone(),
+        // Not collected on the graph path: a model too large for the
+        // canonical form runs its non-smooth functions without located
+        // switches (the integrator's step control meets them instead).
+        switching: Vec::new(),
     };
     let mut emitter = GraphEmitter {
         graph,
@@ -69,7 +73,7 @@ impl GraphEmitter<'_> {
             }
             GraphNode::Func(f, x) => {
                 let x = self.node(b, x);
-                b.apply(f, x)
+                b.apply(f, &[x])
             }
         };
         self.memo.insert(g, s);

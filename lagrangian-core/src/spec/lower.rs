@@ -89,6 +89,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     let warnings = std::mem::take(&mut lowering.warnings);
     let graph = std::mem::replace(&mut lowering.graph, Graph::new(lowering.scope.time));
     let canonical_limit = lowering.canonical_limit.take();
+    let domain_checks = lowering.scope.domain_checks.take();
     let (store, time, kinetic) = lowering.finish(&header.name, kinetic)?;
     Ok(Model {
         name: header.name.to_string(),
@@ -113,6 +114,7 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         energy_graph: dynamics.energy_graph,
         canonical_limit,
         warnings,
+        domain_checks,
     })
 }
 
@@ -129,6 +131,7 @@ impl Lowering {
                 time,
                 velocities: Vec::new(),
                 constants: Default::default(),
+                domain_checks: Default::default(),
             },
             input_names: items
                 .inputs

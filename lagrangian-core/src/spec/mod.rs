@@ -3,6 +3,7 @@
 mod ast;
 mod constant;
 mod dimensions;
+mod domain;
 mod expression;
 mod graph_lowering;
 mod hand;
@@ -12,6 +13,7 @@ mod parse;
 mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
+pub use domain::{Domain, DomainCheck};
 pub(crate) use expression::engine_diagnostic;
 pub use hand::{Assumed, Convention, HandDerived, HandEquation, HandTerm};
 pub(crate) use outline::Outline;
@@ -168,6 +170,10 @@ pub struct Model {
     /// them; the `lagrangian!` macro cannot (a procedural macro has no
     /// warnings on stable Rust), so they show with `lpm derive`.
     pub warnings: Vec<crate::diagnostic::Diagnostic>,
+    /// The calls whose arguments have a restricted domain (`acos`, `ln`,
+    /// fractional powers, divisors), inner calls first, to name the one
+    /// that makes a run non-finite ([`Model::domain_violation`]).
+    pub domain_checks: Vec<DomainCheck>,
 }
 
 impl Model {
@@ -221,6 +227,10 @@ impl Model {
 }
 
 /// Names that the spec language gives a meaning of its own.
+///
+/// The functions added later (`asin`, `abs`, `min`, …, `cot`, `sec`) are not
+/// reserved, so that specs that declare such names keep their meaning: a
+/// declared name hides the function of the same name.
 pub const RESERVED_NAMES: &[&str] = &[
     "t", "pi", "dot", "ddot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow",
 ];
