@@ -2,7 +2,7 @@
 //! recompiling, with the same numbers as the compiled code.
 
 use crate::error::ModelError;
-use crate::layout::{Energies, RoutineKind, unpack_dynamics};
+use crate::layout::{Energies, RoutineKind, mass_entries, unpack_dynamics};
 use crate::tape::Tape;
 use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
@@ -191,6 +191,21 @@ impl InterpretedModel {
     /// Whether the spec asked for Jacobians (`jacobians;`).
     pub fn has_jacobians(&self) -> bool {
         self.tape.has(RoutineKind::Jacobians)
+    }
+
+    /// Whether each entry `M_ij` of the mass matrix can be nonzero, row by
+    /// row (`n × n`): `false` for those the equations make the constant zero,
+    /// as the emitted code knows them (it skips their terms in the solve).
+    pub fn mass_nonzeros(&self) -> Vec<bool> {
+        let n = self.dimension();
+        let mut nonzero = vec![true; n * n];
+        for (k, (i, j)) in mass_entries(n).enumerate() {
+            if self.tape.constant_output(RoutineKind::Dynamics, k) == Some(0.0) {
+                nonzero[i * n + j] = false;
+                nonzero[j * n + i] = false;
+            }
+        }
+        nonzero
     }
 
     /// Sets a parameter by name, suggesting the closest name when unknown.

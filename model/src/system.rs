@@ -190,7 +190,18 @@ pub trait LagrangianSystem<const N: usize> {
         (mass, forcing)
     }
 
-    /// `q̈ = M⁻¹ f` by [`solve_mass_matrix`].
+    /// `M⁻¹ b` as [`solve_mass_matrix`] computes it: a compiled model skips
+    /// the terms of the entries its equations make zero (as its interpreted
+    /// twin does, bit for bit); `None` when `solve_mass_matrix` gives none.
+    fn solve_mass(
+        &self,
+        mass: &SMatrix<f64, N, N>,
+        b: &SVector<f64, N>,
+    ) -> Option<SVector<f64, N>> {
+        solve_mass_matrix(*mass, b)
+    }
+
+    /// `q̈ = M⁻¹ f` by [`LagrangianSystem::solve_mass`].
     fn accelerations<I: InputFunctions + ?Sized>(
         &self,
         t: f64,
@@ -199,10 +210,11 @@ pub trait LagrangianSystem<const N: usize> {
         inputs: &I,
     ) -> Result<SVector<f64, N>, ModelError> {
         let (mass, forcing) = self.mass_matrix_and_forcing_pair(t, q, qd, inputs);
-        solve_mass_matrix(mass, &forcing).ok_or_else(|| ModelError::SingularMassMatrix {
-            t,
-            q: q.iter().copied().collect(),
-        })
+        self.solve_mass(&mass, &forcing)
+            .ok_or_else(|| ModelError::SingularMassMatrix {
+                t,
+                q: q.iter().copied().collect(),
+            })
     }
 }
 
@@ -214,6 +226,5 @@ pub fn solve_mass_matrix<const N: usize>(
     mass: SMatrix<f64, N, N>,
     forcing: &SVector<f64, N>,
 ) -> Option<SVector<f64, N>> {
-    let x = crate::linalg::Ldlt::new(&mass)?.solve(forcing);
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    crate::linalg::solve_with_pattern(&mass, forcing, &crate::linalg::LdltPattern::DENSE)
 }

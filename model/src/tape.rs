@@ -258,6 +258,13 @@ impl Tape {
         self.routine(kind).map_or(0, |r| r.outputs.len())
     }
 
+    /// The value of output `k` of routine `kind` when it is a constant (its
+    /// register is one of the constants, written when the file is made).
+    pub fn constant_output(&self, kind: RoutineKind, k: usize) -> Option<f64> {
+        let register = *self.routine(kind)?.outputs.get(k)?;
+        self.layout.constants.get(register as usize).copied()
+    }
+
     fn routine(&self, kind: RoutineKind) -> Option<&TapeRoutine> {
         self.routines.iter().find(|r| r.kind == kind)
     }

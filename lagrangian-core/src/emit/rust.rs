@@ -232,6 +232,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
     ]
     .map(|kind| routine_method(compiled, names, kind, rt));
     let output_names = output_names_method(model);
+    let solve = super::solve::solve_mass_method(&compiled.program, rt);
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, non_snake_case, clippy::all, clippy::pedantic, clippy::nursery)]
@@ -270,6 +271,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
 
             #output_names
             #(#routines)*
+            #solve
         }
     }
 }

@@ -5,9 +5,7 @@ use crate::crash::BoundInputs;
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
-use lagrangian_model::{
-    InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix,
-};
+use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
 
 /// One event handled during a run.
@@ -91,7 +89,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, Fault> {
-        let a = solve_mass_matrix(*mass, forcing);
+        let a = self.system.solve_mass(mass, forcing);
         if let Some(a) = a
             && a.iter().all(|x| x.is_finite())
         {
@@ -284,7 +282,7 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             let mut out = SMatrix::<f64, N, N>::zeros();
             for k in 0..N {
                 let column: SVector<f64, N> = m.column(k).into_owned();
-                out.set_column(k, &solve_mass_matrix(mass, &column)?);
+                out.set_column(k, &self.system.solve_mass(&mass, &column)?);
             }
             Some(out)
         };
