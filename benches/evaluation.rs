@@ -1,14 +1,19 @@
 //! One evaluation of the paper model's accelerations q̈ = M⁻¹ f (M, f and the
-//! L D Lᵀ solve): the macro-compiled code, the interpreter, and a
-//! hand-written implementation of the same equations (written here from the
-//! SymPy-verified derivation, the way one would by hand).
+//! L D Lᵀ solve): the macro-compiled code, the interpreter, a hand-written
+//! implementation of the same equations (written here from the
+//! SymPy-verified derivation, the way one would by hand), and CasADi's
+//! generated C for the same model (benches/casadi, made by
+//! benches/reference/casadi_yaris.py), with the same parameters and states.
 //!
-//! `cargo bench -p lagrangian --bench evaluation`
+//! `cargo bench -p lagrangian --bench evaluation`; instruction counts per
+//! call: `benches/reference/callgrind_qdd.sh`.
 
 use lagrangian::nalgebra::{Matrix3, Vector3};
 use lagrangian::{InputFunctions, Interpreted, LagrangianSystem, solve_mass_matrix};
 use std::hint::black_box;
 use std::time::Instant;
+
+use lagrangian_casadi_peer as casadi;
 
 mod models {
     lagrangian::lagrangian!(file = "specs/yaris_double_pendulum.lpm");
@@ -117,44 +122,43 @@ fn median_ns(n: usize, mut f: impl FnMut(usize) -> f64) -> f64 {
     median((0..11).map(|_| batch_ns(n, &mut f)).collect())
 }
 
-/// Batches of `a`, `b` and `c` taken in turn (so that a change of the
-/// machine's speed during the run hits all three alike): the median time of
-/// each, and the medians of the paired ratios `b/a` and `c/b`.
-fn interleaved(
-    n: usize,
-    mut a: impl FnMut(usize) -> f64,
-    mut b: impl FnMut(usize) -> f64,
-    mut c: impl FnMut(usize) -> f64,
-) -> ([f64; 3], f64, f64) {
-    let mut times = [Vec::new(), Vec::new(), Vec::new()];
+/// Batches of each of `variants` taken in turn (so that a change of the
+/// machine's speed during the run hits all alike), 31 rounds after a warm-up:
+/// the time per call of each variant in each round.
+fn interleaved(n: usize, variants: &mut [Box<dyn Timed + '_>]) -> Vec<Vec<f64>> {
+    let mut times = vec![Vec::new(); variants.len()];
     for round in 0..32 {
-        let t = [
-            batch_ns(n, &mut a),
-            batch_ns(n, &mut b),
-            batch_ns(n, &mut c),
-        ];
-        if round > 0 {
-            for (k, t) in t.into_iter().enumerate() {
+        for (k, f) in variants.iter_mut().enumerate() {
+            let t = f.batch_ns(n);
+            if round > 0 {
                 times[k].push(t);
             }
         }
     }
-    let ratio =
-        |x: usize, y: usize| median(times[x].iter().zip(&times[y]).map(|(p, q)| q / p).collect());
-    let (ba, cb) = (ratio(0, 1), ratio(1, 2));
-    let [ta, tb, tc] = times.map(median);
-    ([ta, tb, tc], ba, cb)
+    times
 }
 
-fn main() {
-    let compiled = Yaris::default();
-    let source = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/specs/yaris_double_pendulum.lpm"
-    ))
-    .unwrap();
-    let interpreted = Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
-    let states: Vec<(Vector3<f64>, Vector3<f64>)> = (0..64)
+/// Something timed by batches of calls: one dynamic call a batch, the calls
+/// inside it compiled for the one closure.
+trait Timed {
+    /// Nanoseconds per call over one batch of `n` calls.
+    fn batch_ns(&mut self, n: usize) -> f64;
+}
+
+impl<F: FnMut(usize) -> f64> Timed for F {
+    fn batch_ns(&mut self, n: usize) -> f64 {
+        batch_ns(n, self)
+    }
+}
+
+/// The median over rounds of `y`'s time over `x`'s.
+fn paired_ratio(x: &[f64], y: &[f64]) -> f64 {
+    median(x.iter().zip(y).map(|(p, q)| q / p).collect())
+}
+
+/// The states of the paper model's bench (and of the callgrind counts).
+fn yaris_states() -> Vec<(Vector3<f64>, Vector3<f64>)> {
+    (0..64)
         .map(|k| {
             let x = k as f64 / 64.0;
             (
@@ -162,72 +166,178 @@ fn main() {
                 Vector3::new(-15.0 + x, 0.3 * x, -0.2 * x),
             )
         })
-        .collect();
-    // The three implementations agree before anything is timed.
-    for (q, v) in &states {
-        let (mh, fh) = hand_written(&compiled, 0.01, q, v, &inputs);
-        let (mc, fc) = compiled.mass_matrix_and_forcing_pair(0.01, q, v, &inputs);
-        assert!((mh - mc).amax() <= 1e-12 * mc.amax(), "M differs");
-        assert!(
-            (fh - fc).amax() <= 1e-10 * fc.amax(),
-            "f differs: {fh} vs {fc}"
-        );
+        .collect()
+}
+
+/// The paper model's variants, by name: q̈ of each implementation, and M, f
+/// alone of the compiled model and of CasADi's C. Each returns one value of
+/// its result, for the timing loop to keep.
+struct Variants {
+    compiled: Yaris,
+    interpreted: Interpreted<3>,
+    /// The compiled model's parameters, for CasADi's C.
+    parameters: [f64; casadi::PARAMETERS],
+    states: Vec<(Vector3<f64>, Vector3<f64>)>,
+}
+
+impl Variants {
+    const NAMES: [&str; 6] = [
+        "hand-written",
+        "compiled",
+        "casadi",
+        "interpreted",
+        "compiled-mf",
+        "casadi-mf",
+    ];
+
+    fn new() -> Variants {
+        let compiled = Yaris::default();
+        let source = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/specs/yaris_double_pendulum.lpm"
+        ))
+        .unwrap();
+        let interpreted =
+            Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
+        let parameters = compiled.parameters().try_into().unwrap();
+        Variants {
+            compiled,
+            interpreted,
+            parameters,
+            states: yaris_states(),
+        }
     }
-    let n = 50_000;
-    let pick = |i: usize| &states[i % states.len()];
-    let ([hand_ns, compiled_ns, interpreted_ns], compiled_ratio, interpreted_ratio) = interleaved(
-        n,
-        |i| {
-            let (q, v) = pick(i);
-            let (m, f) = hand_written(
-                &compiled,
-                black_box(0.01),
-                black_box(q),
-                black_box(v),
-                &inputs,
+
+    /// Variant `NAMES[V]` at state `i` (modulo the number of states).
+    fn run<const V: usize>(&self, i: usize) -> f64 {
+        let (q, v) = &self.states[i % self.states.len()];
+        let (t, q, v) = (black_box(0.01), black_box(q), black_box(v));
+        let p = black_box(&self.parameters);
+        let (cq, cv) = (&(*q).into(), &(*v).into());
+        match V {
+            0 => {
+                let (m, f) = hand_written(&self.compiled, t, q, v, &inputs);
+                solve_mass_matrix(m, &f).unwrap()[0]
+            }
+            1 => self.compiled.accelerations(t, q, v, &inputs).unwrap()[0],
+            2 => casadi::accelerations(t, cq, cv, p)[0],
+            3 => self.interpreted.accelerations(t, q, v, &inputs).unwrap()[0],
+            4 => {
+                let (_, f) = self.compiled.mass_matrix_and_forcing_pair(t, q, v, &inputs);
+                f[0]
+            }
+            _ => casadi::mass_forcing(t, cq, cv, p).1[0],
+        }
+    }
+
+    /// Every variant, in the order of `NAMES`.
+    fn all(&self) -> Vec<Box<dyn Timed + '_>> {
+        vec![
+            Box::new(|i| self.run::<0>(i)),
+            Box::new(|i| self.run::<1>(i)),
+            Box::new(|i| self.run::<2>(i)),
+            Box::new(|i| self.run::<3>(i)),
+            Box::new(|i| self.run::<4>(i)),
+            Box::new(|i| self.run::<5>(i)),
+        ]
+    }
+
+    /// The implementations agree before anything is timed.
+    fn check(&self) {
+        for (q, v) in &self.states {
+            let (mh, fh) = hand_written(&self.compiled, 0.01, q, v, &inputs);
+            let (mc, fc) = self
+                .compiled
+                .mass_matrix_and_forcing_pair(0.01, q, v, &inputs);
+            assert!((mh - mc).amax() <= 1e-12 * mc.amax(), "M differs");
+            assert!(
+                (fh - fc).amax() <= 1e-10 * fc.amax(),
+                "f differs: {fh} vs {fc}"
             );
-            solve_mass_matrix(m, &f).unwrap()[0]
-        },
-        |i| {
-            let (q, v) = pick(i);
-            compiled
-                .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
-                .unwrap()[0]
-        },
-        |i| {
-            let (q, v) = pick(i);
-            interpreted
-                .accelerations(black_box(0.01), black_box(q), black_box(v), &inputs)
-                .unwrap()[0]
-        },
-    );
-    let dynamics_ns = median_ns(n, |i| {
-        let (q, v) = pick(i);
-        compiled
-            .mass_matrix_and_forcing_pair(black_box(0.01), black_box(q), black_box(v), &inputs)
-            .1[0]
-    });
-    let energies_ns = median_ns(n, |i| {
-        let (q, v) = pick(i);
-        compiled
-            .energies(black_box(0.01), black_box(q), black_box(v), &inputs)
-            .external_power
-    });
+            let a = self.compiled.accelerations(0.01, q, v, &inputs).unwrap();
+            let b = self.interpreted.accelerations(0.01, q, v, &inputs).unwrap();
+            assert_eq!(a, b, "compiled and interpreted agree bit for bit");
+            let c = casadi::accelerations(0.01, &(*q).into(), &(*v).into(), &self.parameters);
+            let c = Vector3::from(c);
+            assert!((a - c).amax() <= 1e-12 * a.amax(), "CasADi's q̈ {c} vs {a}");
+        }
+    }
+}
+
+/// `evaluation count VARIANT N`: `N` calls of one variant and nothing else
+/// (for benches/reference/callgrind_qdd.sh, which counts instructions).
+fn count_calls(args: &[String]) {
+    let variants = Variants::new();
+    let k = (Variants::NAMES.iter().position(|name| *name == args[0]))
+        .unwrap_or_else(|| panic!("the variants are {:?}", Variants::NAMES));
+    let n: usize = args[1].parse().expect("a number of calls");
+    black_box(variants.all()[k].batch_ns(n));
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(k) = args.iter().position(|a| a == "count") {
+        return count_calls(&args[k + 1..]);
+    }
+    paper_model();
+    chain_20();
+}
+
+/// The paper model's q̈ of every implementation, side by side in one run.
+fn paper_model() {
+    let variants = Variants::new();
+    variants.check();
+    let n = 50_000;
+    let times = interleaved(n, &mut variants.all());
+    let ns = |k: usize| median(times[k].clone());
+    let ratio = |x: usize, y: usize| paired_ratio(&times[x], &times[y]);
+    let [
+        hand,
+        compiled,
+        casadi_c,
+        interpreted,
+        compiled_mf,
+        casadi_mf,
+    ] = [0, 1, 2, 3, 4, 5];
     println!(
         "Batches of {n} calls taken in turn, 31 rounds; medians, and medians of paired ratios."
     );
     println!();
     println!("| implementation | q̈ = M⁻¹f (ns) | ratio |");
     println!("|---|---|---|");
-    println!("| hand-written | {hand_ns:.1} | 1.00 |");
-    println!("| compiled (lagrangian!) | {compiled_ns:.1} | {compiled_ratio:.2} × hand-written |");
+    println!("| hand-written | {:.1} | 1.00 |", ns(hand));
+    let (to_hand, to_casadi) = (ratio(hand, compiled), ratio(casadi_c, compiled));
     println!(
-        "| interpreted (spec file) | {interpreted_ns:.1} | {interpreted_ratio:.2} × compiled |"
+        "| compiled (lagrangian!) | {:.1} | {to_hand:.2} × hand-written, {to_casadi:.2} × CasADi |",
+        ns(compiled)
+    );
+    println!(
+        "| CasADi's C (gcc -O3) | {:.1} | {:.2} × hand-written |",
+        ns(casadi_c),
+        ratio(hand, casadi_c)
+    );
+    println!(
+        "| interpreted (spec file) | {:.1} | {:.2} × compiled |",
+        ns(interpreted),
+        ratio(compiled, interpreted)
     );
     println!();
-    println!("compiled M and f alone: {dynamics_ns:.1} ns; energies: {energies_ns:.1} ns");
+    println!(
+        "M and f alone: compiled {:.1} ns, CasADi's C {:.1} ns ({:.2} × CasADi)",
+        ns(compiled_mf),
+        ns(casadi_mf),
+        ratio(casadi_mf, compiled_mf)
+    );
+    let energies_ns = median_ns(n, |i| {
+        let (q, v) = &variants.states[i % variants.states.len()];
+        let t = black_box(0.01);
+        let e = variants
+            .compiled
+            .energies(t, black_box(q), black_box(v), &inputs);
+        e.external_power
+    });
+    println!("compiled energies: {energies_ns:.1} ns");
     println!();
-    chain_20();
 }
 
 /// A 20-link pendulum chain (PyDy's Cython right-hand side: about 50 µs).

@@ -14,6 +14,8 @@ mod models {
     lagrangian::lagrangian!(file = "specs/pendulum_chain_10.lpm");
     lagrangian::lagrangian!(file = "specs/four_bar_linkage.lpm");
     lagrangian::lagrangian!(file = "specs/slider_crank.lpm");
+    // Too large for the canonical form: its program comes from the derivation graph.
+    lagrangian::lagrangian!(file = "tests/specs/three_link_conical_pendulum.lpm");
 }
 
 /// Random specs from the property tests' generator (`lagrangian-core/tests/
@@ -218,6 +220,9 @@ fn every_spec_agrees() {
         compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
         compare::<3, models::FourBarLinkage>("specs/four_bar_linkage.lpm"),
         compare::<3, models::SliderCrank>("specs/slider_crank.lpm"),
+        compare::<6, models::ThreeLinkConicalPendulum>(
+            "tests/specs/three_link_conical_pendulum.lpm",
+        ),
     ];
     println!("worst ulp difference per spec: {worst:?}");
 }

@@ -263,4 +263,18 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         out: &mut [f64],
     ) {}
+    #[inline]
+    fn solve_mass(
+        &self,
+        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
+        b: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 2>> {
+        /// Which entries of `M` can be nonzero (the others are zero by
+        /// the equations).
+        const PATTERN: ::lagrangian_model::linalg::LdltPattern<2> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+            [true, false],
+            [false, true],
+        ]);
+        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+    }
 }

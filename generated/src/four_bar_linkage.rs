@@ -295,4 +295,19 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         out[10] = x5 * x9 + x3 * x4 - x8 * x11;
         out[11] = x0 * (l1 * x5) + x2 * x4 - x6 * (l3 * x8);
     }
+    #[inline]
+    fn solve_mass(
+        &self,
+        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        /// Which entries of `M` can be nonzero (the others are zero by
+        /// the equations).
+        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+            [true, true, false],
+            [true, true, false],
+            [false, false, true],
+        ]);
+        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+    }
 }

@@ -679,4 +679,19 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         out[6] = theta2;
         out[7] = theta2_dot;
     }
+    #[inline]
+    fn solve_mass(
+        &self,
+        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        /// Which entries of `M` can be nonzero (the others are zero by
+        /// the equations).
+        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+            [true, false, true],
+            [false, true, true],
+            [true, true, true],
+        ]);
+        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+    }
 }

@@ -849,4 +849,20 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         out[1] = x6 - (x7 + x8);
         out[2] = x5;
     }
+    #[inline]
+    fn solve_mass(
+        &self,
+        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 4, 4>,
+        b: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 4>> {
+        /// Which entries of `M` can be nonzero (the others are zero by
+        /// the equations).
+        const PATTERN: ::lagrangian_model::linalg::LdltPattern<4> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+            [true, false, true, true],
+            [false, true, true, true],
+            [true, true, true, true],
+            [true, true, true, true],
+        ]);
+        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+    }
 }

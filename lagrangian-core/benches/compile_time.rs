@@ -41,22 +41,30 @@ fn main() {
         ))
         .unwrap(),
     )];
-    for n in [1, 2, 3, 5, 8, 10, 15, 20, 40] {
+    cases.push((
+        "three_link_conical_pendulum".into(),
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../tests/specs/three_link_conical_pendulum.lpm"
+        ))
+        .unwrap(),
+    ));
+    for n in [1, 2, 3, 5, 8, 10, 15, 20, 40, 100] {
         cases.push((
             format!("pendulum_chain_{n}"),
             lagrangian_core::examples::pendulum_chain(n),
         ));
     }
     println!(
-        "| model | compile time (median) | ops M,f | ops energies | ops Jacobians | Rust tokens (bytes) |"
+        "| model | path | compile time (median) | ops M,f | ops energies | ops Jacobians | Rust tokens (bytes) |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     let mut by_kind = Vec::new();
     for (name, source) in cases {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
             continue;
         }
-        let runs = if name.ends_with("_40") {
+        let runs = if name.ends_with("_40") || name.ends_with("_100") {
             3
         } else if name.ends_with("_20") {
             5
@@ -70,7 +78,12 @@ fn main() {
             })
         };
         println!(
-            "| {name} | {:.3} ms | {} | {} | {} | {size} |",
+            "| {name} | {} | {:.3} ms | {} | {} | {} | {size} |",
+            if compiled.derivation.is_some() {
+                "canonical"
+            } else {
+                "graph"
+            },
             time.as_secs_f64() * 1e3,
             ops(RoutineKind::Dynamics),
             ops(RoutineKind::Energies),

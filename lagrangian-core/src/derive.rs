@@ -14,6 +14,7 @@
 
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, EngineError, Evaluator, ExprId, Store, SymbolId, SymbolKind};
+use crate::program::{EvalContext, Program, RoutineKind};
 use crate::spec::{ForceStatement, Input, Model, Statement, engine_diagnostic};
 use proc_macro2::Span;
 
@@ -340,11 +341,50 @@ fn sample_coordinate(i: usize) -> f64 {
 /// The kinetic energy must be positive definite in the velocities: `M` must
 /// admit a Cholesky factorization at a sample state with default parameters.
 fn check_positive_definite(model: &Model, mass: &[ExprId]) -> Result<(), SpecErrors> {
-    let n = model.dimension();
     let values = sample_symbol_values(model);
     let mut evaluator = Evaluator::new(&model.store, values, &|_: usize, _: &[f64]| 1.0);
     let m: Vec<f64> = mass.iter().map(|&e| evaluator.eval(e)).collect();
-    let failing = cholesky_failure(&m, n);
+    check_mass_values(model, &m)
+}
+
+/// [`check_positive_definite`] on the mass matrix that `program` computes
+/// (at the same sample state, input functions 1).
+pub(crate) fn check_program_mass(model: &Model, program: &Program) -> Result<(), SpecErrors> {
+    let n = model.dimension();
+    let values = sample_symbol_values(model);
+    let (q, qd): (Vec<f64>, Vec<f64>) = (model.coordinates.iter())
+        .map(|c| {
+            let s = &c.symbols;
+            (values[s.position.index()], values[s.velocity.index()])
+        })
+        .unzip();
+    let parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
+    let ctx = EvalContext {
+        t: values[model.time.index()],
+        q: &q,
+        qd: &qd,
+        qdd: &vec![0.0; n],
+        parameters: &parameters,
+        inputs: &|_: usize, _: &[f64]| 1.0,
+    };
+    let routine = program
+        .routine(RoutineKind::Dynamics)
+        .expect("every program has the dynamics routine");
+    let mut out = vec![0.0; routine.outputs.len()];
+    program.run(routine, &ctx, &mut program.registers(), &mut out);
+    let mut m = vec![0.0; n * n];
+    for (k, (i, j)) in lagrangian_model::layout::mass_entries(n).enumerate() {
+        m[i * n + j] = out[k];
+        m[j * n + i] = out[k];
+    }
+    check_mass_values(model, &m)
+}
+
+/// The diagnostic of [`check_positive_definite`] for the mass matrix `m`
+/// (row-major) at the sample state, if its factorization fails.
+fn check_mass_values(model: &Model, m: &[f64]) -> Result<(), SpecErrors> {
+    let n = model.dimension();
+    let failing = cholesky_failure(m, n);
     let Some(k) = failing else {
         return Ok(());
     };

@@ -1,8 +1,10 @@
 //! The Euler–Lagrange compiler as a plain library.
 //!
 //! Pipeline: spec text or tokens → [`spec::Model`] (names resolved, expressions
-//! in canonical form) → [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians)
-//! → [`program::Program`] (optimized straight-line code) → Rust source
+//! in canonical form, the energies also on the derivation [`graph`]) →
+//! [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians), or
+//! [`graph::GraphDerivation`] for a model too large for the canonical form →
+//! [`program::Program`] (optimized straight-line code) → Rust source
 //! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
 //! [`tape::lower`]).
 
@@ -18,11 +20,13 @@ pub mod examples;
 pub mod expand;
 pub mod expr;
 pub mod generate;
+pub mod graph;
 pub mod optimize;
 pub mod program;
 pub mod random;
 pub mod rational;
 pub mod spec;
+pub mod switching;
 pub mod tape;
 pub mod units;
 
@@ -37,24 +41,78 @@ use program::Program;
 pub struct Compiled {
     /// The resolved spec, whose store holds every expression below.
     pub model: Model,
-    /// `M q̈ = f`, the energies and powers, and the Jacobians if asked for.
-    pub derivation: Derivation,
+    /// `M q̈ = f`, the energies and powers, and the Jacobians if asked for,
+    /// in the exact canonical form: `None` when the model is too large for
+    /// it and was derived on the graph ([`graph`]); see
+    /// [`Compiled::canonical`].
+    pub derivation: Option<Derivation>,
     /// Every output of the derivation as optimized straight-line code.
     pub program: Program,
 }
 
+/// The largest total size ([`expr::Store::set_budget`]) of the nodes that
+/// the canonical derivation may create before the model is derived on the
+/// graph instead (a 20-link chain stays canonical).
+const CANONICAL_DERIVATION_SIZE: usize = 200_000;
+
 impl Compiled {
-    /// Derives and optimizes `model` (on a large stack, see [`depth`]).
+    /// Derives and optimizes `model` (on a large stack, see [`depth`]):
+    /// in the canonical form when it stays within its limits, on the
+    /// derivation graph otherwise.
     pub fn new(mut model: Model) -> Result<Compiled, SpecErrors> {
         depth::with_large_stack(|| {
-            let derivation = derive::derive(&mut model)?;
-            let program = optimize::build_program(&mut model.store, &derivation);
+            if model.canonical_limit.is_none()
+                && let Some(derivation) = derive_canonical(&mut model)?
+            {
+                let program = optimize::build_program(&mut model.store, &derivation);
+                let derivation = Some(derivation);
+                return Ok(Compiled {
+                    model,
+                    derivation,
+                    program,
+                });
+            }
+            Compiled::on_graph(model)
+        })
+    }
+
+    /// Derives and optimizes `model` on the derivation graph whatever its
+    /// size (what [`Compiled::new`] does for a model too large for the
+    /// canonical form).
+    pub fn on_graph(mut model: Model) -> Result<Compiled, SpecErrors> {
+        if let Some(constraint) = model.constraints.first() {
+            let message =
+                "this model is too large for the exact canonical form, which constraints need";
+            return Err(Diagnostic::new(constraint.span, message)
+                .with_help("write the model with fewer or smaller helper expressions, or eliminate the constraint")
+                .into());
+        }
+        depth::with_large_stack(|| {
+            let derivation = graph::derive_graph(&mut model)?;
+            let program =
+                optimize::build_program_from_graph(&mut model.store, &model.graph, &derivation);
+            derive::check_program_mass(&model, &program)?;
             Ok(Compiled {
                 model,
-                derivation,
+                derivation: None,
                 program,
             })
         })
+    }
+
+    /// The derivation in the exact canonical form, for printing and the
+    /// audit: derived now when [`Compiled::new`] took the graph path, or
+    /// the reason it cannot be (an energy or the equations would exceed
+    /// the canonical form's limits).
+    pub fn canonical(&mut self) -> Result<&Derivation, SpecErrors> {
+        if self.derivation.is_none() {
+            if let Some(limit) = &self.model.canonical_limit {
+                return Err(limit.clone().into());
+            }
+            let derivation = depth::with_large_stack(|| derive::derive(&mut self.model))?;
+            self.derivation = Some(derivation);
+        }
+        Ok(self.derivation.as_ref().expect("set above"))
     }
 
     /// Parses, derives and optimizes a spec given as text.
@@ -101,6 +159,22 @@ impl Compiled {
         let tape = tape::lower(&self.program, description.parameters.len());
         InterpretedModel::new(description, tape)
             .expect("the description lists what the program computes")
+    }
+}
+
+/// The canonical derivation of `model` within [`CANONICAL_DERIVATION_SIZE`]:
+/// `None` when it would exceed that or the expansion limits.
+fn derive_canonical(model: &mut Model) -> Result<Option<Derivation>, SpecErrors> {
+    model.store.set_budget(Some(CANONICAL_DERIVATION_SIZE));
+    model.store.take_size_limit();
+    let derivation = derive::derive(model);
+    let too_large = model.store.take_size_limit();
+    model.store.set_budget(None);
+    match derivation {
+        Ok(d) if !too_large => Ok(Some(d)),
+        Ok(_) => Ok(None),
+        Err(_) if too_large => Ok(None),
+        Err(e) => Err(e),
     }
 }
 

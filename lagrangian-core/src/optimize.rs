@@ -17,7 +17,10 @@ use crate::rational::Rational;
 use lagrangian_model::layout::mass_entries;
 use rustc_hash::FxHashMap;
 
+mod from_graph;
 mod shift;
+
+pub use from_graph::build_program_from_graph;
 
 /// A register whose value is to be negated when `negative` is set.
 #[derive(Clone, Copy, Debug)]
@@ -72,19 +75,59 @@ struct Builder<'a> {
 
 /// Builds the program for all outputs of `derivation`.
 pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
-    let mut b = Builder {
-        store,
-        ops: Vec::new(),
-        dedup: FxHashMap::default(),
-        memo: FxHashMap::default(),
-        trig: FxHashMap::default(),
-        vars: Vec::new(),
-        var_index: FxHashMap::default(),
-        var_regs: FxHashMap::default(),
-        shifted_vars: Default::default(),
+    let outputs = RoutineOutputs {
+        dimension: derivation.dimension,
+        mass: mass_entries(derivation.dimension)
+            .map(|(i, j)| derivation.mass(i, j))
+            .collect(),
+        forcing: derivation.forcing.clone(),
+        energies: [
+            derivation.kinetic,
+            derivation.potential,
+            derivation.dissipation,
+            derivation.damping_power,
+            derivation.external_power,
+        ],
+        jacobians: derivation.jacobians.as_ref().map(|j| {
+            let blocks = [&j.forcing_q, &j.forcing_qd, &j.mass_times_acceleration_q];
+            blocks.into_iter().flatten().copied().collect()
+        }),
+        outputs: derivation.outputs.clone(),
+        constraints: derivation.constraints.outputs().collect(),
+        switching: crate::switching::switching_functions(store, derivation),
     };
-    let outputs = b.routine_outputs(derivation);
-    let mut routines: Vec<Routine> = outputs
+    let mut b = Builder::new(store);
+    assemble(&mut b, &outputs, |b, e| b.output(e))
+}
+
+/// The values each routine outputs, as expressions of some kind `E`
+/// (canonical expressions, or graph nodes), in the runtime's layout.
+struct RoutineOutputs<E> {
+    dimension: usize,
+    /// The upper triangle of `M`, in the order of [`mass_entries`].
+    mass: Vec<E>,
+    forcing: Vec<E>,
+    /// `T`, `V`, `D`, the damping power, the external power.
+    energies: [E; 5],
+    /// `∂f/∂q`, `∂f/∂q̇`, `∂(M a)/∂q`, each row-major, one after the other.
+    jacobians: Option<Vec<E>>,
+    outputs: Vec<E>,
+    /// `g`, `g_t`, `G`, `γ` of the holonomic constraints, in the order of
+    /// the runtime's `ConstraintLayout` (empty without constraints).
+    constraints: Vec<E>,
+    /// The switching functions of the non-smooth functions (`abs`, `sign`,
+    /// `min`, `max`) of the dynamics.
+    switching: Vec<E>,
+}
+
+/// The program computing `outputs`, each value made a register by `output`.
+fn assemble<'s, E: Copy>(
+    b: &mut Builder<'s>,
+    outputs: &RoutineOutputs<E>,
+    mut output: impl FnMut(&mut Builder<'s>, E) -> Reg,
+) -> Program {
+    let routine_outputs = b.routine_outputs(outputs, &mut output);
+    let mut routines: Vec<Routine> = routine_outputs
         .into_iter()
         .map(|(kind, outputs)| Routine {
             kind,
@@ -94,9 +137,18 @@ pub fn build_program(store: &mut Store, derivation: &Derivation) -> Program {
         .collect();
     let (arguments, input_sites) = input_arguments(&b.ops, &routines[0]);
     routines.push(arguments);
+    // Last, so that a smooth model gets the same program.
+    if !outputs.switching.is_empty() {
+        let outputs: Vec<Reg> = (outputs.switching.iter()).map(|&e| output(b, e)).collect();
+        routines.push(Routine {
+            kind: RoutineKind::Switching,
+            ops: dependency_closure(&b.ops, &outputs),
+            outputs,
+        });
+    }
     Program {
-        dimension: derivation.dimension,
-        ops: b.ops,
+        dimension: outputs.dimension,
+        ops: std::mem::take(&mut b.ops),
         routines,
         input_sites,
     }
@@ -141,61 +193,74 @@ fn dependency_closure(ops: &[Op], outputs: &[Reg]) -> Vec<Reg> {
         .collect()
 }
 
-impl Builder<'_> {
+impl<'a> Builder<'a> {
+    fn new(store: &'a mut Store) -> Builder<'a> {
+        Builder {
+            store,
+            ops: Vec::new(),
+            dedup: FxHashMap::default(),
+            memo: FxHashMap::default(),
+            trig: FxHashMap::default(),
+            vars: Vec::new(),
+            var_index: FxHashMap::default(),
+            var_regs: FxHashMap::default(),
+            shifted_vars: Default::default(),
+        }
+    }
+
     /// The output registers of each routine but the input arguments, the
     /// dynamics first, in the order of the runtime's layout.
-    fn routine_outputs(&mut self, derivation: &Derivation) -> Vec<(RoutineKind, Vec<Reg>)> {
-        let n = derivation.dimension;
-        let mut dynamics: Vec<Reg> = mass_entries(n)
-            .map(|(i, j)| self.output(derivation.mass(i, j)))
-            .collect();
-        for &f in &derivation.forcing {
-            dynamics.push(self.output(f));
+    fn routine_outputs<E: Copy>(
+        &mut self,
+        values: &RoutineOutputs<E>,
+        output: &mut impl FnMut(&mut Self, E) -> Reg,
+    ) -> Vec<(RoutineKind, Vec<Reg>)> {
+        let mut dynamics: Vec<Reg> = values.mass.iter().map(|&e| output(self, e)).collect();
+        for &f in &values.forcing {
+            dynamics.push(output(self, f));
         }
+        let [
+            kinetic,
+            potential,
+            dissipation,
+            damping_power,
+            external_power,
+        ] = values.energies;
         let dynamics_and_powers = dynamics
             .iter()
             .copied()
-            .chain([
-                self.output(derivation.damping_power),
-                self.output(derivation.external_power),
-            ])
+            .chain([output(self, damping_power), output(self, external_power)])
             .collect();
         let energies = [
-            derivation.kinetic,
-            derivation.potential,
-            derivation.dissipation,
-            derivation.damping_power,
-            derivation.external_power,
+            kinetic,
+            potential,
+            dissipation,
+            damping_power,
+            external_power,
         ]
         .into_iter()
-        .map(|e| self.output(e))
+        .map(|e| output(self, e))
         .collect();
         let mut outputs = vec![
             (RoutineKind::Dynamics, dynamics),
             (RoutineKind::Energies, energies),
             (RoutineKind::DynamicsAndPowers, dynamics_and_powers),
         ];
-        if let Some(j) = &derivation.jacobians {
-            let regs = j
-                .forcing_q
-                .iter()
-                .chain(&j.forcing_qd)
-                .chain(&j.mass_times_acceleration_q)
-                .map(|&e| self.output(e))
-                .collect();
+        if let Some(j) = &values.jacobians {
+            let regs = j.iter().map(|&e| output(self, e)).collect();
             outputs.push((RoutineKind::Jacobians, regs));
         }
         // Last, so that a model without outputs gets the same program.
-        if !derivation.outputs.is_empty() {
-            let regs = derivation.outputs.iter().map(|&e| self.output(e)).collect();
+        if !values.outputs.is_empty() {
+            let regs = values.outputs.iter().map(|&e| output(self, e)).collect();
             outputs.push((RoutineKind::Outputs, regs));
         }
         // After the outputs, for the same reason.
-        if !derivation.constraints.residual.is_empty() {
-            let regs = derivation
+        if !values.constraints.is_empty() {
+            let regs = values
                 .constraints
-                .outputs()
-                .map(|e| self.output(e))
+                .iter()
+                .map(|&e| output(self, e))
                 .collect();
             outputs.push((RoutineKind::Constraints, regs));
         }
@@ -258,7 +323,7 @@ impl Builder<'_> {
                 };
                 Signed::plus(self.op(op))
             }
-            Node::Func(f, u) => self.function(f, u),
+            Node::Func(f, args) => self.function(f, &args),
             Node::Input(index, args) => {
                 let regs = args.iter().map(|&a| self.output(a)).collect();
                 Signed::plus(self.op(Op::Input { index, args: regs }))
@@ -272,14 +337,21 @@ impl Builder<'_> {
         s
     }
 
-    fn function(&mut self, f: Func, u: ExprId) -> Signed {
+    fn function(&mut self, f: Func, args: &[ExprId]) -> Signed {
+        let u = args[0];
         if matches!(f, Func::Sin | Func::Cos)
             && let Some(linear) = self.integer_linear_form(u)
         {
             let (sin, cos) = self.sincos(&linear);
             return if f == Func::Sin { sin } else { cos };
         }
-        let arg = self.expr(u);
+        let args: Vec<Signed> = args.iter().map(|&a| self.expr(a)).collect();
+        self.apply(f, &args)
+    }
+
+    /// `f(args)` for arguments already in registers.
+    fn apply(&mut self, f: Func, args: &[Signed]) -> Signed {
+        let arg = args[0];
         match f {
             Func::Sin => Signed::plus(self.op(Op::Sin(arg.reg))).flip(arg.negative),
             Func::Cos => Signed::plus(self.op(Op::Cos(arg.reg))),
@@ -290,6 +362,21 @@ impl Builder<'_> {
             Func::Ln => {
                 let a = self.materialize(arg);
                 Signed::plus(self.op(Op::Ln(a)))
+            }
+            Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => {
+                let regs: Vec<Reg> = args.iter().map(|&a| self.materialize(a)).collect();
+                Signed::plus(self.op(Op::Call(f, regs.into_boxed_slice())))
             }
         }
     }

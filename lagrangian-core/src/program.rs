@@ -7,7 +7,7 @@
 //! run by [`Program::run`], which performs exactly the same floating-point
 //! operations in the same order.
 
-use crate::expr::Inputs;
+use crate::expr::{Func, Inputs};
 
 /// Register index: the result of operation number `Reg`.
 pub type Reg = u32;
@@ -85,6 +85,9 @@ pub enum Op {
     Powi(Reg, i32),
     /// `aˣ` by `powf`, for a constant `x`.
     Powf(Reg, FloatBits),
+    /// A function other than those above (`asin`, `atan2`, `abs`, …) of
+    /// its [`Func::arity`] argument registers.
+    Call(Func, Box<[Reg]>),
 }
 
 impl Op {
@@ -110,7 +113,7 @@ impl Op {
             | Op::Sqrt(a)
             | Op::Powi(a, _)
             | Op::Powf(a, _) => vec![*a],
-            Op::Input { args, .. } => args.to_vec(),
+            Op::Input { args, .. } | Op::Call(_, args) => args.to_vec(),
             Op::Const(_)
             | Op::Parameter(_)
             | Op::Coordinate(_)
@@ -160,7 +163,7 @@ pub struct OpCounts {
     pub div: usize,
     /// Negations.
     pub neg: usize,
-    /// sin, cos, exp, ln, sqrt.
+    /// sin, cos, exp, ln, sqrt and the other functions.
     pub transcendental: usize,
     /// Integer and fractional powers.
     pub pow: usize,
@@ -221,7 +224,7 @@ impl Program {
                 Op::Mul(..) => c.mul += 1,
                 Op::Div(..) => c.div += 1,
                 Op::Neg(..) => c.neg += 1,
-                Op::Sin(_) | Op::Cos(_) | Op::Exp(_) | Op::Ln(_) | Op::Sqrt(_) => {
+                Op::Sin(_) | Op::Cos(_) | Op::Exp(_) | Op::Ln(_) | Op::Sqrt(_) | Op::Call(..) => {
                     c.transcendental += 1
                 }
                 Op::Powi(..) | Op::Powf(..) => c.pow += 1,
@@ -286,6 +289,10 @@ impl Program {
                 Op::Sqrt(a) => reg(a).sqrt(),
                 Op::Powi(a, n) => reg(a).powi(*n),
                 Op::Powf(a, x) => reg(a).powf(x.value()),
+                Op::Call(f, regs) => {
+                    let a = reg(&regs[0]);
+                    f.apply(a, regs.get(1).map_or(a, reg))
+                }
             };
             registers[r as usize] = value;
         }

@@ -100,6 +100,11 @@ fn translate(
         Op::Sqrt(a) => Instruction::Sqrt(d, s(a)),
         Op::Powi(a, k) => Instruction::Powi(d, s(a), *k),
         Op::Powf(a, _) => Instruction::Powf(d, s(a), exponent_slot[r as usize]),
+        Op::Call(function, args) => Instruction::Call {
+            function: *function,
+            dst: d,
+            args: [s(&args[0]), s(args.get(1).unwrap_or(&args[0]))],
+        },
         Op::Input { index, args } => {
             let start = arguments.len() as u32;
             arguments.extend(args.iter().map(s));

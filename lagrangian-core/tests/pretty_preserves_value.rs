@@ -15,7 +15,7 @@ fn every_displayed_equation_rebuilds_to_the_derived_one() {
     let mut checked = 0;
     for source in sources {
         let mut c = Compiled::from_source(&source).unwrap();
-        let d = c.derivation.clone();
+        let d = c.canonical().unwrap().clone();
         let mut all = d.mass_matrix.clone();
         all.extend(&d.forcing);
         all.extend(&d.generalized_forces);
@@ -38,7 +38,7 @@ fn every_displayed_equation_rebuilds_to_the_derived_one() {
 fn the_paper_inertia_is_a_sum_of_squares() {
     let source = std::fs::read_to_string("../specs/yaris_double_pendulum.lpm").unwrap();
     let mut c = Compiled::from_source(&source).unwrap();
-    let m11 = c.derivation.mass(1, 1);
+    let m11 = c.canonical().unwrap().mass(1, 1);
     let tree = pretty(&mut c.model.store, m11);
     // m2 (r + l0 + l1)² + m1 (r + l0)² + I1: three terms, two of them squares.
     let Tree::Add(parts) = &tree else {

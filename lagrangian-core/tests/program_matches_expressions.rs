@@ -16,7 +16,10 @@ fn smooth_inputs(input: usize, args: &[f64]) -> f64 {
 
 /// The routines to check and the expressions each must compute, in order.
 fn expected_outputs(compiled: &Compiled) -> Vec<(RoutineKind, Vec<ExprId>)> {
-    let d = &compiled.derivation;
+    let d = compiled
+        .derivation
+        .as_ref()
+        .expect("derived in the canonical form");
     let n = d.dimension;
     let mut expected = Vec::new();
     for i in 0..n {
@@ -70,7 +73,7 @@ fn check_spec(path: &str) {
     let source = std::fs::read_to_string(path).unwrap();
     let compiled =
         Compiled::from_source(&source).unwrap_or_else(|e| panic!("{}", e.render(path, &source)));
-    let n = compiled.derivation.dimension;
+    let n = compiled.program.dimension;
     let mut random = Lcg::new(42);
     for _ in 0..20 {
         let q: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();

@@ -151,7 +151,10 @@ fn program_matches_expressions(compiled: &Compiled, s: &State) -> Result<(), Tes
         })
         .collect();
     let mut tree = Evaluator::new(store, values, &push);
-    let d = &compiled.derivation;
+    let d = compiled
+        .derivation
+        .as_ref()
+        .expect("derived in the canonical form");
     let n = d.dimension;
     let mut dynamics: Vec<_> = (0..n)
         .flat_map(|i| (i..n).map(move |j| (i, j)))

@@ -40,7 +40,7 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     let compiled = compile(&args.spec)?;
     let defaults = compiled.default_parameters();
     let mut model = compiled.interpreted();
-    let state = parse_state(&args.state, &model)?;
+    let state = parse_state("--state", &args.state, model.coordinates())?;
     let (q, qd) = state.split_at(model.dimension());
     let (inputs, set): (Box<dyn InputFunctions>, Vec<usize>) = match &args.scenario {
         Some(path) => scenario_inputs(&mut model, path, &args.set, (args.time, q, qd))?,
@@ -64,21 +64,22 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     )))
 }
 
-/// The values of `--state`, two per coordinate.
-fn parse_state(text: &str, model: &InterpretedModel) -> Result<Vec<f64>, Failure> {
+/// The state `Q1,…,QN,V1,…,VN` given to `flag`: two values per
+/// coordinate.
+pub fn parse_state(flag: &str, text: &str, coordinates: &[String]) -> Result<Vec<f64>, Failure> {
     let values = (text.split(','))
         .map(|v| {
             v.trim()
                 .parse::<f64>()
-                .map_err(|_| Failure::usage(format!("--state: `{}` is not a number", v.trim())))
+                .map_err(|_| Failure::usage(format!("{flag}: `{}` is not a number", v.trim())))
         })
         .collect::<Result<Vec<f64>, Failure>>()?;
-    let n = model.dimension();
+    let n = coordinates.len();
     if values.len() != 2 * n {
         return Err(Failure::usage(format!(
-            "--state needs {} values (coordinates {} then their velocities), got {}",
+            "{flag} needs {} values (coordinates {} then their velocities), got {}",
             2 * n,
-            model.coordinates().join(", "),
+            coordinates.join(", "),
             values.len()
         )));
     }
@@ -86,7 +87,7 @@ fn parse_state(text: &str, model: &InterpretedModel) -> Result<Vec<f64>, Failure
 }
 
 /// `M` (row-major) and `f` at `state`, finite.
-fn evaluate(
+pub fn evaluate(
     model: &InterpretedModel,
     (t, q, qd): mass::State,
     inputs: &dyn InputFunctions,
@@ -136,7 +137,7 @@ fn scenario_inputs(
 /// Applies the `--set` settings: parameters to the model, input constants
 /// to the inputs returned, with the indices of the parameters set. Every
 /// input the dynamics calls needs a value.
-fn apply_settings(
+pub fn apply_settings(
     model: &mut InterpretedModel,
     settings: &[String],
 ) -> Result<(Box<dyn InputFunctions>, Vec<usize>), Failure> {

@@ -84,6 +84,11 @@ impl Failure {
         self
     }
 
+    /// The message without the `error: ` that stderr gets before it.
+    pub fn message(&self) -> &str {
+        self.message.trim_end()
+    }
+
     /// What stderr gets (without the details).
     pub fn text(&self) -> String {
         let message = self.message.trim_end();

@@ -4,23 +4,9 @@
 //! One module per subcommand, each with its `Args` and `run`; the exit
 //! statuses are [`status::ExitStatus`] (`lpm --help` prints them).
 
-mod audit;
-mod chain;
-mod derive;
-mod eval;
-mod failure;
-mod fit;
-mod generate;
-mod mass;
-mod metrics;
-mod simulate;
-mod spec;
-mod status;
-mod sweep;
-mod warnings;
-
 use clap::{Parser, Subcommand};
-use failure::{Failure, Outcome};
+use lpm::failure::{Failure, Outcome};
+use lpm::{audit, chain, derive, eval, fit, generate, linearize, metrics, simulate, status, sweep};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -78,6 +64,10 @@ enum Command {
     Metrics(metrics::Args),
     /// Print the spec of an N-link planar pendulum chain.
     Chain(chain::Args),
+    /// Linearize a spec about its static equilibrium (or a given state):
+    /// the state-space matrices A and B of x = (q, q̇) and the modes of A
+    /// (natural frequency, damping ratio, unstable or overdamped).
+    Linearize(linearize::Args),
 }
 
 fn run(command: Command) -> Result<Outcome, Failure> {
@@ -91,6 +81,7 @@ fn run(command: Command) -> Result<Outcome, Failure> {
         Command::Fit(args) => fit::run(args),
         Command::Metrics(args) => metrics::run(args),
         Command::Chain(args) => chain::run(args),
+        Command::Linearize(args) => linearize::run(args),
     }
 }
 

@@ -2,6 +2,7 @@
 
 use crate::failure::{Failure, Outcome};
 use crate::spec::{compile, find_scenario, out_dir};
+use lagrangian_core::Compiled;
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
@@ -71,37 +72,79 @@ fn settings(options: &Args) -> Vec<String> {
     settings
 }
 
-/// Runs `lpm simulate`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let compiled = compile(&options.spec)?;
+/// A finished simulation with what its report needs.
+pub struct Simulated {
+    /// The run.
+    pub result: SimulationResult,
+    /// The model run (interpreted), for names and units.
+    pub model: InterpretedModel,
+    /// The scenario it ran under.
+    pub scenario: Scenario,
+    /// The scenario's file, or that there was none.
+    pub scenario_name: String,
+}
+
+impl Simulated {
+    /// The trajectory as CSV, with units in the column names (trajectory.csv).
+    pub fn trajectory_csv(&self) -> String {
+        trajectory_csv(&self.result, &units(&self.result, &self.model))
+    }
+}
+
+/// Compiles the spec at `spec`, loads its scenario (`scenario`, else the one
+/// beside the spec that names it, else the defaults) with `settings`
+/// (`--set` entries) and simulates it: what `lpm simulate` does before it
+/// writes its files.
+pub fn simulate_spec(
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[String],
+) -> Result<Simulated, Failure> {
+    let compiled = compile(spec)?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match &options.scenario {
-        Some(p) => Some(p.clone()),
-        None => find_scenario(&options.spec)?,
+    let scenario_path = match scenario {
+        Some(p) => Some(p.to_path_buf()),
+        None => find_scenario(spec)?,
     };
-    let settings = settings(&options);
     let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, &settings),
-        None => Scenario::defaults(&names, &settings),
+        Some(path) => Scenario::load(path, &names, settings),
+        None => Scenario::defaults(&names, settings),
     }
     .map_err(|e| Failure::scenario(&e))?;
-    let result = dispatch(model.clone(), &scenario)?;
+    let result = dispatch(model.clone(), &scenario).map_err(|failure| {
+        match domain_cause(&failure, &compiled, &scenario, spec) {
+            Some(why) => failure.0.because(&why),
+            None => failure.0,
+        }
+    })?;
     let scenario_name = scenario_path
         .as_ref()
         .map_or("default scenario (no scenario file)".to_string(), |p| {
             p.display().to_string()
         });
+    Ok(Simulated {
+        result,
+        model,
+        scenario,
+        scenario_name,
+    })
+}
+
+/// Runs `lpm simulate`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let settings = settings(&options);
+    let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)?;
     let out = out_dir(options.out.clone(), &options.spec, "");
-    write_outputs(&out, &result, &model, &scenario, &scenario_name)?;
-    let mut text = text_summary(&result, &scenario_name);
+    write_outputs(&out, &simulated)?;
+    let mut text = text_summary(&simulated.result, &simulated.scenario_name);
     text.push_str(&format!(
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
         out.display()
     ));
     Ok(crate::warnings::outcome(
         text,
-        &result.warnings,
+        &simulated.result.warnings,
         options.strict,
     ))
 }
@@ -112,17 +155,47 @@ struct Simulate<'a> {
 }
 
 impl WithDimension for Simulate<'_> {
-    type Output = Result<SimulationResult, Failure>;
+    type Output = Result<SimulationResult, RunFailure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
         simulate(&system, self.scenario).map_err(|e| {
             let failure = Failure::simulation(&e, system.inner().coordinates());
-            match mass_cause(&e, system.inner(), self.scenario) {
+            let failure = match mass_cause(&e, system.inner(), self.scenario) {
                 Some(why) => failure.because(&why),
                 None => failure,
-            }
+            };
+            let fault = match e {
+                SimulationError::Solver {
+                    error: SolverError::Rhs { t, error },
+                    ..
+                } => Some(Box::new((t, error))),
+                _ => None,
+            };
+            (failure, fault)
         })
     }
+}
+
+/// Which call of the spec left its domain where the run turned non-finite
+/// (`acos` of 2, `ln` of a negative number, a division by zero), with its
+/// file:line and the value of its argument there.
+fn domain_cause(
+    failure: &RunFailure,
+    compiled: &Compiled,
+    scenario: &Scenario,
+    spec: &Path,
+) -> Option<String> {
+    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
+        return None;
+    };
+    let model = &compiled.model;
+    let mut parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
+    for &(i, value) in &scenario.parameters {
+        parameters[i] = value;
+    }
+    let (check, value) = model.domain_violation(*t, q, qd, &parameters)?;
+    let source = std::fs::read_to_string(spec).ok()?;
+    Some(check.describe(&spec.display().to_string(), &source, value))
 }
 
 /// Which of the scenario's parameters made the mass matrix not positive
@@ -152,21 +225,17 @@ fn mass_cause(
     crate::mass::blame(&with_scenario, &defaults, &set, (*t, q, qd))
 }
 
-fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, Failure> {
+/// The run, or its failure with the fault and the time it happened at.
+type RunFailure = (Failure, Option<Box<(f64, Fault)>>);
+
+fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, RunFailure> {
     model
         .with_dimension(Simulate { scenario })
-        .map_err(Failure::model)?
+        .map_err(|e| (Failure::model(e), None))?
 }
 
-fn write_outputs(
-    out: &Path,
-    result: &SimulationResult,
-    model: &InterpretedModel,
-    scenario: &Scenario,
-    scenario_name: &str,
-) -> Result<(), Failure> {
-    std::fs::create_dir_all(out)
-        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
+/// The units of the trajectory's columns.
+fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
     let input_units = result
         .input_columns
         .iter()
@@ -175,12 +244,23 @@ fn write_outputs(
             model.input_units()[k].clone()
         })
         .collect();
-    let units = Units {
+    Units {
         coordinates: model.coordinate_units().to_vec(),
         inputs: input_units,
         outputs: model.output_units().to_vec(),
         multipliers: model.multiplier_units().to_vec(),
-    };
+    }
+}
+
+fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
+    let Simulated {
+        result,
+        model: _,
+        scenario,
+        scenario_name,
+    } = simulated;
+    std::fs::create_dir_all(out)
+        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
     let setup = PlotSetup {
         crush: scenario.crush.clone(),
         channels: scenario.channels.clone(),
@@ -192,7 +272,7 @@ fn write_outputs(
     let svg =
         figure_svg(result, &setup).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
     let files = [
-        ("trajectory.csv", trajectory_csv(result, &units)),
+        ("trajectory.csv", simulated.trajectory_csv()),
         ("summary.json", summary_json(result)),
         ("plots.svg", svg),
     ];

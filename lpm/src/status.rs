@@ -115,7 +115,9 @@ impl ExitStatus {
             ExitStatus::AuditDisagrees => "the audit found equations that disagree",
             ExitStatus::Stale => "generated files are stale (generate --check)",
             ExitStatus::DataFile => "a data file (CSV) is missing columns, non-numeric or unsorted",
-            ExitStatus::Evaluation => "the model cannot be evaluated at the given state (eval)",
+            ExitStatus::Evaluation => {
+                "the model cannot be evaluated at the given state (eval, linearize)"
+            }
             ExitStatus::Warnings => "a run or pulse warned and --strict makes warnings errors",
             ExitStatus::SingularMassMatrix => {
                 "the mass matrix is singular or not positive definite"

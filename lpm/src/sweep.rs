@@ -8,9 +8,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
-    Design, Journal, Layout, Plan, Row, Settings, Shard, SweepJob, journal_path, read_groups,
-    run_scenario, stream_sweep, write_parquet,
+    Design, Journal, Layout, Plan, Row, Settings, Shard, SweepJob, journal_path, merged_rows,
+    read_groups, run_scenario, shard_from_environment, stream_sweep, write_csv, write_parquet,
 };
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -18,7 +19,7 @@ use std::time::Instant;
 
 /// Options of `lpm sweep`.
 #[derive(clap::Args)]
-#[command(group(clap::ArgGroup::new("plan").required(true).args(["grid", "samples"])))]
+#[command(group(clap::ArgGroup::new("axes").required(true).args(["grid", "samples"])))]
 pub struct Args {
     /// The scenario (TOML); its `spec` key names the model.
     scenario: PathBuf,
@@ -45,15 +46,39 @@ pub struct Args {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// Output table: .csv or .parquet.
-    #[arg(long)]
-    out: PathBuf,
+    #[arg(long, required_unless_present = "plan_only")]
+    out: Option<PathBuf>,
     /// Output format (default: from the --out extension).
     #[arg(long, value_parser = ["csv", "parquet"])]
     format: Option<String>,
-    /// Run only block i of n of the runs (1 ≤ i ≤ n), e.g. a Slurm array
-    /// task: `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
-    #[arg(long, value_name = "I/N")]
+    /// Run only block i of n of the runs (1 ≤ i ≤ n); `auto` reads the
+    /// task's index from Slurm (SLURM_ARRAY_TASK_ID, _MIN, _STEP, _COUNT),
+    /// a Kubernetes Indexed Job (JOB_COMPLETION_INDEX) or AWS Batch
+    /// (AWS_BATCH_JOB_ARRAY_INDEX); the last two need --shard-count.
+    #[arg(long, value_name = "I/N|auto")]
     shard: Option<String>,
+    /// Run only block K of the runs, counted from 0 (with --shard-count),
+    /// as HTCondor's $(Process) numbers tasks.
+    #[arg(
+        long,
+        value_name = "K",
+        conflicts_with = "shard",
+        requires = "shard_count"
+    )]
+    shard_index: Option<usize>,
+    /// Into how many blocks the runs are split (with --shard-index or
+    /// --shard auto).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    shard_count: Option<u64>,
+    /// Print the number of runs, the time of a run measured on a few runs,
+    /// and a suggested split into tasks; runs nothing else.
+    #[arg(long = "plan", conflicts_with_all = ["merge", "resume"])]
+    plan_only: bool,
+    /// Merge the tables of the shards of this sweep (same command line,
+    /// any order, CSV or Parquet) into --out, checking that every run is
+    /// there once with this plan's values.
+    #[arg(long, value_name = "PARTS", num_args = 1.., conflicts_with = "resume")]
+    merge: Vec<PathBuf>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
     threads: usize,
@@ -103,18 +128,35 @@ fn plan(options: &Args) -> Result<Plan, String> {
     }
 }
 
-/// Whether the table is Parquet: `--format`, else the `--out` extension.
-fn wants_parquet(options: &Args) -> Result<bool, Failure> {
+/// Whether the table `out` is Parquet: `--format`, else its extension.
+fn wants_parquet(options: &Args, out: &Path) -> Result<bool, Failure> {
     match options.format.as_deref() {
         Some(format) => Ok(format == "parquet"),
-        None => match options.out.extension().and_then(|e| e.to_str()) {
+        None => match out.extension().and_then(|e| e.to_str()) {
             Some("parquet") => Ok(true),
             Some("csv") => Ok(false),
             _ => Err(Failure::usage(format!(
                 "--out {}: name a .csv or .parquet file, or give --format",
-                options.out.display()
+                out.display()
             ))),
         },
+    }
+}
+
+/// The shard of `--shard`, `--shard auto` or `--shard-index`/`--shard-count`.
+fn shard(options: &Args) -> Result<Shard, String> {
+    let count = options.shard_count.map(|n| n as usize);
+    match (options.shard.as_deref(), options.shard_index, count) {
+        (Some("auto"), _, count) => shard_from_environment(&|name| std::env::var(name).ok(), count),
+        (Some(_), _, Some(_)) => {
+            Err("--shard-count goes with --shard auto or --shard-index, not --shard I/N".into())
+        }
+        (Some(text), _, None) => Shard::parse(text),
+        (None, Some(index), Some(count)) => Shard::zero_based(index, count),
+        (None, None, Some(_)) => {
+            Err("--shard-count goes with --shard auto or --shard-index".into())
+        }
+        (None, _, None) => Ok(Shard::ALL),
     }
 }
 
@@ -173,15 +215,19 @@ impl Tally {
     }
 }
 
-/// Runs `lpm sweep`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let plan = plan(&options).map_err(Failure::usage)?;
-    let shard = match &options.shard {
-        Some(text) => Shard::parse(text).map_err(Failure::usage)?,
-        None => Shard::ALL,
-    };
-    let parquet = wants_parquet(&options)?;
-    let (model, base) = load(&options)?;
+/// What every mode of `lpm sweep` starts from: the plan, the model, the
+/// scenario and the table's columns.
+struct Prepared {
+    plan: Plan,
+    model: InterpretedModel,
+    base: BaseScenario,
+    settings: Settings,
+    layout: Layout,
+}
+
+fn prepare(options: &Args) -> Result<Prepared, Failure> {
+    let plan = plan(options).map_err(Failure::usage)?;
+    let (model, base) = load(options)?;
     let settings = Settings::new(&plan, &base, model.parameters()).map_err(Failure::usage)?;
     // A key the scenario does not know fails here, before any run starts.
     let first = match plan.is_empty() {
@@ -189,11 +235,53 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         true => base.resolve(&[]),
     };
     let first = first.map_err(|e| Failure::scenario(&e))?;
-    let runs = shard.runs(plan.len());
     let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
     let layout = Layout::new(axes, &first);
-    let journal_path = journal_path(&options.out);
-    let (mut journal, done) = open_journal(&options, &journal_path, &layout, &plan, &runs)?;
+    Ok(Prepared {
+        plan,
+        model,
+        base,
+        settings,
+        layout,
+    })
+}
+
+/// Runs `lpm sweep`: the sweep, or with `--plan` its plan, or with
+/// `--merge` the merge of its shards' tables.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let shard = shard(&options).map_err(Failure::usage)?;
+    let out = options.out.clone();
+    let parquet = out.as_deref().map(|out| wants_parquet(&options, out));
+    let prepared = prepare(&options)?;
+    match (out, parquet.transpose()?) {
+        _ if options.plan_only => plan_report(prepared),
+        (Some(out), Some(parquet)) if !options.merge.is_empty() => {
+            merge(&options.merge, &prepared, &out, parquet)
+        }
+        (Some(out), Some(parquet)) => sweep(&options, prepared, shard, &out, parquet),
+        _ => Err(Failure::usage("give --out FILE")),
+    }
+}
+
+/// Makes the runs of `shard` and writes their table to `out`.
+fn sweep(
+    options: &Args,
+    prepared: Prepared,
+    shard: Shard,
+    out: &Path,
+    parquet: bool,
+) -> Result<Outcome, Failure> {
+    let Prepared {
+        plan,
+        model,
+        base,
+        settings,
+        layout,
+    } = prepared;
+    let runs = shard.runs(plan.len());
+    let (plan, base, settings, layout) = (&plan, &base, &settings, &layout);
+    let journal_path = journal_path(out);
+    let (mut journal, done) = open_journal(options, out, &journal_path, layout, plan, &runs)?;
     let bar = progress_bar(options.quiet, runs.len());
     bar.set_position(done as u64);
     let stop = stop_on_signal();
@@ -207,9 +295,9 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
     };
     let remaining = runs.start + done..runs.end;
     let job = SweepJob {
-        base: &base,
-        plan: &plan,
-        settings: &settings,
+        base,
+        plan,
+        settings,
         runs: remaining.clone(),
         threads: options.threads,
     };
@@ -233,7 +321,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
             ),
         ));
     }
-    finish_output(&journal_path, &options.out, &layout, parquet)?;
+    finish_output(&journal_path, out, layout, parquet)?;
     let counts = Counts {
         runs: &runs,
         total: plan.len(),
@@ -242,7 +330,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         finished,
         elapsed,
     };
-    let text = report(&counts, &tally, &options.out);
+    let text = report(&counts, &tally, out);
     if !runs.is_empty() && tally.ok == 0 && done == 0 {
         return Err(Failure::new(
             ExitStatus::EveryRunFailed,
@@ -304,6 +392,7 @@ fn report(counts: &Counts, tally: &Tally, out: &Path) -> String {
 /// interrupted run of the same sweep left (with the number of runs in it).
 fn open_journal(
     options: &Args,
+    out: &Path,
     path: &Path,
     layout: &Layout,
     plan: &Plan,
@@ -314,9 +403,9 @@ fn open_journal(
     match (options.resume, resumable) {
         (true, true) => Journal::resume(path, layout, plan, runs)
             .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}"))),
-        (true, false) if options.out.exists() => Err(Failure::usage(format!(
+        (true, false) if out.exists() => Err(Failure::usage(format!(
             "--resume: {} is complete and there is no {} to resume",
-            options.out.display(),
+            out.display(),
             path.display()
         ))),
         (false, true) => Err(Failure::usage(format!(
@@ -340,22 +429,159 @@ fn finish_output(
     let io = |e: String| Failure::io(e);
     if parquet {
         let groups = read_groups(journal, layout, PARQUET_GROUP_ROWS).map_err(io)?;
-        let temporary = temporary_beside(out);
-        let file = std::fs::File::create(&temporary)
-            .map_err(|e| io(format!("cannot create {}: {e}", temporary.display())))?;
-        let written = write_parquet(layout, groups, std::io::BufWriter::new(file)).and_then(|()| {
-            std::fs::rename(&temporary, out)
-                .map_err(|e| format!("cannot write {}: {e}", out.display()))
-        });
-        if let Err(e) = written {
-            let _ = std::fs::remove_file(&temporary);
-            return Err(io(e));
-        }
+        write_beside(out, |file| write_parquet(layout, groups, file)).map_err(io)?;
         std::fs::remove_file(journal)
             .map_err(|e| io(format!("cannot remove {}: {e}", journal.display())))
     } else {
         std::fs::rename(journal, out)
             .map_err(|e| io(format!("cannot write {}: {e}", out.display())))
+    }
+}
+
+/// Writes `out` through a temporary file beside it, renamed into place when
+/// `write` succeeds and removed when it fails: `out` is whole or absent.
+fn write_beside(
+    out: &Path,
+    write: impl FnOnce(std::io::BufWriter<std::fs::File>) -> Result<(), String>,
+) -> Result<(), String> {
+    let temporary = temporary_beside(out);
+    let file = std::fs::File::create(&temporary)
+        .map_err(|e| format!("cannot create {}: {e}", temporary.display()))?;
+    let written = write(std::io::BufWriter::new(file)).and_then(|()| {
+        std::fs::rename(&temporary, out).map_err(|e| format!("cannot write {}: {e}", out.display()))
+    });
+    if written.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    written
+}
+
+/// `rows` in groups of `size` (the last one shorter); an error ends them.
+fn in_groups(
+    mut rows: impl Iterator<Item = Result<Row, String>>,
+    size: usize,
+) -> impl Iterator<Item = Result<Vec<Row>, String>> {
+    std::iter::from_fn(move || {
+        let mut group = Vec::new();
+        for row in rows.by_ref() {
+            match row {
+                Ok(row) => group.push(row),
+                Err(e) => return Some(Err(e)),
+            }
+            if group.len() == size {
+                break;
+            }
+        }
+        (!group.is_empty()).then_some(Ok(group))
+    })
+}
+
+/// `lpm sweep --merge`: the shards' tables checked against the plan and
+/// written as the table of one full run.
+fn merge(
+    parts: &[PathBuf],
+    prepared: &Prepared,
+    out: &Path,
+    parquet: bool,
+) -> Result<Outcome, Failure> {
+    let data = |e: String| Failure::new(ExitStatus::DataFile, e);
+    let rows = merged_rows(parts, &prepared.layout, &prepared.plan).map_err(data)?;
+    // A part that fails its checks is a data error, one that cannot be
+    // written an I/O error.
+    let bad_part = RefCell::new(None);
+    let rows = rows.inspect(|row| {
+        if let Err(e) = row {
+            bad_part.replace(Some(e.clone()));
+        }
+    });
+    let layout = &prepared.layout;
+    let written = write_beside(out, |file| match parquet {
+        true => write_parquet(layout, in_groups(rows, PARQUET_GROUP_ROWS), file),
+        false => write_csv(layout, rows, file),
+    });
+    if let Some(e) = bad_part.into_inner() {
+        return Err(data(e));
+    }
+    written.map_err(Failure::io)?;
+    Ok(Outcome::success(format!(
+        "merged {} runs from {} parts into {}\n",
+        prepared.plan.len(),
+        parts.len(),
+        out.display()
+    )))
+}
+
+/// Runs timed by `--plan`.
+const PLAN_TIMED_RUNS: usize = 10;
+
+/// The time of one task of a suggested split, on one core \[s\].
+const TASK_SECONDS: f64 = 600.0;
+
+/// `lpm sweep --plan`: times the first runs on one thread and suggests a
+/// split into tasks of about ten minutes of one core.
+fn plan_report(prepared: Prepared) -> Result<Outcome, Failure> {
+    let Prepared {
+        plan,
+        model,
+        base,
+        settings,
+        ..
+    } = prepared;
+    let timed = 0..plan.len().min(PLAN_TIMED_RUNS);
+    let stop = AtomicBool::new(false);
+    let mut sink = |_: Row| Ok(());
+    let job = SweepJob {
+        base: &base,
+        plan: &plan,
+        settings: &settings,
+        runs: timed.clone(),
+        threads: 1,
+    };
+    let start = Instant::now();
+    let sweep = Sweep {
+        job,
+        stop: &stop,
+        sink: &mut sink,
+    };
+    model.with_dimension(sweep).map_err(Failure::model)??;
+    let per_run = start.elapsed().as_secs_f64() / timed.len().max(1) as f64;
+    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
+    Ok(Outcome::success(plan_text(
+        plan.len(),
+        &axes,
+        timed.len(),
+        per_run,
+    )))
+}
+
+/// The text of `--plan` for `total` runs of `per_run` seconds each.
+fn plan_text(total: usize, axes: &[String], timed: usize, per_run: f64) -> String {
+    let all = total as f64 * per_run;
+    let mut text = format!(
+        "{total} runs over {}\na run takes {:.2} ms on one thread here ({timed} timed); all runs ≈ {} of one core\n",
+        axes.join(", "),
+        per_run * 1e3,
+        duration(all)
+    );
+    let tasks = ((all / TASK_SECONDS).ceil() as usize).clamp(1, total.max(1));
+    if tasks == 1 {
+        text.push_str("suggested split: none (the runs take under ten minutes of one core)\n");
+    } else {
+        let runs = total.div_ceil(tasks);
+        text.push_str(&format!(
+            "suggested split: {tasks} tasks of ≤ {runs} runs (≈ {} each on one core): --shard auto --shard-count {tasks}\n  (Slurm --array=1-{tasks}; Kubernetes completions: {tasks}; AWS Batch array size {tasks})\n",
+            duration(runs as f64 * per_run)
+        ));
+    }
+    text
+}
+
+/// `12.3 s`, `4.5 min` or `2.1 h`.
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 120.0 => format!("{s:.1} s"),
+        s if s < 7200.0 => format!("{:.1} min", s / 60.0),
+        s => format!("{:.1} h", s / 3600.0),
     }
 }
 

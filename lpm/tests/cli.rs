@@ -159,7 +159,7 @@ fn chain_specs_compile() {
     assert!(out.status.success());
     let spec = stdout(&out);
     let compiled = lagrangian_core::Compiled::from_source(&spec).unwrap();
-    assert_eq!(compiled.derivation.dimension, 4);
+    assert_eq!(compiled.program.dimension, 4);
     assert_eq!(lpm(&["chain", "0"]).status.code(), Some(2));
 }
 

@@ -80,12 +80,15 @@ fn run(line: &str, dir: &Path) -> Output {
         .args(&words[1..])
         .current_dir(dir)
         .env("SLURM_ARRAY_TASK_ID", "1")
+        .env("SLURM_ARRAY_TASK_MIN", "1")
+        .env("SLURM_ARRAY_TASK_COUNT", "16")
         .output()
         .expect("lpm runs")
 }
 
 /// `line` split into words: single quotes keep their text, `$NAME` is the
-/// environment variable of the test's choice (only `SLURM_ARRAY_TASK_ID`).
+/// environment variable of the test's choice (only `SLURM_ARRAY_TASK_ID`:
+/// the first task of a 16-task Slurm array).
 fn shell_words(line: &str) -> Vec<String> {
     let line = line.replace("$SLURM_ARRAY_TASK_ID", "1");
     let mut words = Vec::new();

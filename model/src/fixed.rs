@@ -4,6 +4,7 @@
 use crate::error::ModelError;
 use crate::interpreted::InterpretedModel;
 use crate::layout::{RoutineKind, unpack_dynamics};
+use crate::linalg::{LdltPattern, solve_with_pattern};
 use crate::system::{Jacobians, LagrangianSystem};
 use crate::{Energies, InputFunctions};
 use nalgebra::{SMatrix, SVector};
@@ -11,13 +12,13 @@ use nalgebra::{SMatrix, SVector};
 /// An [`InterpretedModel`] of known dimension `N`, usable wherever a compiled
 /// model is (it implements [`LagrangianSystem<N>`]).
 #[derive(Clone, Debug)]
-pub struct Interpreted<const N: usize>(InterpretedModel);
+pub struct Interpreted<const N: usize>(InterpretedModel, LdltPattern<N>);
 
 impl<const N: usize> Interpreted<N> {
     /// Fails when the model does not have `N` coordinates.
     pub fn new(model: InterpretedModel) -> Result<Self, ModelError> {
         if model.dimension() == N {
-            Ok(Interpreted(model))
+            Ok(Interpreted::of_dimension(model))
         } else {
             Err(ModelError::DimensionMismatch {
                 expected: N,
@@ -29,6 +30,14 @@ impl<const N: usize> Interpreted<N> {
     /// The model of any dimension inside.
     pub fn inner(&self) -> &InterpretedModel {
         &self.0
+    }
+
+    /// `model`, whose dimension is `N`, with the pattern of its solve: the
+    /// zeros of its `M`, as the emitted code has them.
+    fn of_dimension(model: InterpretedModel) -> Self {
+        let nonzero = model.mass_nonzeros();
+        let rows = std::array::from_fn(|i| std::array::from_fn(|j| nonzero[i * N + j]));
+        Interpreted(model, LdltPattern::from_mass(rows))
     }
 }
 
@@ -54,7 +63,7 @@ impl InterpretedModel {
         macro_rules! dispatch {
             ($($n:literal)*) => {
                 match self.dimension() {
-                    $($n => Ok(work.run(Interpreted::<$n>(self))),)*
+                    $($n => Ok(work.run(Interpreted::<$n>::of_dimension(self))),)*
                     found => Err(ModelError::UnsupportedDimension {
                         found,
                         max: MAX_INTERPRETED_DIMENSION,
@@ -117,6 +126,22 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         let _ = self.0.evaluate_outputs(state, inputs, out);
     }
 
+    fn switching_count(&self) -> usize {
+        self.0.switching_count()
+    }
+
+    fn switching_functions<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        // The dimension is N by construction, so this cannot fail.
+        let _ = (self.0).evaluate_switching(t, q.as_slice(), qd.as_slice(), inputs, out);
+    }
+
     fn constraint_names(&self) -> Vec<&str> {
         (self.0.constraint_names().iter())
             .map(String::as_str)
@@ -140,6 +165,14 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         let _ = self
             .0
             .evaluate_input_arguments(t, q.as_slice(), qd.as_slice(), out);
+    }
+
+    fn solve_mass(
+        &self,
+        mass: &SMatrix<f64, N, N>,
+        b: &SVector<f64, N>,
+    ) -> Option<SVector<f64, N>> {
+        solve_with_pattern(mass, b, &self.1)
     }
 
     fn mass_matrix_and_forcing<I: InputFunctions + ?Sized>(

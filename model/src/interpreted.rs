@@ -2,7 +2,7 @@
 //! recompiling, with the same numbers as the compiled code.
 
 use crate::error::ModelError;
-use crate::layout::{ConstraintLayout, Energies, RoutineKind, unpack_dynamics};
+use crate::layout::{ConstraintLayout, Energies, RoutineKind, mass_entries, unpack_dynamics};
 use crate::tape::Tape;
 use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
@@ -91,6 +91,8 @@ impl ModelDescription {
             let expected = match kind {
                 RoutineKind::InputArguments => arguments,
                 RoutineKind::Outputs => self.outputs.len(),
+                // The compiler decides how many; any count is consistent.
+                RoutineKind::Switching => tape.output_count(kind),
                 RoutineKind::Constraints => self.constraint_layout(n).len(),
                 RoutineKind::Dynamics
                 | RoutineKind::Energies
@@ -225,6 +227,21 @@ impl InterpretedModel {
         self.tape.has(RoutineKind::Jacobians)
     }
 
+    /// Whether each entry `M_ij` of the mass matrix can be nonzero, row by
+    /// row (`n × n`): `false` for those the equations make the constant zero,
+    /// as the emitted code knows them (it skips their terms in the solve).
+    pub fn mass_nonzeros(&self) -> Vec<bool> {
+        let n = self.dimension();
+        let mut nonzero = vec![true; n * n];
+        for (k, (i, j)) in mass_entries(n).enumerate() {
+            if self.tape.constant_output(RoutineKind::Dynamics, k) == Some(0.0) {
+                nonzero[i * n + j] = false;
+                nonzero[j * n + i] = false;
+            }
+        }
+        nonzero
+    }
+
     /// Sets a parameter by name, suggesting the closest name when unknown.
     pub fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), ModelError> {
         let names = &self.description.parameters;
@@ -336,6 +353,30 @@ impl InterpretedModel {
     ) -> Result<(), ModelError> {
         self.check(state.3)?;
         self.run(RoutineKind::Jacobians, state, inputs, |values| {
+            out[..values.len()].copy_from_slice(values)
+        })
+    }
+
+    /// The number of switching functions (0 for a smooth model; see
+    /// [`RoutineKind::Switching`]).
+    pub fn switching_count(&self) -> usize {
+        self.tape.output_count(RoutineKind::Switching)
+    }
+
+    /// The switching functions at `(t, q, q̇)` into `out`; nothing for a
+    /// smooth model.
+    pub fn evaluate_switching<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        inputs: &I,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        if !self.tape.has(RoutineKind::Switching) {
+            return Ok(());
+        }
+        self.run(RoutineKind::Switching, (t, q, qd, &[]), inputs, |values| {
             out[..values.len()].copy_from_slice(values)
         })
     }

@@ -25,6 +25,12 @@ pub enum RoutineKind {
     /// evaluated after the equations of motion are solved. Only models that
     /// declare outputs have this routine.
     Outputs,
+    /// The switching functions of the dynamics: the argument of each `abs`
+    /// and `sign`, `a − b` of each `min(a, b)` and `max(a, b)`, at
+    /// `(t, q, q̇)`. The integrator locates each sign change as an event, so
+    /// that no step straddles a kink. Only models with non-smooth functions
+    /// have this routine.
+    Switching,
     /// The holonomic constraints `g(q, t) = 0` at `(t, q, q̇)`: `g`, `∂g/∂t`,
     /// `G = ∂g/∂q` (row-major) and `γ` (`G q̈ = γ` along a motion that keeps
     /// them), in the order of [`ConstraintLayout`]. Only models that declare
@@ -136,6 +142,17 @@ impl Energies {
         "external_power",
     ];
 
+    /// The values in the order of [`Energies::FIELDS`].
+    pub fn values(&self) -> [f64; 5] {
+        [
+            self.kinetic,
+            self.potential,
+            self.dissipation,
+            self.damping_power,
+            self.external_power,
+        ]
+    }
+
     /// The energies from the outputs of an energies routine, in the order of
     /// [`Energies::FIELDS`].
     pub fn from_outputs(out: &[f64; 5]) -> Energies {
@@ -188,6 +205,8 @@ pub enum OutputSlot {
     /// The value of the spec's output `k`, in declaration order
     /// ([`RoutineKind::Outputs`]).
     Output(usize),
+    /// Switching function `k` ([`RoutineKind::Switching`]).
+    Switching(usize),
     /// Value `k` of the constraint terms, in the order of
     /// [`ConstraintLayout`] ([`RoutineKind::Constraints`]).
     Constraint(usize),
@@ -261,20 +280,22 @@ impl JacobianBlock {
 
 impl RoutineKind {
     /// Every routine a program can have.
-    pub const ALL: [RoutineKind; 7] = [
+    pub const ALL: [RoutineKind; 8] = [
         RoutineKind::Dynamics,
         RoutineKind::Energies,
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::DynamicsAndPowers,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
         RoutineKind::Constraints,
     ];
 
     /// The number of outputs of the routine for a model with `n`
-    /// coordinates; `None` for [`RoutineKind::InputArguments`] and
-    /// [`RoutineKind::Outputs`] and [`RoutineKind::Constraints`], whose
-    /// counts depend on the model's input calls, outputs and constraints.
+    /// coordinates; `None` for [`RoutineKind::InputArguments`],
+    /// [`RoutineKind::Outputs`], [`RoutineKind::Switching`] and
+    /// [`RoutineKind::Constraints`], whose counts depend on the model's input
+    /// calls, output statements, functions and constraints.
     pub fn output_count(self, n: usize) -> Option<usize> {
         let mass = n * (n + 1) / 2;
         match self {
@@ -282,7 +303,10 @@ impl RoutineKind {
             RoutineKind::DynamicsAndPowers => Some(mass + n + 2),
             RoutineKind::Energies => Some(Energy::ALL.len()),
             RoutineKind::Jacobians => Some(JacobianBlock::ALL.len() * n * n),
-            RoutineKind::InputArguments | RoutineKind::Outputs | RoutineKind::Constraints => None,
+            RoutineKind::InputArguments
+            | RoutineKind::Outputs
+            | RoutineKind::Switching
+            | RoutineKind::Constraints => None,
         }
     }
 
@@ -312,6 +336,7 @@ impl RoutineKind {
             },
             RoutineKind::InputArguments => OutputSlot::InputArgument(k),
             RoutineKind::Outputs => OutputSlot::Output(k),
+            RoutineKind::Switching => OutputSlot::Switching(k),
             RoutineKind::Constraints => OutputSlot::Constraint(k),
         })
     }

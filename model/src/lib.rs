@@ -23,6 +23,7 @@ pub mod constrained;
 mod error;
 #[cfg(feature = "nalgebra")]
 mod fixed;
+pub mod functions;
 mod inputs;
 mod interpreted;
 pub mod layout;
@@ -36,6 +37,7 @@ pub mod tape;
 pub use error::ModelError;
 #[cfg(feature = "nalgebra")]
 pub use fixed::{Interpreted, MAX_INTERPRETED_DIMENSION, WithDimension};
+pub use functions::Func;
 pub use inputs::{ConstantInputs, InputFunctions, NoInputs};
 pub use interpreted::{InterpretedModel, ModelDescription};
 pub use layout::Energies;

@@ -132,6 +132,28 @@ pub trait LagrangianSystem<const N: usize> {
         let _ = (t, q, qd, qdd, inputs, out);
     }
 
+    /// The number of switching functions: one per distinct kink of a
+    /// non-smooth function (`abs`, `sign`, `min`, `max`) in the dynamics;
+    /// 0 for a smooth model.
+    fn switching_count(&self) -> usize {
+        0
+    }
+
+    /// Writes the value of each switching function at `(t, q, q̇)` to `out`
+    /// (which holds at least [`LagrangianSystem::switching_count`] values).
+    /// The dynamics are smooth between the sign changes of these values; an
+    /// integrator locates each one as an event. A smooth model writes nothing.
+    fn switching_functions<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
+        let _ = (t, q, qd, inputs, out);
+    }
+
     /// Names of the spec's holonomic constraints (`constraint NAME = g;`,
     /// `g(q, t) = 0`), in declaration order; empty for a model without
     /// constraints.
@@ -197,7 +219,18 @@ pub trait LagrangianSystem<const N: usize> {
         (mass, forcing)
     }
 
-    /// `q̈ = M⁻¹ f` by [`solve_mass_matrix`].
+    /// `M⁻¹ b` as [`solve_mass_matrix`] computes it: a compiled model skips
+    /// the terms of the entries its equations make zero (as its interpreted
+    /// twin does, bit for bit); `None` when `solve_mass_matrix` gives none.
+    fn solve_mass(
+        &self,
+        mass: &SMatrix<f64, N, N>,
+        b: &SVector<f64, N>,
+    ) -> Option<SVector<f64, N>> {
+        solve_mass_matrix(*mass, b)
+    }
+
+    /// `q̈ = M⁻¹ f` by [`LagrangianSystem::solve_mass`].
     fn accelerations<I: InputFunctions + ?Sized>(
         &self,
         t: f64,
@@ -206,10 +239,11 @@ pub trait LagrangianSystem<const N: usize> {
         inputs: &I,
     ) -> Result<SVector<f64, N>, ModelError> {
         let (mass, forcing) = self.mass_matrix_and_forcing_pair(t, q, qd, inputs);
-        solve_mass_matrix(mass, &forcing).ok_or_else(|| ModelError::SingularMassMatrix {
-            t,
-            q: q.iter().copied().collect(),
-        })
+        self.solve_mass(&mass, &forcing)
+            .ok_or_else(|| ModelError::SingularMassMatrix {
+                t,
+                q: q.iter().copied().collect(),
+            })
     }
 }
 
@@ -221,6 +255,5 @@ pub fn solve_mass_matrix<const N: usize>(
     mass: SMatrix<f64, N, N>,
     forcing: &SVector<f64, N>,
 ) -> Option<SVector<f64, N>> {
-    let x = crate::linalg::Ldlt::new(&mass)?.solve(forcing);
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    crate::linalg::solve_with_pattern(&mass, forcing, &crate::linalg::LdltPattern::DENSE)
 }

@@ -10,6 +10,7 @@
 //! computes bit for bit what the program and the emitted Rust do.
 
 use crate::InputFunctions;
+use crate::functions::Func;
 use crate::layout::RoutineKind;
 use std::fmt;
 
@@ -40,6 +41,16 @@ pub enum Instruction {
     Powi(u32, u32, i32),
     /// `dst = a^b` with the exponent in register `b`.
     Powf(u32, u32, u32),
+    /// `dst = f(a)` or `f(a, b)` for a function other than those above
+    /// (a one-argument function reads `a` only).
+    Call {
+        /// The function.
+        function: Func,
+        /// Destination register.
+        dst: u32,
+        /// The argument registers (`[a, a]` for a one-argument function).
+        args: [u32; 2],
+    },
     /// `dst = input[index](registers of arguments[start..start + count])`.
     Input {
         /// Destination register.
@@ -68,6 +79,7 @@ impl Instruction {
             | Ln(d, a)
             | Sqrt(d, a)
             | Powi(d, a, _) => (d, [Some(a), None]),
+            Call { dst, args, .. } => (dst, args.map(Some)),
             Input { dst, .. } => (dst, [None, None]),
         }
     }
@@ -246,6 +258,13 @@ impl Tape {
         self.routine(kind).map_or(0, |r| r.outputs.len())
     }
 
+    /// The value of output `k` of routine `kind` when it is a constant (its
+    /// register is one of the constants, written when the file is made).
+    pub fn constant_output(&self, kind: RoutineKind, k: usize) -> Option<f64> {
+        let register = *self.routine(kind)?.outputs.get(k)?;
+        self.layout.constants.get(register as usize).copied()
+    }
+
     fn routine(&self, kind: RoutineKind) -> Option<&TapeRoutine> {
         self.routines.iter().find(|r| r.kind == kind)
     }
@@ -306,6 +325,11 @@ impl Tape {
             Sqrt(d, a) => r[d as usize] = r[a as usize].sqrt(),
             Powi(d, a, k) => r[d as usize] = r[a as usize].powi(k),
             Powf(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
+            Call {
+                function,
+                dst,
+                args: [a, b],
+            } => r[dst as usize] = function.apply(r[a as usize], r[b as usize]),
             Input {
                 dst,
                 index,

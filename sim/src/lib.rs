@@ -5,6 +5,8 @@
 //!   ([`crash`]) — resolved against a model.
 //! * [`simulate`]: static equilibrium, integration with events ([`ode`]),
 //!   output samples and the summary metrics of a run; [`report`] writes them.
+//! * [`linearize`]: the state-space matrices `A`, `B` of a model about its
+//!   static equilibrium or a given state, and their modes.
 //! * [`pulse`]: crash-pulse metrics (SAE J211 CFC filter, OLC, ASI, ESW) of a
 //!   run or of a measured pulse.
 //! * [`sweep`] (feature `sweep`): a scenario run many times in parallel, to a
@@ -33,6 +35,7 @@ pub mod crash;
 pub mod fault;
 #[cfg(feature = "fit")]
 pub mod fit;
+pub mod linearize;
 pub mod ode;
 #[cfg(feature = "plot")]
 pub mod plot;

@@ -131,8 +131,9 @@ pub fn audit(compiled: &mut Compiled) -> Option<AuditReport> {
 fn audit_deep(compiled: &mut Compiled) -> Option<AuditReport> {
     let hand = compiled.model.hand_derived.clone()?;
     let constraints = crate::emit::render_constraints(compiled);
-    let n = compiled.derivation.dimension;
-    let d = compiled.derivation.clone();
+    // A model too large for the canonical form has no audit to give.
+    let d = compiled.canonical().ok()?.clone();
+    let n = d.dimension;
     let model = &mut compiled.model;
     let coordinates = model.coordinate_symbols();
     let dissipation = d.dissipation;

@@ -13,7 +13,7 @@
 //! [`OutputSlot`]: lagrangian_model::layout::OutputSlot
 
 use super::schedule::{BinaryOp, Expression, Function, Load, Schedule, Statement};
-use crate::expr::Precedence;
+use crate::expr::{Func, Precedence};
 
 /// Written code and how tightly it binds.
 #[derive(Clone, Debug)]
@@ -60,6 +60,9 @@ pub trait Backend {
     /// `f(argument)`, an atom; the backend parenthesizes the argument as its
     /// call syntax needs.
     fn call(&self, function: Function, argument: Fragment<Self::Code>) -> Self::Code;
+    /// `f(arguments…)` for a function of [`Expression::Apply`], an atom;
+    /// the backend parenthesizes the arguments as its call syntax needs.
+    fn apply(&self, f: Func, arguments: Vec<Fragment<Self::Code>>) -> Self::Code;
     /// Input function `index` at `arguments`, an atom.
     fn input(&self, index: u32, arguments: Vec<Self::Code>) -> Self::Code;
     /// The statement reading a load into its local.
@@ -144,6 +147,10 @@ pub fn expression<B: Backend>(backend: &B, e: &Expression) -> Fragment<B::Code> 
         }
         Expression::Call(function, x) => {
             Fragment::atom(backend.call(*function, expression(backend, x)))
+        }
+        Expression::Apply(f, arguments) => {
+            let arguments = (arguments.iter()).map(|a| expression(backend, a)).collect();
+            Fragment::atom(backend.apply(*f, arguments))
         }
     }
 }

@@ -84,7 +84,7 @@ use super::backend::{self, Backend, Fragment};
 use super::names::Locals;
 use super::schedule::{BinaryOp, Function, Load, Schedule, schedule};
 use crate::Compiled;
-use crate::expr::Precedence;
+use crate::expr::{Func, Precedence};
 use crate::program::{Op, RoutineKind};
 use lagrangian_model::layout::{JacobianBlock, OutputSlot};
 use std::fmt::Write;
@@ -127,6 +127,7 @@ fn emit_c_deep(compiled: &Compiled, options: &COptions) -> String {
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
         RoutineKind::Constraints,
     ] {
         if let Some(routine) = compiled.program.routine(kind) {
@@ -202,6 +203,11 @@ fn metadata(compiled: &Compiled, prefix: &str) -> String {
         );
     }
     out.push_str(&output_metadata(model, prefix));
+    // Only models with non-smooth functions have switching functions (the
+    // code of the others stays as it was).
+    if let Some(switching) = compiled.program.routine(RoutineKind::Switching) {
+        let _ = writeln!(out, "#define {upper}_SWITCHING {}", switching.outputs.len());
+    }
     out.push_str(&constraint_metadata(model, prefix));
     let _ = writeln!(out, "\n/* The parameters' default values, into p. */");
     let _ = writeln!(out, "void {prefix}_default_parameters(double *p)\n{{");
@@ -262,6 +268,16 @@ fn helpers(compiled: &Compiled, prefix: &str) -> String {
              return input ? input(context, index, args, count) : NAN;\n}}\n"
         );
     }
+    for (f, parameters, value) in NON_SMOOTH_HELPERS {
+        if (program.ops.iter()).any(|op| matches!(op, Op::Call(g, _) if *g == f)) {
+            let name = f.name();
+            let _ = write!(
+                out,
+                "\n/* {name} as the Rust runtime computes it (NaN stays NaN). */\n\
+                 static double {prefix}_{name}({parameters})\n{{\n    return {value};\n}}\n"
+            );
+        }
+    }
     if used(|op| matches!(op, Op::Powi(..))) {
         let _ = write!(
             out,
@@ -280,6 +296,26 @@ fn helpers(compiled: &Compiled, prefix: &str) -> String {
     out
 }
 
+/// The C definitions of `sign`, `min` and `max` as the Rust runtime
+/// computes them (NaN stays NaN): function, parameters, returned value.
+const NON_SMOOTH_HELPERS: [(Func, &str, &str); 3] = [
+    (
+        Func::Sign,
+        "double x",
+        "x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : x)",
+    ),
+    (
+        Func::Min,
+        "double a, double b",
+        "a <= b ? a : (b < a ? b : a + b)",
+    ),
+    (
+        Func::Max,
+        "double a, double b",
+        "a >= b ? a : (b > a ? b : a + b)",
+    ),
+];
+
 /// The C name and output parameters of the function of a routine.
 fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
     let jacobians = JacobianBlock::ALL.map(JacobianBlock::field).to_vec();
@@ -292,6 +328,7 @@ fn signature(kind: RoutineKind) -> (&'static str, Vec<&'static str>) {
         RoutineKind::Jacobians => ("jacobians", jacobians),
         RoutineKind::InputArguments => ("input_arguments", vec!["arguments"]),
         RoutineKind::Outputs => ("outputs", vec!["outputs"]),
+        RoutineKind::Switching => ("switching_functions", vec!["switching"]),
         RoutineKind::Constraints => ("constraints", vec!["constraints"]),
     }
 }
@@ -359,6 +396,7 @@ fn place(slot: OutputSlot, value: &str, n: usize) -> Vec<String> {
         }
         OutputSlot::InputArgument(k) => vec![format!("arguments[{k}] = {value};")],
         OutputSlot::Output(k) => vec![format!("outputs[{k}] = {value};")],
+        OutputSlot::Switching(k) => vec![format!("switching[{k}] = {value};")],
         OutputSlot::Constraint(k) => vec![format!("constraints[{k}] = {value};")],
     }
 }
@@ -516,6 +554,30 @@ impl Backend for CSyntax {
             Function::Powi(k) => format!("{}_powi({x}, {k})", self.prefix),
             Function::Powf(y) => format!("pow({x}, {})", literal(y)),
         }
+    }
+
+    fn apply(&self, f: Func, arguments: Vec<Fragment<String>>) -> String {
+        let arguments: Vec<String> = arguments.into_iter().map(|a| a.code).collect();
+        let arguments = arguments.join(", ");
+        let name = match f {
+            Func::Sign | Func::Min | Func::Max => {
+                return format!("{}_{}({arguments})", self.prefix, f.name());
+            }
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Exp => "exp",
+            Func::Ln => "log",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Atan2 => "atan2",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Hypot => "hypot",
+            Func::Abs => "fabs",
+        };
+        format!("{name}({arguments})")
     }
 
     fn input(&self, index: u32, arguments: Vec<String>) -> String {

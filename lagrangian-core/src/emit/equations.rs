@@ -28,8 +28,14 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
             Notation::Latex => format!("\\mathrm{{{}}}", c.name.replace('_', "\\_")),
         })
         .collect();
-    let d = compiled.derivation.clone();
-    let out = heading(model, notation);
+    let mut out = heading(model, notation);
+    let d = match compiled.canonical() {
+        Ok(d) => d.clone(),
+        Err(too_large) => {
+            out.push_str(&too_large_to_print(&too_large));
+            return out;
+        }
+    };
     let mut doc = Document {
         printer: Printer {
             store: &mut compiled.model.store,
@@ -70,6 +76,19 @@ fn render_equations_deep(compiled: &mut Compiled, notation: Notation) -> String 
         doc.out.push_str("\\end{aligned}\n");
     }
     doc.out
+}
+
+/// Why the equations of a model are not printed: they are too large for
+/// the canonical form (the model still compiles, from the derivation graph).
+pub(crate) fn too_large_to_print(reason: &crate::SpecErrors) -> String {
+    let why: Vec<&str> = (reason.diagnostics.iter())
+        .map(|d| d.message.as_str())
+        .collect();
+    format!(
+        "The equations are too large to print in the exact canonical form ({}); \
+         the model compiles from its derivation graph.\n",
+        why.join("; ")
+    )
 }
 
 /// The model's name, dimension and doc (text), or the opening of the

@@ -68,7 +68,13 @@ fn render_markdown_deep(compiled: &mut Compiled, source: &str) -> String {
     let constraints: Vec<String> = (model.constraints.iter())
         .map(|c| output_name(&c.name))
         .collect();
-    let d = compiled.derivation.clone();
+    let d = match compiled.canonical() {
+        Ok(d) => d.clone(),
+        Err(too_large) => {
+            out.push_str(&super::equations::too_large_to_print(&too_large));
+            return out;
+        }
+    };
     let mut p = Printer {
         store: &mut compiled.model.store,
         notation: Notation::Latex,
@@ -115,6 +121,10 @@ fn constraints_section(
 /// The constraints section of [`render_markdown`] alone (empty without
 /// constraints), for the audit.
 pub fn render_constraints(compiled: &mut Compiled) -> String {
+    // A model with constraints is always derived in the canonical form.
+    let Ok(d) = compiled.canonical().cloned() else {
+        return String::new();
+    };
     let model = &compiled.model;
     let names: Vec<String> = (model.coordinates.iter())
         .map(|c| latex_name(&c.name))
@@ -122,7 +132,6 @@ pub fn render_constraints(compiled: &mut Compiled) -> String {
     let constraints: Vec<String> = (model.constraints.iter())
         .map(|c| output_name(&c.name))
         .collect();
-    let d = compiled.derivation.clone();
     let mut p = Printer {
         store: &mut compiled.model.store,
         notation: Notation::Latex,

@@ -15,6 +15,7 @@ mod names;
 mod notation;
 mod rust;
 pub mod schedule;
+mod solve;
 mod stub;
 
 pub use equations::render_equations;

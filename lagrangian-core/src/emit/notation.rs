@@ -181,13 +181,13 @@ impl Printer<'_> {
                     (_, false) => info.name,
                 }
             }
-            Node::Func(f, u) => {
-                let arg = self.expr(u);
-                match (f, latex) {
-                    (Func::Ln, true) => format!("\\ln\\left({arg}\\right)"),
-                    (Func::Exp, true) => format!("e^{{{arg}}}"),
-                    (_, true) => format!("\\{}\\left({arg}\\right)", f.name()),
-                    (_, false) => format!("{}({arg})", f.name()),
+            Node::Func(f, args) => {
+                let args: Vec<String> = args.iter().map(|a| self.expr(*a)).collect();
+                let args = args.join(", ");
+                if latex {
+                    latex_call(f, &args)
+                } else {
+                    format!("{}({args})", f.name())
                 }
             }
             Node::Input(index, args) => {
@@ -209,6 +209,29 @@ impl Printer<'_> {
             }
         }
     }
+}
+
+/// `f(args)` in LaTeX: an operator name where LaTeX has one, `|x|` for `abs`.
+fn latex_call(f: Func, args: &str) -> String {
+    let operator = match f {
+        Func::Exp => return format!("e^{{{args}}}"),
+        Func::Abs => return format!("\\left|{args}\\right|"),
+        Func::Sin => "\\sin",
+        Func::Cos => "\\cos",
+        Func::Ln => "\\ln",
+        Func::Asin => "\\arcsin",
+        Func::Acos => "\\arccos",
+        Func::Atan => "\\arctan",
+        Func::Sinh => "\\sinh",
+        Func::Cosh => "\\cosh",
+        Func::Tanh => "\\tanh",
+        Func::Min => "\\min",
+        Func::Max => "\\max",
+        Func::Atan2 => "\\operatorname{atan2}",
+        Func::Hypot => "\\operatorname{hypot}",
+        Func::Sign => "\\operatorname{sgn}",
+    };
+    format!("{operator}\\left({args}\\right)")
 }
 
 /// `\dot{\theta}_{1}` rather than `\dot{\theta_{1}}`.

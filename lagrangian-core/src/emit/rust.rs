@@ -12,7 +12,7 @@ use super::backend::{self, Backend, Fragment};
 use super::names::{Locals, ident, input_constants};
 use super::schedule::{BinaryOp, Function, Load, Schedule, schedule};
 use crate::Compiled;
-use crate::expr::Precedence;
+use crate::expr::{Func, Precedence};
 use crate::program::RoutineKind;
 use crate::spec::Model;
 use lagrangian_model::layout::{Energy, OutputSlot};
@@ -266,11 +266,13 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
         RoutineKind::Jacobians,
         RoutineKind::InputArguments,
         RoutineKind::Outputs,
+        RoutineKind::Switching,
         RoutineKind::Constraints,
     ]
     .map(|kind| routine_method(compiled, names, kind, rt));
     let output_names = output_names_method(model);
     let constraint_names = constraint_names_method(model);
+    let solve = super::solve::solve_mass_method(&compiled.program, rt);
     quote! {
         #[automatically_derived]
         #[allow(unused_variables, non_snake_case, clippy::all, clippy::pedantic, clippy::nursery)]
@@ -310,6 +312,7 @@ fn trait_impl(compiled: &Compiled, names: &Names, ty: &Ident, rt: &TokenStream) 
             #output_names
             #constraint_names
             #(#routines)*
+            #solve
         }
     }
 }
@@ -326,7 +329,7 @@ fn routine_method(
         return TokenStream::new();
     };
     let schedule = schedule(&compiled.program, routine);
-    let body = backend::body(&RustSyntax { names }, &schedule);
+    let body = backend::body(&RustSyntax { names, runtime: rt }, &schedule);
     let statements = &body.statements;
     let outputs = place_outputs(&schedule, body.outputs);
     let (writes, returned) = (&outputs.writes, outputs.returned.iter().map(|(_, v)| v));
@@ -381,6 +384,21 @@ fn routine_method(
                 #(#writes)*
             }
         },
+        RoutineKind::Switching => {
+            let count = Literal::usize_unsuffixed(routine.outputs.len());
+            quote! {
+                fn switching_count(&self) -> usize {
+                    #count
+                }
+
+                fn switching_functions<I: #rt::InputFunctions + ?Sized>(
+                    &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
+                ) {
+                    #(#statements)*
+                    #(#writes)*
+                }
+            }
+        }
         RoutineKind::Constraints => quote! {
             fn constraints<I: #rt::InputFunctions + ?Sized>(
                 &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
@@ -440,7 +458,10 @@ fn place_outputs(schedule: &Schedule, values: Vec<TokenStream>) -> PlacedOutputs
                     .writes
                     .push(quote! { out.#field[(#i, #k)] = #value; });
             }
-            OutputSlot::InputArgument(k) | OutputSlot::Output(k) | OutputSlot::Constraint(k) => {
+            OutputSlot::InputArgument(k)
+            | OutputSlot::Output(k)
+            | OutputSlot::Switching(k)
+            | OutputSlot::Constraint(k) => {
                 let k = index(k);
                 placed.writes.push(quote! { out[#k] = #value; });
             }
@@ -452,6 +473,8 @@ fn place_outputs(schedule: &Schedule, values: Vec<TokenStream>) -> PlacedOutputs
 /// Rust's syntax for the statements and expressions of a schedule.
 struct RustSyntax<'a> {
     names: &'a Names,
+    /// The runtime crate's path, for the functions `f64` lacks.
+    runtime: &'a TokenStream,
 }
 
 impl Backend for RustSyntax<'_> {
@@ -511,6 +534,36 @@ impl Backend for RustSyntax<'_> {
                 quote!(#x.powf(#y))
             }
         }
+    }
+
+    fn apply(&self, f: Func, arguments: Vec<Fragment<TokenStream>>) -> TokenStream {
+        let rt = self.runtime;
+        let mut arguments = arguments.into_iter();
+        let x = arguments.next().map(receiver).unwrap_or_default();
+        let rest: Vec<TokenStream> = arguments.map(|a| a.code).collect();
+        // The methods of `f64` that compute each function; `sign`, `min`
+        // and `max` are the runtime's, which keep NaN (as the interpreter).
+        let method = match f {
+            Func::Sign | Func::Min | Func::Max => {
+                let name = ident(f.name());
+                return quote!(#rt::functions::#name(#x #(, #rest)*));
+            }
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Atan2 => "atan2",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Hypot => "hypot",
+            Func::Abs => "abs",
+        };
+        let method = ident(method);
+        quote!(#x.#method(#(#rest),*))
     }
 
     fn input(&self, index: u32, arguments: Vec<TokenStream>) -> TokenStream {

@@ -18,6 +18,7 @@
 //! * loads (parameters, coordinates, velocities, accelerations) come first,
 //!   in that order and by index.
 
+use crate::expr::Func;
 use crate::program::{Op, Program, Reg, Routine, RoutineKind};
 use lagrangian_model::layout::OutputSlot;
 use rustc_hash::FxHashMap;
@@ -108,6 +109,9 @@ pub enum Expression {
     Binary(BinaryOp, Box<Expression>, Box<Expression>),
     /// `f(x)`.
     Call(Function, Box<Expression>),
+    /// `f(a, …)` for a function of the spec language other than those of
+    /// [`Function`] (`asin`, `atan2`, `abs`, …).
+    Apply(Func, Vec<Expression>),
 }
 
 impl Expression {
@@ -332,6 +336,9 @@ impl Builder {
             Op::Sqrt(a) => call(self, Function::Sqrt, a),
             Op::Powi(a, k) => call(self, Function::Powi(*k), a),
             Op::Powf(a, x) => call(self, Function::Powf(x.value()), a),
+            Op::Call(f, args) => {
+                Expression::Apply(*f, args.iter().map(|a| self.operand(*a)).collect())
+            }
             // Loads are handled by the caller; a load here would be read
             // from its argument like any other.
             Op::Parameter(_) | Op::Coordinate(_) | Op::Velocity(_) | Op::Acceleration(_) => {
@@ -511,6 +518,10 @@ mod tests {
                     Function::Powi(k) => v(x).powi(*k),
                     Function::Powf(y) => v(x).powf(*y),
                 },
+                Expression::Apply(f, args) => {
+                    let a = v(&args[0]);
+                    f.apply(a, args.get(1).map_or(a, v))
+                }
             }
         }
         let mut temps = vec![f64::NAN; s.temporaries];

@@ -246,12 +246,12 @@ impl Store {
                     let scaled = inner.iter().map(|&(b, e)| (b, self.rmul(e, exp))).collect();
                     pending.push(self.product_of_factors(scaled));
                 }
-                Node::Func(f @ (Func::Sin | Func::Cos), arg)
+                Node::Func(f @ (Func::Sin | Func::Cos), args)
                     if exp.is_integer() && !exp.is_negative() =>
                 {
                     let count = exp.to_i64().and_then(|n| u32::try_from(n).ok());
                     match count {
-                        Some(n) => trig.push((f, arg, n)),
+                        Some(n) => trig.push((f, args[0], n)),
                         None => self.record(EngineError::Overflow),
                     }
                 }

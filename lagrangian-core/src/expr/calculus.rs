@@ -45,23 +45,26 @@ impl Store {
                 acc.finish(self)
             }
             Node::Mul(items) => self.diff_product(&items, s),
-            Node::Func(f, u) => {
-                let du = self.diff(u, s);
-                let outer = match f {
-                    Func::Sin => self.cos(u),
-                    Func::Cos => {
-                        let sin = self.sin(u);
-                        self.neg(sin)
-                    }
-                    Func::Exp => e,
-                    Func::Ln => self.pow(u, Rational::MINUS_ONE),
-                };
-                self.mul(outer, du)
-            }
+            Node::Func(f, args) => self.diff_call(f, &args, e, s),
             Node::Input(input, args) => self.diff_input(input as usize, &args, s),
         };
         self.diff_memo.insert((e, s), d);
         d
+    }
+
+    /// Chain rule: `Σ_k ∂f/∂arg_k · ∂arg_k/∂s` for `call = f(args…)`.
+    fn diff_call(&mut self, f: Func, args: &[ExprId], call: ExprId, s: SymbolId) -> ExprId {
+        let derivatives: Vec<ExprId> = args.iter().map(|&a| self.diff(a, s)).collect();
+        let partials = self.partials(f, args, call);
+        if let ([partial], [derivative]) = (&partials[..], &derivatives[..]) {
+            return self.mul(*partial, *derivative);
+        }
+        let mut acc = TermAccumulator::default();
+        for (partial, derivative) in partials.into_iter().zip(derivatives) {
+            let term = self.mul(partial, derivative);
+            acc.add_expr(self, term, Rational::ONE);
+        }
+        acc.finish(self)
     }
 
     /// Product rule: `Σ_k e_k b_k^(e_k−1) ∂b_k · Π_{j≠k} b_j^e_j`.
@@ -173,9 +176,11 @@ impl Store {
                     }
                     result
                 }
-                Node::Func(f, u) => {
-                    let ru = self.replace_memo(u, replace, memo);
-                    self.apply(f, ru)
+                Node::Func(f, args) => {
+                    let new_args: Vec<ExprId> = (args.iter())
+                        .map(|&a| self.replace_memo(a, replace, memo))
+                        .collect();
+                    self.apply(f, &new_args)
                 }
                 Node::Input(input, args) => {
                     let new_args = args
@@ -230,9 +235,11 @@ impl Store {
                 }
                 result
             }
-            Node::Func(f, u) => {
-                let su = self.substitute_memo(u, binding, mask, memo);
-                self.apply(f, su)
+            Node::Func(f, args) => {
+                let new_args: Vec<ExprId> = (args.iter())
+                    .map(|&a| self.substitute_memo(a, binding, mask, memo))
+                    .collect();
+                self.apply(f, &new_args)
             }
             Node::Input(input, args) => {
                 let new_args = args

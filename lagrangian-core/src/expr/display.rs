@@ -97,26 +97,27 @@ impl DisplayExpr<'_> {
                 }
             }
             Node::Mul(items) => self.write_factors(f, items)?,
-            Node::Func(func, u) => {
-                write!(f, "{}(", func.name())?;
-                self.write(f, *u, Precedence::Sum)?;
-                write!(f, ")")?;
-            }
+            Node::Func(func, args) => self.write_call(f, func.name(), args)?,
             Node::Input(input, args) => {
-                write!(f, "{}(", self.store.inputs()[*input as usize].name)?;
-                for (i, a) in args.iter().enumerate() {
-                    if i > 0 {
-                        write!(f, ", ")?;
-                    }
-                    self.write(f, *a, Precedence::Sum)?;
-                }
-                write!(f, ")")?;
+                self.write_call(f, &self.store.inputs()[*input as usize].name, args)?
             }
         }
         if wrap {
             write!(f, ")")?;
         }
         Ok(())
+    }
+
+    /// `name(a, b, …)`.
+    fn write_call(&self, f: &mut fmt::Formatter<'_>, name: &str, args: &[ExprId]) -> fmt::Result {
+        write!(f, "{name}(")?;
+        for (i, a) in args.iter().enumerate() {
+            if i > 0 {
+                write!(f, ", ")?;
+            }
+            self.write(f, *a, Precedence::Sum)?;
+        }
+        write!(f, ")")
     }
 
     fn write_term(&self, f: &mut fmt::Formatter<'_>, t: ExprId, c: Rational) -> fmt::Result {

@@ -1,7 +1,7 @@
 //! Direct floating-point evaluation of expressions (checks and tests; the fast
 //! path is the optimized [`crate::program::Program`]).
 
-use super::{ExprId, Func, Node, Store, SymbolKind};
+use super::{ExprId, Node, Store, SymbolKind};
 use rustc_hash::FxHashMap;
 
 /// The values of a model's input functions: `inputs(index, args)` (any
@@ -58,14 +58,10 @@ impl<'a> Evaluator<'a> {
                     }
                 })
                 .product(),
-            Node::Func(f, u) => {
-                let x = self.eval(*u);
-                match f {
-                    Func::Sin => x.sin(),
-                    Func::Cos => x.cos(),
-                    Func::Exp => x.exp(),
-                    Func::Ln => x.ln(),
-                }
+            Node::Func(f, args) => {
+                let a = self.eval(args[0]);
+                let b = args.get(1).map_or(a, |&b| self.eval(b));
+                f.apply(a, b)
             }
             Node::Input(input, args) => {
                 let values: Vec<f64> = args.iter().map(|&a| self.eval(a)).collect();

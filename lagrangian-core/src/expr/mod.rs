@@ -50,6 +50,7 @@ mod arith;
 mod calculus;
 mod display;
 mod eval;
+mod functions;
 mod laurent;
 pub mod pretty;
 mod trig;
@@ -118,31 +119,9 @@ pub struct Symbol {
     pub kind: SymbolKind,
 }
 
-/// Elementary functions kept as atoms.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
-pub enum Func {
-    /// The sine, of an argument in radians.
-    Sin,
-    /// The cosine, of an argument in radians.
-    Cos,
-    /// The exponential.
-    Exp,
-    /// The natural logarithm.
-    Ln,
-}
-
-impl Func {
-    /// The name in the spec language and in emitted code (`sin`, `cos`,
-    /// `exp`, `ln`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Exp => "exp",
-            Func::Ln => "ln",
-        }
-    }
-}
+/// Elementary functions kept as atoms (defined with the runtime, which
+/// evaluates them the same way).
+pub use lagrangian_model::functions::Func;
 
 /// An interned node. See the module documentation for the invariants.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
@@ -156,8 +135,9 @@ pub enum Node {
     Add(Box<[(ExprId, Rational)]>),
     /// `Π base_k ^ e_k`, sorted by base id, with no numeric coefficient.
     Mul(Box<[(ExprId, Rational)]>),
-    /// An elementary function of an expression.
-    Func(Func, ExprId),
+    /// An elementary function of its arguments (as many as its
+    /// [`Func::arity`]).
+    Func(Func, Box<[ExprId]>),
     /// A call of a run-time input function.
     Input(u32, Box<[ExprId]>),
 }
@@ -171,8 +151,7 @@ impl Node {
         match self {
             Node::Num(_) | Node::Sym(_) => {}
             Node::Add(items) | Node::Mul(items) => items.iter().for_each(|&(t, _)| visit(t)),
-            Node::Func(_, u) => visit(*u),
-            Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
+            Node::Func(_, args) | Node::Input(_, args) => args.iter().for_each(|&a| visit(a)),
         }
     }
 }
@@ -257,6 +236,15 @@ pub struct Store {
     diff_memo: FxHashMap<(ExprId, SymbolId), ExprId>,
     mul_memo: FxHashMap<(ExprId, ExprId), ExprId>,
     errors: Vec<EngineError>,
+    /// The total size of the nodes created so far: their terms, factors
+    /// and arguments.
+    size: usize,
+    /// The most `size` may reach (unbounded unless a caller
+    /// sets a budget, [`Store::set_budget`]).
+    size_limit: usize,
+    /// Whether an expansion or the budget stopped an operation since
+    /// the last [`Store::take_size_limit`].
+    size_limit_hit: bool,
 }
 
 impl Default for Store {
@@ -282,6 +270,9 @@ impl Store {
             diff_memo: FxHashMap::default(),
             mul_memo: FxHashMap::default(),
             errors: Vec::new(),
+            size: 0,
+            size_limit: usize::MAX,
+            size_limit_hit: false,
         };
         let zero = store.intern(Node::Num(Rational::ZERO));
         let one = store.intern(Node::Num(Rational::ONE));
@@ -361,6 +352,12 @@ impl Store {
         self.nodes.len()
     }
 
+    /// The total size of the nodes created (their terms, factors and
+    /// arguments): the measure of [`Store::set_budget`].
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
     /// Never true for a store made by [`Store::new`], which holds 0 and 1.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
@@ -376,6 +373,12 @@ impl Store {
     /// expression that keeps failing stays linear (a 100 000-factor product
     /// records an exponent error at every factor).
     pub(crate) fn record(&mut self, error: EngineError) {
+        self.size_limit_hit |= matches!(
+            error,
+            EngineError::ExpansionTooLarge { .. }
+                | EngineError::ProductTooLarge { .. }
+                | EngineError::ModelTooLarge
+        );
         if self.errors.len() < MAX_RECORDED_ERRORS && !self.errors.contains(&error) {
             self.errors.push(error);
         }
@@ -471,11 +474,36 @@ impl Store {
         seen.len()
     }
 
+    /// Limits the nodes created from now on to a total size (terms,
+    /// factors, arguments) of `extra` (`None`: no limit but [`MAX_NODES`]);
+    /// past it, operations record [`EngineError::ModelTooLarge`] as at
+    /// [`MAX_NODES`]. The size measures the work that expansion does, so a
+    /// long sum written out stays within a budget that a product of long
+    /// sums exceeds.
+    pub fn set_budget(&mut self, extra: Option<usize>) {
+        self.size_limit = extra.map_or(usize::MAX, |e| self.size.saturating_add(e));
+    }
+
+    /// Whether an expansion limit or the budget stopped an operation
+    /// since the last call (which clears it): the canonical form of what
+    /// was being built is incomplete because it is too large, not wrong.
+    ///
+    /// The operations memoized since may hold results cut short by the
+    /// limit, so a hit forgets them all.
+    pub fn take_size_limit(&mut self) -> bool {
+        let hit = std::mem::take(&mut self.size_limit_hit);
+        if hit {
+            self.diff_memo.clear();
+            self.mul_memo.clear();
+        }
+        hit
+    }
+
     fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
-        if self.nodes.len() >= MAX_NODES {
+        if self.nodes.len() >= MAX_NODES || self.size >= self.size_limit {
             // Past the budget every new node is zero: the work that follows
             // collapses to nodes that exist, and the error is reported.
             self.record(EngineError::ModelTooLarge);
@@ -486,6 +514,11 @@ impl Store {
             _ => 0,
         };
         node.for_each_child(|c| mask |= self.masks[c.index()]);
+        self.size += match &node {
+            Node::Add(items) | Node::Mul(items) => items.len(),
+            Node::Input(_, args) => args.len(),
+            Node::Num(_) | Node::Sym(_) | Node::Func(..) => 1,
+        };
         let id = ExprId(self.nodes.len() as u32);
         self.nodes.push(node.clone());
         self.masks.push(mask);
@@ -512,10 +545,18 @@ impl Store {
         }
     }
 
-    /// The sine, cosine, exponential or logarithm node `f(u)` as built, if `e` is one.
+    /// The one-argument function node `f(u)` as built, if `e` is one.
     pub fn as_func(&self, e: ExprId) -> Option<(Func, ExprId)> {
         match self.node(e) {
-            Node::Func(f, u) => Some((*f, *u)),
+            Node::Func(f, args) if args.len() == 1 => Some((*f, args[0])),
+            _ => None,
+        }
+    }
+
+    /// The function node `f(args…)` as built, if `e` is one.
+    pub fn as_call(&self, e: ExprId) -> Option<(Func, &[ExprId])> {
+        match self.node(e) {
+            Node::Func(f, args) => Some((*f, args)),
             _ => None,
         }
     }

@@ -52,19 +52,37 @@ impl Store {
         self.func_node(Func::Ln, u)
     }
 
-    /// Applies `f` to `u` with the canonical simplifications of each function.
-    pub fn apply(&mut self, f: Func, u: ExprId) -> ExprId {
+    /// Applies `f` to `args` with the canonical simplifications of each
+    /// function (`args` has [`Func::arity`] expressions).
+    pub fn apply(&mut self, f: Func, args: &[ExprId]) -> ExprId {
         match f {
-            Func::Sin => self.sin(u),
-            Func::Cos => self.cos(u),
-            Func::Exp => self.exp(u),
-            Func::Ln => self.ln(u),
+            Func::Sin => self.sin(args[0]),
+            Func::Cos => self.cos(args[0]),
+            Func::Exp => self.exp(args[0]),
+            Func::Ln => self.ln(args[0]),
+            Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => self.call(f, args),
         }
     }
 
     /// Interns `f(arg)` as it is; `arg` must already be normalized for sin/cos.
     pub(crate) fn func_node(&mut self, f: Func, arg: ExprId) -> ExprId {
-        self.intern(Node::Func(f, arg))
+        self.intern(Node::Func(f, Box::new([arg])))
+    }
+
+    /// Interns `f(args…)` as it is.
+    pub(crate) fn call_node(&mut self, f: Func, args: &[ExprId]) -> ExprId {
+        self.intern(Node::Func(f, args.into()))
     }
 
     /// Does the sum `u` read as a negative quantity (first non-constant term negative)?

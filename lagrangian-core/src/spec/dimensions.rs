@@ -10,6 +10,7 @@
 
 use super::constant::{self, Constants};
 use crate::diagnostic::{Diagnostic, SpanRange};
+use crate::expr::Func;
 use crate::rational::Rational;
 use crate::units::Dimension;
 use rustc_hash::FxHashMap;
@@ -45,6 +46,53 @@ pub(super) fn mismatch(
 }
 
 impl DimensionScope {
+    /// The dimension of `f(args…)`: dimensionless arguments for the
+    /// functions that need them; otherwise arguments of one dimension,
+    /// which `hypot`, `abs`, `min` and `max` return.
+    fn function(&self, f: Func, args: &[&Expr]) -> Result<Option<Dimension>, Diagnostic> {
+        if args.len() != f.arity() {
+            return Ok(None);
+        }
+        if f.needs_dimensionless() {
+            for arg in args {
+                self.dimensionless_argument(f.name(), arg)?;
+            }
+            return Ok(Some(Dimension::NONE));
+        }
+        let mut common: Option<Dimension> = None;
+        for (k, arg) in args.iter().enumerate() {
+            let Some(found) = self.infer(arg)? else {
+                continue;
+            };
+            match common {
+                Some(first) if first != found => {
+                    let what = format!("argument {} of `{}`", k + 1, f.name());
+                    return Err(mismatch(SpanRange::of(*arg), &what, found, first)
+                        .with_help("the arguments must have the same dimension"));
+                }
+                _ => common = Some(found),
+            }
+        }
+        Ok(if f.keeps_dimension() {
+            common
+        } else {
+            Some(Dimension::NONE)
+        })
+    }
+
+    /// Reports an argument of `name` that has a dimension.
+    fn dimensionless_argument(&self, name: &str, arg: &Expr) -> Result<(), Diagnostic> {
+        match self.infer(arg)? {
+            Some(d) if !d.is_none() => Err(Diagnostic::new(
+                SpanRange::of(arg),
+                format!(
+                    "the argument of `{name}` has dimension {d}; it must be dimensionless (an angle in rad, or a ratio)"
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// Infers the dimension of `expr` and checks it against `expected`.
     pub fn check(
         &self,
@@ -111,8 +159,12 @@ impl DimensionScope {
         args: &[&Expr],
         span: SpanRange,
     ) -> Result<Option<Dimension>, Diagnostic> {
+        let declared = self.names.contains_key(name) || self.inputs.contains_key(name);
+        if let Some(f) = Func::named(name).filter(|_| !declared) {
+            return self.function(f, args);
+        }
         let arity = match name {
-            "sin" | "cos" | "tan" | "exp" | "ln" | "sqrt" | "dot" | "ddot" => Some(1),
+            "tan" | "cot" | "sec" | "sqrt" | "dot" | "ddot" => Some(1),
             "pow" => Some(2),
             _ => None,
         };
@@ -120,17 +172,8 @@ impl DimensionScope {
             return Ok(None);
         }
         match name {
-            "sin" | "cos" | "tan" | "exp" | "ln" => {
-                if let Some(d) = self.infer(args[0])?
-                    && !d.is_none()
-                {
-                    return Err(Diagnostic::new(
-                        SpanRange::of(args[0]),
-                        format!(
-                            "the argument of `{name}` has dimension {d}; it must be dimensionless (an angle in rad, or a ratio)"
-                        ),
-                    ));
-                }
+            "tan" | "cot" | "sec" => {
+                self.dimensionless_argument(name, args[0])?;
                 Ok(Some(Dimension::NONE))
             }
             "sqrt" => match self.infer(args[0])? {

@@ -1,9 +1,10 @@
 //! Translating `syn` expressions into canonical symbolic expressions.
 
 use super::constant::{self, Constants};
+use super::domain::{Domain, DomainCheck};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{
-    CoordinateSymbols, EngineError, ExprId, MAX_EXPANDED_TERMS, MAX_EXPONENT, MAX_NODES,
+    CoordinateSymbols, EngineError, ExprId, Func, MAX_EXPANDED_TERMS, MAX_EXPONENT, MAX_NODES,
     MAX_PRODUCT_TERMS, Store, SymbolId,
 };
 use crate::rational::Rational;
@@ -38,6 +39,8 @@ pub(super) struct Scope {
     pub velocities: Vec<SymbolId>,
     /// Values of the constant `let`s, for exponents.
     pub constants: Constants,
+    /// The calls with a restricted domain lowered so far, in order.
+    pub domain_checks: std::cell::RefCell<Vec<DomainCheck>>,
 }
 
 /// The result of lowering one expression.
@@ -46,17 +49,31 @@ pub(super) struct Lowered {
     pub input_calls: Vec<(usize, SpanRange)>,
 }
 
+/// The built-in calls that are not an atom of the expression engine (those
+/// are [`Func::ALL`]), with their number of arguments. `tan`, `cot` and `sec`
+/// are rewritten in sines and cosines, `sqrt` and `pow` are powers.
 const FUNCTIONS: &[(&str, usize)] = &[
-    ("sin", 1),
-    ("cos", 1),
     ("tan", 1),
-    ("exp", 1),
-    ("ln", 1),
+    ("cot", 1),
+    ("sec", 1),
     ("sqrt", 1),
     ("pow", 2),
     ("dot", 1),
     ("ddot", 1),
 ];
+
+/// The number of arguments of the built-in function `name`, if it is one.
+pub(super) fn builtin_arity(name: &str) -> Option<usize> {
+    match Func::named(name) {
+        Some(f) => Some(f.arity()),
+        None => FUNCTIONS.iter().find(|(f, _)| *f == name).map(|&(_, n)| n),
+    }
+}
+
+/// Every built-in function name, for suggestions.
+fn builtin_names<'n>() -> impl Iterator<Item = &'n str> {
+    (Func::ALL.iter().map(|f| f.name())).chain(FUNCTIONS.iter().map(|(f, _)| *f))
+}
 
 pub(super) struct ExpressionLowering<'a> {
     pub store: &'a mut Store,
@@ -211,6 +228,8 @@ impl<'a> ExpressionLowering<'a> {
                 if rhs == Store::ZERO {
                     return Err(Diagnostic::new(SpanRange::of(&b.right), "division by zero"));
                 }
+                let divisor = SpanRange::of(&b.right);
+                self.restricted(Domain::NonZero, "the divisor", rhs, divisor);
                 Ok(self.store.div(lhs, rhs))
             }
             _ => Err(Diagnostic::new(
@@ -246,7 +265,7 @@ impl<'a> ExpressionLowering<'a> {
             )
             .with_note(format!("`{name}` is declared here"), *decl)
             .with_help("name the expression with `let` and use that name in both places")),
-            None if FUNCTIONS.iter().any(|(f, _)| *f == name) => Err(Diagnostic::new(
+            None if builtin_arity(&name).is_some() => Err(Diagnostic::new(
                 ident.span(),
                 format!("`{name}` is a function; call it as `{name}(…)`"),
             )),
@@ -256,12 +275,8 @@ impl<'a> ExpressionLowering<'a> {
 
     fn unknown(&self, ident: &syn::Ident, what: &str) -> Diagnostic {
         let name = ident.to_string();
-        let candidates = self
-            .scope
-            .names
-            .keys()
-            .map(String::as_str)
-            .chain(FUNCTIONS.iter().map(|(f, _)| *f));
+        let mut candidates: Vec<&str> = self.scope.names.keys().map(String::as_str).collect();
+        candidates.extend(builtin_names());
         let diagnostic = Diagnostic::new(ident.span(), format!("unknown {what} `{name}`"));
         match closest(&name, candidates) {
             Some(best) => diagnostic.with_help(format!("did you mean `{best}`?")),
@@ -278,7 +293,10 @@ impl<'a> ExpressionLowering<'a> {
         span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         let name = ident.to_string();
-        if let Some(&(_, arity)) = FUNCTIONS.iter().find(|(f, _)| *f == name) {
+        // A declared name hides a function that is not reserved.
+        if !self.scope.names.contains_key(&name)
+            && let Some(arity) = builtin_arity(&name)
+        {
             check_arity(ident, &name, arity, args.len(), span)?;
             return self.builtin(&name, args, span);
         }
@@ -312,17 +330,27 @@ impl<'a> ExpressionLowering<'a> {
             let exponent = self.constant_exponent(args[1])?;
             return self.power(base, exponent, span);
         }
+        if let Some(f) = Func::named(name) {
+            return self.function(f, args, span);
+        }
         let x = self.expr(args[0])?;
         if let Some(c) = self.store.as_num(x) {
             check_constant_argument(name, c, span)?;
         }
         Ok(match name {
-            "sin" => self.store.sin(x),
-            "cos" => self.store.cos(x),
             "tan" => self.store.tan(x),
-            "exp" => self.store.exp(x),
-            "ln" => self.store.ln(x),
-            "sqrt" => self.store.sqrt(x),
+            "cot" => {
+                let (s, c) = (self.store.sin(x), self.store.cos(x));
+                self.store.div(c, s)
+            }
+            "sec" => {
+                let c = self.store.cos(x);
+                self.store.pow(c, Rational::MINUS_ONE)
+            }
+            "sqrt" => {
+                self.restricted(Domain::NonNegative, "the argument of", x, span);
+                self.store.sqrt(x)
+            }
             "ddot" => {
                 if !self.accelerations {
                     return Err(acceleration_outside_outputs(span));
@@ -338,6 +366,35 @@ impl<'a> ExpressionLowering<'a> {
         })
     }
 
+    /// `f(args…)` for a function of the expression engine.
+    fn function(&mut self, f: Func, args: &[&Expr], span: SpanRange) -> Result<ExprId, Diagnostic> {
+        let values = (args.iter())
+            .map(|a| self.expr(a))
+            .collect::<Result<Vec<_>, _>>()?;
+        match self.store.as_num(values[0]) {
+            Some(c) => check_constant_argument(f.name(), c, span)?,
+            None => {
+                if let Some(domain) = Domain::of(f) {
+                    self.restricted(domain, "the argument of", values[0], span);
+                }
+            }
+        }
+        Ok(self.store.apply(f, &values))
+    }
+
+    /// Records a call whose `argument` must lie in `domain`.
+    fn restricted(&self, domain: Domain, what: &'static str, argument: ExprId, span: SpanRange) {
+        if self.store.as_num(argument).is_none() {
+            let check = DomainCheck {
+                domain,
+                what,
+                argument,
+                span,
+            };
+            self.scope.domain_checks.borrow_mut().push(check);
+        }
+    }
+
     fn method(
         &mut self,
         method: &syn::Ident,
@@ -345,8 +402,12 @@ impl<'a> ExpressionLowering<'a> {
         span: SpanRange,
     ) -> Result<ExprId, Diagnostic> {
         let name = method.to_string();
+        if let Some(f) = Func::named(&name) {
+            check_arity(method, &name, f.arity() - 1, args.len() - 1, span)?;
+            return self.function(f, args, span);
+        }
         match name.as_str() {
-            "sin" | "cos" | "tan" | "exp" | "ln" | "sqrt" => {
+            "tan" | "sqrt" => {
                 check_arity(method, &name, 0, args.len() - 1, span)?;
                 self.builtin(&name, args, span)
             }
@@ -364,7 +425,8 @@ impl<'a> ExpressionLowering<'a> {
             }
             _ => Err(
                 Diagnostic::new(method.span(), format!("unsupported method `{name}`")).with_help(
-                    "supported: .sin() .cos() .tan() .exp() .ln() .sqrt() .powi(n) .powf(x)",
+                    "supported: .sin() .cos() .tan() .exp() .ln() .sqrt() .powi(n) .powf(x), \
+                     and the methods of the functions (.abs(), .atan2(x), .min(b), …)",
                 ),
             ),
         }
@@ -378,6 +440,11 @@ impl<'a> ExpressionLowering<'a> {
     ) -> Result<ExprId, Diagnostic> {
         if base == Store::ZERO && exponent.is_negative() {
             return Err(Diagnostic::new(span, "zero raised to a negative power"));
+        }
+        if !exponent.is_integer() {
+            self.restricted(Domain::NonNegative, "the base of", base, span);
+        } else if exponent.is_negative() {
+            self.restricted(Domain::NonZero, "the base of", base, span);
         }
         let value = self.store.pow(base, exponent);
         self.check_engine(span, "this power")?;
@@ -455,6 +522,7 @@ fn check_constant_argument(name: &str, c: Rational, span: SpanRange) -> Result<(
         "ln" if c.is_negative() || c.is_zero() => {
             "the logarithm is defined for positive numbers only"
         }
+        "asin" | "acos" if c.to_f64().abs() > 1.0 => "it is defined on [-1, 1] only",
         _ => return Ok(()),
     };
     Err(Diagnostic::new(

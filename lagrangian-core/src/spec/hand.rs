@@ -133,6 +133,7 @@ pub(super) fn lower(
         time: cx.scope.time,
         velocities: cx.scope.velocities.clone(),
         constants: cx.scope.constants.clone(),
+        domain_checks: Default::default(),
     };
     let mut hand = HandLowering {
         cx,

@@ -21,6 +21,7 @@ use super::expression::{Binding, ExpressionLowering, Lowered, Scope};
 use super::{Coordinate, HandDerived, Model, Statement};
 use crate::diagnostic::{Diagnostic, SpecErrors};
 use crate::expr::{Store, SymbolId, SymbolKind};
+use crate::graph::{Graph, GraphId};
 use crate::units::Dimension;
 use declarations::Declarations;
 use items::{Header, Items};
@@ -55,6 +56,11 @@ struct Lowering {
     problems: Problems,
     /// Warnings: what does not stop the spec compiling but a user should know.
     warnings: Vec<Diagnostic>,
+    /// The derivation graph and the `let` helpers lowered to it.
+    graph: Graph,
+    graph_lets: FxHashMap<String, GraphId>,
+    /// Why an energy has no canonical form, when one has none.
+    canonical_limit: Option<Diagnostic>,
 }
 
 /// Resolves the names of `ast` and validates it: the model, or every
@@ -91,6 +97,9 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     let hand_derived = lowering.hand_derived(&items.statements, &declared, &mut dimensions);
     let [kinetic, potential, dissipation] = dynamics.energies;
     let warnings = std::mem::take(&mut lowering.warnings);
+    let graph = std::mem::replace(&mut lowering.graph, Graph::new(lowering.scope.time));
+    let canonical_limit = lowering.canonical_limit.take();
+    let domain_checks = lowering.scope.domain_checks.take();
     let (store, time, kinetic) = lowering.finish(&header.name, kinetic)?;
     Ok(Model {
         name: header.name.to_string(),
@@ -112,7 +121,11 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
         jacobians_span: dynamics.jacobians_span,
         hand_derived,
         coordinate_dimensions,
+        graph,
+        energy_graph: dynamics.energy_graph,
+        canonical_limit,
         warnings,
+        domain_checks,
     })
 }
 
@@ -129,6 +142,7 @@ impl Lowering {
                 time,
                 velocities: Vec::new(),
                 constants: Default::default(),
+                domain_checks: Default::default(),
             },
             input_names: items
                 .inputs
@@ -137,6 +151,9 @@ impl Lowering {
                 .collect(),
             problems,
             warnings: Vec::new(),
+            graph: Graph::new(time),
+            graph_lets: FxHashMap::default(),
+            canonical_limit: None,
         }
     }
 
@@ -157,6 +174,18 @@ impl Lowering {
     fn lower_expression(&mut self, expr: &Expr) -> Option<Lowered> {
         let lowering = ExpressionLowering::new(&mut self.store, &self.scope, &self.input_names);
         self.problems.take(lowering.lower(expr))
+    }
+
+    /// Lowers `expr` to the graph (see [`super::graph_lowering`]).
+    fn lower_to_graph(&mut self, expr: &Expr) -> Option<GraphId> {
+        super::graph_lowering::GraphLowering {
+            store: &mut self.store,
+            graph: &mut self.graph,
+            scope: &self.scope,
+            lets: &self.graph_lets,
+            input_names: &self.input_names,
+        }
+        .lower(expr)
     }
 
     /// Checks dimensional consistency where units are declared (nothing

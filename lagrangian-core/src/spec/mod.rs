@@ -3,7 +3,9 @@
 mod ast;
 mod constant;
 mod dimensions;
+mod domain;
 mod expression;
+mod graph_lowering;
 mod hand;
 mod lower;
 mod outline;
@@ -11,6 +13,7 @@ mod parse;
 mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
+pub use domain::{Domain, DomainCheck};
 pub(crate) use expression::engine_diagnostic;
 pub use hand::{Assumed, Convention, HandDerived, HandEquation, HandTerm};
 pub(crate) use outline::Outline;
@@ -181,11 +184,24 @@ pub struct Model {
     pub hand_derived: Option<HandDerived>,
     /// Dimensions of the coordinates, where declared.
     pub coordinate_dimensions: Vec<Option<crate::units::Dimension>>,
+    /// The derivation graph, holding `T`, `V` and `D` as shared nodes
+    /// ([`crate::graph`]).
+    pub graph: crate::graph::Graph,
+    /// `T`, `V`, `D` as nodes of [`Model::graph`], where they lowered to it.
+    pub energy_graph: [Option<crate::graph::GraphId>; 3],
+    /// Why `T`, `V` or `D` has no canonical form (it would exceed the
+    /// engine's limits on expansion): then that statement's value is a
+    /// placeholder 0, and only the graph derives the model.
+    pub canonical_limit: Option<crate::diagnostic::Diagnostic>,
     /// What does not stop the spec compiling but its author should know
     /// (e.g. names without units among names with units). `lpm` prints
     /// them; the `lagrangian!` macro cannot (a procedural macro has no
     /// warnings on stable Rust), so they show with `lpm derive`.
     pub warnings: Vec<crate::diagnostic::Diagnostic>,
+    /// The calls whose arguments have a restricted domain (`acos`, `ln`,
+    /// fractional powers, divisors), inner calls first, to name the one
+    /// that makes a run non-finite ([`Model::domain_violation`]).
+    pub domain_checks: Vec<DomainCheck>,
 }
 
 impl Model {
@@ -213,6 +229,25 @@ impl Model {
         self.coordinates.len()
     }
 
+    /// `T`, `V`, `D` as graph nodes: the lowered ones, else leaves of their
+    /// canonical values (0 for an energy the spec does not give).
+    pub fn energy_nodes(&mut self) -> [crate::graph::GraphId; 3] {
+        let values = [
+            Some(&self.kinetic),
+            self.potential.as_ref(),
+            self.dissipation.as_ref(),
+        ]
+        .map(|s| s.map_or(Store::ZERO, |s| s.value));
+        let mut nodes = [None; 3];
+        for (k, node) in nodes.iter_mut().enumerate() {
+            *node = Some(match self.energy_graph[k] {
+                Some(g) => g,
+                None => self.graph.leaf(&self.store, values[k]),
+            });
+        }
+        nodes.map(|n| n.expect("set above"))
+    }
+
     /// The symbols of every coordinate, in order.
     pub fn coordinate_symbols(&self) -> Vec<CoordinateSymbols> {
         self.coordinates.iter().map(|c| c.symbols.clone()).collect()
@@ -220,6 +255,10 @@ impl Model {
 }
 
 /// Names that the spec language gives a meaning of its own.
+///
+/// The functions added later (`asin`, `abs`, `min`, …, `cot`, `sec`) are not
+/// reserved, so that specs that declare such names keep their meaning: a
+/// declared name hides the function of the same name.
 pub const RESERVED_NAMES: &[&str] = &[
     "t", "pi", "dot", "ddot", "sin", "cos", "tan", "exp", "ln", "sqrt", "pow",
 ];

@@ -17,9 +17,14 @@ pub struct Constant {
     pub value: f64,
 }
 
+impl Constant {
+    /// Its [`Component::kind`], the `type` of its scenario section.
+    pub const KIND: &'static str = "constant";
+}
+
 impl Component for Constant {
     fn kind(&self) -> &'static str {
-        "constant"
+        Constant::KIND
     }
 
     fn arguments(&self) -> Option<(usize, &'static str)> {

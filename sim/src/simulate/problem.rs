@@ -6,9 +6,7 @@ use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
 use lagrangian_model::constrained::Baumgarte;
-use lagrangian_model::{
-    InputFunctions, Jacobians, LagrangianSystem, ModelError, solve_mass_matrix,
-};
+use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
 
 /// One event handled during a run.
@@ -168,7 +166,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, Fault> {
-        let a = solve_mass_matrix(*mass, forcing);
+        let a = self.system.solve_mass(mass, forcing);
         if let Some(a) = a
             && a.iter().all(|x| x.is_finite())
         {
@@ -286,21 +284,40 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         Ok(())
     }
 
+    /// The crash components' events, then one per switching function of
+    /// the model (`abs`, `sign`, `min`, `max`), so that no step straddles
+    /// a kink of the dynamics.
     fn event_count(&self) -> usize {
-        self.inputs.event_count()
+        self.inputs.event_count() + self.system.switching_count()
     }
 
     fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), Fault> {
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
-        self.inputs.events(&self.arguments, g)
+        let (components, switching) = g.split_at_mut(self.inputs.event_count());
+        self.system
+            .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
+        self.inputs.events(&self.arguments, components)
     }
 
     fn event_direction(&self, k: usize) -> Direction {
-        self.inputs.event_direction(k)
+        if k < self.inputs.event_count() {
+            self.inputs.event_direction(k)
+        } else {
+            Direction::Either
+        }
     }
 
     fn on_event(&mut self, k: usize, t: f64, y: &mut PhaseState<N>) -> EventAction {
+        if let Some(switch) = k.checked_sub(self.inputs.event_count()) {
+            // A kink of the model: the step sequence restarts there.
+            self.events.push(EventRecord {
+                t,
+                component: "model".to_string(),
+                description: format!("switching function {} changes sign", switch + 1),
+            });
+            return EventAction::Restart;
+        }
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         match self.inputs.on_event(k, t, &self.arguments) {
@@ -349,7 +366,7 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             let mut out = SMatrix::<f64, N, N>::zeros();
             for k in 0..N {
                 let column: SVector<f64, N> = m.column(k).into_owned();
-                out.set_column(k, &solve_mass_matrix(mass, &column)?);
+                out.set_column(k, &self.system.solve_mass(&mass, &column)?);
             }
             Some(out)
         };

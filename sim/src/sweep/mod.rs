@@ -3,15 +3,22 @@
 //! row of summary metrics per run.
 //!
 //! A run's values depend only on the plan and the run's index, so a sweep
-//! can be split into [`Shard`]s computed anywhere (a Slurm job array, GNU
-//! parallel) whose tables, concatenated in shard order, are the full sweep.
+//! can be split into [`Shard`]s computed anywhere (a Slurm job array, a
+//! Kubernetes Indexed Job, GNU parallel) whose tables, merged by
+//! [`merged_rows`], are the full sweep.
 
 mod journal;
+mod merge;
 mod plan;
 mod run;
+mod scheduler;
 mod table;
 
 pub use journal::{Journal, journal_path, read_groups};
+pub use merge::merged_rows;
 pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
 pub use run::{Row, RunFailure, Settings, SweepJob, run_scenario, run_sweep, stream_sweep};
-pub use table::{Layout, columns, parse_record, record, sweep_csv, sweep_parquet, write_parquet};
+pub use scheduler::{Environment, SCHEDULERS, Scheduler, shard_from_environment};
+pub use table::{
+    Layout, columns, parse_record, record, sweep_csv, sweep_parquet, write_csv, write_parquet,
+};

@@ -380,6 +380,22 @@ impl Shard {
         }
     }
 
+    /// Block `index` of `count` counted from 0 (`--shard-index 2
+    /// --shard-count 8` is `--shard 3/8`), as Kubernetes, AWS Batch and
+    /// HTCondor number their tasks.
+    pub fn zero_based(index: usize, count: usize) -> Result<Shard, String> {
+        if index < count {
+            Ok(Shard {
+                index: index + 1,
+                count,
+            })
+        } else {
+            Err(format!(
+                "shard index {index} is not below the shard count {count} (indices count from 0)"
+            ))
+        }
+    }
+
     /// The runs of this shard out of `total`.
     pub fn runs(&self, total: usize) -> Range<usize> {
         let bound = |k: usize| (total as u128 * k as u128 / self.count as u128) as usize;
@@ -492,6 +508,17 @@ mod tests {
         // Log-uniform: about half the runs below 10.
         let below = logs.iter().filter(|&&l| l < 1.0).count();
         assert!((30..70).contains(&below), "{below}");
+    }
+
+    #[test]
+    fn zero_based_shards_are_the_one_based_shard_after() {
+        assert_eq!(Shard::zero_based(2, 8), Shard::parse("3/8"));
+        assert_eq!(Shard::zero_based(0, 1), Ok(Shard::ALL));
+        let message = Shard::zero_based(8, 8).unwrap_err();
+        assert!(
+            message.contains("shard index 8 is not below the shard count 8"),
+            "{message}"
+        );
     }
 
     #[test]

@@ -163,15 +163,25 @@ pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, 
 
 /// CSV with a header line; a failed run has empty metric cells.
 pub fn sweep_csv(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, String> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
+    let mut bytes = Vec::new();
+    write_csv(layout, rows.iter().cloned().map(Ok), &mut bytes)?;
+    Ok(bytes)
+}
+
+/// Writes the CSV table of `rows` to `out` (the bytes of a journal of the
+/// same rows); the first error of `rows` stops it.
+pub fn write_csv(
+    layout: &Layout,
+    rows: impl Iterator<Item = Result<Row, String>>,
+    out: impl Write,
+) -> Result<(), String> {
+    let mut writer = csv::Writer::from_writer(out);
     let fail = |e: csv::Error| format!("cannot write CSV: {e}");
     writer.write_record(columns(layout)).map_err(fail)?;
     for row in rows {
-        writer.write_record(record(layout, row)).map_err(fail)?;
+        writer.write_record(record(layout, &row?)).map_err(fail)?;
     }
-    writer
-        .into_inner()
-        .map_err(|e| format!("cannot write CSV: {e}"))
+    writer.flush().map_err(|e| format!("cannot write CSV: {e}"))
 }
 
 fn column_type(

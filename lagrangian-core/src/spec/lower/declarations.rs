@@ -226,6 +226,7 @@ impl Lowering {
             time: scope.time,
             velocities: Vec::new(),
             constants: Default::default(),
+            domain_checks: Default::default(),
         }
     }
 }
@@ -288,6 +289,7 @@ fn constant_value(
         time,
         velocities: Vec::new(),
         constants: Default::default(),
+        domain_checks: Default::default(),
     };
     scope
         .names

@@ -4,6 +4,7 @@
 use super::{Lowering, validate};
 use crate::diagnostic::{Diagnostic, SpanRange, closest};
 use crate::expr::{ExprId, Store};
+use crate::graph::GraphId;
 use crate::spec::ast::{EnergyKind, Item};
 use crate::spec::constant;
 use crate::spec::expression::{Binding, ExpressionLowering, Lowered, engine_diagnostic};
@@ -17,6 +18,8 @@ pub(super) struct Dynamics {
     /// Kinetic energy, potential energy and dissipation function, indexed by
     /// [`EnergyKind`].
     pub energies: [Option<Statement>; 3],
+    /// The energies as graph nodes, where they lowered to the graph.
+    pub energy_graph: [Option<GraphId>; 3],
     pub forces: Vec<ForceStatement>,
     /// The first `jacobians;`.
     pub jacobians_span: Option<Span>,
@@ -61,6 +64,9 @@ impl Lowering {
             self.scope.constants.insert(name.to_string(), c);
         }
         self.declare(name, Binding::Definition(value, input_calls));
+        if let Some(g) = self.lower_to_graph(syntax) {
+            self.graph_lets.insert(name.to_string(), g);
+        }
         Some((name.to_string(), value))
     }
 
@@ -74,7 +80,7 @@ impl Lowering {
                     kind,
                     keyword,
                     value,
-                } => self.energy(&mut dynamics.energies, *kind, *keyword, value),
+                } => self.energy(&mut dynamics, *kind, *keyword, value),
                 Item::GeneralizedForce {
                     keyword,
                     coordinate,
@@ -112,25 +118,39 @@ impl Lowering {
         dynamics
     }
 
-    fn energy(
-        &mut self,
-        energies: &mut [Option<Statement>; 3],
-        kind: EnergyKind,
-        keyword: Span,
-        value: &Expr,
-    ) {
-        let slot = &mut energies[kind as usize];
+    /// `kinetic = …;` and the like: lowered to the canonical form within a
+    /// budget, and to the graph. An energy too large for the
+    /// canonical form is kept on the graph alone (its value a placeholder
+    /// 0, the reason in `canonical_limit`).
+    fn energy(&mut self, dynamics: &mut Dynamics, kind: EnergyKind, keyword: Span, value: &Expr) {
+        let slot = &mut dynamics.energies[kind as usize];
         if let Some(d) = validate::energy_given_twice(kind, keyword, slot.as_ref()) {
             self.problems.push(d);
             return;
         }
-        if let Some(l) = self.lower_expression(value) {
-            *slot = Some(Statement {
-                value: l.value,
-                span: SpanRange::of(value),
-                input_calls: l.input_calls,
-            });
-        }
+        self.store.set_budget(Some(CANONICAL_ENERGY_SIZE));
+        self.store.take_size_limit();
+        let lowering = ExpressionLowering::new(&mut self.store, &self.scope, &self.input_names);
+        let canonical = lowering.lower(value);
+        let too_large = self.store.take_size_limit();
+        self.store.set_budget(None);
+        let graph = self.lower_to_graph(value);
+        dynamics.energy_graph[kind as usize] = graph;
+        let span = SpanRange::of(value);
+        let lowered = match canonical {
+            Ok(l) => l,
+            Err(d) if too_large && graph.is_some() => {
+                self.canonical_limit.get_or_insert(d);
+                let (value, input_calls) = (Store::ZERO, Vec::new());
+                Lowered { value, input_calls }
+            }
+            Err(d) => return self.problems.push(d),
+        };
+        dynamics.energies[kind as usize] = Some(Statement {
+            value: lowered.value,
+            span,
+            input_calls: lowered.input_calls,
+        });
     }
 
     /// `force q = Q;`.
@@ -222,6 +242,12 @@ impl Lowering {
         .with_help("a point is a position: a function of the coordinates and time"))
     }
 }
+
+/// The largest total size ([`Store::set_budget`]) of the nodes that the
+/// canonical form of one energy may create; a bigger energy stays on the
+/// graph alone. Well above what the shipped specs need (a 20-link chain's
+/// kinetic energy stays canonical).
+const CANONICAL_ENERGY_SIZE: usize = 50_000;
 
 /// An unknown name that is a `let` defined further down (`below`): said so,
 /// with a note at its definition.

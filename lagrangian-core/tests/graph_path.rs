@@ -1,0 +1,110 @@
+//! The derivation graph computes the equations the canonical form does:
+//! every routine of every shipped spec, both paths, at random states; and
+//! models too large for the canonical form compile on the graph.
+
+use lagrangian_core::program::{EvalContext, Program, RoutineKind};
+use lagrangian_core::random::Lcg;
+use lagrangian_core::{Compiled, Model};
+
+/// Input function `k` evaluates to a smooth function of its arguments.
+fn smooth_inputs(input: usize, args: &[f64]) -> f64 {
+    args.iter()
+        .enumerate()
+        .fold(1.0 + input as f64, |acc, (i, a)| {
+            acc + (a * (i as f64 + 1.3)).sin()
+        })
+}
+
+fn run(program: &Program, kind: RoutineKind, ctx: &EvalContext) -> Vec<f64> {
+    let routine = program.routine(kind).unwrap();
+    let mut out = vec![0.0; routine.outputs.len()];
+    program.run(routine, ctx, &mut program.registers(), &mut out);
+    out
+}
+
+fn check_spec(path: &str) {
+    let source = std::fs::read_to_string(path).unwrap();
+    let canonical = Compiled::from_source(&source).unwrap();
+    assert!(
+        canonical.derivation.is_some(),
+        "{path} is derived canonically"
+    );
+    let graph = Compiled::on_graph(Model::from_source(&source).unwrap()).unwrap();
+    let n = canonical.program.dimension;
+    let mut random = Lcg::new(7);
+    for _ in 0..20 {
+        let q: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();
+        let qd: Vec<f64> = (0..n).map(|_| 2.0 * random.symmetric()).collect();
+        let qdd: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();
+        let parameters: Vec<f64> = (canonical.default_parameters().iter())
+            .map(|p| p * (1.0 + 0.1 * random.symmetric()))
+            .collect();
+        let t = random.symmetric().abs();
+        let ctx = EvalContext {
+            t,
+            q: &q,
+            qd: &qd,
+            qdd: &qdd,
+            parameters: &parameters,
+            inputs: &smooth_inputs,
+        };
+        for routine in &canonical.program.routines {
+            let want = run(&canonical.program, routine.kind, &ctx);
+            let got = run(&graph.program, routine.kind, &ctx);
+            let scale = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-12 * scale,
+                    "{path} {:?} output {k}: graph {a} vs canonical {b}",
+                    routine.kind
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_shipped_spec_agrees_on_both_paths() {
+    let mut paths: Vec<_> = std::fs::read_dir("../specs")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "lpm"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 8);
+    for path in paths {
+        check_spec(path.to_str().unwrap());
+    }
+}
+
+#[test]
+fn the_jacobians_agree_on_both_paths() {
+    let source =
+        lagrangian_core::examples::pendulum_chain(3).replace("kinetic =", "jacobians;\nkinetic =");
+    let path = std::env::temp_dir().join("graph_path_jacobians.lpm");
+    std::fs::write(&path, source).unwrap();
+    check_spec(path.to_str().unwrap());
+}
+
+#[test]
+fn a_chain_too_large_for_the_canonical_form_compiles_on_the_graph() {
+    let mut compiled =
+        Compiled::from_source(&lagrangian_core::examples::pendulum_chain(40)).unwrap();
+    assert!(compiled.derivation.is_none());
+    let dynamics = compiled.program.routine(RoutineKind::Dynamics).unwrap();
+    assert_eq!(dynamics.outputs.len(), 40 * 41 / 2 + 40);
+    // Its equations print from the canonical form, derived on demand.
+    assert!(compiled.canonical().is_err());
+}
+
+#[test]
+fn the_conical_pendulum_prints_that_it_is_too_large() {
+    let source = std::fs::read_to_string("../tests/specs/three_link_conical_pendulum.lpm").unwrap();
+    let mut compiled = Compiled::from_source(&source).unwrap();
+    assert!(compiled.derivation.is_none());
+    let text = lagrangian_core::emit::render_equations(
+        &mut compiled,
+        lagrangian_core::emit::Notation::Text,
+    );
+    assert!(text.contains("too large to print"), "{text}");
+}

@@ -1,0 +1,19 @@
+//! The `lpm` command line as a library: each subcommand's options and
+//! `run`, the exit statuses ([`status::ExitStatus`]) and failures, shared by
+//! the `lpm` binary and the Python package.
+
+pub mod audit;
+pub mod chain;
+pub mod derive;
+pub mod eval;
+pub mod failure;
+pub mod fit;
+pub mod generate;
+pub mod linearize;
+pub mod mass;
+pub mod metrics;
+pub mod simulate;
+pub mod spec;
+pub mod status;
+pub mod sweep;
+pub mod warnings;

@@ -1,0 +1,338 @@
+//! The native part of the Python package `lagrangian`: a compiled spec run
+//! by the interpreter (evaluated over rows of states in Rust), its derived
+//! equations, and `lpm simulate` — with failures raised as the exception of
+//! their `lpm` exit status.
+//!
+//! The Python layer (`python/lagrangian/__init__.py`) shapes arguments and
+//! results (one state or a batch, numpy and pandas).
+
+use lagrangian_core::Compiled;
+use lagrangian_core::emit::{Notation, render_equations, render_markdown};
+use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
+use lpm::failure::Failure;
+use lpm::status::ExitStatus;
+use numpy::{
+    IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::PyDict;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Mutex, MutexGuard};
+
+/// The exception class of each exit status, registered by the Python layer.
+static ERRORS: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
+
+/// The exception of `failure`'s exit status, with its message.
+fn raise(failure: Failure) -> PyErr {
+    Python::attach(|py| {
+        let code = failure.status.code();
+        let class = ERRORS
+            .get(py)
+            .and_then(|errors| errors.bind(py).get_item(code).ok().flatten());
+        match class {
+            Some(class) => match class.call1((failure.message().to_string(), code)) {
+                Ok(error) => PyErr::from_value(error),
+                Err(e) => e,
+            },
+            None => PyRuntimeError::new_err(failure.message().to_string()),
+        }
+    })
+}
+
+/// Every exit status of `lpm`: `(code, name, meaning)`, in order.
+#[pyfunction]
+fn exit_statuses() -> Vec<(u8, String, String)> {
+    (ExitStatus::ALL.iter())
+        .map(|s| (s.code(), format!("{s:?}"), s.meaning().to_string()))
+        .collect()
+}
+
+/// Registers the exception class of each exit status (`{code: class}`).
+#[pyfunction]
+fn register_errors(py: Python<'_>, classes: Bound<'_, PyDict>) -> PyResult<()> {
+    ERRORS
+        .set(py, classes.unbind())
+        .map_err(|_| PyRuntimeError::new_err("the error classes are registered already"))
+}
+
+/// `M` (k × n × n) and `f` (k × n) of a batch.
+type MassAndForcing<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<f64>>);
+
+/// A spec compiled and run by the interpreter.
+#[pyclass(module = "lagrangian._lagrangian")]
+struct NativeModel {
+    /// Behind a lock: the interpreter keeps scratch registers.
+    model: Mutex<InterpretedModel>,
+    /// The spec's text and where it came from, for `derive`.
+    source: String,
+    file: String,
+}
+
+/// A spec's text compiled, its errors rendered against `file`.
+fn compile(source: &str, file: &str) -> Result<Compiled, Failure> {
+    Compiled::from_source(source)
+        .map_err(|e| Failure::rendered(ExitStatus::Spec, e.render(file, source)))
+}
+
+/// The rows of a batch of states: `t` (k), `q` and `qd` (k × n).
+struct Batch<'a> {
+    t: &'a [f64],
+    q: &'a [f64],
+    qd: &'a [f64],
+    n: usize,
+}
+
+impl Batch<'_> {
+    fn rows(&self) -> usize {
+        self.t.len()
+    }
+
+    fn row(&self, k: usize) -> (f64, &[f64], &[f64]) {
+        let range = k * self.n..(k + 1) * self.n;
+        (self.t[k], &self.q[range.clone()], &self.qd[range])
+    }
+}
+
+impl NativeModel {
+    fn model(&self) -> MutexGuard<'_, InterpretedModel> {
+        // A panic while the lock is held leaves nothing half-changed.
+        self.model.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The input functions' constant values (every input the dynamics calls
+    /// needs one), with parameters applied as `lpm eval --set` does.
+    fn inputs(
+        &self,
+        values: HashMap<String, f64>,
+    ) -> Result<(InterpretedModel, Box<dyn InputFunctions>), Failure> {
+        let settings: Vec<String> = (values.iter())
+            .map(|(name, value)| format!("{name}={value:e}"))
+            .collect();
+        let mut model = self.model().clone();
+        let (inputs, _) = lpm::eval::apply_settings(&mut model, &settings)?;
+        Ok((model, inputs))
+    }
+
+    /// Checks the shapes of a batch against the model's dimension.
+    fn batch<'a>(
+        &self,
+        t: &'a PyReadonlyArray1<'_, f64>,
+        q: &'a PyReadonlyArray2<'_, f64>,
+        qd: &'a PyReadonlyArray2<'_, f64>,
+    ) -> Result<Batch<'a>, Failure> {
+        let model = self.model();
+        let n = model.dimension();
+        let shape = |a: &PyReadonlyArray2<'_, f64>| a.shape().to_vec();
+        let k = t.len();
+        if shape(q) != [k, n] || shape(qd) != [k, n] {
+            return Err(Failure::usage(format!(
+                "the states need {n} coordinates ({}) and {n} velocities each; got q of shape {:?} and qd of shape {:?} for {k} times",
+                model.coordinates().join(", "),
+                shape(q),
+                shape(qd)
+            )));
+        }
+        let slice = |a: &'a PyReadonlyArray2<'_, f64>| {
+            a.as_slice()
+                .map_err(|_| Failure::usage("states must be C-contiguous float64 arrays"))
+        };
+        Ok(Batch {
+            t: t.as_slice()
+                .map_err(|_| Failure::usage("times must be a contiguous float64 array"))?,
+            q: slice(q)?,
+            qd: slice(qd)?,
+            n,
+        })
+    }
+}
+
+#[pymethods]
+impl NativeModel {
+    /// Compiles the spec `source` (read from `file`, or `<spec>`).
+    #[new]
+    fn new(source: String, file: String) -> PyResult<NativeModel> {
+        let model = compile(&source, &file).map_err(raise)?.interpreted();
+        Ok(NativeModel {
+            model: Mutex::new(model),
+            source,
+            file,
+        })
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.model().name().to_string()
+    }
+
+    #[getter]
+    fn coordinates(&self) -> Vec<String> {
+        self.model().coordinates().to_vec()
+    }
+
+    #[getter]
+    fn parameter_names(&self) -> Vec<String> {
+        self.model().parameter_names().to_vec()
+    }
+
+    #[getter]
+    fn parameter_values(&self) -> Vec<f64> {
+        self.model().parameters().to_vec()
+    }
+
+    #[getter]
+    fn input_names(&self) -> Vec<String> {
+        self.model().input_names().to_vec()
+    }
+
+    #[getter]
+    fn output_names(&self) -> Vec<String> {
+        self.model().output_names().to_vec()
+    }
+
+    #[getter]
+    fn energy_names(&self) -> Vec<String> {
+        Energies::FIELDS.iter().map(|s| s.to_string()).collect()
+    }
+
+    /// Sets a parameter by name.
+    fn set_parameter(&mut self, name: &str, value: f64) -> PyResult<()> {
+        (self.model().set_parameter(name, value)).map_err(|e| raise(Failure::usage(e.to_string())))
+    }
+
+    /// `M` (k × n × n) and `f` (k × n) at each row of the batch.
+    fn dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        inputs: HashMap<String, f64>,
+    ) -> PyResult<MassAndForcing<'py>> {
+        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
+        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
+        let n = batch.n;
+        let (mut mass, mut forcing) = (Vec::new(), Vec::new());
+        for k in 0..batch.rows() {
+            let (m, f) = lpm::eval::evaluate(&model, batch.row(k), &*inputs).map_err(raise)?;
+            mass.extend(m);
+            forcing.extend(f);
+        }
+        let rows = batch.rows();
+        let mass = mass.into_pyarray(py).reshape([rows, n, n])?;
+        let forcing = forcing.into_pyarray(py).reshape([rows, n])?;
+        Ok((mass, forcing))
+    }
+
+    /// `q̈ = M⁻¹ f` (k × n) at each row of the batch.
+    fn accelerations<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        inputs: HashMap<String, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
+        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
+        let n = batch.n;
+        let mut out = Vec::with_capacity(batch.rows() * n);
+        for k in 0..batch.rows() {
+            let (m, f) = lpm::eval::evaluate(&model, batch.row(k), &*inputs).map_err(raise)?;
+            let (t, q, _) = batch.row(k);
+            let a = solve(&m, &f, n).ok_or_else(|| {
+                raise(Failure::new(
+                    ExitStatus::SingularMassMatrix,
+                    format!(
+                        "the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"
+                    ),
+                ))
+            })?;
+            out.extend(a);
+        }
+        out.into_pyarray(py).reshape([batch.rows(), n])
+    }
+
+    /// The energies and powers (k × 5, in the order of `energy_names`).
+    fn energies<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        inputs: HashMap<String, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
+        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
+        let mut out = Vec::with_capacity(batch.rows() * 5);
+        for k in 0..batch.rows() {
+            let (t, q, qd) = batch.row(k);
+            let energies = (model.evaluate_energies(t, q, qd, &*inputs))
+                .map_err(|e| raise(Failure::evaluation(e.to_string())))?;
+            out.extend(energies.values());
+        }
+        out.into_pyarray(py).reshape([batch.rows(), 5])
+    }
+
+    /// The derived equations as `lpm derive` prints them: `text`, `latex`
+    /// or `markdown`.
+    fn derive(&self, format: &str) -> PyResult<String> {
+        let mut compiled = compile(&self.source, &self.file).map_err(raise)?;
+        match format {
+            "text" => Ok(render_equations(&mut compiled, Notation::Text)),
+            "latex" => Ok(render_equations(&mut compiled, Notation::Latex)),
+            "markdown" => Ok(render_markdown(&mut compiled, &self.file)),
+            other => Err(raise(Failure::usage(format!(
+                "format `{other}`: choose text, latex or markdown"
+            )))),
+        }
+    }
+}
+
+/// `M⁻¹ f` by Cholesky (`M` row-major `n × n`); `None` unless `M` is
+/// positive definite and the result finite.
+fn solve(mass: &[f64], forcing: &[f64], n: usize) -> Option<Vec<f64>> {
+    let mass = nalgebra::DMatrix::from_row_slice(n, n, mass);
+    let forcing = nalgebra::DVector::from_column_slice(forcing);
+    let a = mass.cholesky()?.solve(&forcing);
+    a.iter()
+        .all(|v| v.is_finite())
+        .then(|| a.iter().copied().collect())
+}
+
+/// summary.json, trajectory.csv and the events `(t, component, description)`.
+type Simulation = (String, String, Vec<(f64, String, String)>);
+
+/// `lpm simulate` without its files: `(summary.json, trajectory.csv,
+/// events as (t, component, description))`.
+#[pyfunction]
+#[pyo3(signature = (spec, scenario, settings))]
+fn simulate(
+    py: Python<'_>,
+    spec: PathBuf,
+    scenario: Option<PathBuf>,
+    settings: Vec<String>,
+) -> PyResult<Simulation> {
+    let simulated = py
+        .detach(|| lpm::simulate::simulate_spec(&spec, scenario.as_deref(), &settings))
+        .map_err(raise)?;
+    let summary = lagrangian_sim::report::summary_json(&simulated.result);
+    let trajectory = simulated.trajectory_csv();
+    let events = (simulated.result.events.iter())
+        .map(|e| (e.t, e.component.clone(), e.description.clone()))
+        .collect();
+    Ok((summary, trajectory, events))
+}
+
+/// The module `lagrangian._lagrangian`.
+#[pymodule]
+fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<NativeModel>()?;
+    m.add_function(wrap_pyfunction!(exit_statuses, m)?)?;
+    m.add_function(wrap_pyfunction!(register_errors, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    Ok(())
+}

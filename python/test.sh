@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The Python package's tests: a virtual environment from the Python registry,
+# the package installed by pip (built by maturin with cargo's debug profile,
+# sharing the workspace's target/), then pytest against the `lpm` binary.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+venv=target/python-venv
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy
+MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
+cargo build -q -p lpm
+# Exit status 5 (no tests collected) is a failure here too.
+"$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
