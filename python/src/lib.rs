@@ -10,6 +10,7 @@ use lagrangian_core::Compiled;
 use lagrangian_core::emit::{Notation, render_equations, render_markdown};
 use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
 use lpm::failure::Failure;
+use lpm::mass::State;
 use lpm::status::ExitStatus;
 use numpy::{
     IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
@@ -117,6 +118,28 @@ impl NativeModel {
         Ok((model, inputs))
     }
 
+    /// The values `each` gives at every row of a batch, concatenated; it
+    /// gets the model with the parameters of `inputs` set and the inputs'
+    /// constants.
+    fn each_row(
+        &self,
+        (t, q, qd): (
+            &PyReadonlyArray1<'_, f64>,
+            &PyReadonlyArray2<'_, f64>,
+            &PyReadonlyArray2<'_, f64>,
+        ),
+        inputs: HashMap<String, f64>,
+        mut each: impl FnMut(&InterpretedModel, &dyn InputFunctions, State) -> Result<Vec<f64>, Failure>,
+    ) -> PyResult<Vec<f64>> {
+        let batch = self.batch(t, q, qd).map_err(raise)?;
+        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
+        let mut out = Vec::new();
+        for k in 0..batch.rows() {
+            out.extend(each(&model, &*inputs, batch.row(k)).map_err(raise)?);
+        }
+        Ok(out)
+    }
+
     /// Checks the shapes of a batch against the model's dimension.
     fn batch<'a>(
         &self,
@@ -212,18 +235,19 @@ impl NativeModel {
         qd: PyReadonlyArray2<'py, f64>,
         inputs: HashMap<String, f64>,
     ) -> PyResult<MassAndForcing<'py>> {
-        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
-        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
-        let n = batch.n;
-        let (mut mass, mut forcing) = (Vec::new(), Vec::new());
-        for k in 0..batch.rows() {
-            let (m, f) = lpm::eval::evaluate(&model, batch.row(k), &*inputs).map_err(raise)?;
-            mass.extend(m);
-            forcing.extend(f);
+        let n = self.model().dimension();
+        let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, state| {
+            let (mass, forcing) = lpm::eval::evaluate(model, state, inputs)?;
+            Ok([mass, forcing].concat())
+        })?;
+        let k = rows.len() / (n * n + n).max(1);
+        let (mut mass, mut forcing) = (Vec::with_capacity(k * n * n), Vec::with_capacity(k * n));
+        for row in rows.chunks(n * n + n) {
+            mass.extend_from_slice(&row[..n * n]);
+            forcing.extend_from_slice(&row[n * n..]);
         }
-        let rows = batch.rows();
-        let mass = mass.into_pyarray(py).reshape([rows, n, n])?;
-        let forcing = forcing.into_pyarray(py).reshape([rows, n])?;
+        let mass = mass.into_pyarray(py).reshape([k, n, n])?;
+        let forcing = forcing.into_pyarray(py).reshape([k, n])?;
         Ok((mass, forcing))
     }
 
@@ -236,24 +260,21 @@ impl NativeModel {
         qd: PyReadonlyArray2<'py, f64>,
         inputs: HashMap<String, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
-        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
-        let n = batch.n;
-        let mut out = Vec::with_capacity(batch.rows() * n);
-        for k in 0..batch.rows() {
-            let (m, f) = lpm::eval::evaluate(&model, batch.row(k), &*inputs).map_err(raise)?;
-            let (t, q, _) = batch.row(k);
-            let a = solve(&m, &f, n).ok_or_else(|| {
-                raise(Failure::new(
+        let n = self.model().dimension();
+        let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, state| {
+            let (mass, forcing) = lpm::eval::evaluate(model, state, inputs)?;
+            let (t, q, _) = state;
+            solve(&mass, &forcing, n).ok_or_else(|| {
+                Failure::new(
                     ExitStatus::SingularMassMatrix,
                     format!(
                         "the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"
                     ),
-                ))
-            })?;
-            out.extend(a);
-        }
-        out.into_pyarray(py).reshape([batch.rows(), n])
+                )
+            })
+        })?;
+        let k = rows.len() / n.max(1);
+        rows.into_pyarray(py).reshape([k, n])
     }
 
     /// The energies and powers (k × 5, in the order of `energy_names`).
@@ -265,16 +286,13 @@ impl NativeModel {
         qd: PyReadonlyArray2<'py, f64>,
         inputs: HashMap<String, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
-        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
-        let mut out = Vec::with_capacity(batch.rows() * 5);
-        for k in 0..batch.rows() {
-            let (t, q, qd) = batch.row(k);
-            let energies = (model.evaluate_energies(t, q, qd, &*inputs))
-                .map_err(|e| raise(Failure::evaluation(e.to_string())))?;
-            out.extend(energies.values());
-        }
-        out.into_pyarray(py).reshape([batch.rows(), 5])
+        let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, (t, q, qd)| {
+            let energies = (model.evaluate_energies(t, q, qd, inputs))
+                .map_err(|e| Failure::evaluation(e.to_string()))?;
+            Ok(energies.values().to_vec())
+        })?;
+        let k = rows.len() / Energies::FIELDS.len();
+        rows.into_pyarray(py).reshape([k, Energies::FIELDS.len()])
     }
 
     /// The derived equations as `lpm derive` prints them: `text`, `latex`
