@@ -19,37 +19,80 @@ use std::path::{Component, Path, PathBuf};
 #[derive(clap::Args)]
 pub struct Args {
     /// The spec file (`.lpm`).
-    spec: PathBuf,
+    pub spec: PathBuf,
     /// Target time histories (CSV with units in the header).
     #[arg(long)]
-    target: PathBuf,
+    pub target: PathBuf,
     /// The scenario (TOML); by default the one beside the spec that names it.
     #[arg(long)]
-    scenario: Option<PathBuf>,
+    pub scenario: Option<PathBuf>,
     /// What to fit, comma-separated: `stiffness`, `damping` (the crush
     /// component's k1…k7, c1…c7), spec parameters, or dotted scenario
     /// entries holding numbers (default: stiffness,damping).
     #[arg(long, value_delimiter = ',')]
-    fit: Vec<String>,
+    pub fit: Vec<String>,
     /// A setting applied before fitting, as in `lpm simulate --set`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
+    pub set: Vec<String>,
     /// Output directory (default lpm-out/NAME-fit, NAME the spec file's stem).
     #[arg(long)]
-    out: Option<PathBuf>,
+    pub out: Option<PathBuf>,
     /// Number of starts (the scenario's values, then perturbations).
     #[arg(long, default_value_t = 4)]
-    starts: usize,
+    pub starts: usize,
     /// Seed of the perturbed starts.
     #[arg(long, default_value_t = 1)]
-    seed: u64,
+    pub seed: u64,
     /// No progress display.
     #[arg(long)]
-    quiet: bool,
+    pub quiet: bool,
 }
 
 /// Runs `lpm fit`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let bar = if options.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new_spinner()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed} fitting: {pos} simulations, {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    let progress = |simulations: usize, cost: f64| {
+        bar.set_position(simulations as u64);
+        bar.set_message(format!("cost {cost:.4e}"));
+    };
+    let fitting = fitting(&options, &progress)?;
+    bar.finish_and_clear();
+
+    let out = out_dir(options.out.clone(), &options.spec, "-fit");
+    write_files(&fitting, &out)?;
+    let mut text = text_report(&fitting.report);
+    let _ = writeln!(
+        text,
+        "  wrote {0}/fitted.toml (lpm simulate {1} --scenario {0}/fitted.toml), {0}/fit.json, {0}/fit.svg",
+        out.display(),
+        options.spec.display()
+    );
+    Ok(Outcome::success(text))
+}
+
+/// A finished fit: its report and what its files are made from.
+pub struct Fitting {
+    /// What the fit found.
+    pub report: FitReport,
+    setup: FitSetup,
+    /// The scenario with the settings applied, before fitting.
+    document: toml::Table,
+    names: ModelNames,
+    /// The scenario file the fit started from.
+    scenario: PathBuf,
+}
+
+/// The fit `options` describe, without writing anything (`out` and `quiet`
+/// are not read); `progress` sees the number of simulations and the cost.
+pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result<Fitting, Failure> {
     let compiled = compile(&options.spec)?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
@@ -91,32 +134,19 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         starts: options.starts.max(1),
         seed: options.seed,
     };
-    let bar = if options.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new_spinner()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} {elapsed} fitting: {pos} simulations, {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-    );
-    let progress = |simulations: usize, cost: f64| {
-        bar.set_position(simulations as u64);
-        bar.set_message(format!("cost {cost:.4e}"));
-    };
-    let report = dispatch(&model, &setup, &progress)?;
-    bar.finish_and_clear();
+    let report = dispatch(&model, &setup, progress)?;
+    Ok(Fitting {
+        report,
+        setup,
+        document,
+        names,
+        scenario: scenario_path,
+    })
+}
 
-    let out = out_dir(options.out.clone(), &options.spec, "-fit");
-    write_outputs(&out, &report, &setup, &document, &names, &scenario_path)?;
-    let mut text = text_report(&report);
-    let _ = writeln!(
-        text,
-        "  wrote {0}/fitted.toml (lpm simulate {1} --scenario {0}/fitted.toml), {0}/fit.json, {0}/fit.svg",
-        out.display(),
-        options.spec.display()
-    );
-    Ok(Outcome::success(text))
+/// The lines `lpm fit` prints before naming its files.
+pub fn summary_text(fitting: &Fitting) -> String {
+    text_report(&fitting.report)
 }
 
 /// `fit` on the model at its dimension.
@@ -194,18 +224,17 @@ fn text_report(report: &FitReport) -> String {
     out
 }
 
-fn write_outputs(
-    out: &Path,
-    report: &FitReport,
-    setup: &FitSetup,
-    document: &toml::Table,
-    names: &ModelNames,
-    scenario: &Path,
-) -> Result<(), Failure> {
-    let io = |path: &Path, e: std::io::Error| {
-        Failure::io(format!("cannot write {}: {e}", path.display()))
-    };
-    std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
+/// The files of a fit for directory `out` (which exists): `fitted.toml`
+/// (its relative paths rebased to `out`), `fit.json` and `fit.svg`, with
+/// their contents.
+pub fn outputs(fitting: &Fitting, out: &Path) -> Result<[(&'static str, String); 3], Failure> {
+    let Fitting {
+        report,
+        setup,
+        document,
+        names,
+        scenario,
+    } = fitting;
     let values: Vec<f64> = report.parameters.iter().map(|p| p.fitted).collect();
     let mut fitted = document.clone();
     setup.parameters.write_into(&mut fitted, &values, names);
@@ -226,15 +255,27 @@ fn write_outputs(
     let json = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
     let svg =
         overlay(report, &setup.target).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
-    for (name, contents) in [
+    Ok([
         ("fitted.toml", toml_text),
         ("fit.json", json),
         ("fit.svg", svg),
-    ] {
+    ])
+}
+
+/// Writes the files of a fit into directory `out`, creating it, and
+/// returns them as [`outputs`] does.
+pub fn write_files(fitting: &Fitting, out: &Path) -> Result<[(&'static str, String); 3], Failure> {
+    let io = |path: &Path, e: std::io::Error| {
+        Failure::io(format!("cannot write {}: {e}", path.display()))
+    };
+    // Before `outputs`: rebasing the fitted scenario's paths needs `out`.
+    std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
+    let files = outputs(fitting, out)?;
+    for (name, contents) in &files {
         let path = out.join(name);
         write_atomically(&path, contents.as_bytes()).map_err(|e| io(&path, e))?;
     }
-    Ok(())
+    Ok(files)
 }
 
 trait Describe {

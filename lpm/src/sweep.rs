@@ -1,5 +1,6 @@
 //! `lpm sweep`: run a scenario many times with values varied, in parallel,
 //! and write one row of summary metrics per run (CSV or Parquet).
+//! [`memory`] makes the same tables in memory, for the Python package.
 
 use crate::failure::{Failure, Outcome};
 use crate::spec::compile;
@@ -17,46 +18,48 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+pub mod memory;
+
 /// Options of `lpm sweep`.
 #[derive(clap::Args)]
 #[command(group(clap::ArgGroup::new("axes").required(true).args(["grid", "samples"])))]
 pub struct Args {
     /// The scenario (TOML); its `spec` key names the model.
-    scenario: PathBuf,
+    pub scenario: PathBuf,
     /// The spec, if not the one the scenario names.
     #[arg(long)]
-    spec: Option<PathBuf>,
+    pub spec: Option<PathBuf>,
     /// A grid axis: KEY=a,b,c or KEY=low:high:count; every combination of
     /// the axes is run, the last varying fastest.
     #[arg(long, value_name = "KEY=VALUES")]
-    grid: Vec<String>,
+    pub grid: Vec<String>,
     /// Number of sampled runs (with --vary).
     #[arg(long, requires = "vary")]
-    samples: Option<usize>,
+    pub samples: Option<usize>,
     /// A sampled axis: KEY=low:high (uniform) or KEY=low:high:log.
     #[arg(long, value_name = "KEY=LOW:HIGH", requires = "samples")]
-    vary: Vec<String>,
+    pub vary: Vec<String>,
     /// How samples are placed.
     #[arg(long, value_enum, default_value = "latin-hypercube")]
-    design: DesignArg,
+    pub design: DesignArg,
     /// Seed of the sampled design (run i's values depend only on seed and i).
     #[arg(long, default_value_t = 1)]
-    seed: u64,
+    pub seed: u64,
     /// A setting for every run, as in `lpm simulate --set`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
+    pub set: Vec<String>,
     /// Output table: .csv or .parquet.
     #[arg(long, required_unless_present = "plan_only")]
-    out: Option<PathBuf>,
+    pub out: Option<PathBuf>,
     /// Output format (default: from the --out extension).
     #[arg(long, value_parser = ["csv", "parquet"])]
-    format: Option<String>,
+    pub format: Option<String>,
     /// Run only block i of n of the runs (1 ≤ i ≤ n); `auto` reads the
     /// task's index from Slurm (SLURM_ARRAY_TASK_ID, _MIN, _STEP, _COUNT),
     /// a Kubernetes Indexed Job (JOB_COMPLETION_INDEX) or AWS Batch
     /// (AWS_BATCH_JOB_ARRAY_INDEX); the last two need --shard-count.
     #[arg(long, value_name = "I/N|auto")]
-    shard: Option<String>,
+    pub shard: Option<String>,
     /// Run only block K of the runs, counted from 0 (with --shard-count),
     /// as HTCondor's $(Process) numbers tasks.
     #[arg(
@@ -65,35 +68,35 @@ pub struct Args {
         conflicts_with = "shard",
         requires = "shard_count"
     )]
-    shard_index: Option<usize>,
+    pub shard_index: Option<usize>,
     /// Into how many blocks the runs are split (with --shard-index or
     /// --shard auto).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
-    shard_count: Option<u64>,
+    pub shard_count: Option<u64>,
     /// Print the number of runs, the time of a run measured on a few runs,
     /// and a suggested split into tasks; runs nothing else.
     #[arg(long = "plan", conflicts_with_all = ["merge", "resume"])]
-    plan_only: bool,
+    pub plan_only: bool,
     /// Merge the tables of the shards of this sweep (same command line,
     /// any order, CSV or Parquet) into --out, checking that every run is
     /// there once with this plan's values.
     #[arg(long, value_name = "PARTS", num_args = 1.., conflicts_with = "resume")]
-    merge: Vec<PathBuf>,
+    pub merge: Vec<PathBuf>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
-    threads: usize,
+    pub threads: usize,
     /// No progress bar.
     #[arg(long)]
-    quiet: bool,
+    pub quiet: bool,
     /// Continue an interrupted sweep from its journal (`OUT.partial`):
     /// the same command line with --resume runs only the missing runs.
     #[arg(long)]
-    resume: bool,
+    pub resume: bool,
 }
 
 /// How a sampled design places its runs.
 #[derive(Clone, Copy, clap::ValueEnum)]
-enum DesignArg {
+pub enum DesignArg {
     /// One run in each of N equal strata of every axis.
     LatinHypercube,
     /// Independent uniform draws.
@@ -484,6 +487,33 @@ fn merge(
     out: &Path,
     parquet: bool,
 ) -> Result<Outcome, Failure> {
+    let mut failure = None;
+    let written = write_beside(out, |file| {
+        merge_into(parts, prepared, parquet, file).map_err(|e| {
+            let message = e.message().to_string();
+            failure = Some(e);
+            message
+        })
+    });
+    if let Some(failure) = failure {
+        return Err(failure);
+    }
+    written.map_err(Failure::io)?;
+    Ok(Outcome::success(format!(
+        "merged {} runs from {} parts into {}\n",
+        prepared.plan.len(),
+        parts.len(),
+        out.display()
+    )))
+}
+
+/// Writes the merged table of the shards' tables `parts` to `file`.
+fn merge_into(
+    parts: &[PathBuf],
+    prepared: &Prepared,
+    parquet: bool,
+    file: impl std::io::Write + Send,
+) -> Result<(), Failure> {
     let data = |e: String| Failure::new(ExitStatus::DataFile, e);
     let rows = merged_rows(parts, &prepared.layout, &prepared.plan).map_err(data)?;
     // A part that fails its checks is a data error, one that cannot be
@@ -495,20 +525,14 @@ fn merge(
         }
     });
     let layout = &prepared.layout;
-    let written = write_beside(out, |file| match parquet {
+    let written = match parquet {
         true => write_parquet(layout, in_groups(rows, PARQUET_GROUP_ROWS), file),
         false => write_csv(layout, rows, file),
-    });
+    };
     if let Some(e) = bad_part.into_inner() {
         return Err(data(e));
     }
-    written.map_err(Failure::io)?;
-    Ok(Outcome::success(format!(
-        "merged {} runs from {} parts into {}\n",
-        prepared.plan.len(),
-        parts.len(),
-        out.display()
-    )))
+    written.map_err(Failure::io)
 }
 
 /// Runs timed by `--plan`.
