@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/python-venv
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy
+# pandas for DataFrames, dask.distributed for the Dask template's test.
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]"
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
 cargo build -q -p lpm
 # Exit status 5 (no tests collected) is a failure here too.

@@ -226,3 +226,297 @@ def simulate(
         trajectory=_trajectory(trajectory),
         events=[Event(*e) for e in events],
     )
+
+
+# --- Sweeps and fits: `lpm sweep` and `lpm fit` --------------------------
+
+__all__ += ["sweep", "merge_sweep", "sweep_plan", "fit", "FitResult"]
+
+
+def _entries(set: Optional[Mapping[str, Any]], settings: Mapping[str, Any]) -> List[str]:
+    """The ``--set`` entries of keyword settings (``t_end``, ``rtol``,
+    ``atol``, ``method`` go under ``simulation.``) and of ``set``."""
+    entries = []
+    for key, value in settings.items():
+        key = f"simulation.{key}" if key in _SIMULATION_KEYS else key
+        entries.append(_setting(key, value))
+    return entries + [_setting(key, value) for key, value in (set or {}).items()]
+
+
+def _number(value: Any) -> str:
+    """A number as the command line takes it (exactly: ``repr`` of a float
+    reads back as the same float)."""
+    return value if isinstance(value, str) else repr(float(value))
+
+
+def _grid_arguments(grid) -> List[str]:
+    """``--grid KEY=VALUES`` arguments of a dict (``{"k1": [5e4, 6e4]}``,
+    ``{"k1*": "0.8:1.2:5"}``) or a list of such strings."""
+    if grid is None:
+        return []
+    if isinstance(grid, str):
+        return [grid]
+    if not isinstance(grid, Mapping):
+        return [str(g) for g in grid]
+    arguments = []
+    for key, values in grid.items():
+        if not isinstance(values, str):
+            values = ",".join(_number(v) for v in values)
+        arguments.append(f"{key}={values}")
+    return arguments
+
+
+def _vary_arguments(vary) -> List[str]:
+    """``--vary KEY=LOW:HIGH[:log]`` arguments of a dict (``{"k1": (5e4,
+    1e5)}``, ``{"c": (1, 100, "log")}``) or a list of such strings."""
+    if vary is None:
+        return []
+    if isinstance(vary, str):
+        return [vary]
+    if not isinstance(vary, Mapping):
+        return [str(v) for v in vary]
+    arguments = []
+    for key, bounds in vary.items():
+        if not isinstance(bounds, str):
+            bounds = ":".join(b if b == "log" else _number(b) for b in bounds)
+        arguments.append(f"{key}={bounds}")
+    return arguments
+
+
+def _sweep_options(
+    scenario, spec, grid, samples, vary, design, seed, set, settings,
+    shard=None, shard_index=None, shard_count=None, threads=None, out=None, format=None,
+) -> Dict[str, Any]:
+    """The options of ``lpm sweep`` as the native module takes them."""
+    path = lambda p: None if p is None else os.fspath(p)  # noqa: E731
+    return {
+        "scenario": path(scenario),
+        "spec": path(spec),
+        "grid": _grid_arguments(grid),
+        "samples": samples,
+        "vary": _vary_arguments(vary),
+        "design": design,
+        "seed": seed,
+        "set": _entries(set, settings),
+        "shard": shard,
+        "shard_index": shard_index,
+        "shard_count": shard_count,
+        "threads": threads or 0,
+        "out": path(out),
+        "format": format,
+    }
+
+
+def _column(cells: List[str]) -> np.ndarray:
+    """A table column: integers, numbers (an empty cell is NaN) or text."""
+    try:
+        return np.array([int(c) for c in cells], dtype=np.int64)
+    except ValueError:
+        pass
+    try:
+        return np.array([float(c) if c else np.nan for c in cells], dtype=np.float64)
+    except ValueError:
+        return np.array(cells, dtype=object)
+
+
+def _table(text: str):
+    """A sweep table's CSV text as a pandas DataFrame (when pandas is
+    installed: the frame ``pandas.read_csv`` reads from ``lpm sweep``'s
+    file), else a dict of numpy arrays."""
+    try:
+        import pandas
+    except ImportError:
+        pandas = None
+    if pandas is not None:
+        return pandas.read_csv(io.StringIO(text))
+    rows = list(csv.reader(io.StringIO(text)))
+    header, body = rows[0], rows[1:]
+    return {name: _column([row[k] for row in body]) for k, name in enumerate(header)}
+
+
+def sweep(
+    spec: Optional[Union[str, os.PathLike]] = None,
+    scenario: Optional[Union[str, os.PathLike]] = None,
+    *,
+    grid=None,
+    samples: Optional[int] = None,
+    vary=None,
+    design: str = "latin-hypercube",
+    seed: int = 1,
+    shard: Optional[str] = None,
+    shard_index: Optional[int] = None,
+    shard_count: Optional[int] = None,
+    threads: Optional[int] = None,
+    set: Optional[Mapping[str, Any]] = None,
+    **settings: Any,
+):
+    """Runs ``lpm sweep`` on ``scenario`` (by default the scenario beside
+    the spec that names it; without ``spec``, the scenario's ``spec`` key
+    names the model) and returns its table, one row per run: the
+    columns and values of ``lpm sweep … --out FILE.csv``, as a pandas
+    DataFrame when pandas is installed, else a dict of numpy arrays.
+
+    ``grid`` (``--grid``) maps keys to values or ``"low:high:count"``;
+    ``samples`` with ``vary`` (``--vary``) maps keys to ``(low, high)`` or
+    ``(low, high, "log")``, placed by ``design`` (``"latin-hypercube"`` or
+    ``"random"``) from ``seed``. Either may also be a list of the command
+    line's ``KEY=…`` strings. ``shard="i/n"``, ``shard="auto"`` or
+    ``shard_index=k, shard_count=n`` (from 0) run one block of the runs;
+    ``threads`` defaults to one per core. ``set`` and ``settings`` fix
+    values for every run, as in :func:`simulate`.
+    """
+    options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings,
+                             shard, shard_index, shard_count, threads)
+    return _table(_lagrangian.sweep_table(options))
+
+
+def _table_csv(table) -> str:
+    """A table ``sweep`` returned (a DataFrame or a dict of arrays) as CSV
+    that reads back to the same values."""
+
+    def cell(value) -> str:
+        if isinstance(value, str):
+            return value
+        if isinstance(value, (float, np.floating)):
+            value = float(value)
+            if value != value:
+                return ""
+            return str(int(value)) if value.is_integer() else repr(value)
+        return str(value)
+
+    names = list(table.keys())
+    columns = [list(table[name]) for name in names]
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(names)
+    writer.writerows([cell(v) for v in row] for row in zip(*columns))
+    return out.getvalue()
+
+
+def merge_sweep(
+    parts,
+    spec: Optional[Union[str, os.PathLike]] = None,
+    scenario: Optional[Union[str, os.PathLike]] = None,
+    *,
+    grid=None,
+    samples: Optional[int] = None,
+    vary=None,
+    design: str = "latin-hypercube",
+    seed: int = 1,
+    out: Optional[Union[str, os.PathLike]] = None,
+    format: Optional[str] = None,
+    set: Optional[Mapping[str, Any]] = None,
+    **settings: Any,
+):
+    """``lpm sweep --merge``: the shards' tables ``parts`` (tables
+    :func:`sweep` returned, or files ``lpm sweep`` wrote, CSV or Parquet, in
+    any order) checked against the plan of the same arguments — every run
+    exactly once, with the plan's values — and merged into the table of one
+    full run (a ``DataFileError`` names a missing, repeated or foreign
+    part). With ``out`` the table is also written there as the command
+    writes it (CSV or Parquet by the extension, or ``format``).
+    """
+    import tempfile
+
+    options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings,
+                             out=out, format=format)
+    with tempfile.TemporaryDirectory(prefix="lagrangian-merge-") as directory:
+        paths = []
+        for k, part in enumerate(parts):
+            if isinstance(part, (str, os.PathLike)):
+                paths.append(os.fspath(part))
+                continue
+            path = os.path.join(directory, f"parts[{k}]")
+            with open(path, "w", encoding="utf-8", newline="") as f:
+                f.write(_table_csv(part))
+            paths.append(path)
+        try:
+            return _table(_lagrangian.sweep_merge(options, paths))
+        except LagrangianError as e:
+            # A table part is named `parts[k]`, not by its temporary file.
+            message = str(e).replace(os.path.join(directory, ""), "")
+            raise type(e)(message, e.status) from None
+
+
+def sweep_plan(
+    spec: Optional[Union[str, os.PathLike]] = None,
+    scenario: Optional[Union[str, os.PathLike]] = None,
+    *,
+    grid=None,
+    samples: Optional[int] = None,
+    vary=None,
+    design: str = "latin-hypercube",
+    seed: int = 1,
+    set: Optional[Mapping[str, Any]] = None,
+    **settings: Any,
+) -> str:
+    """What ``lpm sweep --plan`` prints: the number of runs, the time of a
+    run measured on a few, and a suggested split."""
+    options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings)
+    return _lagrangian.sweep_plan(options)
+
+
+@dataclass
+class FitResult:
+    """A fit: ``parameters`` (fitted value by name), ``cost`` and
+    ``cost_initial``, ``report`` (the dict of fit.json: standard errors,
+    residuals per channel, starts, correlations), ``text`` (the report
+    ``lpm fit`` prints), ``scenario`` (the text of fitted.toml, a scenario
+    :func:`simulate` runs) and ``svg`` (the overlay plot fit.svg)."""
+
+    parameters: Dict[str, float]
+    cost: float
+    cost_initial: float
+    report: Dict[str, Any]
+    text: str
+    scenario: str
+    svg: str
+
+
+def fit(
+    spec: Union[str, os.PathLike],
+    target: Union[str, os.PathLike],
+    scenario: Optional[Union[str, os.PathLike]] = None,
+    *,
+    fit: Optional[Union[str, List[str]]] = None,
+    starts: int = 4,
+    seed: int = 1,
+    out: Optional[Union[str, os.PathLike]] = None,
+    set: Optional[Mapping[str, Any]] = None,
+    **settings: Any,
+) -> FitResult:
+    """Runs ``lpm fit``: identifies ``fit`` (``"stiffness"``,
+    ``"damping"``, spec parameters or dotted scenario entries; a list or a
+    comma-separated string; by default stiffness and damping) from the
+    target time histories ``target`` (CSV with units in the header).
+
+    ``scenario`` defaults to the one beside the spec that names it;
+    ``starts`` and ``seed`` as ``--starts`` and ``--seed``; ``set`` and
+    ``settings`` as in :func:`simulate`. With ``out`` the files of ``lpm
+    fit`` (fitted.toml, fit.json, fit.svg) are written there; without it,
+    the fitted scenario's relative paths start from the current directory.
+    """
+    names = fit.split(",") if isinstance(fit, str) else list(fit or [])
+    path = lambda p: None if p is None else os.fspath(p)  # noqa: E731
+    options = {
+        "spec": os.fspath(spec),
+        "target": os.fspath(target),
+        "scenario": path(scenario),
+        "fit": [name.strip() for name in names],
+        "set": _entries(set, settings),
+        "out": path(out),
+        "starts": starts,
+        "seed": seed,
+    }
+    text, files = _lagrangian.fit(options)
+    files = dict(files)
+    report = json.loads(files["fit.json"])
+    return FitResult(
+        parameters={p["name"]: p["fitted"] for p in report["parameters"]},
+        cost=report["cost"],
+        cost_initial=report["cost_initial"],
+        report=report,
+        text=text,
+        scenario=files["fitted.toml"],
+        svg=files["fit.svg"],
+    )

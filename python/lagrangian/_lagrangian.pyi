@@ -1,6 +1,6 @@
 """Type stubs of the native module (python/src/lib.rs)."""
 
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -41,3 +41,11 @@ class NativeModel:
         qd: npt.NDArray[np.float64], inputs: Dict[str, float],
     ) -> npt.NDArray[np.float64]: ...
     def derive(self, format: str) -> str: ...
+
+# `lpm sweep` and `lpm fit` (python/src/ensembles.rs). The options are dicts
+# with every key; the tables are the CSV text `lpm sweep --out FILE.csv`
+# writes.
+def sweep_table(options: Dict[str, Any]) -> str: ...
+def sweep_merge(options: Dict[str, Any], parts: List[str]) -> str: ...
+def sweep_plan(options: Dict[str, Any]) -> str: ...
+def fit(options: Dict[str, Any]) -> Tuple[str, List[Tuple[str, str]]]: ...

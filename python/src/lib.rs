@@ -1,7 +1,7 @@
 //! The native part of the Python package `lagrangian`: a compiled spec run
 //! by the interpreter (evaluated over rows of states in Rust), its derived
-//! equations, and `lpm simulate` — with failures raised as the exception of
-//! their `lpm` exit status.
+//! equations, `lpm simulate`, `lpm sweep` and `lpm fit` — with failures
+//! raised as the exception of their `lpm` exit status.
 //!
 //! The Python layer (`python/lagrangian/__init__.py`) shapes arguments and
 //! results (one state or a batch, numpy and pandas).
@@ -23,6 +23,8 @@ use pyo3::types::PyDict;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
+
+mod ensembles;
 
 /// The exception class of each exit status, registered by the Python layer.
 static ERRORS: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
@@ -352,5 +354,10 @@ fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(exit_statuses, m)?)?;
     m.add_function(wrap_pyfunction!(register_errors, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    // `lpm sweep` and `lpm fit` (ensembles.rs).
+    m.add_function(wrap_pyfunction!(ensembles::sweep_table, m)?)?;
+    m.add_function(wrap_pyfunction!(ensembles::sweep_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(ensembles::sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(ensembles::fit, m)?)?;
     Ok(())
 }

@@ -1,0 +1,166 @@
+//! `lpm sweep` and `lpm fit` from Python: the command line's own code
+//! (`lpm::sweep::memory`, `lpm::fit`), its tables and reports handed back as
+//! the text the command writes. The Python layer builds the options (lists
+//! of `KEY=VALUES` strings) and shapes the results.
+
+use crate::raise;
+use lpm::failure::Failure;
+use pyo3::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The options of `lpm sweep` that choose its runs, as a dict with every
+/// key (the Python layer fills in the defaults).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub(crate) struct SweepOptions {
+    /// The scenario; by default the one beside `spec` that names it.
+    scenario: Option<PathBuf>,
+    spec: Option<PathBuf>,
+    grid: Vec<String>,
+    samples: Option<usize>,
+    vary: Vec<String>,
+    design: String,
+    seed: u64,
+    set: Vec<String>,
+    shard: Option<String>,
+    shard_index: Option<usize>,
+    shard_count: Option<u64>,
+    threads: usize,
+    out: Option<PathBuf>,
+    format: Option<String>,
+}
+
+impl SweepOptions {
+    /// The command line's options.
+    fn args(self) -> Result<lpm::sweep::Args, Failure> {
+        let scenario = match (self.scenario, &self.spec) {
+            (Some(scenario), _) => scenario,
+            (None, Some(spec)) => lpm::spec::find_scenario(spec)?.ok_or_else(|| {
+                Failure::usage(format!(
+                    "no scenario names {}; give one with scenario=",
+                    spec.display()
+                ))
+            })?,
+            (None, None) => return Err(Failure::usage("give a spec, a scenario or both")),
+        };
+        Ok(lpm::sweep::Args {
+            scenario,
+            spec: self.spec,
+            grid: self.grid,
+            samples: self.samples,
+            vary: self.vary,
+            design: lpm::sweep::memory::design(&self.design)?,
+            seed: self.seed,
+            set: self.set,
+            out: self.out,
+            format: self.format,
+            shard: self.shard,
+            shard_index: self.shard_index,
+            shard_count: self.shard_count,
+            plan_only: false,
+            merge: Vec::new(),
+            threads: self.threads,
+            quiet: true,
+            resume: false,
+        })
+    }
+}
+
+/// The bytes of a CSV table as text (the tables are UTF-8).
+fn text(bytes: Vec<u8>) -> Result<String, Failure> {
+    String::from_utf8(bytes).map_err(|e| Failure::io(format!("the table is not UTF-8: {e}")))
+}
+
+/// The CSV table of the sweep (or shard) of `options`, as `lpm sweep --out
+/// FILE.csv` writes it. The GIL is released while the runs go on; a signal
+/// (Ctrl-C) stops the sweep and raises its exception.
+#[pyfunction]
+pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
+    let args = options.args().map_err(raise)?;
+    let stop = AtomicBool::new(false);
+    let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
+    let mut each_run = || {
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            stop.store(true, Ordering::SeqCst);
+            interrupt
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get_or_insert(e);
+        }
+    };
+    let table = py.detach(|| lpm::sweep::memory::table(&args, &stop, &mut each_run));
+    if let Some(e) = interrupt.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        return Err(e);
+    }
+    table.and_then(text).map_err(raise)
+}
+
+/// `lpm sweep --merge PARTS`: the shards' table files checked against the
+/// plan of `options` and merged, as the CSV text of one full run's table;
+/// with `out` in `options` also written there.
+#[pyfunction]
+pub(crate) fn sweep_merge(
+    py: Python<'_>,
+    options: SweepOptions,
+    parts: Vec<PathBuf>,
+) -> PyResult<String> {
+    let args = options.args().map_err(raise)?;
+    py.detach(|| lpm::sweep::memory::merged(&args, &parts).and_then(text))
+        .map_err(raise)
+}
+
+/// What `lpm sweep --plan` prints for `options`.
+#[pyfunction]
+pub(crate) fn sweep_plan(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
+    let args = options.args().map_err(raise)?;
+    py.detach(|| lpm::sweep::memory::plan(&args)).map_err(raise)
+}
+
+/// The options of `lpm fit`, as a dict with every key.
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub(crate) struct FitOptions {
+    spec: PathBuf,
+    target: PathBuf,
+    scenario: Option<PathBuf>,
+    fit: Vec<String>,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    starts: usize,
+    seed: u64,
+}
+
+/// What `fit` returns: the report `lpm fit` prints (without the line
+/// naming its files) and the files `(name, contents)`: `fitted.toml`,
+/// `fit.json`, `fit.svg`.
+pub(crate) type Fitted = (String, Vec<(String, String)>);
+
+/// `lpm fit`: the printed report and the files, written into `out` when
+/// it is given; without it, the fitted scenario's relative paths start
+/// from the current directory.
+#[pyfunction]
+pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
+    let args = lpm::fit::Args {
+        spec: options.spec,
+        target: options.target,
+        scenario: options.scenario,
+        fit: options.fit,
+        set: options.set,
+        out: options.out,
+        starts: options.starts,
+        seed: options.seed,
+        quiet: true,
+    };
+    let fitted = py.detach(|| -> Result<Fitted, Failure> {
+        let fitting = lpm::fit::fitting(&args, &|_, _| {})?;
+        let files = match &args.out {
+            Some(out) => lpm::fit::write_files(&fitting, out)?,
+            None => lpm::fit::outputs(&fitting, Path::new("."))?,
+        };
+        let files = files.map(|(name, contents)| (name.to_string(), contents));
+        Ok((lpm::fit::summary_text(&fitting), files.to_vec()))
+    });
+    fitted.map_err(raise)
+}
