@@ -28,3 +28,8 @@ def test_every_python_block_of_the_readme_runs(capsys):
     # The pendulum's q̈ = −(g/l) sin θ with l = 2 m, as numpy prints it.
     assert printed[0] == str(np.array([-9.81 / 2 * math.sin(0.5)]))
     assert printed[1].startswith("0.5") and "weld fails" in printed[1]
+    # The sweep, its shards merged, and the fit.
+    assert "40 runs merged" in printed
+    # k1 of the 10 % stiffer front end: 1.1 × 2.4e6 N/m.
+    k1 = [float(line.split()[1]) for line in printed if line.startswith("k1: ")]
+    assert len(k1) == 1 and abs(k1[0] / 2.64e6 - 1) < 0.02
