@@ -3,8 +3,10 @@
 ``Model`` compiles a spec (a path or its text) and evaluates ``M(q)``,
 ``f(q, q̇, t)``, ``q̈`` and the energies at one state or at each row of a
 batch (the loop runs in Rust). ``simulate`` runs ``lpm simulate`` and returns
-its summary, trajectory and events. Failures raise the subclass of
-``LagrangianError`` named after the ``lpm`` exit status they would give.
+its summary, trajectory and events; ``sweep`` (with ``merge_sweep`` and
+``sweep_plan``) and ``fit`` run ``lpm sweep`` and ``lpm fit``. Failures
+raise the subclass of ``LagrangianError`` named after the ``lpm`` exit
+status they would give.
 """
 
 from __future__ import annotations
@@ -214,12 +216,8 @@ def simulate(
     ``--set`` entry, dotted keys included
     (``{"components.front_end.unloading": "elastic"}``).
     """
-    entries = []
-    for key, value in settings.items():
-        key = f"simulation.{key}" if key in _SIMULATION_KEYS else key
-        entries.append(_setting(key, value))
-    entries += [_setting(key, value) for key, value in (set or {}).items()]
     scenario_path = None if scenario is None else os.fspath(scenario)
+    entries = _entries(set, settings)
     summary, trajectory, events = _lagrangian.simulate(os.fspath(spec), scenario_path, entries)
     return Result(
         summary=json.loads(summary),

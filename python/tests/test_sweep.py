@@ -126,3 +126,22 @@ def test_the_plan_and_bad_options_read_as_the_command_line(tmp_path):
         lagrangian.sweep(scenario=SCENARIO, grid={"no_such_key": [1.0]})
     with pytest.raises(lagrangian.UsageError, match="several scenarios|no scenario"):
         lagrangian.sweep(ROOT / "specs" / "pendulum.lpm", grid={"c": [0.1]})
+
+
+def test_shard_auto_reads_the_schedulers_task(monkeypatch):
+    second = lagrangian.sweep(scenario=SCENARIO, **SAMPLED, shard="2/3")
+    for name, value in [("SLURM_ARRAY_TASK_ID", "2"), ("SLURM_ARRAY_TASK_MIN", "1"),
+                        ("SLURM_ARRAY_TASK_COUNT", "3")]:
+        monkeypatch.setenv(name, value)
+    auto = lagrangian.sweep(scenario=SCENARIO, **SAMPLED, shard="auto")
+    assert lagrangian._table_csv(auto) == lagrangian._table_csv(second)
+    assert list(auto["run"]) == [2, 3]
+
+
+def test_a_sweep_whose_every_run_fails_raises_every_run_failed(tmp_path):
+    done = run_lpm("sweep", SCENARIO, "--grid", "k1=5e4,6e4", "--set", "simulation.max_steps=3",
+                   "--quiet", "--out", tmp_path / "failed.csv", check=False)
+    with pytest.raises(lagrangian.EveryRunFailedError, match="every run failed") as raised:
+        lagrangian.sweep(scenario=SCENARIO, grid={"k1": [5e4, 6e4]}, set={"simulation.max_steps": 3})
+    assert raised.value.status == done.returncode != 0
+    assert "max_steps" in str(raised.value)
