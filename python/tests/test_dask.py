@@ -21,7 +21,7 @@ def template():
 
 @pytest.fixture(scope="module")
 def client():
-    # Threads of this process: workers as processes take long to start here.
+    # Threads of this process (the script's test below starts processes).
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
                       dashboard_address=":0") as cluster, Client(cluster) as client:
         yield client
@@ -46,7 +46,8 @@ def test_the_dask_template_merges_its_shards_into_one_runs_table(tmp_path, clien
 def test_the_template_runs_as_a_script_on_a_local_cluster(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(ROOT)
     out = tmp_path / "sweep.csv"
-    table = template().main(["--workers", "2", "--no-processes", "--shards", "3", "--samples", "5",
+    # Worker processes: the shards' tables travel between processes.
+    table = template().main(["--workers", "2", "--shards", "3", "--samples", "5",
                              "--set", "simulation.t_end=0.02", "--out", str(out)])
     assert capsys.readouterr().out.strip() == f"5 runs in 3 shards; wrote {out}"
     pandas.testing.assert_frame_equal(pandas.read_csv(out), table, check_exact=True)
