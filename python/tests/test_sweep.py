@@ -145,3 +145,17 @@ def test_a_sweep_whose_every_run_fails_raises_every_run_failed(tmp_path):
         lagrangian.sweep(scenario=SCENARIO, grid={"k1": [5e4, 6e4]}, set={"simulation.max_steps": 3})
     assert raised.value.status == done.returncode != 0
     assert "max_steps" in str(raised.value)
+
+
+def test_ctrl_c_stops_a_sweep_and_raises_keyboard_interrupt():
+    import os
+    import signal
+    import threading
+    import time
+
+    threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT)).start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        # Far more runs than finish in the test's time.
+        lagrangian.sweep(scenario=SCENARIO, samples=100000, vary={"k1": (5e4, 1e5)}, threads=1)
+    assert time.monotonic() - start < 10
