@@ -14,6 +14,8 @@ use crate::functions::Func;
 use crate::layout::RoutineKind;
 use std::fmt;
 
+mod code;
+
 /// One instruction: destination register first, then the operands.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Instruction {
@@ -171,6 +173,9 @@ pub struct Tape {
     routines: Vec<TapeRoutine>,
     /// Argument registers of the input calls.
     arguments: Vec<u32>,
+    /// Each routine's instructions as they run, superinstructions fused
+    /// (see `code`); every register they name is inside the file.
+    steps: Vec<Vec<code::Step>>,
 }
 
 impl Tape {
@@ -216,10 +221,14 @@ impl Tape {
                 check(r, "output")?;
             }
         }
+        let steps = (routines.iter())
+            .map(|routine| code::steps(routine, &layout, &arguments))
+            .collect();
         Ok(Tape {
             layout,
             routines,
             arguments,
+            steps,
         })
     }
 
@@ -269,12 +278,20 @@ impl Tape {
         self.routines.iter().find(|r| r.kind == kind)
     }
 
+    /// The routine `kind` and its steps.
+    fn routine_and_steps(&self, kind: RoutineKind) -> Option<(&TapeRoutine, &[code::Step])> {
+        let k = self.routines.iter().position(|r| r.kind == kind)?;
+        Some((&self.routines[k], &self.steps[k]))
+    }
+
     /// Runs routine `kind` at `(t, q, q̇, q̈)` and writes its outputs to `out`;
     /// `q̈` may be empty for routines that do not use it. Returns `false`
     /// when the tape has no such routine.
     ///
-    /// `registers` must come from [`Tape::registers`]; `q` and `qd` must have
-    /// the tape's dimension and `out` room for the outputs.
+    /// `registers` must come from [`Tape::registers`] (it panics on a file
+    /// of another size); `q` and `qd` must have the tape's dimension and
+    /// `out` room for the outputs. Only the outputs are defined afterwards:
+    /// a temporary whose value feeds a single instruction may not be written.
     pub fn run<I: InputFunctions + ?Sized>(
         &self,
         kind: RoutineKind,
@@ -283,9 +300,14 @@ impl Tape {
         registers: &mut [f64],
         out: &mut [f64],
     ) -> bool {
-        let Some(routine) = self.routine(kind) else {
+        let Some((routine, steps)) = self.routine_and_steps(kind) else {
             return false;
         };
+        assert_eq!(
+            registers.len(),
+            self.layout.registers(),
+            "a file of this tape"
+        );
         let (t, q, qd, qdd) = state;
         let n = self.layout.dimension;
         let base = self.layout.coordinate(0) as usize;
@@ -295,8 +317,20 @@ impl Tape {
             registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
         }
         registers[self.layout.time() as usize] = t;
-        for instruction in &routine.instructions {
-            self.execute(*instruction, inputs, registers);
+        let file = registers.as_mut_ptr();
+        for &step in steps {
+            // SAFETY: `Tape::new` checked that every register of every
+            // instruction, hence of every step, is inside a file of
+            // `layout.registers()`, the length of `registers` (asserted).
+            unsafe {
+                step.run(file, |instruction| {
+                    self.execute(
+                        instruction,
+                        inputs,
+                        std::slice::from_raw_parts_mut(file, self.layout.registers()),
+                    )
+                })
+            };
         }
         for (slot, &o) in out.iter_mut().zip(&routine.outputs) {
             *slot = registers[o as usize];
