@@ -7,7 +7,9 @@
 //! slots at each call, so the instruction lists hold arithmetic and input
 //! calls only. The compiler (`lagrangian-core`) lowers its optimized program
 //! to a tape instruction by instruction, in the program's order, so a tape
-//! computes bit for bit what the program and the emitted Rust do.
+//! computes bit for bit what the program and the emitted Rust do. A routine
+//! runs as steps, where an operation read once is fused into its reader
+//! (superinstructions rounded as the separate operations are: `code`).
 
 use crate::InputFunctions;
 use crate::functions::Func;
