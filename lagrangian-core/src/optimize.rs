@@ -14,6 +14,7 @@ use crate::derive::Derivation;
 use crate::expr::{ExprId, Func, Node, Store, SymbolKind};
 use crate::program::{Op, Program, Reg, Routine, RoutineKind};
 use crate::rational::Rational;
+use lagrangian_model::functions::Elementary;
 use lagrangian_model::layout::mass_entries;
 use rustc_hash::FxHashMap;
 
@@ -352,29 +353,18 @@ impl<'a> Builder<'a> {
     /// `f(args)` for arguments already in registers.
     fn apply(&mut self, f: Func, args: &[Signed]) -> Signed {
         let arg = args[0];
-        match f {
-            Func::Sin => Signed::plus(self.op(Op::Sin(arg.reg))).flip(arg.negative),
-            Func::Cos => Signed::plus(self.op(Op::Cos(arg.reg))),
-            Func::Exp => {
+        match f.elementary() {
+            Some(Elementary::Sin) => Signed::plus(self.op(Op::Sin(arg.reg))).flip(arg.negative),
+            Some(Elementary::Cos) => Signed::plus(self.op(Op::Cos(arg.reg))),
+            Some(Elementary::Exp) => {
                 let a = self.materialize(arg);
                 Signed::plus(self.op(Op::Exp(a)))
             }
-            Func::Ln => {
+            Some(Elementary::Ln) => {
                 let a = self.materialize(arg);
                 Signed::plus(self.op(Op::Ln(a)))
             }
-            Func::Asin
-            | Func::Acos
-            | Func::Atan
-            | Func::Atan2
-            | Func::Sinh
-            | Func::Cosh
-            | Func::Tanh
-            | Func::Hypot
-            | Func::Abs
-            | Func::Sign
-            | Func::Min
-            | Func::Max => {
+            None => {
                 let regs: Vec<Reg> = args.iter().map(|&a| self.materialize(a)).collect();
                 Signed::plus(self.op(Op::Call(f, regs.into_boxed_slice())))
             }

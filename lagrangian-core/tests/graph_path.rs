@@ -61,6 +61,11 @@ fn check_spec(path: &str) {
             inputs: &smooth_inputs,
         };
         for routine in &canonical.program.routines {
+            if routine.kind == RoutineKind::Switching {
+                // The same functions in another order: compared up to
+                // order and sign by the non-smooth model's test below.
+                continue;
+            }
             let want = run(&canonical.program, routine.kind, &ctx);
             let got = run(&graph.program, routine.kind, &ctx);
             let scale = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
@@ -119,4 +124,58 @@ fn the_conical_pendulum_prints_that_it_is_too_large() {
         lagrangian_core::emit::Notation::Text,
     );
     assert!(text.contains("too large to print"), "{text}");
+}
+
+/// The switching functions of a model at 20 random states (coordinates in
+/// `[−1, 1]`, the domain of the functions spec), one row per state.
+fn switching_values(program: &Program, parameters: &[f64]) -> Vec<Vec<f64>> {
+    let n = program.dimension;
+    let mut random = Lcg::new(11);
+    (0..20)
+        .map(|_| {
+            let q: Vec<f64> = (0..n).map(|_| random.symmetric()).collect();
+            let qd: Vec<f64> = (0..n).map(|_| 2.0 * random.symmetric()).collect();
+            let ctx = EvalContext {
+                t: 0.1,
+                q: &q,
+                qd: &qd,
+                qdd: &[],
+                parameters,
+                inputs: &smooth_inputs,
+            };
+            run(program, RoutineKind::Switching, &ctx)
+        })
+        .collect()
+}
+
+#[test]
+fn a_non_smooth_model_has_the_same_switching_functions_on_both_paths() {
+    let source = std::fs::read_to_string("../tests/functions/all_functions.lpm").unwrap();
+    let canonical = Compiled::from_source(&source).unwrap();
+    assert!(canonical.derivation.is_some());
+    let graph = Compiled::on_graph(Model::from_source(&source).unwrap()).unwrap();
+    let parameters = canonical.default_parameters();
+    let want = switching_values(&canonical.program, &parameters);
+    let got = switching_values(&graph.program, &parameters);
+    let count = want[0].len();
+    assert!(count >= 5, "{count} switching functions");
+    assert_eq!(got[0].len(), count);
+    // The same functions, each up to its sign, in whatever order.
+    let column = |rows: &[Vec<f64>], k: usize| rows.iter().map(|r| r[k]).collect::<Vec<_>>();
+    let same_up_to_sign = |a: &[f64], b: &[f64]| {
+        [1.0, -1.0].into_iter().any(|s| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - s * y).abs() <= 1e-12 * x.abs().max(1.0))
+        })
+    };
+    for k in 0..count {
+        let wanted = column(&want, k);
+        assert!(
+            (0..count).any(|j| same_up_to_sign(&column(&got, j), &wanted)),
+            "canonical switching function {k} ({wanted:?}) is not on the graph path"
+        );
+    }
+    // And the dynamics agree.
+    check_spec("../tests/functions/all_functions.lpm");
 }

@@ -192,6 +192,74 @@ impl Func {
             Func::Max => max(a, b),
         }
     }
+
+    /// The function as one of the four the compiler does more with than
+    /// call it; `None` for a function kept as an atom (a call, with exact
+    /// derivatives).
+    pub fn elementary(self) -> Option<Elementary> {
+        match self {
+            Func::Sin => Some(Elementary::Sin),
+            Func::Cos => Some(Elementary::Cos),
+            Func::Exp => Some(Elementary::Exp),
+            Func::Ln => Some(Elementary::Ln),
+            Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => None,
+        }
+    }
+
+    /// The `f64` method computing the function, which [`Func::apply`] and
+    /// the emitted Rust both call; `None` for `sign`, `min` and `max`, which
+    /// are this module's functions (they keep NaN).
+    pub fn f64_method(self) -> Option<&'static str> {
+        match self {
+            Func::Sin
+            | Func::Cos
+            | Func::Exp
+            | Func::Ln
+            | Func::Asin
+            | Func::Acos
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs => Some(self.name()),
+            Func::Sign | Func::Min | Func::Max => None,
+        }
+    }
+
+    /// Where the (first) argument is defined, for the functions undefined
+    /// somewhere: a run that leaves it is reported at the call.
+    pub fn domain(self) -> Option<Domain> {
+        match self {
+            Func::Asin | Func::Acos => Some(Domain::UnitInterval),
+            Func::Ln => Some(Domain::Positive),
+            Func::Sin
+            | Func::Cos
+            | Func::Exp
+            | Func::Atan
+            | Func::Atan2
+            | Func::Sinh
+            | Func::Cosh
+            | Func::Tanh
+            | Func::Hypot
+            | Func::Abs
+            | Func::Sign
+            | Func::Min
+            | Func::Max => None,
+        }
+    }
 }
 
 /// The sign of `x`: 1 above zero, −1 below, `x` itself at ±0 and NaN (so
@@ -232,6 +300,68 @@ pub fn max(a: f64, b: f64) -> f64 {
     }
 }
 
+/// The functions the expression engine rewrites (angle sums and products,
+/// `exp(ln x) = x`) and the program computes with an operation of its own;
+/// every other function is an atom and a call ([`Func::elementary`]).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Elementary {
+    /// The sine.
+    Sin,
+    /// The cosine.
+    Cos,
+    /// The exponential.
+    Exp,
+    /// The natural logarithm.
+    Ln,
+}
+
+/// Where an argument is defined: of a function ([`Func::domain`]), of a
+/// square root or fractional power, of a divisor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    /// `[−1, 1]` (`asin`, `acos`).
+    UnitInterval,
+    /// Positive numbers (`ln`).
+    Positive,
+    /// Non-negative numbers (`sqrt`, fractional powers).
+    NonNegative,
+    /// Any number but zero (a divisor, a negative power).
+    NonZero,
+}
+
+impl Domain {
+    /// Whether `x` is in the domain.
+    pub fn contains(self, x: f64) -> bool {
+        match self {
+            Domain::UnitInterval => (-1.0..=1.0).contains(&x),
+            Domain::Positive => x > 0.0,
+            Domain::NonNegative => x >= 0.0,
+            Domain::NonZero => x != 0.0,
+        }
+    }
+
+    /// The domain in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Domain::UnitInterval => "must be in [-1, 1]",
+            Domain::Positive => "must be positive",
+            Domain::NonNegative => "must not be negative",
+            Domain::NonZero => "must not be zero",
+        }
+    }
+
+    /// Why a constant argument outside the domain is refused (`Positive`
+    /// is the logarithm's, the only function defined there).
+    pub fn refusal(self) -> &'static str {
+        match self {
+            Domain::UnitInterval => "it is defined on [-1, 1] only",
+            Domain::Positive => "the logarithm is defined for positive numbers only",
+            Domain::NonNegative => "it is defined for non-negative numbers only",
+            Domain::NonZero => "it is not defined at zero",
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,6 +372,43 @@ mod tests {
             assert_eq!(Func::named(f.name()), Some(f));
         }
         assert_eq!(Func::named("arccos"), None);
+    }
+
+    #[test]
+    fn each_function_has_its_facts() {
+        for f in Func::ALL {
+            // The f64 method is the one `apply` calls: compare at a point
+            // inside every domain.
+            let (a, b): (f64, f64) = (0.375, 0.625);
+            if let Some(method) = f.f64_method() {
+                let direct = match method {
+                    "sin" => a.sin(),
+                    "cos" => a.cos(),
+                    "exp" => a.exp(),
+                    "ln" => a.ln(),
+                    "asin" => a.asin(),
+                    "acos" => a.acos(),
+                    "atan" => a.atan(),
+                    "atan2" => a.atan2(b),
+                    "sinh" => a.sinh(),
+                    "cosh" => a.cosh(),
+                    "tanh" => a.tanh(),
+                    "hypot" => a.hypot(b),
+                    "abs" => a.abs(),
+                    other => panic!("no f64 method {other}"),
+                };
+                assert_eq!(f.apply(a, b).to_bits(), direct.to_bits(), "{}", f.name());
+            }
+            if let Some(domain) = f.domain() {
+                assert!(domain.contains(a), "{}", f.name());
+                assert!(!domain.contains(-1.5), "{}", f.name());
+            }
+        }
+        let elementary: Vec<&str> = (Func::ALL.into_iter())
+            .filter(|f| f.elementary().is_some())
+            .map(Func::name)
+            .collect();
+        assert_eq!(elementary, ["sin", "cos", "exp", "ln"]);
     }
 
     #[test]

@@ -7,12 +7,16 @@
 //! slots at each call, so the instruction lists hold arithmetic and input
 //! calls only. The compiler (`lagrangian-core`) lowers its optimized program
 //! to a tape instruction by instruction, in the program's order, so a tape
-//! computes bit for bit what the program and the emitted Rust do.
+//! computes bit for bit what the program and the emitted Rust do. A routine
+//! runs as steps, where an operation read once is fused into its reader
+//! (superinstructions rounded as the separate operations are: `code`).
 
 use crate::InputFunctions;
 use crate::functions::Func;
 use crate::layout::RoutineKind;
 use std::fmt;
+
+mod code;
 
 /// One instruction: destination register first, then the operands.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,6 +175,9 @@ pub struct Tape {
     routines: Vec<TapeRoutine>,
     /// Argument registers of the input calls.
     arguments: Vec<u32>,
+    /// Each routine's instructions as they run, superinstructions fused
+    /// (see `code`); every register they name is inside the file.
+    steps: Vec<Vec<code::Step>>,
 }
 
 impl Tape {
@@ -216,10 +223,14 @@ impl Tape {
                 check(r, "output")?;
             }
         }
+        let steps = (routines.iter())
+            .map(|routine| code::steps(routine, &layout, &arguments))
+            .collect();
         Ok(Tape {
             layout,
             routines,
             arguments,
+            steps,
         })
     }
 
@@ -269,12 +280,20 @@ impl Tape {
         self.routines.iter().find(|r| r.kind == kind)
     }
 
+    /// The routine `kind` and its steps.
+    fn routine_and_steps(&self, kind: RoutineKind) -> Option<(&TapeRoutine, &[code::Step])> {
+        let k = self.routines.iter().position(|r| r.kind == kind)?;
+        Some((&self.routines[k], &self.steps[k]))
+    }
+
     /// Runs routine `kind` at `(t, q, q̇, q̈)` and writes its outputs to `out`;
     /// `q̈` may be empty for routines that do not use it. Returns `false`
     /// when the tape has no such routine.
     ///
-    /// `registers` must come from [`Tape::registers`]; `q` and `qd` must have
-    /// the tape's dimension and `out` room for the outputs.
+    /// `registers` must come from [`Tape::registers`] (it panics on a file
+    /// of another size); `q` and `qd` must have the tape's dimension and
+    /// `out` room for the outputs. Only the outputs are defined afterwards:
+    /// a temporary whose value feeds a single instruction may not be written.
     pub fn run<I: InputFunctions + ?Sized>(
         &self,
         kind: RoutineKind,
@@ -283,9 +302,14 @@ impl Tape {
         registers: &mut [f64],
         out: &mut [f64],
     ) -> bool {
-        let Some(routine) = self.routine(kind) else {
+        let Some((routine, steps)) = self.routine_and_steps(kind) else {
             return false;
         };
+        assert_eq!(
+            registers.len(),
+            self.layout.registers(),
+            "a file of this tape"
+        );
         let (t, q, qd, qdd) = state;
         let n = self.layout.dimension;
         let base = self.layout.coordinate(0) as usize;
@@ -295,8 +319,20 @@ impl Tape {
             registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
         }
         registers[self.layout.time() as usize] = t;
-        for instruction in &routine.instructions {
-            self.execute(*instruction, inputs, registers);
+        let file = registers.as_mut_ptr();
+        for &step in steps {
+            // SAFETY: `Tape::new` checked that every register of every
+            // instruction, hence of every step, is inside a file of
+            // `layout.registers()`, the length of `registers` (asserted).
+            unsafe {
+                step.run(file, |instruction| {
+                    self.execute(
+                        instruction,
+                        inputs,
+                        std::slice::from_raw_parts_mut(file, self.layout.registers()),
+                    )
+                })
+            };
         }
         for (slot, &o) in out.iter_mut().zip(&routine.outputs) {
             *slot = registers[o as usize];

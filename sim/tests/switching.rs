@@ -17,7 +17,20 @@ potential = 0.5 * k * pow((x + abs(x)) / 2, 2);
 
 #[test]
 fn a_contact_written_with_abs_switches_at_the_analytic_times() {
-    let model = lagrangian_core::interpret(CONTACT).unwrap();
+    switches_at_the_analytic_times(lagrangian_core::interpret(CONTACT).unwrap());
+}
+
+/// The same on the derivation graph (the path of models too large for the
+/// canonical form): its switching functions are located the same way.
+#[test]
+fn on_the_graph_path_the_contact_switches_at_the_same_times() {
+    let model = lagrangian_core::Model::from_source(CONTACT).unwrap();
+    let compiled = lagrangian_core::Compiled::on_graph(model).unwrap();
+    assert!(compiled.derivation.is_none(), "derived on the graph");
+    switches_at_the_analytic_times(compiled.interpreted());
+}
+
+fn switches_at_the_analytic_times(model: lagrangian_model::InterpretedModel) {
     assert_eq!(model.switching_count(), 1);
     let names = ModelNames::of_interpreted(&model);
     let system = Interpreted::<1>::new(model).unwrap();

@@ -541,26 +541,11 @@ impl Backend for RustSyntax<'_> {
         let mut arguments = arguments.into_iter();
         let x = arguments.next().map(receiver).unwrap_or_default();
         let rest: Vec<TokenStream> = arguments.map(|a| a.code).collect();
-        // The methods of `f64` that compute each function; `sign`, `min`
-        // and `max` are the runtime's, which keep NaN (as the interpreter).
-        let method = match f {
-            Func::Sign | Func::Min | Func::Max => {
-                let name = ident(f.name());
-                return quote!(#rt::functions::#name(#x #(, #rest)*));
-            }
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Exp => "exp",
-            Func::Ln => "ln",
-            Func::Asin => "asin",
-            Func::Acos => "acos",
-            Func::Atan => "atan",
-            Func::Atan2 => "atan2",
-            Func::Sinh => "sinh",
-            Func::Cosh => "cosh",
-            Func::Tanh => "tanh",
-            Func::Hypot => "hypot",
-            Func::Abs => "abs",
+        // The method of `f64` that computes the function (the one the
+        // interpreter calls); `sign`, `min` and `max` are the runtime's.
+        let Some(method) = f.f64_method() else {
+            let name = ident(f.name());
+            return quote!(#rt::functions::#name(#x #(, #rest)*));
         };
         let method = ident(method);
         quote!(#x.#method(#(#rest),*))

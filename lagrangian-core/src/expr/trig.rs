@@ -8,6 +8,7 @@
 use super::arith::TermAccumulator;
 use super::{ExprId, Func, Node, Store};
 use crate::rational::Rational;
+use lagrangian_model::functions::Elementary;
 use rustc_hash::FxHashMap;
 
 impl Store {
@@ -55,23 +56,12 @@ impl Store {
     /// Applies `f` to `args` with the canonical simplifications of each
     /// function (`args` has [`Func::arity`] expressions).
     pub fn apply(&mut self, f: Func, args: &[ExprId]) -> ExprId {
-        match f {
-            Func::Sin => self.sin(args[0]),
-            Func::Cos => self.cos(args[0]),
-            Func::Exp => self.exp(args[0]),
-            Func::Ln => self.ln(args[0]),
-            Func::Asin
-            | Func::Acos
-            | Func::Atan
-            | Func::Atan2
-            | Func::Sinh
-            | Func::Cosh
-            | Func::Tanh
-            | Func::Hypot
-            | Func::Abs
-            | Func::Sign
-            | Func::Min
-            | Func::Max => self.call(f, args),
+        match f.elementary() {
+            Some(Elementary::Sin) => self.sin(args[0]),
+            Some(Elementary::Cos) => self.cos(args[0]),
+            Some(Elementary::Exp) => self.exp(args[0]),
+            Some(Elementary::Ln) => self.ln(args[0]),
+            None => self.call(f, args),
         }
     }
 

@@ -32,6 +32,9 @@ pub struct GraphDerivation {
     pub jacobians: Option<[Vec<GraphId>; 3]>,
     /// The outputs, in declaration order.
     pub outputs: Vec<GraphId>,
+    /// The switching functions of the non-smooth functions of `M` and `f`
+    /// ([`crate::switching::graph_switching_functions`]).
+    pub switching: Vec<GraphId>,
 }
 
 impl GraphDerivation {
@@ -100,6 +103,9 @@ pub fn derive_graph(model: &mut Model) -> Result<GraphDerivation, SpecErrors> {
     let outputs = (model.outputs.iter())
         .map(|o| model.graph.leaf(&model.store, o.statement.value))
         .collect();
+    let roots: Vec<GraphId> = mass_matrix.iter().chain(&forcing).copied().collect();
+    let switching =
+        crate::switching::graph_switching_functions(&mut model.store, &mut model.graph, &roots);
     if let Some(error) = model.store.take_errors().into_iter().next() {
         let names: Vec<String> = model.inputs.iter().map(|i| i.name.clone()).collect();
         let span = model.kinetic.span;
@@ -113,6 +119,7 @@ pub fn derive_graph(model: &mut Model) -> Result<GraphDerivation, SpecErrors> {
         energies,
         jacobians,
         outputs,
+        switching,
     })
 }
 

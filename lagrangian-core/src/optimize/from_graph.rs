@@ -26,10 +26,7 @@ pub fn build_program_from_graph(
         energies: derivation.energies,
         jacobians: (derivation.jacobians.as_ref()).map(|j| j.iter().flatten().copied().collect()),
         outputs: derivation.outputs.clone(),
-        // Not collected on the graph path: a model too large for the
-        // canonical form runs its non-smooth functions without located
-        // switches (the integrator's step control meets them instead).
-        switching: Vec::new(),
+        switching: derivation.switching.clone(),
         // `Compiled::on_graph` refuses a model with constraints.
         constraints: Vec::new(),
     };

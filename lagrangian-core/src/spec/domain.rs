@@ -8,63 +8,9 @@
 
 use super::Model;
 use crate::diagnostic::{SpanRange, location};
-use crate::expr::{Evaluator, ExprId, Func};
+use crate::expr::{Evaluator, ExprId};
 
-/// Where a call is defined.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Domain {
-    /// `[−1, 1]` (`asin`, `acos`).
-    UnitInterval,
-    /// Positive numbers (`ln`).
-    Positive,
-    /// Non-negative numbers (`sqrt`, fractional powers).
-    NonNegative,
-    /// Any number but zero (a divisor, a negative power).
-    NonZero,
-}
-
-impl Domain {
-    /// The domain of `f`'s argument, for the functions that have one.
-    pub fn of(f: Func) -> Option<Domain> {
-        match f {
-            Func::Asin | Func::Acos => Some(Domain::UnitInterval),
-            Func::Ln => Some(Domain::Positive),
-            Func::Sin
-            | Func::Cos
-            | Func::Exp
-            | Func::Atan
-            | Func::Atan2
-            | Func::Sinh
-            | Func::Cosh
-            | Func::Tanh
-            | Func::Hypot
-            | Func::Abs
-            | Func::Sign
-            | Func::Min
-            | Func::Max => None,
-        }
-    }
-
-    /// Whether `x` is in the domain.
-    pub fn contains(self, x: f64) -> bool {
-        match self {
-            Domain::UnitInterval => (-1.0..=1.0).contains(&x),
-            Domain::Positive => x > 0.0,
-            Domain::NonNegative => x >= 0.0,
-            Domain::NonZero => x != 0.0,
-        }
-    }
-
-    /// The domain in words.
-    pub fn describe(self) -> &'static str {
-        match self {
-            Domain::UnitInterval => "must be in [-1, 1]",
-            Domain::Positive => "must be positive",
-            Domain::NonNegative => "must not be negative",
-            Domain::NonZero => "must not be zero",
-        }
-    }
-}
+pub use lagrangian_model::functions::Domain;
 
 /// One call whose argument has a restricted domain.
 #[derive(Clone, Debug)]

@@ -334,8 +334,15 @@ impl<'a> ExpressionLowering<'a> {
             return self.function(f, args, span);
         }
         let x = self.expr(args[0])?;
-        if let Some(c) = self.store.as_num(x) {
-            check_constant_argument(name, c, span)?;
+        if name == "sqrt"
+            && let Some(c) = self.store.as_num(x)
+            && c.is_negative()
+        {
+            let problem = "the square root of a negative number is not real";
+            return Err(Diagnostic::new(
+                span,
+                format!("`sqrt` of the constant {c}: {problem}"),
+            ));
         }
         Ok(match name {
             "tan" => self.store.tan(x),
@@ -372,9 +379,9 @@ impl<'a> ExpressionLowering<'a> {
             .map(|a| self.expr(a))
             .collect::<Result<Vec<_>, _>>()?;
         match self.store.as_num(values[0]) {
-            Some(c) => check_constant_argument(f.name(), c, span)?,
+            Some(c) => check_constant_argument(f, c, span)?,
             None => {
-                if let Some(domain) = Domain::of(f) {
+                if let Some(domain) = f.domain() {
                     self.restricted(domain, "the argument of", values[0], span);
                 }
             }
@@ -516,19 +523,15 @@ fn acceleration_outside_outputs(span: SpanRange) -> Diagnostic {
 
 /// `sqrt` and `ln` of a constant outside their domain would only show at
 /// run time, as a non-finite M or f: report them at the call.
-fn check_constant_argument(name: &str, c: Rational, span: SpanRange) -> Result<(), Diagnostic> {
-    let problem = match name {
-        "sqrt" if c.is_negative() => "the square root of a negative number is not real",
-        "ln" if c.is_negative() || c.is_zero() => {
-            "the logarithm is defined for positive numbers only"
-        }
-        "asin" | "acos" if c.to_f64().abs() > 1.0 => "it is defined on [-1, 1] only",
-        _ => return Ok(()),
-    };
-    Err(Diagnostic::new(
-        span,
-        format!("`{name}` of the constant {c}: {problem}"),
-    ))
+/// A constant argument outside `f`'s domain, refused where it is written.
+fn check_constant_argument(f: Func, c: Rational, span: SpanRange) -> Result<(), Diagnostic> {
+    match f.domain() {
+        Some(domain) if !domain.contains(c.to_f64()) => Err(Diagnostic::new(
+            span,
+            format!("`{}` of the constant {c}: {}", f.name(), domain.refusal()),
+        )),
+        Some(_) | None => Ok(()),
+    }
 }
 
 /// `+ - * /`, the operators a left spine may chain.
