@@ -8,7 +8,7 @@
 use lagrangian_model::constrained::{Baumgarte, ConstraintValues};
 use lagrangian_model::linalg::Ldlt;
 use lagrangian_model::{Interpreted, LagrangianSystem};
-use lagrangian_sim::linearize::{At, ModeKind, linearize};
+use lagrangian_sim::linearize::{At, ModeKind, linearize, markdown};
 use lagrangian_sim::ode::{OdeProblem, PhaseState};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{CrashProblem, SimulationResult, simulate};
@@ -179,6 +179,9 @@ fn a_pendulum_in_x_and_y_has_one_mode_at_the_square_root_of_g_over_l() {
         "{mode:?}"
     );
     assert_eq!(mode.kind, ModeKind::Undamped);
+    assert_eq!(l.constraints, ["rod"]);
+    let report = markdown(&l, "NonminimalPendulum");
+    assert!(report.contains("on the constraints (rod)"), "{report}");
 }
 
 #[test]

@@ -40,9 +40,10 @@ use nalgebra::{DMatrix, SMatrix, SVector};
 /// Where to linearize.
 #[derive(Clone, Debug, PartialEq)]
 pub enum At {
-    /// The static equilibrium (`q̇ = 0`, `f(q, 0, 0) = 0`) of the scenario's
-    /// equilibrium coordinates (every coordinate when it names none),
-    /// solved from its initial coordinates.
+    /// The static equilibrium (`q̇ = 0`, `f(q, 0, 0) = 0`; on the
+    /// constraints, `f + Gᵀλ = 0` and `g = 0`, for a model with constraints)
+    /// of the scenario's equilibrium coordinates (every coordinate when it
+    /// names none), solved from its initial coordinates.
     Equilibrium,
     /// A given state.
     State {
@@ -124,8 +125,12 @@ pub struct Linearization {
     pub operating_point: OperatingPoint,
     /// How `A` was obtained.
     pub source: StateMatrixSource,
-    /// The modes of `A`, by increasing frequency.
+    /// The modes of `A`, by increasing frequency; for a model with
+    /// constraints, those of its motion on them ([`manifold`]).
     pub modes: Vec<Mode>,
+    /// The model's constraints (empty without): `A` is then that of the
+    /// constrained accelerations, and its modes those on the constraints.
+    pub constraints: Vec<String>,
 }
 
 /// Why a model could not be linearized.
@@ -197,6 +202,11 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
             equilibrium,
         },
         source,
+        constraints: model
+            .constraint_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect(),
     })
 }
 
