@@ -41,27 +41,32 @@ impl ConstraintValues {
     }
 
     /// `g`, the residuals.
+    #[inline]
     pub fn residual(&self) -> &[f64] {
         &self.values[self.layout.residual()]
     }
 
     /// `∂g/∂t`.
+    #[inline]
     pub fn time_rate(&self) -> &[f64] {
         &self.values[self.layout.time_rate()]
     }
 
     /// `G`, row-major `m × n`.
+    #[inline]
     pub fn jacobian(&self) -> &[f64] {
         &self.values[self.layout.jacobian()]
     }
 
     /// Row `k` of `G`.
+    #[inline]
     pub fn jacobian_row(&self, k: usize) -> &[f64] {
         let n = self.layout.n;
         &self.jacobian()[k * n..(k + 1) * n]
     }
 
     /// `γ`.
+    #[inline]
     pub fn acceleration(&self) -> &[f64] {
         &self.values[self.layout.acceleration()]
     }
@@ -270,6 +275,7 @@ fn cholesky_solve_in(
     Ok(())
 }
 
+#[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
