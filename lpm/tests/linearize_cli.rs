@@ -243,3 +243,38 @@ fn bad_states_and_no_equilibrium_fail_with_their_status() {
         stderr(&out)
     );
 }
+
+/// The four-bar as a parallelogram (ground and coupler 0.7 m, crank and
+/// rocker 0.3 m) hangs with crank and rocker straight down; on its loop it
+/// has one mode, that of its one coordinate θ:
+/// `ω² = g (m1/2 + m2 + m3/2) / ((m1/3 + m2 + m3/3) l1)`.
+#[test]
+fn the_parallelogram_four_bar_has_one_mode_on_its_loop() {
+    let report = linearize(&[
+        "specs/four_bar_linkage.lpm",
+        "--set",
+        "l2=0.7",
+        "--set",
+        "l3=0.3",
+        "--set",
+        "initial.coordinates.theta1=-1.3",
+        "--set",
+        "initial.coordinates.theta2=0.2",
+        "--set",
+        "initial.coordinates.theta3=-1.4",
+    ]);
+    let (l1, m1, m2, m3, g) = (0.3_f64, 1.0, 2.0, 1.5, 9.81);
+    let omega2 = g * (m1 / 2.0 + m2 + m3 / 2.0) / ((m1 / 3.0 + m2 + m3 / 3.0) * l1);
+    let frequencies = floats(&report["natural_frequencies_hz"]);
+    assert_eq!(frequencies.len(), 1, "{frequencies:?}");
+    close(frequencies[0], omega2.sqrt() / TAU, 1e-7, "f");
+    let q = &report["operating_point"]["q"];
+    close(
+        q["theta1"].as_f64().unwrap(),
+        -std::f64::consts::FRAC_PI_2,
+        1e-9,
+        "θ1",
+    );
+    close(q["theta2"].as_f64().unwrap(), 0.0, 1e-9, "θ2");
+    assert_eq!(matrix(&report["A"]).len(), 6);
+}

@@ -41,27 +41,32 @@ impl ConstraintValues {
     }
 
     /// `g`, the residuals.
+    #[inline]
     pub fn residual(&self) -> &[f64] {
         &self.values[self.layout.residual()]
     }
 
     /// `∂g/∂t`.
+    #[inline]
     pub fn time_rate(&self) -> &[f64] {
         &self.values[self.layout.time_rate()]
     }
 
     /// `G`, row-major `m × n`.
+    #[inline]
     pub fn jacobian(&self) -> &[f64] {
         &self.values[self.layout.jacobian()]
     }
 
     /// Row `k` of `G`.
+    #[inline]
     pub fn jacobian_row(&self, k: usize) -> &[f64] {
         let n = self.layout.n;
         &self.jacobian()[k * n..(k + 1) * n]
     }
 
     /// `γ`.
+    #[inline]
     pub fn acceleration(&self) -> &[f64] {
         &self.values[self.layout.acceleration()]
     }
@@ -94,14 +99,20 @@ impl Baumgarte {
 
     /// `γ − 2α ġ − β² g` at the velocities `qd`.
     pub fn acceleration(&self, values: &ConstraintValues, qd: &[f64]) -> Vec<f64> {
-        let rate = values.rate(qd);
-        (0..values.layout.m)
-            .map(|k| {
-                values.acceleration()[k]
-                    - 2.0 * self.alpha * rate[k]
-                    - self.beta * self.beta * values.residual()[k]
-            })
-            .collect()
+        let mut gamma = vec![0.0; values.layout.m];
+        self.acceleration_into(values, qd, &mut gamma);
+        gamma
+    }
+
+    /// [`Baumgarte::acceleration`] into `gamma` (`m` long), allocating
+    /// nothing.
+    pub fn acceleration_into(&self, values: &ConstraintValues, qd: &[f64], gamma: &mut [f64]) {
+        for (k, gamma) in gamma.iter_mut().enumerate() {
+            let rate = dot(values.jacobian_row(k), qd) + values.time_rate()[k];
+            *gamma = values.acceleration()[k]
+                - 2.0 * self.alpha * rate
+                - self.beta * self.beta * values.residual()[k];
+        }
     }
 }
 
@@ -120,6 +131,34 @@ pub fn factor_mass_matrix<const N: usize>(mass: &SMatrix<f64, N, N>) -> Option<L
     Ldlt::new(mass)
 }
 
+/// The buffers of the constrained solve of `m` constraints on `N`
+/// coordinates, kept between solves so that a solve allocates nothing.
+#[derive(Clone, Debug)]
+pub struct SolveWorkspace<const N: usize> {
+    m: usize,
+    /// `M⁻¹ G_kᵀ`, one per constraint.
+    rows: Vec<SVector<f64, N>>,
+    /// `G M⁻¹ Gᵀ`, row-major `m × m`.
+    schur: Vec<f64>,
+    /// Its Cholesky factor, row-major.
+    factor: Vec<f64>,
+    /// `γ − G M⁻¹ f`.
+    rhs: Vec<f64>,
+}
+
+impl<const N: usize> SolveWorkspace<N> {
+    /// Room for `m` constraints.
+    pub fn new(m: usize) -> SolveWorkspace<N> {
+        SolveWorkspace {
+            m,
+            rows: vec![SVector::zeros(); m],
+            schur: vec![0.0; m * m],
+            factor: vec![0.0; m * m],
+            rhs: vec![0.0; m],
+        }
+    }
+}
+
 /// `(q̈, λ)` with `M q̈ = f + Gᵀλ` and `G q̈ = gamma` (`G`, `m × N`
 /// row-major, from `values`; `gamma` the right-hand side, e.g. from
 /// [`Baumgarte::acceleration`]).
@@ -129,29 +168,49 @@ pub fn solve_constrained<const N: usize>(
     values: &ConstraintValues,
     gamma: &[f64],
 ) -> Result<(SVector<f64, N>, Vec<f64>), ConstrainedSolveError> {
+    let mut workspace = SolveWorkspace::new(values.layout.m);
+    let mut lambda = vec![0.0; values.layout.m];
+    let qdd = solve_constrained_in(mass, forcing, values, gamma, &mut workspace, &mut lambda)?;
+    Ok((qdd, lambda))
+}
+
+/// [`solve_constrained`] with `λ` written into `lambda` (`m` long) and the
+/// buffers of `workspace` (made for `m` constraints): allocates nothing
+/// unless the solve fails.
+pub fn solve_constrained_in<const N: usize>(
+    mass: &SMatrix<f64, N, N>,
+    forcing: &SVector<f64, N>,
+    values: &ConstraintValues,
+    gamma: &[f64],
+    workspace: &mut SolveWorkspace<N>,
+    lambda: &mut [f64],
+) -> Result<SVector<f64, N>, ConstrainedSolveError> {
     let m = values.layout.m;
+    debug_assert_eq!(
+        workspace.m, m,
+        "a workspace made for another number of constraints"
+    );
     let ldlt = factor_mass_matrix(mass).ok_or(ConstrainedSolveError::MassMatrix)?;
     let free = ldlt.solve(forcing);
-    let rows: Vec<SVector<f64, N>> = (0..m)
-        .map(|k| ldlt.solve(&SVector::from_column_slice(values.jacobian_row(k))))
-        .collect();
-    let mut schur = vec![0.0; m * m];
-    let mut rhs = vec![0.0; m];
-    for k in 0..m {
-        let g = values.jacobian_row(k);
-        for (l, row) in rows.iter().enumerate() {
-            schur[k * m + l] = dot(g, row.as_slice());
-        }
-        rhs[k] = gamma[k] - dot(g, free.as_slice());
+    for (k, row) in workspace.rows.iter_mut().enumerate() {
+        *row = ldlt.solve(&SVector::from_column_slice(values.jacobian_row(k)));
     }
-    let lambda =
-        solve_positive_definite(&schur, m, &rhs).map_err(ConstrainedSolveError::Redundant)?;
+    for (k, gamma) in gamma.iter().enumerate().take(m) {
+        let g = values.jacobian_row(k);
+        for (l, row) in workspace.rows.iter().enumerate() {
+            workspace.schur[k * m + l] = dot(g, row.as_slice());
+        }
+        workspace.rhs[k] = gamma - dot(g, free.as_slice());
+    }
+    let (schur, factor) = (&workspace.schur, &mut workspace.factor);
+    cholesky_solve_in(schur, m, &workspace.rhs, factor, lambda)
+        .map_err(ConstrainedSolveError::Redundant)?;
     let mut qdd = free;
-    for (row, l) in rows.iter().zip(&lambda) {
+    for (row, l) in workspace.rows.iter().zip(lambda.iter()) {
         qdd += row * *l;
     }
-    if qdd.iter().chain(&lambda).all(|v| v.is_finite()) {
-        Ok((qdd, lambda))
+    if qdd.iter().chain(lambda.iter()).all(|v| v.is_finite()) {
+        Ok(qdd)
     } else {
         Err(ConstrainedSolveError::MassMatrix)
     }
@@ -161,7 +220,22 @@ pub fn solve_constrained<const N: usize>(
 /// with the rows whose pivot vanishes (relative to the row's diagonal):
 /// each depends on the rows before it.
 pub fn solve_positive_definite(a: &[f64], m: usize, b: &[f64]) -> Result<Vec<f64>, Vec<usize>> {
-    let mut l = vec![0.0; m * m];
+    let mut factor = vec![0.0; m * m];
+    let mut x = vec![0.0; m];
+    cholesky_solve_in(a, m, b, &mut factor, &mut x)?;
+    Ok(x)
+}
+
+/// [`solve_positive_definite`] into `x`, with `factor` (`m × m`) for the
+/// Cholesky factor: allocates nothing unless rows are dependent.
+fn cholesky_solve_in(
+    a: &[f64],
+    m: usize,
+    b: &[f64],
+    l: &mut [f64],
+    x: &mut [f64],
+) -> Result<(), Vec<usize>> {
+    l.fill(0.0);
     let mut dependent = Vec::new();
     for j in 0..m {
         let mut d = a[j * m + j];
@@ -185,7 +259,7 @@ pub fn solve_positive_definite(a: &[f64], m: usize, b: &[f64]) -> Result<Vec<f64
     if !dependent.is_empty() {
         return Err(dependent);
     }
-    let mut x = b.to_vec();
+    x.copy_from_slice(b);
     for i in 0..m {
         for k in 0..i {
             x[i] -= l[i * m + k] * x[k];
@@ -198,9 +272,10 @@ pub fn solve_positive_definite(a: &[f64], m: usize, b: &[f64]) -> Result<Vec<f64
         }
         x[i] /= l[i * m + i];
     }
-    Ok(x)
+    Ok(())
 }
 
+#[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

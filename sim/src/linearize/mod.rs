@@ -10,7 +10,14 @@
 //! stiffness and damping enter `A` through the inputs' declared
 //! derivatives. Every other input the dynamics calls — unbound (held at 0)
 //! or given a constant — is a column of `B`: `∂ẋ/∂u` for its value `u`.
+//!
+//! A model with constraints is linearized in its coordinates as they are
+//! (`A` is `2n × 2n`, of the constrained accelerations without Baumgarte's
+//! stabilization, by central differences), about an equilibrium on the
+//! constraints; its modes are those of the motion on the constraints
+//! (`2(n − m)` eigenvalues, [`manifold`]).
 
+mod manifold;
 mod modes;
 mod report;
 
@@ -23,16 +30,20 @@ use crate::fault::Fault;
 use crate::ode::PhaseState;
 use crate::ode::tr_bdf2::AccelerationJacobians;
 use crate::scenario::Scenario;
-use crate::simulate::{CrashProblem, SimulationError, SolverError, static_equilibrium};
+use crate::simulate::{
+    CrashProblem, SimulationError, SolverError, constrained, static_equilibrium,
+};
+use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{InputFunctions, LagrangianSystem, solve_mass_matrix};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
 /// Where to linearize.
 #[derive(Clone, Debug, PartialEq)]
 pub enum At {
-    /// The static equilibrium (`q̇ = 0`, `f(q, 0, 0) = 0`) of the scenario's
-    /// equilibrium coordinates (every coordinate when it names none),
-    /// solved from its initial coordinates.
+    /// The static equilibrium (`q̇ = 0`, `f(q, 0, 0) = 0`; on the
+    /// constraints, `f + Gᵀλ = 0` and `g = 0`, for a model with constraints)
+    /// of the scenario's equilibrium coordinates (every coordinate when it
+    /// names none), solved from its initial coordinates.
     Equilibrium,
     /// A given state.
     State {
@@ -114,8 +125,12 @@ pub struct Linearization {
     pub operating_point: OperatingPoint,
     /// How `A` was obtained.
     pub source: StateMatrixSource,
-    /// The modes of `A`, by increasing frequency.
+    /// The modes of `A`, by increasing frequency; for a model with
+    /// constraints, those of its motion on them ([`manifold`]).
     pub modes: Vec<Mode>,
+    /// The model's constraints (empty without): `A` is then that of the
+    /// constrained accelerations, and its modes those on the constraints.
+    pub constraints: Vec<String>,
 }
 
 /// Why a model could not be linearized.
@@ -141,6 +156,9 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
     let mut model = system.clone();
     (scenario.apply_parameters(&mut model)).map_err(SimulationError::Model)?;
     let mut problem = CrashProblem::new(&model, held_inputs(&scenario.inputs));
+    // The dynamics itself: the stabilization only pulls a violated
+    // constraint back, a motion off the manifold the modes leave out.
+    problem.stabilization = Baumgarte::NONE;
     let (y, equilibrium) = operating_state(&mut problem, scenario, at)?;
     let fault = |fault| {
         SimulationError::from(SolverError::Rhs {
@@ -156,7 +174,11 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
     let state_names: Vec<String> = (names.iter().map(|n| n.to_string()))
         .chain(names.iter().map(|n| format!("dot({n})")))
         .collect();
-    let modes = modes(&a).ok_or_else(|| {
+    let modes = match model.constraint_count() {
+        0 => modes(&a),
+        _ => modes(&manifold::restricted(&problem, &y, &a).map_err(fault)?),
+    };
+    let modes = modes.ok_or_else(|| {
         LinearizeError::Eigenvalues(match a.iter().position(|x| !x.is_finite()) {
             // Column-major: entry k is row k mod 2n of column k / 2n.
             Some(k) => {
@@ -180,6 +202,11 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
             equilibrium,
         },
         source,
+        constraints: model
+            .constraint_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect(),
     })
 }
 
@@ -366,13 +393,19 @@ impl InputFunctions for Shifted<'_> {
     }
 }
 
-/// `q̈` at `y` with `inputs`.
+/// `q̈` at `y` with `inputs`; with the constraints' forces (without
+/// stabilization) for a model with constraints.
 fn accelerations<const N: usize, S: LagrangianSystem<N>>(
     model: &S,
     y: &PhaseState<N>,
     inputs: &impl InputFunctions,
 ) -> Result<SVector<f64, N>, Fault> {
     let (mass, forcing) = model.mass_matrix_and_forcing_pair(0.0, &y.q, &y.v, inputs);
+    if model.constraint_count() > 0 {
+        let state = (0.0, &y.q, &y.v);
+        let solution = constrained::solve(model, inputs, Baumgarte::NONE, state, &mass, &forcing);
+        return solution.map(|s| s.a);
+    }
     solve_mass_matrix(mass, &forcing).ok_or_else(|| Fault::SingularMassMatrix {
         q: y.q.as_slice().to_vec(),
         qd: y.v.as_slice().to_vec(),

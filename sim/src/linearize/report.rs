@@ -135,6 +135,13 @@ pub fn markdown(l: &Linearization, title: &str) -> String {
     if l.modes.iter().any(|m| m.kind == ModeKind::Unstable) {
         text.push_str("\nThe operating point is unstable: a mode grows.\n");
     }
+    if !l.constraints.is_empty() {
+        text.push_str(&format!(
+            "\nThe modes of the motion on the constraints ({}); A below is that of the \
+             constrained accelerations, whose further eigenvalues (zero) leave them.\n",
+            l.constraints.join(", ")
+        ));
+    }
     text.push_str(&format!(
         "\n## A = ∂ẋ/∂x ({}; x = (q, q̇))\n\n",
         l.source.name()

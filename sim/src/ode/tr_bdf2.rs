@@ -21,7 +21,10 @@
 //! integrals `ẇ = P(t, q, v)`, the Newton system reduces to `N × N`:
 //! `(I − dh A_v − (dh)² A_q) Δv = r_v + dh A_q r_q`, `Δq = r_q + dh Δv`, with
 //! `A_q = ∂a/∂q`, `A_v = ∂a/∂v` from the model's derived Jacobians (or
-//! finite differences); `w` follows each stage explicitly.
+//! forward differences of `a`: for a model with constraints, of its
+//! constrained accelerations, whose Jacobians are not derived); `w` follows
+//! each stage explicitly. The end of each accepted step is projected onto
+//! what the problem keeps invariant ([`AccelerationJacobians::project`]).
 
 use super::driver::{Attempt, Stepper};
 use super::hermite::Hermite;
@@ -56,6 +59,15 @@ pub trait AccelerationJacobians<const N: usize>: OdeProblem<PhaseState<N>> {
         t: f64,
         y: &PhaseState<N>,
     ) -> Result<Option<AccelerationJacobian<N>>, Self::Error>;
+
+    /// Moves the end of an accepted step back onto what the problem keeps
+    /// invariant (a model's constraints `g = 0`, `ġ = 0`), which a method of
+    /// order 2 holds less tightly than the tolerances ask; `Ok(true)` when
+    /// it moved `y`. By default nothing is kept.
+    fn project(&mut self, t: f64, y: &mut PhaseState<N>) -> Result<bool, Self::Error> {
+        let _ = (t, y);
+        Ok(false)
+    }
 }
 
 /// Integrates a stiff mechanical problem with TR-BDF2.
@@ -154,6 +166,12 @@ impl<const N: usize, P: AccelerationJacobians<N>> Stepper<PhaseState<N>, P> for 
             };
             check_step(h, &self.options, SolverError::StepSizeUnderflow { t, h })?;
             return Ok(Attempt::Rejected(h));
+        }
+        let (mut y3, mut k3) = (y3, k3);
+        let projected = (problem.project(t + h, &mut y3))
+            .map_err(|error| SolverError::Rhs { t: t + h, error })?;
+        if projected {
+            evaluate(problem, t + h, &y3, &mut k3, stats)?;
         }
         self.norm = norm;
         self.end = (y3, k3);

@@ -20,6 +20,7 @@ fn sample(components: Vec<f64>) -> Sample {
         outputs: Vec::new(),
         components,
         multipliers: Vec::new(),
+        residuals: Vec::new(),
     }
 }
 

@@ -99,6 +99,10 @@ pub struct ModelNames {
     /// The columns of the scenario's components (`front_end.force`) with
     /// their units, once they are bound (see [`ModelNames::with_components`]).
     pub component_columns: Vec<(String, Option<String>)>,
+    /// The model's constraints, in order (`NAME.lambda`, `NAME.residual`).
+    pub constraints: Vec<String>,
+    /// The unit of each constraint's multiplier, where known.
+    pub multiplier_units: Vec<Option<String>>,
 }
 
 impl ModelNames {
@@ -113,6 +117,8 @@ impl ModelNames {
             input_sites: system.input_sites().to_vec(),
             outputs: own(system.output_names()),
             output_units: vec![None; system.output_names().len()],
+            constraints: own(system.constraint_names()),
+            multiplier_units: vec![None; system.constraint_count()],
             ..ModelNames::default()
         }
     }
@@ -129,6 +135,8 @@ impl ModelNames {
             outputs: model.output_names().to_vec(),
             output_units: model.output_units().to_vec(),
             component_columns: Vec::new(),
+            constraints: model.constraint_names().to_vec(),
+            multiplier_units: model.multiplier_units().to_vec(),
         }
     }
 

@@ -1,7 +1,8 @@
 //! Signals: the quantities of a run that `[metrics]` names — a column of
 //! `trajectory.csv` (a coordinate `q`, its rate `q_dot` or acceleration
-//! `q_ddot`, a declared output) or a linear combination of them such as
-//! `"xa - xb"` or `"-r"`.
+//! `q_ddot`, a declared output, a constraint's multiplier `NAME.lambda`) or
+//! a constraint's residual `NAME.residual` (its drift), or a linear
+//! combination of them such as `"xa - xb"` or `"-r"`.
 
 use super::ModelNames;
 use super::resolve::unknown;
@@ -19,6 +20,10 @@ pub enum Column {
     Output(usize),
     /// Column `k` of the scenario's components (`front_end.force`).
     Component(usize),
+    /// The multiplier `λ` of constraint `k` (`NAME.lambda`).
+    Multiplier(usize),
+    /// The residual `g` of constraint `k` (`NAME.residual`): its drift.
+    Residual(usize),
 }
 
 impl Column {
@@ -31,6 +36,8 @@ impl Column {
             Column::Acceleration(k) => at(s.a, k),
             Column::Output(k) => at(s.outputs, k),
             Column::Component(k) => at(s.components, k),
+            Column::Multiplier(k) => at(s.multipliers, k),
+            Column::Residual(k) => at(s.residuals, k),
         }
     }
 }
@@ -48,6 +55,10 @@ pub struct Columns<'a> {
     pub outputs: &'a [f64],
     /// The components' columns.
     pub components: &'a [f64],
+    /// The constraints' multipliers `λ`.
+    pub multipliers: &'a [f64],
+    /// The constraints' residuals `g`.
+    pub residuals: &'a [f64],
 }
 
 impl<'a> Columns<'a> {
@@ -60,6 +71,8 @@ impl<'a> Columns<'a> {
             a: values,
             outputs: &[],
             components: &[],
+            multipliers: &[],
+            residuals: &[],
         }
     }
 }
@@ -248,6 +261,9 @@ fn column(
     if let Some(k) = find(&names.coordinates, name) {
         return Ok((Column::Coordinate(k), coordinate(k, "")));
     }
+    if let Some(found) = constraint_column(name, names) {
+        return Ok(found);
+    }
     if let Some(base) = name.strip_suffix("_ddot")
         && let Some(k) = find(&names.coordinates, base)
     {
@@ -265,12 +281,30 @@ fn column(
     ))
 }
 
+/// `NAME.lambda` or `NAME.residual` of a constraint `NAME`, with its unit
+/// (the residual's is the constraint's own, which the model does not say).
+fn constraint_column(name: &str, names: &ModelNames) -> Option<(Column, Option<String>)> {
+    let (constraint, quantity) = name.rsplit_once('.')?;
+    let k = names.constraints.iter().position(|c| c == constraint)?;
+    match quantity {
+        "lambda" => Some((
+            Column::Multiplier(k),
+            names.multiplier_units.get(k).cloned().flatten(),
+        )),
+        "residual" => Some((Column::Residual(k), None)),
+        _ => None,
+    }
+}
+
 /// Every column name a signal may read, for suggestions.
 fn known_columns(names: &ModelNames) -> Vec<String> {
     let mut known = names.outputs.clone();
     known.extend(names.component_columns.iter().map(|(c, _)| c.clone()));
     for c in &names.coordinates {
         known.extend([c.clone(), format!("{c}_dot"), format!("{c}_ddot")]);
+    }
+    for c in &names.constraints {
+        known.extend([format!("{c}.lambda"), format!("{c}.residual")]);
     }
     known
 }

@@ -15,7 +15,8 @@
 use super::SimulationError;
 use crate::fault::Fault;
 use lagrangian_model::constrained::{
-    Baumgarte, ConstrainedSolveError, ConstraintValues, solve_constrained, solve_positive_definite,
+    Baumgarte, ConstrainedSolveError, ConstraintValues, SolveWorkspace, solve_constrained_in,
+    solve_positive_definite,
 };
 use lagrangian_model::{InputFunctions, LagrangianSystem};
 use nalgebra::{SMatrix, SVector};
@@ -61,15 +62,70 @@ pub fn solve<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Sized>
     system: &S,
     inputs: &I,
     stabilization: Baumgarte,
-    (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    state: (f64, &SVector<f64, N>, &SVector<f64, N>),
     mass: &SMatrix<f64, N, N>,
     forcing: &SVector<f64, N>,
 ) -> Result<Solution<N>, Fault> {
-    let values = values(system, t, q, v, inputs);
+    let mut workspace = Workspace::new(system.constraint_count());
+    let (a, power) = solve_in(
+        system,
+        inputs,
+        stabilization,
+        state,
+        (mass, forcing),
+        &mut workspace,
+    )?;
+    Ok(Solution {
+        a,
+        lambda: workspace.lambda,
+        values: workspace.values,
+        power,
+    })
+}
+
+/// What a constrained solve needs besides the model, kept between solves
+/// (by the problem a run integrates) so that a solve allocates nothing;
+/// after a solve, the constraint terms and multipliers it found.
+#[derive(Clone, Debug)]
+pub struct Workspace<const N: usize> {
+    /// The constraint terms at the last state solved.
+    pub values: ConstraintValues,
+    /// `λ` of the last solve.
+    pub lambda: Vec<f64>,
+    gamma: Vec<f64>,
+    solve: SolveWorkspace<N>,
+}
+
+impl<const N: usize> Workspace<N> {
+    /// Room for `m` constraints.
+    pub fn new(m: usize) -> Workspace<N> {
+        Workspace {
+            values: ConstraintValues::new(m, N),
+            lambda: vec![0.0; m],
+            gamma: vec![0.0; m],
+            solve: SolveWorkspace::new(m),
+        }
+    }
+}
+
+/// [`solve`] in `workspace` (made for the model's constraints): `q̈` and
+/// the power `λᵀ G q̇`, with `g` and `λ` left in the workspace; allocates
+/// nothing unless the solve fails.
+pub fn solve_in<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Sized>(
+    system: &S,
+    inputs: &I,
+    stabilization: Baumgarte,
+    (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    (mass, forcing): (&SMatrix<f64, N, N>, &SVector<f64, N>),
+    workspace: &mut Workspace<N>,
+) -> Result<(SVector<f64, N>, f64), Fault> {
+    let values = &mut workspace.values;
+    values.values.fill(0.0);
+    system.constraints(t, q, v, inputs, &mut values.values);
     let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
     if let Some(k) = values.values.iter().position(|x| !x.is_finite()) {
         let (q, qd) = state();
-        let output = term_name(&system.constraint_names(), &values, k);
+        let output = term_name(&system.constraint_names(), values, k);
         let value = values.values[k];
         return Err(Fault::NonFinite {
             output,
@@ -78,19 +134,21 @@ pub fn solve<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Sized>
             qd,
         });
     }
-    let gamma = stabilization.acceleration(&values, v.as_slice());
-    match solve_constrained(mass, forcing, &values, &gamma) {
-        Ok((a, lambda)) => {
-            let rate: Vec<f64> = (0..values.layout.m)
-                .map(|k| dot(values.jacobian_row(k), v.as_slice()))
-                .collect();
-            let power = dot(&lambda, &rate);
-            Ok(Solution {
-                a,
-                lambda,
-                values,
-                power,
-            })
+    stabilization.acceleration_into(values, v.as_slice(), &mut workspace.gamma);
+    let lambda = &mut workspace.lambda;
+    let solution = solve_constrained_in(
+        mass,
+        forcing,
+        values,
+        &workspace.gamma,
+        &mut workspace.solve,
+        lambda,
+    );
+    match solution {
+        Ok(a) => {
+            let rate = |k: usize| dot(values.jacobian_row(k), v.as_slice());
+            let power = (lambda.iter().enumerate()).map(|(k, l)| l * rate(k)).sum();
+            Ok((a, power))
         }
         Err(ConstrainedSolveError::MassMatrix) => {
             let (q, qd) = state();
@@ -186,6 +244,40 @@ pub fn project<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Size
     })
 }
 
+/// Moves `(q, q̇)` near the constraints back onto them, as the projection
+/// of the initial state does (module docs) with at most three Gauss–Newton
+/// steps: the end of a step of an integrator that holds the constraints
+/// less tightly than its tolerances ask. A fault names the redundant
+/// constraints.
+pub fn project_step<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Sized>(
+    system: &S,
+    inputs: &I,
+    t: f64,
+    q: &mut SVector<f64, N>,
+    v: &mut SVector<f64, N>,
+) -> Result<(), Fault> {
+    let redundant = |q: &SVector<f64, N>, v: &SVector<f64, N>, indices: Vec<usize>| {
+        Fault::RedundantConstraints {
+            names: named(&system.constraint_names(), &indices),
+            q: q.as_slice().to_vec(),
+            qd: v.as_slice().to_vec(),
+        }
+    };
+    let scale = q.amax().max(1.0);
+    for _ in 0..3 {
+        let at = values(system, t, q, v, inputs);
+        if max_abs(at.residual()) <= 1e-14 * scale {
+            break;
+        }
+        let step = minimum_norm(&at, at.residual()).map_err(|k| redundant(q, v, k))?;
+        *q -= step;
+    }
+    let at = values(system, t, q, v, inputs);
+    let step = minimum_norm(&at, &at.rate(v.as_slice())).map_err(|k| redundant(q, v, k))?;
+    *v -= step;
+    Ok(())
+}
+
 /// `Gᵀ (G Gᵀ)⁻¹ r`, the smallest `x` with `G x = r`; `Err` with the
 /// dependent rows.
 fn minimum_norm<const N: usize>(
@@ -263,6 +355,7 @@ fn max_abs(values: &[f64]) -> f64 {
     values.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
+#[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -38,6 +38,10 @@ pub struct SampleView<'a> {
     pub outputs: &'a [f64],
     /// The values of the scenario's component columns.
     pub components: &'a [f64],
+    /// The constraints' multipliers `λ`.
+    pub multipliers: &'a [f64],
+    /// The constraints' residuals `g`.
+    pub residuals: &'a [f64],
 }
 
 impl<'a> From<&'a Sample> for SampleView<'a> {
@@ -53,6 +57,8 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             external_work: s.external_work,
             outputs: &s.outputs,
             components: &s.components,
+            multipliers: &s.multipliers,
+            residuals: &s.residuals,
         }
     }
 }
@@ -192,6 +198,8 @@ impl Metrics {
             a: s.a,
             outputs: s.outputs,
             components: s.components,
+            multipliers: s.multipliers,
+            residuals: s.residuals,
         };
         for channel in &mut self.channels {
             channel.push(s.t, &columns);

@@ -60,6 +60,9 @@ pub struct Sample {
     /// The multiplier `λ` of each of the model's constraints (empty
     /// without constraints), in the order of [`ConstraintReport::names`].
     pub multipliers: Vec<f64>,
+    /// The residual `g` of each of the model's constraints (empty without
+    /// constraints), likewise.
+    pub residuals: Vec<f64>,
 }
 
 impl Sample {
@@ -71,6 +74,8 @@ impl Sample {
             a: &self.a,
             outputs: &self.outputs,
             components: &self.components,
+            multipliers: &self.multipliers,
+            residuals: &self.residuals,
         }
     }
 }
@@ -583,6 +588,8 @@ impl<const N: usize> SampleValues<N> {
             external_work: self.y.work[1],
             outputs: &self.outputs,
             components: &self.components,
+            multipliers: &self.multipliers,
+            residuals: &self.residual,
         }
     }
 
@@ -600,6 +607,7 @@ impl<const N: usize> SampleValues<N> {
             outputs: self.outputs,
             components: self.components,
             multipliers: self.multipliers,
+            residuals: self.residual,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! A model with its crash components as an ODE problem in `(q, q̇, work)`.
 
 use super::SolverError;
+use super::constrained::Workspace;
 use crate::crash::BoundInputs;
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
@@ -8,6 +9,7 @@ use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
 use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
+use std::cell::RefCell;
 
 /// One event handled during a run.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,6 +48,11 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// The stabilization of the model's constraints, if it has any.
     pub stabilization: Baumgarte,
     arguments: Vec<f64>,
+    /// The model's number of constraints, asked once.
+    constraint_count: usize,
+    /// The buffers of the constrained solve, kept so that the right-hand
+    /// side allocates nothing.
+    workspace: RefCell<Workspace<N>>,
 }
 
 impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
@@ -53,6 +60,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     /// [`CrashProblem::start`] before integrating.
     pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
         let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
+        let constraint_count = system.constraint_count();
         CrashProblem {
             system,
             inputs,
@@ -60,6 +68,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             failure: None,
             stabilization: super::constrained::DEFAULT_STABILIZATION,
             arguments,
+            constraint_count,
+            workspace: RefCell::new(Workspace::new(constraint_count)),
         }
     }
 
@@ -107,7 +117,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .system
             .mass_matrix_and_forcing_pair(t, q, v, &self.inputs);
         self.input_failure()?;
-        if self.system.constraint_count() == 0 {
+        if self.constraint_count == 0 {
             return Ok(Accelerations {
                 a: self.solve(q, v, &mass, &forcing)?,
                 multipliers: Vec::new(),
@@ -131,12 +141,22 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
     ) -> Result<(SVector<f64, N>, f64), Fault> {
-        if self.system.constraint_count() == 0 {
+        if self.constraint_count == 0 {
             let (_, q, v) = state;
             return Ok((self.solve(q, v, mass, forcing)?, 0.0));
         }
-        let solution = self.solve_constrained(state, mass, forcing)?;
-        Ok((solution.a, solution.power))
+        let mut workspace = self.workspace.borrow_mut();
+        let dynamics = (mass, forcing);
+        let solution = super::constrained::solve_in(
+            self.system,
+            &self.inputs,
+            self.stabilization,
+            state,
+            dynamics,
+            &mut workspace,
+        );
+        self.input_failure()?;
+        solution
     }
 
     fn solve_constrained(
@@ -340,13 +360,15 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
 impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashProblem<'_, N, S> {
     /// `∂a/∂q = M⁻¹ (∂f/∂q − ∂(M a)/∂q)`, `∂a/∂v = M⁻¹ ∂f/∂q̇` from the
     /// model's derived Jacobians; `None` when the spec did not ask for them
-    /// or has constraints.
+    /// or has constraints: those of the constrained accelerations (with the
+    /// derivatives of `G` and `γ`) are not derived, and TR-BDF2 takes
+    /// forward differences of the constrained `q̈` instead.
     fn acceleration_jacobians(
         &mut self,
         t: f64,
         y: &PhaseState<N>,
     ) -> Result<Option<AccelerationJacobian<N>>, Fault> {
-        if self.system.constraint_count() > 0 {
+        if self.constraint_count > 0 {
             // Those of M q̈ = f; the constrained ones are not derived.
             return Ok(None);
         }
@@ -377,5 +399,16 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
         let a_q = solve(j.forcing_q - j.mass_times_acceleration_q).ok_or_else(singular)?;
         let a_v = solve(j.forcing_qd).ok_or_else(singular)?;
         Ok(Some((a_q, a_v)))
+    }
+
+    /// Onto the model's constraints ([`super::constrained::project_step`]).
+    fn project(&mut self, t: f64, y: &mut PhaseState<N>) -> Result<bool, Fault> {
+        if self.constraint_count == 0 {
+            return Ok(false);
+        }
+        let (system, inputs) = (self.system, &self.inputs);
+        super::constrained::project_step(system, inputs, t, &mut y.q, &mut y.v)?;
+        self.input_failure()?;
+        Ok(true)
     }
 }
