@@ -46,6 +46,7 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// The stabilization of the model's constraints, if it has any.
     pub stabilization: Baumgarte,
     arguments: Vec<f64>,
+    stops: super::stops::TimeStops,
 }
 
 impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
@@ -53,6 +54,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     /// [`CrashProblem::start`] before integrating.
     pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
         let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
+        let stops = super::stops::TimeStops::of(system, &inputs);
         CrashProblem {
             system,
             inputs,
@@ -60,6 +62,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             failure: None,
             stabilization: super::constrained::DEFAULT_STABILIZATION,
             arguments,
+            stops,
         }
     }
 
@@ -298,6 +301,11 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.system
             .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
         self.inputs.events(&self.arguments, components)
+    }
+
+    /// The next point of a time table interpolated linearly.
+    fn next_stop(&mut self, t: f64) -> Option<f64> {
+        self.stops.after(t)
     }
 
     fn event_direction(&self, k: usize) -> Direction {
