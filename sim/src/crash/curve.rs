@@ -2,8 +2,10 @@
 //! crush characteristics: the secant form of the paper's eqs 1–2 and
 //! force–deflection curves.
 
+use super::pchip;
 use std::cell::Cell;
 use std::fmt;
+use std::sync::Arc;
 
 /// What a curve does outside its first and last points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,11 +92,23 @@ impl fmt::Display for CurveError {
     }
 }
 
-/// `y(x)` by linear interpolation between points with increasing `x`.
+/// `y(x)` by linear interpolation between points with increasing `x`, or
+/// by a monotone cubic ([`Curve::smooth`]).
+///
+/// The points are shared between copies: a scenario copied for each run of
+/// a sweep copies no table.
 #[derive(Clone, Debug)]
 pub struct Curve {
-    xs: Vec<f64>,
-    ys: Vec<f64>,
+    xs: Arc<[f64]>,
+    ys: Arc<[f64]>,
+    /// The slope of each segment, computed once.
+    slopes: Arc<[f64]>,
+    /// The points where the slope changes, ends included unless the end
+    /// segments are extrapolated.
+    kinks: Arc<[f64]>,
+    /// The tangent at each point of a curve interpolated by a monotone
+    /// cubic (PCHIP); `None`: linear between the points.
+    tangents: Option<Arc<[f64]>>,
     outside: Outside,
     /// The segment of the last lookup: an integration asks for nearby `x`
     /// again and again (a time table at advancing `t`), so it is tried first.
@@ -103,7 +117,10 @@ pub struct Curve {
 
 impl PartialEq for Curve {
     fn eq(&self, other: &Curve) -> bool {
-        self.xs == other.xs && self.ys == other.ys && self.outside == other.outside
+        self.xs == other.xs
+            && self.ys == other.ys
+            && self.tangents == other.tangents
+            && self.outside == other.outside
     }
 }
 
@@ -145,12 +162,56 @@ impl Curve {
                 });
             }
         }
-        Ok(Curve {
-            xs,
-            ys,
+        Ok(Curve::linear(xs, ys, outside))
+    }
+
+    /// The curve through checked points, linear between them.
+    fn linear(xs: Vec<f64>, ys: Vec<f64>, outside: Outside) -> Curve {
+        let slopes: Vec<f64> = (xs.windows(2).zip(ys.windows(2)))
+            .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+            .collect();
+        let last = xs.len() - 1;
+        let kink = |i: usize| match i {
+            0 => outside != Outside::Extrapolate,
+            i if i == last => outside != Outside::Extrapolate,
+            i => slopes[i - 1] != slopes[i],
+        };
+        let kinks = (0..=last).filter(|&i| kink(i)).map(|i| xs[i]).collect();
+        Curve {
+            xs: xs.into(),
+            ys: ys.into(),
+            slopes: slopes.into(),
+            kinks,
+            tangents: None,
             outside,
             hint: Cell::new(0),
-        })
+        }
+    }
+
+    /// The same points interpolated by a monotone cubic (PCHIP): C¹, no
+    /// overshoot between the points, so without kinks. Beyond the ends,
+    /// `Outside::Extrapolate` continues the end tangent.
+    pub fn smooth(self) -> Curve {
+        let tangents = pchip::tangents(&self.xs, &self.ys).into();
+        Curve {
+            tangents: Some(tangents),
+            ..self
+        }
+    }
+
+    /// The points where the slope of a curve interpolated linearly jumps,
+    /// in increasing order (the ends too, unless extrapolated); none for a
+    /// smooth one.
+    pub fn kinks(&self) -> &[f64] {
+        match self.tangents {
+            Some(_) => &[],
+            None => &self.kinks,
+        }
+    }
+
+    /// Whether it is interpolated by a monotone cubic ([`Curve::smooth`]).
+    pub fn is_smooth(&self) -> bool {
+        self.tangents.is_some()
     }
 
     /// The abscissae.
@@ -208,8 +269,20 @@ impl Curve {
             }
         }
         let i = self.segment(x);
-        let slope = (self.ys[i + 1] - self.ys[i]) / (self.xs[i + 1] - self.xs[i]);
-        Ok((self.ys[i] + slope * (x - self.xs[i]), slope))
+        match &self.tangents {
+            None => {
+                let slope = self.slopes[i];
+                Ok((self.ys[i] + slope * (x - self.xs[i]), slope))
+            }
+            Some(d) if !inside => {
+                let end = if x < first { 0 } else { self.xs.len() - 1 };
+                Ok((self.ys[end] + d[end] * (x - self.xs[end]), d[end]))
+            }
+            Some(d) => {
+                let (xs, ys) = ((self.xs[i], self.xs[i + 1]), (self.ys[i], self.ys[i + 1]));
+                Ok(pchip::hermite(x, xs, ys, (d[i], d[i + 1])))
+            }
+        }
     }
 }
 
@@ -332,14 +405,9 @@ fn checked_table(
     {
         return Err(TableError::Value { index, value });
     }
-    Ok(Curve {
-        xs: std::iter::once(0.0)
-            .chain(breakpoints.iter().copied())
-            .collect(),
-        ys: first.into_iter().chain(values.iter().copied()).collect(),
-        outside,
-        hint: Cell::new(0),
-    })
+    let xs = std::iter::once(0.0).chain(breakpoints.iter().copied());
+    let ys = first.into_iter().chain(values.iter().copied());
+    Ok(Curve::linear(xs.collect(), ys.collect(), outside))
 }
 
 /// A coefficient curve in the secant form of the paper's eqs 1–2: the
@@ -369,12 +437,7 @@ impl SecantCurve {
     /// A constant coefficient (a linear spring or damper).
     pub fn constant(value: f64) -> SecantCurve {
         SecantCurve {
-            curve: Curve {
-                xs: vec![0.0, 1.0],
-                ys: vec![value, value],
-                outside: Outside::Hold,
-                hint: Cell::new(0),
-            },
+            curve: Curve::linear(vec![0.0, 1.0], vec![value, value], Outside::Hold),
         }
     }
 
@@ -559,6 +622,47 @@ mod tests {
             Curve::new(vec![0.0, f64::NAN], vec![1.0, 2.0], Outside::Hold),
             Err(CurveError::NotFinite { index: 1 })
         );
+    }
+
+    #[test]
+    fn a_smooth_curve_is_c1_through_its_points_and_linear_beyond() {
+        let xs = vec![0.0, 1.0, 2.0, 4.0];
+        let ys = vec![0.0, 1.0, 4.0, 5.0];
+        let linear = Curve::new(xs.clone(), ys.clone(), Outside::Extrapolate).unwrap();
+        let smooth = linear.clone().smooth();
+        assert!(smooth.is_smooth() && !linear.is_smooth() && smooth != linear);
+        // The linear one's slope changes at every inner point; the ends
+        // are extrapolated.
+        assert_eq!(linear.kinks(), [1.0, 2.0]);
+        assert!(smooth.kinks().is_empty());
+        let tangents = pchip::tangents(&xs, &ys);
+        for (k, &x) in xs.iter().enumerate() {
+            // Through the points, with the same slope on either side.
+            let (y, _) = smooth.eval(x).unwrap();
+            assert!((y - ys[k]).abs() < 1e-12, "{x}: {y}");
+            for side in [x - 1e-9, x + 1e-9] {
+                let (_, slope) = smooth.eval(side).unwrap();
+                assert!((slope - tangents[k]).abs() < 1e-6, "{side}: {slope}");
+            }
+        }
+        // Monotone data, monotone curve.
+        let values: Vec<f64> = (0..=400)
+            .map(|k| smooth.eval(0.01 * k as f64).unwrap().0)
+            .collect();
+        assert!(values.windows(2).all(|w| w[1] >= w[0]));
+        // Beyond the ends: the end tangent's line.
+        let (y, slope) = smooth.eval(5.0).unwrap();
+        assert_eq!((y, slope), (5.0 + tangents[3], tangents[3]));
+    }
+
+    #[test]
+    fn kinks_are_where_the_slope_changes() {
+        let curve = |outside| {
+            let xs = vec![0.0, 1.0, 2.0, 3.0, 4.0];
+            Curve::new(xs, vec![0.0, 1.0, 2.0, 2.0, 0.0], outside).unwrap()
+        };
+        assert_eq!(curve(Outside::Zero).kinks(), [0.0, 2.0, 3.0, 4.0]);
+        assert_eq!(curve(Outside::Extrapolate).kinks(), [2.0, 3.0]);
     }
 
     #[test]

@@ -79,6 +79,7 @@ pub mod bound;
 pub mod constant;
 pub mod crush;
 pub mod curve;
+mod pchip;
 pub mod table;
 pub mod tabulated;
 #[cfg(test)]
@@ -192,6 +193,15 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// for a component without contact.
     fn contact(&self) -> Option<Contact> {
         None
+    }
+
+    /// The abscissae, in increasing order, at which the value's derivative
+    /// jumps (the points of a table interpolated linearly); none (the
+    /// default) for a smooth component. For a component whose input's
+    /// argument is the time, the integrator ends a step at each of them
+    /// rather than step across.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
     }
 }
 

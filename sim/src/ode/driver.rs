@@ -8,6 +8,7 @@
 //! and allocates nothing for fixed-size states.
 
 use super::events::{EventAction, EventTracker};
+use super::stops;
 use super::{
     DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, evaluate,
     initial_step,
@@ -90,7 +91,7 @@ where
     let mut driver = Driver::start(problem, t, &y, &mut f, t_end, options)?;
     let mut h = first_step(problem, (t, &y, &f), t_end - t, options, &mut driver.stats)?;
     while let Some(step) = driver.next_step(t, h)? {
-        h = step;
+        h = driver.to_stop(problem, t, step);
         let dense = match stepper.attempt(problem, (t, &y, &f), h, &mut driver.stats)? {
             Attempt::Rejected(shorter) => {
                 driver.stats.rejected_steps += 1;
@@ -144,6 +145,8 @@ struct Driver<Y> {
     min_step: f64,
     events: EventTracker,
     scratch: Y,
+    /// Steps are fixed: they do not end at the problem's stops.
+    fixed: bool,
 }
 
 impl<Y: OdeVector> Driver<Y> {
@@ -170,6 +173,7 @@ impl<Y: OdeVector> Driver<Y> {
             min_step: options.min_step,
             events,
             scratch: y0.clone(),
+            fixed: options.fixed_step.is_some(),
         })
     }
 
@@ -200,6 +204,16 @@ impl<Y: OdeVector> Driver<Y> {
         } else {
             h
         }))
+    }
+
+    /// The step `h` from `t`, ended at the problem's next stop where
+    /// [`stops::step`] says so; fixed steps are kept.
+    #[inline]
+    fn to_stop<P: OdeProblem<Y>>(&self, problem: &mut P, t: f64, h: f64) -> f64 {
+        match self.fixed {
+            true => h,
+            false => stops::step(problem, t, h),
+        }
     }
 
     /// Finishes an accepted step with dense output `dense` from `point` to

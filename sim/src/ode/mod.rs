@@ -27,6 +27,7 @@ pub mod explicit;
 mod hermite;
 mod lu;
 mod method;
+mod stops;
 pub mod tableau;
 pub mod tr_bdf2;
 mod vector;
@@ -67,6 +68,14 @@ pub trait OdeProblem<Y: OdeVector> {
     fn on_event(&mut self, k: usize, t: f64, y: &mut Y) -> EventAction {
         let _ = (k, t, y);
         EventAction::Stop
+    }
+
+    /// The first time after `t` at which `F` is not smooth in time (a
+    /// kink of a time table interpolated linearly), if any: an adaptive
+    /// step ends there instead of stepping across. `None` by default.
+    fn next_stop(&mut self, t: f64) -> Option<f64> {
+        let _ = t;
+        None
     }
 }
 

@@ -6,6 +6,7 @@ pub mod constrained;
 mod equilibrium;
 mod metrics;
 mod problem;
+mod stops;
 mod summary;
 #[cfg(test)]
 mod tests;
@@ -20,7 +21,7 @@ pub use summary::{Field, Metric, Summary, Text, Value};
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
 use crate::pulse::STANDARD_GRAVITY;
-use crate::scenario::{MAX_SAMPLES, Scenario};
+use crate::scenario::{Column, MAX_SAMPLES, Scenario};
 use crate::warning::{self, Warning};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
@@ -443,6 +444,9 @@ struct Sampler<const N: usize> {
     /// The samples, when the run keeps them.
     samples: Vec<Sample>,
     keep: bool,
+    /// Whether the samples need the components' columns: kept, or read by
+    /// a channel.
+    components: bool,
     /// The first sample that could not be evaluated.
     error: Option<SolverError>,
     interval: f64,
@@ -469,10 +473,14 @@ impl<const N: usize> Sampler<N> {
         } else {
             0 // NaN
         };
+        let read = |c: &crate::scenario::Channel| {
+            (c.signal.terms.iter()).any(|(_, column)| matches!(column, Column::Component(_)))
+        };
         Sampler {
             metrics,
             samples: Vec::new(),
             keep,
+            components: keep || scenario.channels.iter().any(read),
             error: None,
             interval,
             t_end: scenario.t_end,
@@ -522,7 +530,7 @@ impl<const N: usize> Sampler<N> {
         t: f64,
         y: &PhaseState<N>,
     ) {
-        match sample(problem, t, y, self.keep) {
+        match sample(problem, t, y, (self.keep, self.components)) {
             Ok((view, columns)) => {
                 self.drift.resize(view.residual.len(), 0.0);
                 for (d, g) in self.drift.iter_mut().zip(&view.residual) {
@@ -612,14 +620,14 @@ impl<const N: usize> SampleValues<N> {
     }
 }
 
-/// Evaluates a sample, with the input values when `inputs` is set; the
-/// outputs (at the accelerations of the sample) and the components'
-/// columns always, for the channels.
+/// Evaluates a sample, with the input values when `inputs` is set and the
+/// components' columns when `components` is; the outputs (at the
+/// accelerations of the sample) always, for the channels.
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
-    inputs: bool,
+    (inputs, components): (bool, bool),
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
     let problem::Accelerations {
@@ -630,7 +638,10 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
     let mut outputs = vec![0.0; problem.system.output_names().len()];
     (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);
-    let components = problem.component_values(t, &y.q, &y.v).map_err(fault)?;
+    let components = match components {
+        true => problem.component_values(t, &y.q, &y.v).map_err(fault)?,
+        false => Vec::new(),
+    };
     let values = match inputs {
         true => problem.input_values(t, &y.q, &y.v),
         false => Vec::new(),

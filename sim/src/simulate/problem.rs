@@ -53,6 +53,7 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// The buffers of the constrained solve, kept so that the right-hand
     /// side allocates nothing.
     workspace: RefCell<Workspace<N>>,
+    stops: super::stops::TimeStops,
 }
 
 impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
@@ -61,6 +62,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
         let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
         let constraint_count = system.constraint_count();
+        let stops = super::stops::TimeStops::of(system, &inputs);
         CrashProblem {
             system,
             inputs,
@@ -70,6 +72,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             arguments,
             constraint_count,
             workspace: RefCell::new(Workspace::new(constraint_count)),
+            stops,
         }
     }
 
@@ -318,6 +321,11 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.system
             .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
         self.inputs.events(&self.arguments, components)
+    }
+
+    /// The next point of a time table interpolated linearly.
+    fn next_stop(&mut self, t: f64) -> Option<f64> {
+        self.stops.after(t)
     }
 
     fn event_direction(&self, k: usize) -> Direction {

@@ -321,7 +321,8 @@ fn outputs_are_evaluated_in_summary_only_runs_too() {
     let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
     let q = SVector::from_column_slice(&last.q);
     let v = SVector::from_column_slice(&last.v);
-    let (values, inputs) = sample(&mut problem, last.t, &PhaseState::new(q, v), false).unwrap();
+    let (values, inputs) =
+        sample(&mut problem, last.t, &PhaseState::new(q, v), (false, true)).unwrap();
     assert!(inputs.is_empty());
     assert_eq!(values.as_view().outputs, &last.outputs[..]);
     // At rest the lower bob hangs 2 m below the pivot, unaccelerated.

@@ -12,6 +12,7 @@ mod merge;
 mod plan;
 mod run;
 mod scheduler;
+mod shared;
 mod table;
 
 pub use journal::{Journal, journal_path, read_groups};

@@ -2,6 +2,7 @@
 //! the plan's values applied as settings, simulated to its summary metrics.
 
 use super::plan::{Assignment, Axis, Plan};
+use super::shared::SharedScenario;
 use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
 use crate::scenario::{ScenarioError, ScenarioErrorKind};
 use crate::simulate::{Summary, simulate_summary};
@@ -119,6 +120,23 @@ impl Settings {
         Ok(Settings { axes })
     }
 
+    /// Per axis: the index among `parameters` of the model parameter it
+    /// sets and, for a factor, the value it multiplies; `None` when an axis
+    /// sets anything else.
+    pub(crate) fn parameter_axes(
+        &self,
+        parameters: &[String],
+    ) -> Option<Vec<(usize, Option<f64>)>> {
+        let axis = |(axis, scaled): &(Axis, Option<Scaled>)| {
+            let index = parameters.iter().position(|p| *p == axis.key)?;
+            match scaled {
+                None => Some((index, None)),
+                Some(Scaled(base)) => Some((index, Some(as_number(base)?))),
+            }
+        };
+        self.axes.iter().map(axis).collect()
+    }
+
     /// The settings that give the axes `values`.
     pub fn for_values(&self, values: &[f64]) -> Vec<String> {
         self.axes
@@ -219,14 +237,20 @@ pub struct SweepJob<'a> {
     pub threads: usize,
 }
 
-/// One run: its scenario, simulated to its summary.
+/// One run: its scenario (from the `shared` one when there is one),
+/// simulated to its summary.
 fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
     model: &S,
     job: &SweepJob<'_>,
+    shared: Option<&SharedScenario>,
     run: usize,
 ) -> Row {
     let values = job.plan.point(run);
-    let outcome = match run_scenario(job.base, job.settings, &values) {
+    let scenario = match shared.and_then(|s| s.for_values(&values)) {
+        Some(scenario) => Ok(scenario),
+        None => run_scenario(job.base, job.settings, &values),
+    };
+    let outcome = match scenario {
         Err(e) => Err(RunFailure {
             kind: match e.kind {
                 ScenarioErrorKind::DataFile => "data_file",
@@ -280,13 +304,16 @@ where
     let failed_sink = AtomicBool::new(false);
     let window = AHEAD_PER_WORKER * workers;
     let (sender, receiver) = mpsc::sync_channel::<Row>(window);
+    let shared = SharedScenario::new(job.base, job.settings);
     let mut outcome = Ok(0);
     std::thread::scope(|scope| {
         for _ in 0..workers {
             let sender = sender.clone();
             let (next, delivered, failed_sink, job) = (&next, &delivered, &failed_sink, &job);
-            // Each worker simulates its own copy (models keep scratch space).
+            // Each worker simulates its own copy (models keep scratch space,
+            // a scenario's components their state).
             let model = system.clone();
+            let shared = shared.clone();
             scope.spawn(move || {
                 loop {
                     if stop.load(Ordering::Relaxed) || failed_sink.load(Ordering::Relaxed) {
@@ -301,7 +328,7 @@ where
                     {
                         std::thread::sleep(std::time::Duration::from_millis(1));
                     }
-                    let row = one_run(&model, job, run);
+                    let row = one_run(&model, job, shared.as_ref(), run);
                     if sender.send(row).is_err() {
                         break;
                     }
