@@ -6,6 +6,7 @@ pub mod constrained;
 mod equilibrium;
 mod metrics;
 mod problem;
+pub mod stepwise;
 mod summary;
 #[cfg(test)]
 mod tests;
