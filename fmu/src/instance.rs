@@ -85,6 +85,7 @@ pub struct Instance {
     /// Handled events not yet reported to the host (Co-Simulation logs
     /// them after each step).
     pub pending_events: Vec<String>,
+    guid: String,
 }
 
 impl Instance {
@@ -111,7 +112,13 @@ impl Instance {
             plant,
             start_time: 0.0,
             pending_events: Vec::new(),
+            guid: guid.to_string(),
         })
+    }
+
+    /// The GUID of the spec and scenario it runs.
+    pub fn guid(&self) -> &str {
+        &self.guid
     }
 
     /// The current mode.

@@ -128,7 +128,7 @@ impl Variables {
                 name: input.name.clone(),
                 quantity: Quantity::Input(i),
                 unit: input.unit.as_ref().map(|u| u.text.clone()),
-                description: doc(&input.doc),
+                description: first_paragraph(&input.doc),
                 start: Some(0.0),
             }
         }));
@@ -141,7 +141,7 @@ impl Variables {
                     name: output.name.clone(),
                     quantity: Quantity::Output(i),
                     unit: output.unit.as_ref().map(|u| u.text.clone()),
-                    description: doc(&output.doc),
+                    description: first_paragraph(&output.doc),
                     start: None,
                 }),
         );
@@ -174,8 +174,8 @@ impl Variables {
     }
 }
 
-/// One line of description from `///` doc lines (the first paragraph).
-fn doc(lines: &[String]) -> String {
+/// One line of description from `///` doc lines: their first paragraph.
+pub fn first_paragraph(lines: &[String]) -> String {
     let paragraph: Vec<&str> = (lines.iter())
         .map(|l| l.trim())
         .take_while(|l| !l.is_empty())
@@ -196,7 +196,7 @@ fn states(model: &Model) -> Vec<Variable> {
             name: c.name.clone(),
             quantity: Quantity::Coordinate(i),
             unit: unit(i, ""),
-            description: doc(&c.doc),
+            description: first_paragraph(&c.doc),
             start: None,
         });
     }
@@ -231,7 +231,7 @@ fn parameters<'a>(model: &'a Model, scenario: &'a Scenario) -> impl Iterator<Ite
             name: p.name.clone(),
             quantity: Quantity::Parameter(i),
             unit: p.unit.as_ref().map(|u| u.text.clone()),
-            description: doc(&p.doc),
+            description: first_paragraph(&p.doc),
             start: Some(value),
         }
     })
