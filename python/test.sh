@@ -6,8 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/python-venv
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy fmpy
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
-cargo build -q -p lpm
+# lpm, and the FMU runtime that `lpm export-fmu` packs (python/tests/test_fmu.py).
+cargo build -q -p lpm -p lagrangian-fmu
 # Exit status 5 (no tests collected) is a failure here too.
 "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
