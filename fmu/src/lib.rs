@@ -31,4 +31,6 @@ pub mod resources;
 pub mod variables;
 
 #[cfg(test)]
+mod c_api_tests;
+#[cfg(test)]
 mod tests;
