@@ -42,6 +42,9 @@ pub trait Plant {
     fn handle_events(&mut self) -> Result<Vec<String>, String>;
     /// Integrates to `t_end` with the scenario's method, tolerances and
     /// events; returns the descriptions of the events handled on the way.
+    /// Each call starts a new step sequence (its first step estimated
+    /// afresh); the components keep their state (contact, unloading, weld
+    /// failure) from one call to the next.
     fn advance(&mut self, t_end: f64) -> Result<Vec<String>, String>;
     /// The values of `quantities` at the current state into `out`.
     fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), String>;
