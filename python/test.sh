@@ -6,9 +6,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/python-venv
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-# pandas for DataFrames, dask.distributed for the Dask template's test.
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]"
+# pandas for DataFrames, dask.distributed for the Dask template's test, FMPy
+# to validate and run exported FMUs.
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
-cargo build -q -p lpm
+# lpm, and the FMU runtime that `lpm export-fmu` packs (python/tests/test_fmu.py).
+cargo build -q -p lpm -p lagrangian-fmu
 # Exit status 5 (no tests collected) is a failure here too.
 "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests

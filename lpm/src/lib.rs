@@ -8,6 +8,7 @@ pub mod derive;
 pub mod eval;
 pub mod failure;
 pub mod fit;
+pub mod fmu;
 pub mod generate;
 pub mod linearize;
 pub mod mass;

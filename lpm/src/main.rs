@@ -6,7 +6,9 @@
 
 use clap::{Parser, Subcommand};
 use lpm::failure::{Failure, Outcome};
-use lpm::{audit, chain, derive, eval, fit, generate, linearize, metrics, simulate, status, sweep};
+use lpm::{
+    audit, chain, derive, eval, fit, fmu, generate, linearize, metrics, simulate, status, sweep,
+};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -68,6 +70,10 @@ enum Command {
     /// the state-space matrices A and B of x = (q, q̇) and the modes of A
     /// (natural frequency, damping ratio, unstable or overdamped).
     Linearize(linearize::Args),
+    /// Export a spec under its scenario as an FMI 2.0 FMU (Co-Simulation and
+    /// Model Exchange) that runs without a compiler: the prebuilt runtime
+    /// library interprets the spec and scenario packed in its resources.
+    ExportFmu(fmu::Args),
 }
 
 fn run(command: Command) -> Result<Outcome, Failure> {
@@ -82,6 +88,7 @@ fn run(command: Command) -> Result<Outcome, Failure> {
         Command::Metrics(args) => metrics::run(args),
         Command::Chain(args) => chain::run(args),
         Command::Linearize(args) => linearize::run(args),
+        Command::ExportFmu(args) => fmu::run(args),
     }
 }
 

@@ -4,9 +4,9 @@
 ``f(q, q̇, t)``, ``q̈`` and the energies at one state or at each row of a
 batch (the loop runs in Rust). ``simulate`` runs ``lpm simulate`` and returns
 its summary, trajectory and events; ``sweep`` (with ``merge_sweep`` and
-``sweep_plan``) and ``fit`` run ``lpm sweep`` and ``lpm fit``. Failures
-raise the subclass of ``LagrangianError`` named after the ``lpm`` exit
-status they would give.
+``sweep_plan``) and ``fit`` run ``lpm sweep`` and ``lpm fit``;
+``export_fmu`` runs ``lpm export-fmu``. Failures raise the subclass of
+``LagrangianError`` named after the ``lpm`` exit status they would give.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import csv
 import io
 import json
 import os
+import pathlib
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Union
 
@@ -22,7 +23,7 @@ import numpy as np
 
 from . import _lagrangian
 
-__all__ = ["Model", "Result", "Event", "simulate", "LagrangianError"]
+__all__ = ["Model", "Result", "Event", "simulate", "LagrangianError", "export_fmu"]
 
 
 class LagrangianError(Exception):
@@ -518,3 +519,26 @@ def fit(
         scenario=files["fitted.toml"],
         svg=files["fit.svg"],
     )
+def export_fmu(
+    spec: Union[str, os.PathLike],
+    scenario: Optional[Union[str, os.PathLike]] = None,
+    *,
+    out: Union[str, os.PathLike],
+    runtime: Optional[Union[str, os.PathLike]] = None,
+) -> pathlib.Path:
+    """Runs ``lpm export-fmu``: writes ``out``, an FMI 2.0 FMU
+    (Co-Simulation and Model Exchange) of ``spec`` under ``scenario`` (by
+    default the scenario beside the spec that names it), and returns its
+    path.
+
+    ``runtime`` is the FMU runtime library to pack
+    (``target/debug/liblagrangian_fmu.so`` after ``cargo build -p
+    lagrangian-fmu``); by default ``$LPM_FMU_RUNTIME``.
+    """
+    _lagrangian.export_fmu(
+        os.fspath(spec),
+        None if scenario is None else os.fspath(scenario),
+        os.fspath(out),
+        None if runtime is None else os.fspath(runtime),
+    )
+    return pathlib.Path(out)

@@ -347,6 +347,22 @@ fn simulate(
     Ok((summary, trajectory, events))
 }
 
+/// `lpm export-fmu`: writes the FMU `out`; returns its size in bytes.
+#[pyfunction]
+#[pyo3(signature = (spec, scenario, out, runtime))]
+fn export_fmu(
+    py: Python<'_>,
+    spec: PathBuf,
+    scenario: Option<PathBuf>,
+    out: PathBuf,
+    runtime: Option<PathBuf>,
+) -> PyResult<u64> {
+    let exported = py
+        .detach(|| lpm::fmu::export(&spec, scenario.as_deref(), &out, runtime.as_deref()))
+        .map_err(raise)?;
+    Ok(exported.bytes)
+}
+
 /// The module `lagrangian._lagrangian`.
 #[pymodule]
 fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -359,5 +375,6 @@ fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ensembles::sweep_merge, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::fit, m)?)?;
+    m.add_function(wrap_pyfunction!(export_fmu, m)?)?;
     Ok(())
 }

@@ -30,7 +30,9 @@ fn time_tolerance(t: f64) -> f64 {
 }
 
 impl Direction {
-    fn crosses(self, before: f64, after: f64) -> bool {
+    /// Whether a change of an event function from `before` to `after`
+    /// is a crossing that triggers it.
+    pub fn crosses(self, before: f64, after: f64) -> bool {
         match self {
             Direction::Rising => before < 0.0 && after >= 0.0,
             Direction::Falling => before > 0.0 && after <= 0.0,

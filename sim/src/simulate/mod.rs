@@ -7,6 +7,7 @@ mod equilibrium;
 mod metrics;
 mod problem;
 mod stops;
+pub mod stepwise;
 mod summary;
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,329 @@
+//! The simulated model behind an instance, at its dimension `N` but seen
+//! through one object-safe trait ([`Plant`]): its time and state `(q, q̇)`,
+//! the derivatives and event indicators Model Exchange asks for, the events
+//! it handles, and Co-Simulation's step with our integrator and events.
+
+use crate::variables::Quantity;
+use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem, WithDimension};
+use lagrangian_sim::crash::constant::Constant;
+use lagrangian_sim::crash::{BoundInputs, Component};
+use lagrangian_sim::ode::{self, EventAction, OdeProblem, PhaseState};
+use lagrangian_sim::scenario::{Columns, Scenario};
+use lagrangian_sim::simulate::{CrashProblem, stepwise};
+use nalgebra::SVector;
+
+/// A model with its scenario, simulated step by step by a host.
+pub trait Plant {
+    /// A copy in the same state (for `fmi2GetFMUstate`).
+    fn clone_box(&self) -> Box<dyn Plant>;
+    /// The number of continuous states, `2N`.
+    fn state_count(&self) -> usize;
+    /// The current time \[s\].
+    fn time(&self) -> f64;
+    /// Sets the time (Model Exchange).
+    fn set_time(&mut self, t: f64);
+    /// The states `(q, q̇)` into `x`.
+    fn states(&self, x: &mut [f64]);
+    /// Sets the states `(q, q̇)` from `x`.
+    fn set_states(&mut self, x: &[f64]);
+    /// Puts the model in the scenario's initial state (static equilibrium,
+    /// components' start) with the parameters as they are set now.
+    fn initialize(&mut self) -> Result<(), String>;
+    /// `(q̇, q̈)` into `dx`.
+    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String>;
+    /// The number of event indicators: the components' events, then the
+    /// model's switching functions.
+    fn event_count(&self) -> usize;
+    /// The event indicators into `g`.
+    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String>;
+    /// Handles the events whose indicators crossed (in their direction)
+    /// since the last call or [`Plant::initialize`]; returns the
+    /// descriptions of the events handled.
+    fn handle_events(&mut self) -> Result<Vec<String>, String>;
+    /// Integrates to `t_end` with the scenario's method, tolerances and
+    /// events; returns the descriptions of the events handled on the way.
+    /// Each call starts a new step sequence (its first step estimated
+    /// afresh); the components keep their state (contact, unloading, weld
+    /// failure) from one call to the next.
+    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, String>;
+    /// The values of `quantities` at the current state into `out`.
+    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), String>;
+    /// Sets a parameter or an input.
+    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), String>;
+}
+
+/// The plant of `model` under `scenario`, with the scenario's parameters.
+pub fn plant(model: InterpretedModel, scenario: &Scenario) -> Result<Box<dyn Plant>, String> {
+    model
+        .with_dimension(Build { scenario })
+        .map_err(|e| e.to_string())?
+}
+
+struct Build<'a> {
+    scenario: &'a Scenario,
+}
+
+impl WithDimension for Build<'_> {
+    type Output = Result<Box<dyn Plant>, String>;
+
+    fn run<const N: usize>(self, mut system: Interpreted<N>) -> Self::Output {
+        (self.scenario)
+            .apply_parameters(&mut system)
+            .map_err(|e| e.to_string())?;
+        Ok(Box::new(Run {
+            model: system,
+            inputs: Some(self.scenario.inputs.clone()),
+            scenario: self.scenario.clone(),
+            t: 0.0,
+            y: PhaseState::zeros(),
+            armed: Vec::new(),
+        }))
+    }
+}
+
+/// [`Plant`] at dimension `N`.
+#[derive(Clone)]
+struct Run<const N: usize> {
+    model: Interpreted<N>,
+    /// The bound inputs with the components' state; lent to a
+    /// [`CrashProblem`] while one evaluates (see [`Run::with_problem`]).
+    inputs: Option<BoundInputs>,
+    scenario: Scenario,
+    t: f64,
+    y: PhaseState<N>,
+    /// The event indicators after the last event (or the start): a crossing
+    /// is a change from these.
+    armed: Vec<f64>,
+}
+
+/// The values a sample derives from the state.
+struct Derived<const N: usize> {
+    a: SVector<f64, N>,
+    outputs: Vec<f64>,
+    columns: Vec<f64>,
+}
+
+impl<const N: usize> Run<N> {
+    /// Runs `f` on the problem of the model with the current inputs.
+    fn with_problem<R>(&mut self, f: impl FnOnce(&mut CrashProblem<N, Interpreted<N>>) -> R) -> R {
+        let inputs = (self.inputs.take()).expect("the inputs are put back after every use");
+        let mut problem = CrashProblem::new(&self.model, inputs);
+        problem.stabilization = self.scenario.stabilization;
+        let result = f(&mut problem);
+        self.inputs = Some(problem.inputs);
+        result
+    }
+
+    fn accelerations(&mut self) -> Result<SVector<f64, N>, String> {
+        let (t, y) = (self.t, self.y);
+        self.with_problem(|p| p.accelerations(t, &y.q, &y.v))
+            .map_err(|fault| format!("at t = {t:e} s: {fault}"))
+    }
+
+    fn derived(&mut self) -> Result<Derived<N>, String> {
+        let (t, y) = (self.t, self.y);
+        let a = self.accelerations()?;
+        let mut outputs = vec![0.0; self.model.output_names().len()];
+        let columns = self.with_problem(|p| {
+            (p.system).outputs(t, &y.q, &y.v, &a, &p.inputs, &mut outputs);
+            p.component_values(t, &y.q, &y.v)
+        });
+        let columns = columns.map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        Ok(Derived {
+            a,
+            outputs,
+            columns,
+        })
+    }
+
+    fn value(&self, quantity: Quantity, d: &Derived<N>) -> f64 {
+        let crush = || self.scenario.crush.as_ref();
+        let columns = Columns {
+            q: self.y.q.as_slice(),
+            v: self.y.v.as_slice(),
+            a: d.a.as_slice(),
+            outputs: &d.outputs,
+            components: &d.columns,
+        };
+        match quantity {
+            Quantity::Coordinate(i) => self.y.q[i],
+            Quantity::Rate(i) => self.y.v[i],
+            Quantity::Acceleration(i) => d.a[i],
+            Quantity::Parameter(i) => self.model.parameters()[i],
+            Quantity::Input(i) => self.input_constant(i).unwrap_or(f64::NAN),
+            Quantity::Output(i) => d.outputs[i],
+            Quantity::Crush => crush().map_or(f64::NAN, |c| c.value(&columns)),
+            Quantity::Deceleration => match crush() {
+                Some(c) if c.is_of_coordinates() => -c.of_coordinates(d.a.as_slice()),
+                _ => f64::NAN,
+            },
+            Quantity::Column(i) => d.columns[i],
+        }
+    }
+
+    /// The component an FMU input is bound to.
+    fn input_component(&mut self, input: usize) -> Option<&mut Box<dyn Component>> {
+        let inputs = self.inputs.as_mut()?;
+        let binding = inputs.bindings.get(input).copied().flatten()?;
+        Some(&mut inputs.components[binding.component].component)
+    }
+
+    fn input_constant(&self, input: usize) -> Option<f64> {
+        let inputs = self.inputs.as_ref()?;
+        let binding = inputs.bindings.get(input).copied().flatten()?;
+        let component = &inputs.components[binding.component].component;
+        component.value(binding.port, &[]).ok()
+    }
+
+    /// The event indicators at `(t, y)`.
+    fn indicators_at(&mut self, t: f64, y: PhaseState<N>) -> Result<Vec<f64>, String> {
+        let mut g = vec![0.0; self.event_count()];
+        self.with_problem(|p| p.events(t, &y, &mut g))
+            .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        Ok(g)
+    }
+
+    /// Records the indicators as the reference for the next crossing; one
+    /// exactly zero takes its sign just after `t` (along `(q̇, q̈)`), so
+    /// that the crossing just handled is not seen again.
+    fn arm(&mut self) -> Result<(), String> {
+        self.armed = self.indicators_at(self.t, self.y)?;
+        if self.armed.contains(&0.0) {
+            let delta = 1e-9 * self.t.abs().max(1.0);
+            let a = self.accelerations()?;
+            let mut ahead = self.y;
+            ahead.q += delta * self.y.v;
+            ahead.v += delta * a;
+            let probe = self.indicators_at(self.t + delta, ahead)?;
+            for (g, p) in self.armed.iter_mut().zip(probe) {
+                if *g == 0.0 {
+                    *g = p;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Events recorded by a problem, in words.
+    fn descriptions(records: &[lagrangian_sim::simulate::EventRecord]) -> Vec<String> {
+        (records.iter())
+            .map(|e| format!("t = {:e} s: {}: {}", e.t, e.component, e.description))
+            .collect()
+    }
+}
+
+impl<const N: usize> Plant for Run<N> {
+    fn clone_box(&self) -> Box<dyn Plant> {
+        Box::new(self.clone())
+    }
+
+    fn state_count(&self) -> usize {
+        2 * N
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn set_time(&mut self, t: f64) {
+        self.t = t;
+    }
+
+    fn states(&self, x: &mut [f64]) {
+        x[..N].copy_from_slice(self.y.q.as_slice());
+        x[N..2 * N].copy_from_slice(self.y.v.as_slice());
+    }
+
+    fn set_states(&mut self, x: &[f64]) {
+        self.y.q.copy_from_slice(&x[..N]);
+        self.y.v.copy_from_slice(&x[N..2 * N]);
+    }
+
+    fn initialize(&mut self) -> Result<(), String> {
+        let scenario = self.scenario.clone();
+        let y0 = self.with_problem(|p| stepwise::initial_state(p, &scenario));
+        self.y = y0.map_err(|e| e.to_string())?;
+        self.arm()
+    }
+
+    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
+        let a = self.accelerations()?;
+        dx[..N].copy_from_slice(self.y.v.as_slice());
+        dx[N..2 * N].copy_from_slice(a.as_slice());
+        Ok(())
+    }
+
+    fn event_count(&self) -> usize {
+        let inputs = self.inputs.as_ref().map_or(0, |i| i.event_count());
+        inputs + self.model.switching_count()
+    }
+
+    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
+        let now = self.indicators_at(self.t, self.y)?;
+        g.copy_from_slice(&now);
+        Ok(())
+    }
+
+    fn handle_events(&mut self) -> Result<Vec<String>, String> {
+        let now = self.indicators_at(self.t, self.y)?;
+        let (t, mut y) = (self.t, self.y);
+        let armed = std::mem::take(&mut self.armed);
+        let handled = self.with_problem(|p| {
+            for (k, (&before, &after)) in armed.iter().zip(&now).enumerate() {
+                if p.event_direction(k).crosses(before, after)
+                    && p.on_event(k, t, &mut y) == EventAction::Stop
+                {
+                    let fault = p.failure.take().map_or(String::new(), |f| f.to_string());
+                    return Err(format!("at t = {t:e} s: {fault}"));
+                }
+            }
+            Ok(Self::descriptions(&p.events))
+        })?;
+        self.y = y;
+        self.arm()?;
+        Ok(handled)
+    }
+
+    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, String> {
+        let (t, y) = (self.t, self.y);
+        let (method, options) = (self.scenario.method, self.scenario.options);
+        let (outcome, events) = self.with_problem(|p| {
+            let outcome = ode::integrate(method, p, (t, y), t_end, &options, &mut |_, _| {});
+            let failure = p.failure.take();
+            (outcome.map(|o| (o, failure)), Self::descriptions(&p.events))
+        });
+        let (outcome, failure) = outcome.map_err(|e| e.to_string())?;
+        if let Some(fault) = failure {
+            return Err(format!("at t = {:e} s: {fault}", outcome.t));
+        }
+        self.t = outcome.t;
+        self.y = outcome.y;
+        Ok(events)
+    }
+
+    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), String> {
+        let derived = self.derived()?;
+        for (value, &quantity) in out.iter_mut().zip(quantities) {
+            *value = self.value(quantity, &derived);
+        }
+        Ok(())
+    }
+
+    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), String> {
+        match quantity {
+            Quantity::Parameter(i) => {
+                let name = self.model.parameter_names()[i].to_string();
+                self.model
+                    .set_parameter(&name, value)
+                    .map_err(|e| e.to_string())
+            }
+            Quantity::Input(i) => {
+                let component = (self.input_component(i))
+                    .ok_or_else(|| format!("input {i} is not bound to a constant"))?;
+                *component = Box::new(Constant { value });
+                Ok(())
+            }
+            other => Err(format!("{other:?} cannot be set")),
+        }
+    }
+}

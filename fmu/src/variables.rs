@@ -1,0 +1,273 @@
+//! The FMU's variables and their value references: one table, read by the
+//! runtime (what `fmi2GetReal`/`fmi2SetReal` of a reference mean) and by
+//! `lpm export-fmu` (the `<ModelVariables>` of modelDescription.xml), so
+//! that the two cannot disagree.
+//!
+//! The order is fixed: coordinates `q`, rates `q̇` (together the continuous
+//! states), accelerations `q̈`, parameters, inputs the scenario leaves
+//! unbound, the spec's outputs, then the scenario's crush and deceleration
+//! and the components' columns (crush force, weld moment). The value
+//! reference of a variable is its position in the table.
+
+use lagrangian_core::spec::Model;
+use lagrangian_sim::scenario::Scenario;
+
+/// What a variable is the value of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    /// Coordinate `q_i`: a continuous state.
+    Coordinate(usize),
+    /// Rate `q̇_i`: a continuous state, the derivative of `q_i`.
+    Rate(usize),
+    /// Acceleration `q̈_i`: the derivative of `q̇_i`.
+    Acceleration(usize),
+    /// Spec parameter `i`.
+    Parameter(usize),
+    /// Spec input `i`, which the scenario does not bind: a constant the
+    /// host sets.
+    Input(usize),
+    /// Spec output `i` (`output NAME [unit] = expr;`).
+    Output(usize),
+    /// The scenario's crush signal (`[metrics] crush`).
+    Crush,
+    /// The crush signal's deceleration `−c̈`.
+    Deceleration,
+    /// Column `i` of the scenario's components (`front_end.force`).
+    Column(usize),
+}
+
+/// The FMI causality of a variable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Causality {
+    /// Set by the host before initialization (and between steps: tunable).
+    Parameter,
+    /// Set by the host during the run.
+    Input,
+    /// Read by the host.
+    Output,
+    /// Internal, readable (the accelerations).
+    Local,
+}
+
+impl Causality {
+    /// The attribute value in modelDescription.xml.
+    pub fn name(self) -> &'static str {
+        match self {
+            Causality::Parameter => "parameter",
+            Causality::Input => "input",
+            Causality::Output => "output",
+            Causality::Local => "local",
+        }
+    }
+}
+
+/// One scalar variable of the FMU.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variable {
+    /// Its name in modelDescription.xml (unique).
+    pub name: String,
+    /// What it is the value of.
+    pub quantity: Quantity,
+    /// Its unit as the spec writes it, if any.
+    pub unit: Option<String>,
+    /// Its description, from the spec's doc comment.
+    pub description: String,
+    /// The start value of a parameter or an input (`None`: calculated).
+    pub start: Option<f64>,
+}
+
+impl Variable {
+    /// Its FMI causality.
+    pub fn causality(&self) -> Causality {
+        match self.quantity {
+            Quantity::Parameter(_) => Causality::Parameter,
+            Quantity::Input(_) => Causality::Input,
+            Quantity::Acceleration(_) => Causality::Local,
+            Quantity::Coordinate(_)
+            | Quantity::Rate(_)
+            | Quantity::Output(_)
+            | Quantity::Crush
+            | Quantity::Deceleration
+            | Quantity::Column(_) => Causality::Output,
+        }
+    }
+
+    /// Whether the host may set it.
+    pub fn settable(&self) -> bool {
+        matches!(self.causality(), Causality::Parameter | Causality::Input)
+    }
+}
+
+/// The variables of a spec under a scenario, in value-reference order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variables {
+    /// The variables; a value reference is an index.
+    pub list: Vec<Variable>,
+    /// The number of coordinates `N` (the states are the first `2N`).
+    pub dimension: usize,
+}
+
+/// The inputs of `model` the scenario leaves unbound, in input order.
+pub fn unbound_inputs(scenario: &Scenario) -> Vec<usize> {
+    (scenario.inputs.bindings.iter().enumerate())
+        .filter(|(_, b)| b.is_none())
+        .map(|(i, _)| i)
+        .collect()
+}
+
+impl Variables {
+    /// The variables of `model` under `scenario` (resolved against it),
+    /// with `unbound` the inputs the host sets (see [`unbound_inputs`];
+    /// the runtime binds them to constants before it builds this table).
+    pub fn new(model: &Model, scenario: &Scenario, unbound: &[usize]) -> Variables {
+        let mut list = states(model);
+        list.extend(parameters(model, scenario));
+        list.extend(unbound.iter().map(|&i| {
+            let input = &model.inputs[i];
+            Variable {
+                name: input.name.clone(),
+                quantity: Quantity::Input(i),
+                unit: input.unit.as_ref().map(|u| u.text.clone()),
+                description: first_paragraph(&input.doc),
+                start: Some(0.0),
+            }
+        }));
+        list.extend(
+            model
+                .outputs
+                .iter()
+                .enumerate()
+                .map(|(i, output)| Variable {
+                    name: output.name.clone(),
+                    quantity: Quantity::Output(i),
+                    unit: output.unit.as_ref().map(|u| u.text.clone()),
+                    description: first_paragraph(&output.doc),
+                    start: None,
+                }),
+        );
+        list.extend(crush(scenario));
+        list.extend(columns(scenario));
+        Variables {
+            list,
+            dimension: model.coordinates.len(),
+        }
+    }
+
+    /// The variable of value reference `vr`.
+    pub fn get(&self, vr: u32) -> Option<&Variable> {
+        self.list.get(vr as usize)
+    }
+
+    /// The value reference of the variable called `name`.
+    pub fn reference(&self, name: &str) -> Option<u32> {
+        (self.list.iter().position(|v| v.name == name)).map(|i| i as u32)
+    }
+
+    /// The 1-based index (in `<ModelVariables>`) of the state that the
+    /// variable `vr` is the derivative of: `q_i` for `q̇_i`, `q̇_i` for `q̈_i`.
+    pub fn derivative_of(&self, vr: usize) -> Option<usize> {
+        match self.list[vr].quantity {
+            Quantity::Rate(i) => Some(i + 1),
+            Quantity::Acceleration(i) => Some(self.dimension + i + 1),
+            _ => None,
+        }
+    }
+}
+
+/// One line of description from `///` doc lines: their first paragraph.
+pub fn first_paragraph(lines: &[String]) -> String {
+    let paragraph: Vec<&str> = (lines.iter())
+        .map(|l| l.trim())
+        .take_while(|l| !l.is_empty())
+        .collect();
+    paragraph.join(" ")
+}
+
+/// `q`, `q̇` and `q̈` of every coordinate.
+fn states(model: &Model) -> Vec<Variable> {
+    let unit = |i: usize, suffix: &str| {
+        let unit = model.coordinates[i].unit.as_ref()?;
+        Some(format!("{}{suffix}", unit.text))
+    };
+    let mut list = Vec::new();
+    let coordinates = model.coordinates.iter().enumerate();
+    for (i, c) in coordinates.clone() {
+        list.push(Variable {
+            name: c.name.clone(),
+            quantity: Quantity::Coordinate(i),
+            unit: unit(i, ""),
+            description: first_paragraph(&c.doc),
+            start: None,
+        });
+    }
+    for (i, c) in coordinates.clone() {
+        list.push(Variable {
+            name: format!("der({})", c.name),
+            quantity: Quantity::Rate(i),
+            unit: unit(i, "/s"),
+            description: format!("rate of {}", c.name),
+            start: None,
+        });
+    }
+    for (i, c) in coordinates {
+        list.push(Variable {
+            name: format!("der(der({}))", c.name),
+            quantity: Quantity::Acceleration(i),
+            unit: unit(i, "/s^2"),
+            description: format!("acceleration of {}", c.name),
+            start: None,
+        });
+    }
+    list
+}
+
+/// The spec's parameters, starting at the scenario's values.
+fn parameters<'a>(model: &'a Model, scenario: &'a Scenario) -> impl Iterator<Item = Variable> + 'a {
+    model.parameters.iter().enumerate().map(|(i, p)| {
+        let value = (scenario.parameters.iter().rev())
+            .find(|(k, _)| *k == i)
+            .map_or(p.default, |&(_, v)| v);
+        Variable {
+            name: p.name.clone(),
+            quantity: Quantity::Parameter(i),
+            unit: p.unit.as_ref().map(|u| u.text.clone()),
+            description: first_paragraph(&p.doc),
+            start: Some(value),
+        }
+    })
+}
+
+/// The crush signal and its deceleration, when the scenario names one.
+fn crush(scenario: &Scenario) -> Vec<Variable> {
+    let Some(signal) = &scenario.crush else {
+        return Vec::new();
+    };
+    vec![
+        Variable {
+            name: "crush".to_string(),
+            quantity: Quantity::Crush,
+            unit: signal.unit.clone(),
+            description: format!("crush `{}` (compression positive)", signal.name),
+            start: None,
+        },
+        Variable {
+            name: "deceleration".to_string(),
+            quantity: Quantity::Deceleration,
+            unit: signal.unit.as_ref().map(|u| format!("{u}/s^2")),
+            description: format!("deceleration of the crush `{}`", signal.name),
+            start: None,
+        },
+    ]
+}
+
+/// The components' columns (`front_end.force`).
+fn columns(scenario: &Scenario) -> impl Iterator<Item = Variable> + '_ {
+    let columns = scenario.inputs.columns().into_iter().enumerate();
+    columns.map(|(i, (name, unit))| Variable {
+        description: format!("{name} of the scenario's component"),
+        name,
+        quantity: Quantity::Column(i),
+        unit,
+        start: None,
+    })
+}

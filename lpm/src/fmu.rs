@@ -1,0 +1,300 @@
+//! `lpm export-fmu`: an FMI 2.0 FMU (Co-Simulation and Model Exchange) of a
+//! spec under its scenario, for Simulink, Modelica tools or FMPy.
+//!
+//! The FMU carries the prebuilt generic runtime (the `lagrangian-fmu`
+//! cdylib, as `binaries/<platform>/lagrangian_fmu.<ext>`), which interprets
+//! `resources/model.lpm` and `resources/scenario.toml` (with the data files
+//! the scenario reads under `resources/data/`): no compiler is needed to
+//! export. The variables and GUID come from loading the packed resources
+//! exactly as the runtime will.
+
+mod archive;
+mod description;
+
+use crate::failure::{Failure, Outcome};
+use crate::spec::{compile, find_scenario};
+use crate::status::ExitStatus;
+use archive::Entry;
+use lagrangian_fmu::instance::{Instance, Interface};
+use lagrangian_fmu::resources::{SCENARIO_FILE, SPEC_FILE};
+use lagrangian_fmu::variables::first_paragraph;
+use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_sim::scenario::{ModelNames, Scenario};
+use std::path::{Path, PathBuf};
+
+/// The FMU's `modelIdentifier`: the runtime's library name, the same for
+/// every exported model.
+pub const MODEL_IDENTIFIER: &str = "lagrangian_fmu";
+
+/// The environment variable naming the runtime library.
+pub const RUNTIME_VARIABLE: &str = "LPM_FMU_RUNTIME";
+
+/// Options of `lpm export-fmu`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The spec file (`.lpm`).
+    spec: PathBuf,
+    /// The scenario (TOML); by default the one in `scenarios/` beside the spec that names it.
+    #[arg(long)]
+    scenario: Option<PathBuf>,
+    /// The FMU to write (`NAME.fmu`).
+    #[arg(long)]
+    out: PathBuf,
+    /// The runtime library to pack (default: $LPM_FMU_RUNTIME, else the
+    /// one built beside the lpm executable).
+    #[arg(long)]
+    runtime: Option<PathBuf>,
+}
+
+/// What an export wrote.
+pub struct Exported {
+    /// The size of the FMU \[bytes\].
+    pub bytes: u64,
+    /// The number of FMI variables.
+    pub variables: usize,
+    /// The number of event indicators.
+    pub event_indicators: usize,
+    /// The binaries' platform folder (`linux64`).
+    pub platform: &'static str,
+}
+
+/// Runs `lpm export-fmu`.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let exported = export(
+        &options.spec,
+        options.scenario.as_deref(),
+        &options.out,
+        options.runtime.as_deref(),
+    )?;
+    Ok(Outcome::success(format!(
+        "wrote {} ({} bytes): FMI 2.0 Co-Simulation and Model Exchange, {} variables, {} event indicators, binaries/{}\n",
+        options.out.display(),
+        exported.bytes,
+        exported.variables,
+        exported.event_indicators,
+        exported.platform
+    )))
+}
+
+/// Exports `spec` under `scenario` (else the one beside the spec that
+/// names it, else the defaults) as the FMU `out`, packing the runtime
+/// library `runtime` (else [`find_runtime`]'s). A bad spec or scenario
+/// fails as in `lpm simulate`.
+pub fn export(
+    spec: &Path,
+    scenario: Option<&Path>,
+    out: &Path,
+    runtime: Option<&Path>,
+) -> Result<Exported, Failure> {
+    let compiled = compile(spec)?;
+    let model = compiled.interpreted();
+    let names = ModelNames::of_interpreted(&model);
+    let scenario_path = match scenario {
+        Some(p) => Some(p.to_path_buf()),
+        None => find_scenario(spec)?,
+    };
+    let resolved = match &scenario_path {
+        Some(path) => Scenario::load(path, &names, &[]),
+        None => Scenario::defaults(&names, &[]),
+    }
+    .map_err(|e| Failure::scenario(&e))?;
+    model.with_dimension(Supported).map_err(Failure::model)?;
+    let library = find_runtime(runtime)?;
+    let mut resources = vec![Entry {
+        name: format!("resources/{SPEC_FILE}"),
+        bytes: read(spec)?,
+        executable: false,
+    }];
+    if let Some(path) = &scenario_path {
+        resources.extend(packed_scenario(path)?);
+    }
+    let instance = load_packed(&resources)?;
+    let summary = first_paragraph(&compiled.model.doc);
+    let about = about(&compiled, &resolved, &instance, &summary);
+    let xml = description::model_description(&about, &instance.variables);
+    let platform = platform()?;
+    let mut entries = vec![
+        Entry {
+            name: "modelDescription.xml".to_string(),
+            bytes: xml.into_bytes(),
+            executable: false,
+        },
+        Entry {
+            name: format!(
+                "binaries/{platform}/{MODEL_IDENTIFIER}{}",
+                std::env::consts::DLL_SUFFIX
+            ),
+            bytes: read(&library)?,
+            executable: true,
+        },
+    ];
+    entries.extend(resources);
+    archive::write_atomically(out, &entries).map_err(Failure::io)?;
+    let bytes = std::fs::metadata(out).map_or(0, |m| m.len());
+    Ok(Exported {
+        bytes,
+        variables: instance.variables.list.len(),
+        event_indicators: instance.event_count(),
+        platform,
+    })
+}
+
+/// Checks that the interpreter runs the model at its dimension.
+struct Supported;
+
+impl WithDimension for Supported {
+    type Output = ();
+
+    fn run<const N: usize>(self, _: Interpreted<N>) {}
+}
+
+/// What modelDescription.xml says besides the variables.
+fn about<'a>(
+    compiled: &'a lagrangian_core::Compiled,
+    scenario: &Scenario,
+    instance: &'a Instance,
+    description: &'a str,
+) -> description::About<'a> {
+    description::About {
+        model_name: &compiled.model.name,
+        description,
+        identifier: MODEL_IDENTIFIER,
+        guid: instance.guid(),
+        event_indicators: instance.event_count(),
+        experiment: (
+            scenario.t_end,
+            scenario.options.rtol,
+            scenario.output_interval,
+        ),
+    }
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, Failure> {
+    std::fs::read(path).map_err(|e| Failure::io(format!("cannot read {}: {e}", path.display())))
+}
+
+/// The FMI 2.0 platform folder of the platform lpm was built for (the
+/// runtime is built for the same one).
+fn platform() -> Result<&'static str, Failure> {
+    match (std::env::consts::OS, std::env::consts::ARCH) {
+        ("linux", "x86_64") => Ok("linux64"),
+        ("windows", "x86_64") => Ok("win64"),
+        ("macos", "x86_64" | "aarch64") => Ok("darwin64"),
+        (os, arch) => Err(Failure::usage(format!(
+            "FMI 2.0 names no binaries folder for {arch}-{os}"
+        ))),
+    }
+}
+
+/// The runtime library: `runtime` if given, else `$LPM_FMU_RUNTIME`, else
+/// `liblagrangian_fmu.so` (`.dll`, `.dylib`) beside the lpm executable.
+pub fn find_runtime(runtime: Option<&Path>) -> Result<PathBuf, Failure> {
+    let file = format!(
+        "{}{MODEL_IDENTIFIER}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    );
+    let candidate = match (runtime, std::env::var_os(RUNTIME_VARIABLE)) {
+        (Some(path), _) => path.to_path_buf(),
+        (None, Some(path)) => PathBuf::from(path),
+        (None, None) => {
+            let exe = std::env::current_exe().map_err(|e| Failure::io(e.to_string()))?;
+            exe.parent().unwrap_or(Path::new(".")).join(&file)
+        }
+    };
+    if candidate.is_file() {
+        return Ok(candidate);
+    }
+    Err(Failure::usage(format!(
+        "the FMU runtime {} does not exist: build it with `cargo build -p lagrangian-fmu` \
+         (it is written beside lpm as {file}), or name it with --runtime PATH or {RUNTIME_VARIABLE}",
+        candidate.display()
+    )))
+}
+
+/// `resources/scenario.toml` and the data files it reads: the scenario
+/// with its `spec` key naming `model.lpm` and each component's `file`
+/// moved under `data/` (as `data/COMPONENT-NAME`).
+fn packed_scenario(path: &Path) -> Result<Vec<Entry>, Failure> {
+    let text = String::from_utf8(read(path)?)
+        .map_err(|_| Failure::io(format!("{} is not UTF-8", path.display())))?;
+    let mut document: toml::Table = text
+        .parse()
+        .map_err(|e| Failure::new(ExitStatus::Scenario, format!("{}: {e}", path.display())))?;
+    if document.contains_key("spec") {
+        document.insert("spec".into(), SPEC_FILE.into());
+    }
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut entries = Vec::new();
+    let components = document
+        .get_mut("components")
+        .and_then(|c| c.as_table_mut());
+    for (name, section) in components.into_iter().flatten() {
+        let Some(file) = section.get_mut("file") else {
+            continue;
+        };
+        let Some(original) = file.as_str() else {
+            continue;
+        };
+        let source = base.join(original);
+        let stem = source
+            .file_name()
+            .map_or("data".into(), |n| n.to_string_lossy().into_owned());
+        let packed = format!("data/{name}-{stem}");
+        entries.push(Entry {
+            name: format!("resources/{packed}"),
+            bytes: read(&source)?,
+            executable: false,
+        });
+        *file = packed.into();
+    }
+    let header = format!(
+        "# {}, packed by lpm export-fmu: `spec` is the packed model.lpm and the\n\
+         # data files are under data/.\n",
+        path.display()
+    );
+    let body = toml::to_string(&document).map_err(|e| Failure::io(e.to_string()))?;
+    entries.insert(
+        0,
+        Entry {
+            name: format!("resources/{SCENARIO_FILE}"),
+            bytes: format!("{header}{body}").into_bytes(),
+            executable: false,
+        },
+    );
+    Ok(entries)
+}
+
+/// Loads the packed resources as the runtime will (from a temporary
+/// folder): the instance whose variables and GUID the description lists.
+fn load_packed(resources: &[Entry]) -> Result<Instance, Failure> {
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    let dir = std::env::temp_dir().join(format!("lpm-export-fmu-{}-{stamp}", std::process::id()));
+    let loaded = stage_and_load(&dir, resources);
+    let _ = std::fs::remove_dir_all(&dir);
+    let loaded = loaded?;
+    let guid = loaded.guid.clone();
+    Instance::new("export", Interface::CoSimulation, &guid, loaded)
+        .map_err(|f| Failure::new(ExitStatus::Scenario, f.message))
+}
+
+fn stage_and_load(
+    dir: &Path,
+    resources: &[Entry],
+) -> Result<lagrangian_fmu::resources::Loaded, Failure> {
+    for entry in resources {
+        let relative = entry.name.strip_prefix("resources/").unwrap_or(&entry.name);
+        let path = dir.join(relative);
+        let written = std::fs::create_dir_all(path.parent().unwrap_or(dir))
+            .and_then(|()| std::fs::write(&path, &entry.bytes));
+        written.map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
+    }
+    lagrangian_fmu::resources::load(dir).map_err(|message| {
+        Failure::new(
+            ExitStatus::Scenario,
+            format!("the packed resources do not load: {message}"),
+        )
+    })
+}

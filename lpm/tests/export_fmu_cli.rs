@@ -1,0 +1,139 @@
+//! `lpm export-fmu`: what the archive holds, failures with `lpm simulate`'s
+//! statuses and messages, a missing runtime named with what to build, and
+//! no half-written FMU. (FMPy runs the FMU in python/tests/test_fmu.py.)
+
+mod common;
+
+use common::{ROOT, lpm, stderr, stdout, temporary};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+const YARIS: &str = "specs/yaris_double_pendulum.lpm";
+
+/// The runtime cargo builds beside `lpm` (lpm depends on its crate).
+fn runtime() -> PathBuf {
+    let exe = Path::new(env!("CARGO_BIN_EXE_lpm"));
+    exe.with_file_name(format!(
+        "{}lagrangian_fmu{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+fn entry(archive: &mut zip::ZipArchive<std::fs::File>, name: &str) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    archive
+        .by_name(name)
+        .unwrap()
+        .read_to_end(&mut bytes)
+        .unwrap();
+    bytes
+}
+
+#[test]
+fn the_fmu_holds_the_description_the_runtime_and_the_resources() {
+    let dir = temporary("export-fmu");
+    let out = dir.join("yaris.fmu");
+    let run = export(&[YARIS, "--out", &out.display().to_string()]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(
+        stdout(&run).starts_with(&format!("wrote {}", out.display())),
+        "{}",
+        stdout(&run)
+    );
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(&out).unwrap()).unwrap();
+    let mut names: Vec<&str> = archive.file_names().collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "binaries/linux64/lagrangian_fmu.so",
+            "modelDescription.xml",
+            "resources/data/barrier-yaris_barrier_forces.csv",
+            "resources/model.lpm",
+            "resources/scenario.toml",
+        ]
+    );
+    let library = entry(&mut archive, "binaries/linux64/lagrangian_fmu.so");
+    assert_eq!(library, std::fs::read(runtime()).unwrap());
+    let spec = entry(&mut archive, "resources/model.lpm");
+    assert_eq!(spec, std::fs::read(Path::new(ROOT).join(YARIS)).unwrap());
+    let data = entry(
+        &mut archive,
+        "resources/data/barrier-yaris_barrier_forces.csv",
+    );
+    let original = Path::new(ROOT).join("specs/data/yaris_barrier_forces.csv");
+    assert_eq!(data, std::fs::read(original).unwrap());
+    let scenario = String::from_utf8(entry(&mut archive, "resources/scenario.toml")).unwrap();
+    assert!(
+        scenario.contains("file = \"data/barrier-yaris_barrier_forces.csv\""),
+        "{scenario}"
+    );
+    assert!(scenario.contains("spec = \"model.lpm\""), "{scenario}");
+    let xml = String::from_utf8(entry(&mut archive, "modelDescription.xml")).unwrap();
+    for expected in [
+        "fmiVersion=\"2.0\"",
+        "modelName=\"YarisDoublePendulum\"",
+        "<ModelExchange modelIdentifier=\"lagrangian_fmu\"",
+        "<CoSimulation modelIdentifier=\"lagrangian_fmu\"",
+        // m1 at the spec's value, k_tor at the scenario's.
+        "name=\"m1\" valueReference=\"9\"",
+        "<Real unit=\"kg\" start=\"539.0\"/>",
+        "name=\"k_tor\"",
+        "<Real unit=\"N*m/rad\" start=\"0.0\"/>",
+        "name=\"front_end.force\"",
+        "stopTime=\"0.15\" tolerance=\"1e-8\"",
+    ] {
+        assert!(xml.contains(expected), "{expected} not in\n{xml}");
+    }
+}
+
+fn export(args: &[&str]) -> std::process::Output {
+    let mut all = vec!["export-fmu"];
+    all.extend_from_slice(args);
+    lpm(&all)
+}
+
+#[test]
+fn a_bad_scenario_fails_as_in_lpm_simulate_and_leaves_the_old_fmu() {
+    let dir = temporary("export-fmu-bad");
+    let scenario = dir.join("bad.toml");
+    std::fs::write(&scenario, "[simulation]\nt_end = -1.0\nrtoll = 1e-6\n").unwrap();
+    let out = dir.join("old.fmu");
+    std::fs::write(&out, "the old FMU").unwrap();
+    let (scenario, out_s) = (scenario.display().to_string(), out.display().to_string());
+    let exported = export(&[YARIS, "--scenario", &scenario, "--out", &out_s]);
+    let simulated = lpm(&[
+        "simulate",
+        YARIS,
+        "--scenario",
+        &scenario,
+        "--out",
+        &dir.display().to_string(),
+    ]);
+    assert_eq!(exported.status.code(), Some(4));
+    assert_eq!(exported.status.code(), simulated.status.code());
+    assert_eq!(stderr(&exported), stderr(&simulated));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "the old FMU");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 2, "{left:?}");
+}
+
+#[test]
+fn a_missing_runtime_is_named_with_what_to_build() {
+    let dir = temporary("export-fmu-runtime");
+    let out = dir.join("y.fmu").display().to_string();
+    let missing = dir.join("liblagrangian_fmu.so").display().to_string();
+    let run = export(&[YARIS, "--out", &out, "--runtime", &missing]);
+    assert_eq!(run.status.code(), Some(2));
+    let message = stderr(&run);
+    assert!(message.contains(&missing), "{message}");
+    assert!(
+        message.contains("cargo build -p lagrangian-fmu"),
+        "{message}"
+    );
+    assert!(!Path::new(&out).exists());
+}
