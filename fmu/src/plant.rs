@@ -144,6 +144,9 @@ impl<const N: usize> Run<N> {
             a: d.a.as_slice(),
             outputs: &d.outputs,
             components: &d.columns,
+            // Models with constraints are refused when the resources load.
+            multipliers: &[],
+            residuals: &[],
         };
         match quantity {
             Quantity::Coordinate(i) => self.y.q[i],

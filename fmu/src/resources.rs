@@ -106,6 +106,13 @@ pub fn load_texts(
     let file = spec_file.display().to_string();
     let compiled = Compiled::from_source(spec).map_err(|e| e.render(&file, spec))?;
     let model = compiled.interpreted();
+    if !model.constraint_names().is_empty() {
+        return Err(format!(
+            "{file}: an FMU of a model with constraints ({}) is not supported yet: \
+             its states would have to be projected onto them",
+            model.constraint_names().join(", ")
+        ));
+    }
     let names = ModelNames::of_interpreted(&model);
     let resolve = |settings: &[String]| match scenario {
         Some((path, text)) => Scenario::parse(text, Some(path), &names, settings),
@@ -193,5 +200,19 @@ mod tests {
         assert_ne!(g, guid("model B;", ""));
         assert_ne!(g, guid("model A;", "x = 1"));
         assert_eq!(g, guid("model A;", ""));
+    }
+
+    #[test]
+    fn a_model_with_constraints_is_refused_by_name() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../specs/four_bar_linkage.lpm"
+        ));
+        let spec = std::fs::read_to_string(path).unwrap();
+        let error = load_texts((path, &spec), None).err().unwrap();
+        assert!(
+            error.contains("with constraints (loop_x, loop_y)"),
+            "{error}"
+        );
     }
 }

@@ -6,8 +6,8 @@ pub mod constrained;
 mod equilibrium;
 mod metrics;
 mod problem;
-mod stops;
 pub mod stepwise;
+mod stops;
 mod summary;
 #[cfg(test)]
 mod tests;
