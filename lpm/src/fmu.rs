@@ -199,7 +199,7 @@ pub fn find_runtime(runtime: Option<&Path>) -> Result<PathBuf, Failure> {
         (None, Some(path)) => PathBuf::from(path),
         (None, None) => {
             let exe = std::env::current_exe().map_err(|e| Failure::io(e.to_string()))?;
-            exe.parent().unwrap_or(Path::new(".")).join(&file)
+            built_beside(exe.parent().unwrap_or(Path::new(".")), &file)
         }
     };
     if candidate.is_file() {
@@ -210,6 +210,20 @@ pub fn find_runtime(runtime: Option<&Path>) -> Result<PathBuf, Failure> {
          (it is written beside lpm as {file}), or name it with --runtime PATH or {RUNTIME_VARIABLE}",
         candidate.display()
     )))
+}
+
+/// The runtime `file` built beside the executable in `dir`: cargo writes it
+/// to `dir/deps` whenever it builds `lpm` (which links the same crate), and
+/// copies it to `dir` on `cargo build -p lagrangian-fmu`; the newer of the
+/// two is the one of the current sources.
+fn built_beside(dir: &Path, file: &str) -> PathBuf {
+    let modified = |p: &PathBuf| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+    let candidates = [dir.join(file), dir.join("deps").join(file)];
+    let newest = candidates
+        .iter()
+        .filter(|p| p.is_file())
+        .max_by_key(|p| modified(p));
+    newest.unwrap_or(&candidates[0]).clone()
 }
 
 /// `resources/scenario.toml` and the data files it reads: the scenario

@@ -11,9 +11,11 @@ use std::path::{Path, PathBuf};
 const YARIS: &str = "specs/yaris_double_pendulum.lpm";
 
 /// The runtime cargo builds beside `lpm` (lpm depends on its crate).
+/// The runtime cargo built with this `lpm` (in `deps/`; a copy beside `lpm`
+/// from `cargo build -p lagrangian-fmu` has the same bytes).
 fn runtime() -> PathBuf {
     let exe = Path::new(env!("CARGO_BIN_EXE_lpm"));
-    exe.with_file_name(format!(
+    exe.with_file_name("deps").join(format!(
         "{}lagrangian_fmu{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
