@@ -100,7 +100,8 @@ impl Instance {
             )));
         }
         let spec = &loaded.compiled.model;
-        let variables = Variables::new(spec, &loaded.scenario, &loaded.unbound);
+        let variables =
+            Variables::new(spec, &loaded.scenario, &loaded.unbound).map_err(Failure::error)?;
         let plant = plant(loaded.model, &loaded.scenario).map_err(Failure::error)?;
         Ok(Instance {
             name: name.to_string(),

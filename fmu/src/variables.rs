@@ -119,7 +119,10 @@ impl Variables {
     /// The variables of `model` under `scenario` (resolved against it),
     /// with `unbound` the inputs the host sets (see [`unbound_inputs`];
     /// the runtime binds them to constants before it builds this table).
-    pub fn new(model: &Model, scenario: &Scenario, unbound: &[usize]) -> Variables {
+    ///
+    /// Two variables of one name (a spec output called `crush` beside the
+    /// scenario's crush signal) are an error that names them.
+    pub fn new(model: &Model, scenario: &Scenario, unbound: &[usize]) -> Result<Variables, String> {
         let mut list = states(model);
         list.extend(parameters(model, scenario));
         list.extend(unbound.iter().map(|&i| {
@@ -147,10 +150,17 @@ impl Variables {
         );
         list.extend(crush(scenario));
         list.extend(columns(scenario));
-        Variables {
+        if let Some(name) = repeated_name(&list) {
+            return Err(format!(
+                "two FMU variables would be called `{name}`: rename the spec's `{name}` \
+                 (the FMU names the scenario's crush signal `crush` and its deceleration \
+                 `deceleration`)"
+            ));
+        }
+        Ok(Variables {
             list,
             dimension: model.coordinates.len(),
-        }
+        })
     }
 
     /// The variable of value reference `vr`.
@@ -235,6 +245,14 @@ fn parameters<'a>(model: &'a Model, scenario: &'a Scenario) -> impl Iterator<Ite
             start: Some(value),
         }
     })
+}
+
+/// The first name two variables of `list` share.
+fn repeated_name(list: &[Variable]) -> Option<&str> {
+    let mut seen = std::collections::HashSet::new();
+    (list.iter())
+        .find(|v| !seen.insert(v.name.as_str()))
+        .map(|v| v.name.as_str())
 }
 
 /// The crush signal and its deceleration, when the scenario names one.

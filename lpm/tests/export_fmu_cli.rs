@@ -139,3 +139,18 @@ fn a_missing_runtime_is_named_with_what_to_build() {
     );
     assert!(!Path::new(&out).exists());
 }
+
+#[test]
+fn a_spec_name_the_fmu_also_gives_its_crush_signal_is_an_error_not_a_second_variable() {
+    // car_to_car.lpm declares `output crush`, and its scenario a crush signal.
+    let dir = temporary("export-fmu-names");
+    let out = dir.join("c2c.fmu").display().to_string();
+    let run = export(&["specs/car_to_car.lpm", "--out", &out]);
+    assert_eq!(run.status.code(), Some(4), "{}", stderr(&run));
+    let message = stderr(&run);
+    assert!(
+        message.contains("two FMU variables would be called `crush`"),
+        "{message}"
+    );
+    assert!(!Path::new(&out).exists());
+}
