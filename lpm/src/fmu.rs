@@ -12,14 +12,13 @@ mod archive;
 mod description;
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::{compile, find_scenario};
 use crate::status::ExitStatus;
 use archive::Entry;
 use lagrangian_fmu::instance::{Instance, Interface};
 use lagrangian_fmu::resources::{SCENARIO_FILE, SPEC_FILE};
 use lagrangian_fmu::variables::first_paragraph;
 use lagrangian_model::{Interpreted, WithDimension};
-use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::scenario::Scenario;
 use std::path::{Path, PathBuf};
 
 /// The FMU's `modelIdentifier`: the runtime's library name, the same for
@@ -86,18 +85,8 @@ pub fn export(
     out: &Path,
     runtime: Option<&Path>,
 ) -> Result<Exported, Failure> {
-    let compiled = compile(spec)?;
-    let model = compiled.interpreted();
-    let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match scenario {
-        Some(p) => Some(p.to_path_buf()),
-        None => find_scenario(spec)?,
-    };
-    let resolved = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, &[]),
-        None => Scenario::defaults(&names, &[]),
-    }
-    .map_err(|e| Failure::scenario(&e))?;
+    let (compiled, model, scenario_path, resolved) =
+        crate::simulate::load_spec(spec, scenario, &[])?;
     model.with_dimension(Supported).map_err(Failure::model)?;
     let library = find_runtime(runtime)?;
     let mut resources = vec![Entry {

@@ -100,18 +100,7 @@ pub fn simulate_spec(
     scenario: Option<&Path>,
     settings: &[String],
 ) -> Result<Simulated, Failure> {
-    let compiled = compile(spec)?;
-    let model = compiled.interpreted();
-    let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match scenario {
-        Some(p) => Some(p.to_path_buf()),
-        None => find_scenario(spec)?,
-    };
-    let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, settings),
-        None => Scenario::defaults(&names, settings),
-    }
-    .map_err(|e| Failure::scenario(&e))?;
+    let (compiled, model, scenario_path, scenario) = load_spec(spec, scenario, settings)?;
     let result = dispatch(model.clone(), &scenario).map_err(|failure| {
         match domain_cause(&failure, &compiled, &scenario, spec) {
             Some(why) => failure.0.because(&why),
@@ -129,6 +118,30 @@ pub fn simulate_spec(
         scenario,
         scenario_name,
     })
+}
+
+/// Compiles the spec at `spec` and resolves its scenario (`scenario`, else
+/// the one beside the spec that names it, else the defaults) with
+/// `settings`: the compiled spec, its interpreted model, the scenario's file
+/// and the scenario, each failing as `lpm simulate` fails.
+pub fn load_spec(
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[String],
+) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), Failure> {
+    let compiled = compile(spec)?;
+    let model = compiled.interpreted();
+    let names = ModelNames::of_interpreted(&model);
+    let scenario_path = match scenario {
+        Some(p) => Some(p.to_path_buf()),
+        None => find_scenario(spec)?,
+    };
+    let scenario = match &scenario_path {
+        Some(path) => Scenario::load(path, &names, settings),
+        None => Scenario::defaults(&names, settings),
+    }
+    .map_err(|e| Failure::scenario(&e))?;
+    Ok((compiled, model, scenario_path, scenario))
 }
 
 /// Runs `lpm simulate`.
