@@ -248,38 +248,31 @@ def _number(value: Any) -> str:
     return value if isinstance(value, str) else repr(float(value))
 
 
+def _key_arguments(entries, join) -> List[str]:
+    """``KEY=VALUES`` arguments of a dict (the values a string as the
+    command line takes it, or a sequence ``join`` makes one) or of a string
+    or list of such strings."""
+    if entries is None:
+        return []
+    if isinstance(entries, str):
+        return [entries]
+    if not isinstance(entries, Mapping):
+        return [str(e) for e in entries]
+    return [f"{key}={values if isinstance(values, str) else join(values)}"
+            for key, values in entries.items()]
+
+
 def _grid_arguments(grid) -> List[str]:
     """``--grid KEY=VALUES`` arguments of a dict (``{"k1": [5e4, 6e4]}``,
     ``{"k1*": "0.8:1.2:5"}``) or a list of such strings."""
-    if grid is None:
-        return []
-    if isinstance(grid, str):
-        return [grid]
-    if not isinstance(grid, Mapping):
-        return [str(g) for g in grid]
-    arguments = []
-    for key, values in grid.items():
-        if not isinstance(values, str):
-            values = ",".join(_number(v) for v in values)
-        arguments.append(f"{key}={values}")
-    return arguments
+    return _key_arguments(grid, lambda values: ",".join(_number(v) for v in values))
 
 
 def _vary_arguments(vary) -> List[str]:
     """``--vary KEY=LOW:HIGH[:log]`` arguments of a dict (``{"k1": (5e4,
     1e5)}``, ``{"c": (1, 100, "log")}``) or a list of such strings."""
-    if vary is None:
-        return []
-    if isinstance(vary, str):
-        return [vary]
-    if not isinstance(vary, Mapping):
-        return [str(v) for v in vary]
-    arguments = []
-    for key, bounds in vary.items():
-        if not isinstance(bounds, str):
-            bounds = ":".join(b if b == "log" else _number(b) for b in bounds)
-        arguments.append(f"{key}={bounds}")
-    return arguments
+    return _key_arguments(
+        vary, lambda bounds: ":".join(b if b == "log" else _number(b) for b in bounds))
 
 
 def _sweep_options(
