@@ -373,12 +373,7 @@ impl InterpretedModel {
         inputs: &I,
         out: &mut [f64],
     ) -> Result<(), ModelError> {
-        if !self.tape.has(RoutineKind::Switching) {
-            return Ok(());
-        }
-        self.run(RoutineKind::Switching, (t, q, qd, &[]), inputs, |values| {
-            out[..values.len()].copy_from_slice(values)
-        })
+        self.run_optional(RoutineKind::Switching, (t, q, qd, &[]), inputs, out)
     }
 
     /// The outputs at `(t, q, q̇, q̈)`, in the order of
@@ -390,13 +385,10 @@ impl InterpretedModel {
         inputs: &I,
         out: &mut [f64],
     ) -> Result<(), ModelError> {
-        if !self.tape.has(RoutineKind::Outputs) {
-            return Ok(());
+        if self.tape.has(RoutineKind::Outputs) {
+            self.check(state.3)?;
         }
-        self.check(state.3)?;
-        self.run(RoutineKind::Outputs, state, inputs, |values| {
-            out[..values.len()].copy_from_slice(values)
-        })
+        self.run_optional(RoutineKind::Outputs, state, inputs, out)
     }
 
     /// The constraint terms `g`, `g_t`, `G`, `γ` at `(t, q, q̇)` (in the
@@ -410,14 +402,23 @@ impl InterpretedModel {
         inputs: &I,
         out: &mut [f64],
     ) -> Result<(), ModelError> {
-        if !self.tape.has(RoutineKind::Constraints) {
+        self.run_optional(RoutineKind::Constraints, (t, q, qd, &[]), inputs, out)
+    }
+
+    /// Runs the routine `kind` that a model may lack, copying its values
+    /// into the start of `out`; nothing when the model has no such routine.
+    fn run_optional<I: InputFunctions + ?Sized>(
+        &self,
+        kind: RoutineKind,
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        if !self.tape.has(kind) {
             return Ok(());
         }
-        self.run(
-            RoutineKind::Constraints,
-            (t, q, qd, &[]),
-            inputs,
-            |values| out[..values.len()].copy_from_slice(values),
-        )
+        self.run(kind, state, inputs, |values| {
+            out[..values.len()].copy_from_slice(values)
+        })
     }
 }
