@@ -29,6 +29,9 @@ pub mod pendulum;
 /// Generated from `specs/pendulum_chain_10.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod pendulum_chain_10;
+/// Generated from `specs/pioneer_wagon.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod pioneer_wagon;
 /// Generated from `specs/simple_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod simple_pendulum;
