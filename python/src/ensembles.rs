@@ -64,6 +64,7 @@ impl SweepOptions {
             threads: self.threads,
             quiet: true,
             resume: false,
+            envelope: Default::default(),
         })
     }
 }

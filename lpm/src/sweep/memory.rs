@@ -60,6 +60,7 @@ pub fn table(
         job,
         stop,
         sink: &mut sink,
+        envelope: None,
     };
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     if finished < runs.len() {
