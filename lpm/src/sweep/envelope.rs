@@ -44,7 +44,8 @@ pub(super) struct EnvelopeRequest {
     pub channels: Vec<Signal>,
     /// The weight of each run.
     pub weights: Weights,
-    out: PathBuf,
+    /// The table's file (`None` in memory, for the Python package).
+    out: Option<PathBuf>,
     plot: Option<PathBuf>,
 }
 
@@ -65,11 +66,14 @@ pub(super) fn request(
     prepared: &Prepared,
 ) -> Result<Option<EnvelopeRequest>, Failure> {
     let args = &options.envelope;
-    let Some(out) = args.envelope_out.clone() else {
+    if args.envelope.is_empty() {
         return Ok(None);
-    };
+    }
     refuse_partial_sweeps(options, shard)?;
-    table_is_parquet(&out)?;
+    let out = args.envelope_out.clone();
+    if let Some(out) = &out {
+        table_is_parquet(out)?;
+    }
     let channels = channels(&args.envelope, prepared)?;
     let weights = match &args.weights {
         None => Weights::Equal,
@@ -143,7 +147,9 @@ fn weights(text: &str, prepared: &Prepared) -> Result<Weights, Failure> {
 /// Writes the envelope table (whole or not at all) and the plot; returns
 /// the line `lpm sweep` reports them with.
 pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<String, Failure> {
-    let out = &request.out;
+    let Some(out) = &request.out else {
+        return Ok(String::new());
+    };
     let parquet = table_is_parquet(out)?;
     write_beside(out, |file| match parquet {
         true => write_envelope_parquet(envelope, file),

@@ -96,8 +96,9 @@ pub struct Envelope {
     pub channels: Vec<ChannelEnvelope>,
     /// `Σ wᵢ` over the runs added.
     pub total_weight: f64,
-    /// How many runs were added, and the first of them.
+    /// How many runs were added.
     pub runs: usize,
+    /// The first run added, whose output times the others must share.
     first_run: Option<usize>,
     names: Vec<String>,
 }
@@ -223,4 +224,57 @@ where
         }
         sink(row)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn history(t: &[f64], x: &[f64]) -> History {
+        History {
+            t: t.to_vec(),
+            values: vec![x.to_vec()],
+        }
+    }
+
+    fn envelope() -> Envelope {
+        let names = crate::scenario::ModelNames {
+            coordinates: vec!["x".into()],
+            ..Default::default()
+        };
+        Envelope::new(&[Signal::parse("--envelope", "x", &names).unwrap()])
+    }
+
+    #[test]
+    fn extremes_keep_the_first_run_attaining_them_and_the_mean_is_weighted() {
+        let mut e = envelope();
+        let t = [0.0, 0.1, 0.2];
+        e.add(3, 1.0, &history(&t, &[1.0, 5.0, f64::NAN])).unwrap();
+        e.add(4, 3.0, &history(&t, &[1.0, -1.0, 2.0])).unwrap();
+        let c = &e.channels[0];
+        assert_eq!(c.max[..2], [1.0, 5.0]);
+        assert_eq!(c.max_run, [Some(3), Some(3), Some(4)]);
+        assert_eq!(c.min_run, [Some(3), Some(4), Some(4)]);
+        assert_eq!(
+            (c.max[2], c.min[2]),
+            (2.0, 2.0),
+            "NaN takes no part in extremes"
+        );
+        assert_eq!(e.mean(0)[..2], [1.0, 0.5]);
+        assert!(e.mean(0)[2].is_nan(), "the sum shows a NaN");
+        assert_eq!((e.runs, e.total_weight), (2, 4.0));
+    }
+
+    #[test]
+    fn a_run_on_other_output_times_is_an_error_naming_both_runs() {
+        let mut e = envelope();
+        e.add(0, 1.0, &history(&[0.0, 0.1], &[1.0, 2.0])).unwrap();
+        let error = e.add(1, 1.0, &history(&[0.0], &[1.0])).unwrap_err();
+        assert!(
+            error.contains(
+                "run 1 has other output times (1 samples to 0 s) than run 0 (2 samples to 0.1 s)"
+            ),
+            "{error}"
+        );
+    }
 }
