@@ -9,8 +9,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
-    Design, Journal, Layout, Plan, Row, Settings, Shard, SweepJob, journal_path, merged_rows,
-    read_groups, run_scenario, shard_from_environment, stream_sweep, write_csv, write_parquet,
+    Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
+    journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
+    stream_sweep, write_csv, write_parquet,
 };
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -18,6 +19,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+pub mod envelope;
 pub mod memory;
 
 /// Options of `lpm sweep`.
@@ -92,6 +94,10 @@ pub struct Args {
     /// the same command line with --resume runs only the missing runs.
     #[arg(long)]
     pub resume: bool,
+    /// Envelopes and weighted mean histories of chosen channels (boxed:
+    /// they are seldom given).
+    #[command(flatten)]
+    pub envelope: Box<envelope::EnvelopeArgs>,
 }
 
 /// How a sampled design places its runs.
@@ -256,24 +262,40 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
     let out = options.out.clone();
     let parquet = out.as_deref().map(|out| wants_parquet(&options, out));
     let prepared = prepare(&options)?;
-    match (out, parquet.transpose()?) {
+    let parquet = parquet.transpose()?;
+    let envelope = envelope::request(&options, shard, &prepared)?;
+    match (out, parquet) {
         _ if options.plan_only => plan_report(prepared),
         (Some(out), Some(parquet)) if !options.merge.is_empty() => {
             merge(&options.merge, &prepared, &out, parquet)
         }
-        (Some(out), Some(parquet)) => sweep(&options, prepared, shard, &out, parquet),
+        (Some(out), Some(parquet)) => {
+            let output = Output {
+                table: &out,
+                parquet,
+                envelope: envelope.as_ref(),
+            };
+            sweep(&options, prepared, shard, output)
+        }
         _ => Err(Failure::usage("give --out FILE")),
     }
 }
 
-/// Makes the runs of `shard` and writes their table to `out`.
+/// What a sweep writes: its table (Parquet or CSV) and any envelope.
+struct Output<'a> {
+    table: &'a Path,
+    parquet: bool,
+    envelope: Option<&'a envelope::EnvelopeRequest>,
+}
+
+/// Makes the runs of `shard` and writes their table (and envelope).
 fn sweep(
     options: &Args,
     prepared: Prepared,
     shard: Shard,
-    out: &Path,
-    parquet: bool,
+    output: Output<'_>,
 ) -> Result<Outcome, Failure> {
+    let (out, parquet) = (output.table, output.parquet);
     let Prepared {
         plan,
         model,
@@ -304,10 +326,14 @@ fn sweep(
         runs: remaining.clone(),
         threads: options.threads,
     };
+    let mut accumulated = output
+        .envelope
+        .map(|e| (e.job(), Envelope::new(&e.channels)));
     let sweep = Sweep {
         job,
         stop: &stop,
         sink: &mut sink,
+        envelope: accumulated.as_mut().map(|(job, envelope)| (*job, envelope)),
     };
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     bar.finish_and_clear();
@@ -325,6 +351,10 @@ fn sweep(
         ));
     }
     finish_output(&journal_path, out, layout, parquet)?;
+    let envelope_line = match (output.envelope, &accumulated) {
+        (Some(request), Some((_, envelope))) => envelope::write(request, envelope)?,
+        _ => String::new(),
+    };
     let counts = Counts {
         runs: &runs,
         total: plan.len(),
@@ -333,7 +363,7 @@ fn sweep(
         finished,
         elapsed,
     };
-    let text = report(&counts, &tally, out);
+    let text = report(&counts, &tally, out) + &envelope_line;
     if !runs.is_empty() && tally.ok == 0 && done == 0 {
         return Err(Failure::new(
             ExitStatus::EveryRunFailed,
@@ -566,6 +596,7 @@ fn plan_report(prepared: Prepared) -> Result<Outcome, Failure> {
         job,
         stop: &stop,
         sink: &mut sink,
+        envelope: None,
     };
     model.with_dimension(sweep).map_err(Failure::model)??;
     let per_run = start.elapsed().as_secs_f64() / timed.len().max(1) as f64;
@@ -633,17 +664,25 @@ fn stop_on_signal() -> Arc<AtomicBool> {
     stop
 }
 
-/// `stream_sweep` on the model at its dimension.
+/// `stream_sweep` (or with an envelope `stream_envelope`) on the model at
+/// its dimension.
 struct Sweep<'a> {
     job: SweepJob<'a>,
     stop: &'a AtomicBool,
     sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
+    envelope: Option<(EnvelopeJob<'a>, &'a mut Envelope)>,
 }
 
 impl WithDimension for Sweep<'_> {
     type Output = Result<usize, Failure>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        stream_sweep(&system, self.job, self.stop, self.sink).map_err(Failure::io)
+        let streamed = match self.envelope {
+            None => stream_sweep(&system, self.job, self.stop, self.sink),
+            Some((what, envelope)) => {
+                stream_envelope(&system, self.job, what, envelope, self.stop, self.sink)
+            }
+        };
+        streamed.map_err(Failure::io)
     }
 }

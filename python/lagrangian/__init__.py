@@ -278,6 +278,7 @@ def _vary_arguments(vary) -> List[str]:
 def _sweep_options(
     scenario, spec, grid, samples, vary, design, seed, set, settings,
     shard=None, shard_index=None, shard_count=None, threads=None, out=None, format=None,
+    envelope=None, weights=None,
 ) -> Dict[str, Any]:
     """The options of ``lpm sweep`` as the native module takes them."""
     path = lambda p: None if p is None else os.fspath(p)  # noqa: E731
@@ -296,7 +297,31 @@ def _sweep_options(
         "threads": threads or 0,
         "out": path(out),
         "format": format,
+        "envelope": _channel_list(envelope),
+        "weights": _weights_argument(weights),
     }
+
+
+def _channel_list(channels) -> List[str]:
+    """``--envelope``'s channels: a list, or one comma-separated string."""
+    if channels is None:
+        return []
+    if isinstance(channels, str):
+        return [c.strip() for c in channels.split(",")]
+    return [str(c) for c in channels]
+
+
+def _weights_argument(weights) -> Optional[str]:
+    """``--weights``: a mapping of one grid key to its weights, a
+    ``KEY=W1,…`` string, or the path of a CSV file of ``run,weight``."""
+    if weights is None or isinstance(weights, str):
+        return weights
+    if isinstance(weights, Mapping):
+        if len(weights) != 1:
+            raise ValueError("weights: give the weights of one grid key, e.g. {'v0': [0.2, 0.8]}")
+        [(key, values)] = weights.items()
+        return f"{key}=" + ",".join(repr(float(w)) for w in values)
+    return os.fspath(weights)
 
 
 def _column(cells: List[str]) -> np.ndarray:
@@ -339,6 +364,8 @@ def sweep(
     shard_index: Optional[int] = None,
     shard_count: Optional[int] = None,
     threads: Optional[int] = None,
+    envelope=None,
+    weights=None,
     set: Optional[Mapping[str, Any]] = None,
     **settings: Any,
 ):
@@ -356,10 +383,22 @@ def sweep(
     ``shard_index=k, shard_count=n`` (from 0) run one block of the runs;
     ``threads`` defaults to one per core. ``set`` and ``settings`` fix
     values for every run, as in :func:`simulate`.
+
+    ``envelope`` (``--envelope``: a list of channels or a comma-separated
+    string) returns ``(table, envelope_table)`` instead, the second with
+    the columns of ``--envelope-out FILE.csv`` (per output time, each
+    channel's min and max over the runs, the runs attaining them and the
+    weighted mean); ``weights`` (``--weights``) is ``{key: [w, …]}`` (one
+    per value of grid axis ``key``), a ``"KEY=W1,…"`` string or the path
+    of a CSV file of ``run,weight``.
     """
     options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings,
-                             shard, shard_index, shard_count, threads)
-    return _table(_lagrangian.sweep_table(options))
+                             shard, shard_index, shard_count, threads,
+                             envelope=envelope, weights=weights)
+    if not options["envelope"]:
+        return _table(_lagrangian.sweep_table(options))
+    table, envelope_table = _lagrangian.sweep_envelope(options)
+    return _table(table), _table(envelope_table)
 
 
 def _table_csv(table) -> str:

@@ -30,6 +30,10 @@ pub(crate) struct SweepOptions {
     threads: usize,
     out: Option<PathBuf>,
     format: Option<String>,
+    /// Channels to envelope (`--envelope`).
+    envelope: Vec<String>,
+    /// The runs' weights in the envelope's mean (`--weights`).
+    weights: Option<String>,
 }
 
 impl SweepOptions {
@@ -64,6 +68,11 @@ impl SweepOptions {
             threads: self.threads,
             quiet: true,
             resume: false,
+            envelope: Box::new(lpm::sweep::envelope::EnvelopeArgs {
+                envelope: self.envelope,
+                weights: self.weights,
+                ..Default::default()
+            }),
         })
     }
 }
@@ -73,11 +82,10 @@ fn text(bytes: Vec<u8>) -> Result<String, Failure> {
     String::from_utf8(bytes).map_err(|e| Failure::io(format!("the table is not UTF-8: {e}")))
 }
 
-/// The CSV table of the sweep (or shard) of `options`, as `lpm sweep --out
-/// FILE.csv` writes it. The GIL is released while the runs go on; a signal
-/// (Ctrl-C) stops the sweep and raises its exception.
-#[pyfunction]
-pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
+/// The sweep's table and envelope table (CSV bytes), the GIL released
+/// while the runs go on; a signal (Ctrl-C) stops the sweep and raises its
+/// exception.
+fn sweep_tables(py: Python<'_>, options: SweepOptions) -> PyResult<(Vec<u8>, Option<Vec<u8>>)> {
     let args = options.args().map_err(raise)?;
     let stop = AtomicBool::new(false);
     let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
@@ -90,11 +98,30 @@ pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<Str
                 .get_or_insert(e);
         }
     };
-    let table = py.detach(|| lpm::sweep::memory::table(&args, &stop, &mut each_run));
+    let tables = py.detach(|| lpm::sweep::memory::tables(&args, &stop, &mut each_run));
     if let Some(e) = interrupt.into_inner().unwrap_or_else(|e| e.into_inner()) {
         return Err(e);
     }
-    table.and_then(text).map_err(raise)
+    tables.map_err(raise)
+}
+
+/// The CSV table of the sweep (or shard) of `options`, as `lpm sweep --out
+/// FILE.csv` writes it. The GIL is released while the runs go on; a signal
+/// (Ctrl-C) stops the sweep and raises its exception.
+#[pyfunction]
+pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
+    let (table, _) = sweep_tables(py, options)?;
+    text(table).map_err(raise)
+}
+
+/// [`sweep_table`] with the envelope table of `options["envelope"]`'s
+/// channels, as `--envelope-out FILE.csv` writes it: `(table, envelope)`.
+#[pyfunction]
+pub(crate) fn sweep_envelope(py: Python<'_>, options: SweepOptions) -> PyResult<(String, String)> {
+    let (table, envelope) = sweep_tables(py, options)?;
+    let envelope =
+        envelope.ok_or_else(|| raise(Failure::usage("give the channels to envelope")))?;
+    Ok((text(table).map_err(raise)?, text(envelope).map_err(raise)?))
 }
 
 /// `lpm sweep --merge PARTS`: the shards' table files checked against the

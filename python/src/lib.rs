@@ -374,6 +374,7 @@ fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ensembles::sweep_table, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::sweep_merge, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(ensembles::sweep_envelope, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::fit, m)?)?;
     m.add_function(wrap_pyfunction!(export_fmu, m)?)?;
     Ok(())

@@ -159,3 +159,21 @@ def test_ctrl_c_stops_a_sweep_and_raises_keyboard_interrupt():
         # Far more runs than finish in the test's time.
         lagrangian.sweep(scenario=SCENARIO, samples=100000, vary={"k1": (5e4, 1e5)}, threads=1)
     assert time.monotonic() - start < 10
+
+
+def test_an_envelope_is_the_table_of_lpm_sweep_envelope_out(tmp_path):
+    grid = {"initial.velocities.r": [-12, -15.5556, -18]}
+    weights = {"initial.velocities.r": [0.2, 0.5, 0.3]}
+    envelope_out = tmp_path / "envelope.csv"
+    cli_table(tmp_path, "--grid", "initial.velocities.r=-12,-15.5556,-18",
+              "--set", "simulation.t_end=0.02", "--quiet",
+              "--envelope", "r,front_end.force", "--weights", "initial.velocities.r=0.2,0.5,0.3",
+              "--envelope-out", envelope_out)
+    table, envelope = lagrangian.sweep(scenario=SCENARIO, grid=grid, t_end=0.02,
+                                       envelope=["r", "front_end.force"], weights=weights)
+    assert_table_is_csv(envelope, envelope_out)
+    assert len(table["run"]) == 3
+    assert list(envelope.keys())[:6] == ["t", "r.min", "r.min_run", "r.max", "r.max_run", "r.mean"]
+    with pytest.raises(lagrangian.UsageError, match="the weight of initial.velocities.r = -15.5556 is -0.5"):
+        lagrangian.sweep(scenario=SCENARIO, grid=grid, t_end=0.02, envelope="r",
+                         weights={"initial.velocities.r": [0.2, -0.5, 0.3]})

@@ -8,13 +8,13 @@
 //! flag and sees each finished run.
 
 use super::{
-    Args, DesignArg, Prepared, Sweep, Tally, merge, merge_into, plan_report, prepare, shard,
-    wants_parquet,
+    Args, DesignArg, Prepared, Sweep, Tally, envelope, merge, merge_into, plan_report, prepare,
+    shard, wants_parquet,
 };
 use crate::failure::Failure;
 use crate::status::ExitStatus;
 use clap::ValueEnum;
-use lagrangian_sim::sweep::{Row, SweepJob, sweep_csv};
+use lagrangian_sim::sweep::{Envelope, Row, SweepJob, sweep_csv, write_envelope_csv};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -31,15 +31,30 @@ pub fn table(
     stop: &AtomicBool,
     each_run: &mut dyn FnMut(),
 ) -> Result<Vec<u8>, Failure> {
+    tables(options, stop, each_run).map(|(table, _)| table)
+}
+
+/// [`table`], and with `options.envelope`'s channels the envelope table
+/// as the CSV bytes `--envelope-out FILE.csv` writes.
+pub fn tables(
+    options: &Args,
+    stop: &AtomicBool,
+    each_run: &mut dyn FnMut(),
+) -> Result<(Vec<u8>, Option<Vec<u8>>), Failure> {
     check_shard_count(options)?;
     let shard = shard(options).map_err(Failure::usage)?;
+    let prepared = prepare(options)?;
+    let request = envelope::request(options, shard, &prepared)?;
+    let mut accumulated = request
+        .as_ref()
+        .map(|r| (r.job(), Envelope::new(&r.channels)));
     let Prepared {
         plan,
         model,
         base,
         settings,
         layout,
-    } = prepare(options)?;
+    } = prepared;
     let runs = shard.runs(plan.len());
     let mut rows = Vec::with_capacity(runs.len());
     let mut tally = Tally::default();
@@ -60,12 +75,21 @@ pub fn table(
         job,
         stop,
         sink: &mut sink,
+        envelope: accumulated.as_mut().map(|(job, envelope)| (*job, envelope)),
     };
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
-    if finished < runs.len() {
+    check_finished(finished, runs.len(), &tally)?;
+    let table = sweep_csv(&layout, &rows).map_err(Failure::io)?;
+    let envelope = accumulated.map(|(_, envelope)| envelope_csv(&envelope));
+    Ok((table, envelope.transpose()?))
+}
+
+/// An interrupted sweep, or one whose every run failed, is a failure.
+fn check_finished(finished: usize, runs: usize, tally: &Tally) -> Result<(), Failure> {
+    if finished < runs {
         return Err(Failure::new(
             ExitStatus::Interrupted,
-            format!("stopped after {finished} of {} runs", runs.len()),
+            format!("stopped after {finished} of {runs} runs"),
         ));
     }
     if let (0, Some((run, message))) = (tally.ok, &tally.first_failure) {
@@ -74,7 +98,14 @@ pub fn table(
             format!("every run failed; the first, run {run}: {message}"),
         ));
     }
-    sweep_csv(&layout, &rows).map_err(Failure::io)
+    Ok(())
+}
+
+/// The CSV bytes of an envelope's table.
+fn envelope_csv(envelope: &Envelope) -> Result<Vec<u8>, Failure> {
+    let mut bytes = Vec::new();
+    write_envelope_csv(envelope, &mut bytes).map_err(Failure::io)?;
+    Ok(bytes)
 }
 
 /// `lpm sweep --merge PARTS --out FILE.csv` in memory: the shards' tables

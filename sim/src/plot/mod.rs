@@ -8,9 +8,12 @@
 
 mod channels;
 mod crush;
+mod envelope;
 mod panels;
 #[cfg(test)]
 mod tests;
+
+pub use envelope::{Band, bands_svg};
 
 use crate::scenario::{Channel, Signal};
 use crate::simulate::SimulationResult;

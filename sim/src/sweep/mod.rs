@@ -7,6 +7,8 @@
 //! Kubernetes Indexed Job, GNU parallel) whose tables, merged by
 //! [`merged_rows`], are the full sweep.
 
+mod envelope;
+mod envelope_table;
 mod journal;
 mod merge;
 mod plan;
@@ -14,7 +16,10 @@ mod run;
 mod scheduler;
 mod shared;
 mod table;
+mod weights;
 
+pub use envelope::{ChannelEnvelope, Envelope, EnvelopeJob, History, stream_envelope};
+pub use envelope_table::{envelope_columns, write_envelope_csv, write_envelope_parquet};
 pub use journal::{Journal, journal_path, read_groups};
 pub use merge::merged_rows;
 pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
@@ -23,3 +28,4 @@ pub use scheduler::{Environment, SCHEDULERS, Scheduler, shard_from_environment};
 pub use table::{
     Layout, columns, parse_record, record, sweep_csv, sweep_parquet, write_csv, write_parquet,
 };
+pub use weights::Weights;

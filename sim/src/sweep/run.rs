@@ -5,7 +5,7 @@ use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
 use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
 use crate::scenario::{ScenarioError, ScenarioErrorKind};
-use crate::simulate::{Summary, simulate_summary};
+use crate::simulate::{SimulationError, Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -246,28 +246,42 @@ fn one_run<const N: usize, S: LagrangianSystem<N> + Clone>(
     run: usize,
 ) -> Row {
     let values = job.plan.point(run);
-    let scenario = match shared.and_then(|s| s.for_values(&values)) {
-        Some(scenario) => Ok(scenario),
-        None => run_scenario(job.base, job.settings, &values),
-    };
-    let outcome = match scenario {
-        Err(e) => Err(RunFailure {
-            kind: match e.kind {
-                ScenarioErrorKind::DataFile => "data_file",
-                _ => "scenario",
-            }
-            .to_string(),
-            message: e.to_string(),
-        }),
-        Ok(scenario) => simulate_summary(model, &scenario).map_err(|e| RunFailure {
-            kind: e.kind().name().to_string(),
-            message: e.to_string(),
-        }),
-    };
+    let outcome = scenario_of(job, shared, &values).and_then(|scenario| {
+        simulate_summary(model, &scenario).map_err(|e| simulation_failure(&e))
+    });
     Row {
         run,
         values,
         outcome,
+    }
+}
+
+/// The scenario of the run with `values` (from the `shared` one when there
+/// is one), or why the scenario rejects them.
+pub(crate) fn scenario_of(
+    job: &SweepJob<'_>,
+    shared: Option<&SharedScenario>,
+    values: &[f64],
+) -> Result<Scenario, RunFailure> {
+    let scenario = match shared.and_then(|s| s.for_values(values)) {
+        Some(scenario) => Ok(scenario),
+        None => run_scenario(job.base, job.settings, values),
+    };
+    scenario.map_err(|e| RunFailure {
+        kind: match e.kind {
+            ScenarioErrorKind::DataFile => "data_file",
+            _ => "scenario",
+        }
+        .to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// The row's failure for a run that did not finish.
+pub(crate) fn simulation_failure(e: &SimulationError) -> RunFailure {
+    RunFailure {
+        kind: e.kind().name().to_string(),
+        message: e.to_string(),
     }
 }
 
@@ -293,6 +307,25 @@ pub fn stream_sweep<const N: usize, S>(
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
+    stream_runs(system, job, stop, &one_run, sink)
+}
+
+/// What a worker makes of run `run`: [`one_run`]'s row, or more.
+pub(crate) type MakeRun<'f, S, T> =
+    &'f (dyn Fn(&S, &SweepJob<'_>, Option<&SharedScenario>, usize) -> T + Sync);
+
+/// [`stream_sweep`] with what each run makes given by `make`: its results
+/// reach `sink` in run order.
+pub(crate) fn stream_runs<const N: usize, S, T: Send>(
+    system: &S,
+    job: SweepJob<'_>,
+    stop: &AtomicBool,
+    make: MakeRun<'_, S, T>,
+    sink: &mut dyn FnMut(T) -> Result<(), String>,
+) -> Result<usize, String>
+where
+    S: LagrangianSystem<N> + Clone + Send,
+{
     let runs = job.runs.clone();
     let workers = if job.threads == 0 {
         std::thread::available_parallelism().map_or(1, |n| n.get())
@@ -303,7 +336,7 @@ where
     let delivered = AtomicUsize::new(runs.start);
     let failed_sink = AtomicBool::new(false);
     let window = AHEAD_PER_WORKER * workers;
-    let (sender, receiver) = mpsc::sync_channel::<Row>(window);
+    let (sender, receiver) = mpsc::sync_channel::<(usize, T)>(window);
     let shared = SharedScenario::new(job.base, job.settings);
     let mut outcome = Ok(0);
     std::thread::scope(|scope| {
@@ -328,8 +361,8 @@ where
                     {
                         std::thread::sleep(std::time::Duration::from_millis(1));
                     }
-                    let row = one_run(&model, job, shared.as_ref(), run);
-                    if sender.send(row).is_err() {
+                    let made = make(&model, job, shared.as_ref(), run);
+                    if sender.send((run, made)).is_err() {
                         break;
                     }
                 }
@@ -340,11 +373,11 @@ where
         // before them (at most `window` of them).
         let mut waiting = BTreeMap::new();
         let mut expected = runs.start;
-        for row in receiver.iter() {
+        for (run, made) in receiver.iter() {
             if failed_sink.load(Ordering::Relaxed) {
                 continue;
             }
-            waiting.insert(row.run, row);
+            waiting.insert(run, made);
             while let Some(row) = waiting.remove(&expected) {
                 if let Err(e) = sink(row) {
                     failed_sink.store(true, Ordering::Relaxed);

@@ -184,7 +184,7 @@ pub fn write_csv(
     writer.flush().map_err(|e| format!("cannot write CSV: {e}"))
 }
 
-fn column_type(
+pub(super) fn column_type(
     name: &str,
     physical: Physical,
     repetition: Repetition,
@@ -225,7 +225,7 @@ pub fn write_parquet<W: Write + Send>(
     Ok(())
 }
 
-fn parquet_error(e: ParquetError) -> String {
+pub(super) fn parquet_error(e: ParquetError) -> String {
     format!("cannot write Parquet: {e}")
 }
 
@@ -262,16 +262,16 @@ fn schema(layout: &Layout) -> Result<Type, String> {
 
 /// The columns of one row group, written one after the other in schema
 /// order.
-struct GroupColumns<'a, W: Write> {
-    group: SerializedRowGroupWriter<'a, W>,
+pub(super) struct GroupColumns<'a, W: Write> {
+    pub(super) group: SerializedRowGroupWriter<'a, W>,
     /// How many columns are written so far.
-    written: usize,
+    pub(super) written: usize,
 }
 
 impl<W: Write + Send> GroupColumns<'_, W> {
     /// Writes the next column: the values of the present entries and, for
     /// an optional column, the definition levels (1 present, 0 null).
-    fn write<T: DataType>(
+    pub(super) fn write<T: DataType>(
         &mut self,
         values: &[T::T],
         levels: Option<&[i16]>,
