@@ -14,9 +14,9 @@ mod description;
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
 use archive::Entry;
-use lagrangian_fmu::instance::{Instance, Interface};
-use lagrangian_fmu::resources::{SCENARIO_FILE, SPEC_FILE};
-use lagrangian_fmu::variables::first_paragraph;
+use lagrangian_fmi::instance::{Instance, Interface};
+use lagrangian_fmi::resources::{SCENARIO_FILE, SPEC_FILE};
+use lagrangian_fmi::variables::first_paragraph;
 use lagrangian_model::{Interpreted, WithDimension};
 use lagrangian_sim::scenario::Scenario;
 use std::path::{Path, PathBuf};
@@ -286,7 +286,7 @@ fn load_packed(resources: &[Entry]) -> Result<Instance, Failure> {
 fn stage_and_load(
     dir: &Path,
     resources: &[Entry],
-) -> Result<lagrangian_fmu::resources::Loaded, Failure> {
+) -> Result<lagrangian_fmi::resources::Loaded, Failure> {
     for entry in resources {
         let relative = entry.name.strip_prefix("resources/").unwrap_or(&entry.name);
         let path = dir.join(relative);
@@ -294,7 +294,7 @@ fn stage_and_load(
             .and_then(|()| std::fs::write(&path, &entry.bytes));
         written.map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
     }
-    lagrangian_fmu::resources::load(dir).map_err(|message| {
+    lagrangian_fmi::resources::load(dir).map_err(|message| {
         Failure::new(
             ExitStatus::Scenario,
             format!("the packed resources do not load: {message}"),
