@@ -1,11 +1,13 @@
 """`lpm export-fmu --compiled`: an FMU whose binary is the macro-compiled
 paper model (built by cargo with the debug profile in the workspace's
-target/, where test.sh has built its dependencies) validates and runs the
-paper scenario bit for bit as the interpreting FMU; and only FMU binaries
-export the FMI entry points, not the Python extension.
+target/) validates and runs the paper scenario bit for bit as the
+interpreting FMU; and only FMU binaries export the FMI entry points, not the
+Python extension.
 
-The compiled FMU's build is the expensive part of this file (the model's
-crate and the link, its dependencies being built already)."""
+Slow on a fresh target/: the compiled FMU's first build compiles the crates
+it depends on again for the generated crate (cargo does not reuse the
+workspace's builds of them), about 3 minutes on the 2-core build machine;
+later runs reuse them and take seconds."""
 
 import ctypes
 import shlex

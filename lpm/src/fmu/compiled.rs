@@ -54,7 +54,9 @@ fn source_tree(given: Option<&Path>) -> Result<PathBuf, Failure> {
     };
     let holds = |crate_dir: &str| dir.join(crate_dir).join("Cargo.toml").is_file();
     if holds("fmu") && holds("model") {
-        return Ok(std::path::absolute(&dir).unwrap_or(dir));
+        // Canonical: the generated manifest names the crates by a plain
+        // path (`tree/fmu`, not `tree/lpm/../fmu`).
+        return Ok(dir.canonicalize().unwrap_or(dir));
     }
     Err(Failure::usage(format!(
         "--compiled builds against the lagrangian source tree, and {} ({whence}) is not one \
@@ -64,7 +66,8 @@ fn source_tree(given: Option<&Path>) -> Result<PathBuf, Failure> {
 }
 
 /// `$CARGO_TARGET_DIR`, else the source tree's `target/`: the crates the
-/// binary depends on are then those already built there.
+/// binary depends on are built there once and shared by every compiled
+/// export that builds there.
 fn target_directory(source: &Path) -> PathBuf {
     match std::env::var_os("CARGO_TARGET_DIR") {
         Some(dir) => PathBuf::from(dir),
