@@ -1,28 +1,28 @@
 //! The entry points both interfaces share: creation, initialization,
-//! variables, saved states, directional derivatives.
+//! variables, saved states, directional derivatives. (Without
+//! `#[no_mangle]`: an FMU binary exports them through
+//! [`crate::export_fmi2`].)
 
 #![allow(non_snake_case)]
 
 use crate::ffi::*;
 use crate::guard::{Component, Logger, guard, shielded, slice, slice_mut, text};
 use crate::instance::{Failure, Instance, Interface, Outcome, Snapshot};
+use crate::plant::PlantFactory;
 use crate::resources::{directory_of, load};
 use std::ffi::{c_char, c_int, c_void};
 
 /// The types platform this FMU was compiled for.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
     fmi2TypesPlatform.as_ptr()
 }
 
 /// The FMI version this FMU implements.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetVersion() -> *const c_char {
     fmi2Version.as_ptr()
 }
 
 /// Turns debug messages (the events handled) on or off.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetDebugLogging(
     c: fmi2Component,
     logging_on: fmi2Boolean,
@@ -35,17 +35,47 @@ pub extern "C" fn fmi2SetDebugLogging(
     })
 }
 
-/// Creates an instance from the spec and scenario in the FMU's resources.
+/// Creates an instance from the spec and scenario in the FMU's resources,
+/// with the interpreter's plant ([`crate::plant::plant`]).
 ///
 /// # Safety
-/// The strings are null or zero-terminated; `functions` is null or points
-/// to the host's callbacks, which outlive the instance.
-#[unsafe(no_mangle)]
+/// As [`instantiate_with`].
+#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn fmi2Instantiate(
     instance_name: fmi2String,
     fmu_type: c_int,
     guid: fmi2String,
     resource_location: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    visible: fmi2Boolean,
+    logging_on: fmi2Boolean,
+) -> fmi2Component {
+    let arguments = (instance_name, fmu_type, guid, resource_location);
+    // SAFETY: as documented.
+    unsafe {
+        instantiate_with(
+            crate::plant::plant,
+            arguments,
+            functions,
+            visible,
+            logging_on,
+        )
+    }
+}
+
+/// `fmi2Instantiate`'s first four arguments: the instance name, the FMU
+/// type, the GUID and the resource location.
+pub type InstantiateArguments = (fmi2String, c_int, fmi2String, fmi2String);
+
+/// `fmi2Instantiate` of an FMU binary whose plant `factory` makes: creates
+/// an instance from the spec and scenario in the FMU's resources.
+///
+/// # Safety
+/// The strings are null or zero-terminated; `functions` is null or points
+/// to the host's callbacks, which outlive the instance.
+pub unsafe fn instantiate_with(
+    factory: PlantFactory,
+    (instance_name, fmu_type, guid, resource_location): InstantiateArguments,
     functions: *const fmi2CallbackFunctions,
     _visible: fmi2Boolean,
     logging_on: fmi2Boolean,
@@ -68,7 +98,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
     shielded("fmi2Instantiate", &report, || {
         // SAFETY: as documented.
         let (guid, location) = unsafe { (text(guid), text(resource_location)) };
-        let mut instance = instantiate(&name, fmu_type, guid, location)?;
+        let mut instance = instantiate(factory, &name, fmu_type, guid, location)?;
         instance.logging = logging_on != fmi2False;
         created = Some(Box::new(Component {
             instance,
@@ -81,6 +111,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 }
 
 fn instantiate(
+    factory: PlantFactory,
     name: &str,
     fmu_type: c_int,
     guid: Option<String>,
@@ -95,11 +126,10 @@ fn instantiate(
     let location = location.ok_or_else(|| Failure::error("no resource location"))?;
     let dir = directory_of(&location).map_err(Failure::error)?;
     let loaded = load(&dir).map_err(Failure::error)?;
-    Instance::new(name, interface, &guid, loaded)
+    Instance::with_plant(name, interface, &guid, loaded, factory)
 }
 
 /// Frees an instance.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2FreeInstance(c: fmi2Component) {
     if c.is_null() {
         return;
@@ -111,7 +141,6 @@ pub extern "C" fn fmi2FreeInstance(c: fmi2Component) {
 }
 
 /// Sets the start time (the tolerance and stop time are the scenario's).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetupExperiment(
     c: fmi2Component,
     _tolerance_defined: fmi2Boolean,
@@ -126,7 +155,6 @@ pub extern "C" fn fmi2SetupExperiment(
 }
 
 /// Enters initialization mode.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2EnterInitializationMode", |c| {
         c.instance.enter_initialization()
@@ -134,7 +162,6 @@ pub extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
 }
 
 /// Leaves initialization mode with the scenario's initial state.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2ExitInitializationMode", |c| {
         c.instance.exit_initialization()
@@ -142,13 +169,11 @@ pub extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
 }
 
 /// Ends the run.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2Terminate", |c| c.instance.terminate())
 }
 
 /// Back to the state after instantiation.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2Reset", |c| {
         c.instance.reset();
@@ -160,7 +185,6 @@ pub extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
 ///
 /// # Safety
 /// `vr` and `value` point to `nvr` elements.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetReal(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
@@ -178,7 +202,6 @@ pub unsafe extern "C" fn fmi2GetReal(
 ///
 /// # Safety
 /// `vr` and `value` point to `nvr` elements.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetReal(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
@@ -201,7 +224,6 @@ fn none_of(kind: &str, nvr: usize) -> Outcome {
 }
 
 /// This FMU has no Integer variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetInteger(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -212,7 +234,6 @@ pub extern "C" fn fmi2GetInteger(
 }
 
 /// This FMU has no Boolean variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetBoolean(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -223,7 +244,6 @@ pub extern "C" fn fmi2GetBoolean(
 }
 
 /// This FMU has no String variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetString(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -234,7 +254,6 @@ pub extern "C" fn fmi2GetString(
 }
 
 /// This FMU has no Integer variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetInteger(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -245,7 +264,6 @@ pub extern "C" fn fmi2SetInteger(
 }
 
 /// This FMU has no Boolean variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetBoolean(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -256,7 +274,6 @@ pub extern "C" fn fmi2SetBoolean(
 }
 
 /// This FMU has no String variables.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetString(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -270,7 +287,6 @@ pub extern "C" fn fmi2SetString(
 ///
 /// # Safety
 /// `state` points to a writable `fmi2FMUstate`.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2GetFMUstate", |c| {
         // SAFETY: as documented.
@@ -286,7 +302,6 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUst
 }
 
 /// Restores a saved state.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2SetFMUstate", |c| {
         // SAFETY: null or a state fmi2GetFMUstate returned.
@@ -301,7 +316,6 @@ pub extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) -> fmi2
 ///
 /// # Safety
 /// `state` points to null or a state `fmi2GetFMUstate` returned.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2FreeFMUstate(
     c: fmi2Component,
     state: *mut fmi2FMUstate,
@@ -326,7 +340,6 @@ fn not_serializable() -> Outcome {
 }
 
 /// Not supported (`canSerializeFMUstate="false"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SerializedFMUstateSize(
     c: fmi2Component,
     _state: fmi2FMUstate,
@@ -336,7 +349,6 @@ pub extern "C" fn fmi2SerializedFMUstateSize(
 }
 
 /// Not supported (`canSerializeFMUstate="false"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SerializeFMUstate(
     c: fmi2Component,
     _state: fmi2FMUstate,
@@ -347,7 +359,6 @@ pub extern "C" fn fmi2SerializeFMUstate(
 }
 
 /// Not supported (`canSerializeFMUstate="false"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2DeSerializeFMUstate(
     c: fmi2Component,
     _bytes: *const fmi2Byte,
@@ -358,7 +369,6 @@ pub extern "C" fn fmi2DeSerializeFMUstate(
 }
 
 /// Not supported (`providesDirectionalDerivative="false"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetDirectionalDerivative(
     c: fmi2Component,
     _unknown: *const fmi2ValueReference,

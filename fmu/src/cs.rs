@@ -14,7 +14,6 @@ const LAST_SUCCESSFUL_TIME: fmi2StatusKind = 2;
 const TERMINATED: fmi2StatusKind = 3;
 
 /// Inputs are constant over a step (`canInterpolateInputs="false"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetRealInputDerivatives(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -31,7 +30,6 @@ pub extern "C" fn fmi2SetRealInputDerivatives(
 }
 
 /// No output derivatives (`maxOutputDerivativeOrder="0"`).
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetRealOutputDerivatives(
     c: fmi2Component,
     _vr: *const fmi2ValueReference,
@@ -49,7 +47,6 @@ pub extern "C" fn fmi2GetRealOutputDerivatives(
 
 /// Integrates from `t` to `t + h`; the events handled are logged (under
 /// `logEvents`) when debug logging is on.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2DoStep(
     c: fmi2Component,
     t: fmi2Real,
@@ -69,7 +66,6 @@ pub extern "C" fn fmi2DoStep(
 }
 
 /// Steps are synchronous: nothing to cancel.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2CancelStep", |_| {
         Err(Failure::error("steps are synchronous: nothing to cancel"))
@@ -85,7 +81,6 @@ fn no_status(kind: fmi2StatusKind) -> Outcome {
 }
 
 /// See [`no_status`].
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -98,7 +93,6 @@ pub extern "C" fn fmi2GetStatus(
 ///
 /// # Safety
 /// `value` points to a writable Real.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetRealStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -117,7 +111,6 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
 }
 
 /// See [`no_status`].
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetIntegerStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -130,7 +123,6 @@ pub extern "C" fn fmi2GetIntegerStatus(
 ///
 /// # Safety
 /// `value` points to a writable Boolean.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetBooleanStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -149,7 +141,6 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
 }
 
 /// See [`no_status`].
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2GetStringStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,

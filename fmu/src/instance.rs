@@ -4,7 +4,7 @@
 //! [`crate::me`]) only convert arguments and report failures.
 
 use crate::ffi::fmi2Status;
-use crate::plant::{Plant, plant};
+use crate::plant::{Plant, PlantFactory, plant};
 use crate::resources::Loaded;
 use crate::variables::Variables;
 
@@ -89,9 +89,22 @@ pub struct Instance {
 }
 
 impl Instance {
-    /// An instance of the loaded spec and scenario, checking that `guid`
-    /// is theirs.
+    /// An instance of the loaded spec and scenario, run by the interpreter,
+    /// checking that `guid` is theirs.
     pub fn new(name: &str, interface: Interface, guid: &str, loaded: Loaded) -> Outcome<Instance> {
+        Instance::with_plant(name, interface, guid, loaded, plant)
+    }
+
+    /// An instance whose plant `factory` makes of the loaded spec and
+    /// scenario (the interpreter's in [`Instance::new`]), checking that
+    /// `guid` is theirs.
+    pub fn with_plant(
+        name: &str,
+        interface: Interface,
+        guid: &str,
+        loaded: Loaded,
+        factory: PlantFactory,
+    ) -> Outcome<Instance> {
         if guid != loaded.guid {
             return Err(Failure::error(format!(
                 "the GUID {guid} is not that of the model in the resources ({}): \
@@ -102,7 +115,7 @@ impl Instance {
         let spec = &loaded.compiled.model;
         let variables =
             Variables::new(spec, &loaded.scenario, &loaded.unbound).map_err(Failure::error)?;
-        let plant = plant(loaded.model, &loaded.scenario).map_err(Failure::error)?;
+        let plant = factory(loaded.model, &loaded.scenario).map_err(Failure::error)?;
         Ok(Instance {
             name: name.to_string(),
             interface,

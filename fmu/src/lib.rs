@@ -1,7 +1,10 @@
-//! A generic FMI 2.0 FMU for lagrangian models: one shared library, built
-//! once per platform, that interprets the spec and scenario packed in the
-//! FMU's `resources/` (`model.lpm`, `scenario.toml`), so that exporting a
-//! model (`lpm export-fmu`) needs no compiler.
+//! The FMI 2.0 logic of lagrangian's FMUs. An FMU's binary is a cdylib
+//! that invokes [`export_fmi2!`] once: the generic one (`fmu/runtime`,
+//! crate `lagrangian-fmu`), built once per platform, interprets the spec
+//! and scenario packed in the FMU's `resources/` (`model.lpm`,
+//! `scenario.toml`), so that exporting a model (`lpm export-fmu`) needs no
+//! compiler; the one `lpm export-fmu --compiled` builds runs the
+//! macro-compiled model instead, the scenario still read from the resources.
 //!
 //! It serves both interfaces:
 //!
@@ -14,14 +17,16 @@
 //! Modules: the C types ([`ffi`]); the variables and their value references
 //! ([`variables`]), shared with `lpm export-fmu`; loading the resources
 //! ([`resources`]); the model at its dimension behind one trait
-//! ([`plant`]); the instance's state machine ([`instance`]); and the 44 C
+//! ([`plant`]); the instance's state machine ([`instance`]); the 44 C
 //! entry points ([`common`], [`cs`], [`me`]), each run inside [`guard`] so
-//! that no panic reaches the host.
+//! that no panic reaches the host; and [`export_fmi2!`], which exports them
+//! under their C names from an FMU binary ([`export`]).
 
 #![warn(missing_docs)]
 
 pub mod common;
 pub mod cs;
+pub mod export;
 pub mod ffi;
 pub mod guard;
 pub mod instance;
@@ -32,5 +37,7 @@ pub mod variables;
 
 #[cfg(test)]
 mod c_api_tests;
+#[cfg(test)]
+mod compiled_tests;
 #[cfg(test)]
 mod tests;

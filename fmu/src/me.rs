@@ -9,7 +9,6 @@ use crate::ffi::*;
 use crate::guard::{guard, slice, slice_mut};
 
 /// Enters event mode.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2EnterEventMode", |c| c.instance.enter_event_mode())
 }
@@ -19,7 +18,6 @@ pub extern "C" fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status {
 ///
 /// # Safety
 /// `info` points to a writable `fmi2EventInfo`.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2NewDiscreteStates(
     c: fmi2Component,
     info: *mut fmi2EventInfo,
@@ -47,7 +45,6 @@ pub unsafe extern "C" fn fmi2NewDiscreteStates(
 }
 
 /// Enters continuous-time mode.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
     guard(c, "fmi2EnterContinuousTimeMode", |c| {
         c.instance.enter_continuous_time_mode()
@@ -58,7 +55,6 @@ pub extern "C" fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status {
 ///
 /// # Safety
 /// `enter_event_mode` and `terminate` point to writable Booleans.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
     c: fmi2Component,
     _no_set_fmu_state_prior: fmi2Boolean,
@@ -80,7 +76,6 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
 }
 
 /// Sets the time.
-#[unsafe(no_mangle)]
 pub extern "C" fn fmi2SetTime(c: fmi2Component, t: fmi2Real) -> fmi2Status {
     guard(c, "fmi2SetTime", |c| c.instance.set_time(t))
 }
@@ -89,7 +84,6 @@ pub extern "C" fn fmi2SetTime(c: fmi2Component, t: fmi2Real) -> fmi2Status {
 ///
 /// # Safety
 /// `x` points to `nx` Reals.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2SetContinuousStates(
     c: fmi2Component,
     x: *const fmi2Real,
@@ -106,7 +100,6 @@ pub unsafe extern "C" fn fmi2SetContinuousStates(
 ///
 /// # Safety
 /// `dx` points to `nx` writable Reals.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetDerivatives(
     c: fmi2Component,
     dx: *mut fmi2Real,
@@ -123,7 +116,6 @@ pub unsafe extern "C" fn fmi2GetDerivatives(
 ///
 /// # Safety
 /// `g` points to `ni` writable Reals.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetEventIndicators(
     c: fmi2Component,
     g: *mut fmi2Real,
@@ -140,7 +132,6 @@ pub unsafe extern "C" fn fmi2GetEventIndicators(
 ///
 /// # Safety
 /// `x` points to `nx` writable Reals.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetContinuousStates(
     c: fmi2Component,
     x: *mut fmi2Real,
@@ -165,7 +156,6 @@ pub unsafe extern "C" fn fmi2GetContinuousStates(
 ///
 /// # Safety
 /// `x_nominal` points to `nx` writable Reals.
-#[unsafe(no_mangle)]
 pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
     c: fmi2Component,
     x_nominal: *mut fmi2Real,

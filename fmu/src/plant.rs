@@ -52,11 +52,99 @@ pub trait Plant {
     fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), String>;
 }
 
-/// The plant of `model` under `scenario`, with the scenario's parameters.
+/// How an FMU binary makes its plant of the model loaded from the
+/// resources (compiled by the interpreter) under the scenario: [`plant`]
+/// runs that model, [`compiled`] a macro-compiled one checked against it.
+pub type PlantFactory = fn(InterpretedModel, &Scenario) -> Result<Box<dyn Plant>, String>;
+
+/// The plant of `model` under `scenario`, with the scenario's parameters,
+/// run by the interpreter.
 pub fn plant(model: InterpretedModel, scenario: &Scenario) -> Result<Box<dyn Plant>, String> {
     model
         .with_dimension(Build { scenario })
         .map_err(|e| e.to_string())?
+}
+
+/// The plant of the compiled model `S` (a `lagrangian!` or `lpm generate`
+/// model) under `scenario`, with the scenario's parameters. `model`, the
+/// spec of the resources, must be the one `S` was compiled from: the same
+/// names and parameter values, else the error says what differs.
+pub fn compiled<const N: usize, S>(
+    model: InterpretedModel,
+    scenario: &Scenario,
+) -> Result<Box<dyn Plant>, String>
+where
+    S: LagrangianSystem<N> + Default + Clone + 'static,
+{
+    let system = S::default();
+    same_model(&system, &model)?;
+    running(system, scenario)
+}
+
+/// `Err` naming what differs unless `compiled` has the names and the
+/// parameter values of `model`.
+fn same_model<const N: usize, S: LagrangianSystem<N>>(
+    compiled: &S,
+    model: &InterpretedModel,
+) -> Result<(), String> {
+    fn names(list: &[String]) -> Vec<&str> {
+        list.iter().map(String::as_str).collect()
+    }
+    let differences = [
+        (
+            "coordinates",
+            compiled.coordinate_names() != names(model.coordinates()),
+        ),
+        (
+            "parameters",
+            compiled.parameter_names() != names(model.parameter_names()),
+        ),
+        (
+            "inputs",
+            compiled.input_names() != names(model.input_names()),
+        ),
+        (
+            "outputs",
+            compiled.output_names() != names(model.output_names()),
+        ),
+        (
+            "parameter values",
+            compiled.parameters() != model.parameters(),
+        ),
+        (
+            "switching functions",
+            compiled.switching_count() != model.switching_count(),
+        ),
+    ];
+    let differ: Vec<&str> = (differences.iter())
+        .filter_map(|&(what, differs)| differs.then_some(what))
+        .collect();
+    match differ.is_empty() {
+        true => Ok(()),
+        false => Err(format!(
+            "resources/model.lpm is not the spec this FMU binary was compiled from \
+             (its {} differ)",
+            differ.join(", ")
+        )),
+    }
+}
+
+/// The plant of `system` under `scenario`, with the scenario's parameters.
+fn running<const N: usize, S>(mut system: S, scenario: &Scenario) -> Result<Box<dyn Plant>, String>
+where
+    S: LagrangianSystem<N> + Clone + 'static,
+{
+    (scenario)
+        .apply_parameters(&mut system)
+        .map_err(|e| e.to_string())?;
+    Ok(Box::new(Run {
+        model: system,
+        inputs: Some(scenario.inputs.clone()),
+        scenario: scenario.clone(),
+        t: 0.0,
+        y: PhaseState::zeros(),
+        armed: Vec::new(),
+    }))
 }
 
 struct Build<'a> {
@@ -66,25 +154,15 @@ struct Build<'a> {
 impl WithDimension for Build<'_> {
     type Output = Result<Box<dyn Plant>, String>;
 
-    fn run<const N: usize>(self, mut system: Interpreted<N>) -> Self::Output {
-        (self.scenario)
-            .apply_parameters(&mut system)
-            .map_err(|e| e.to_string())?;
-        Ok(Box::new(Run {
-            model: system,
-            inputs: Some(self.scenario.inputs.clone()),
-            scenario: self.scenario.clone(),
-            t: 0.0,
-            y: PhaseState::zeros(),
-            armed: Vec::new(),
-        }))
+    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+        running(system, self.scenario)
     }
 }
 
-/// [`Plant`] at dimension `N`.
+/// [`Plant`] of the model `S` at dimension `N`.
 #[derive(Clone)]
-struct Run<const N: usize> {
-    model: Interpreted<N>,
+struct Run<const N: usize, S> {
+    model: S,
     /// The bound inputs with the components' state; lent to a
     /// [`CrashProblem`] while one evaluates (see [`Run::with_problem`]).
     inputs: Option<BoundInputs>,
@@ -103,9 +181,12 @@ struct Derived<const N: usize> {
     columns: Vec<f64>,
 }
 
-impl<const N: usize> Run<N> {
+impl<const N: usize, S> Run<N, S>
+where
+    S: LagrangianSystem<N> + Clone + 'static,
+{
     /// Runs `f` on the problem of the model with the current inputs.
-    fn with_problem<R>(&mut self, f: impl FnOnce(&mut CrashProblem<N, Interpreted<N>>) -> R) -> R {
+    fn with_problem<R>(&mut self, f: impl FnOnce(&mut CrashProblem<N, S>) -> R) -> R {
         let inputs = (self.inputs.take()).expect("the inputs are put back after every use");
         let mut problem = CrashProblem::new(&self.model, inputs);
         problem.stabilization = self.scenario.stabilization;
@@ -215,7 +296,10 @@ impl<const N: usize> Run<N> {
     }
 }
 
-impl<const N: usize> Plant for Run<N> {
+impl<const N: usize, S> Plant for Run<N, S>
+where
+    S: LagrangianSystem<N> + Clone + 'static,
+{
     fn clone_box(&self) -> Box<dyn Plant> {
         Box::new(self.clone())
     }

@@ -6,17 +6,19 @@
 //! `resources/model.lpm` and `resources/scenario.toml` (with the data files
 //! the scenario reads under `resources/data/`): no compiler is needed to
 //! export. The variables and GUID come from loading the packed resources
-//! exactly as the runtime will.
+//! exactly as the runtime will. With `--compiled`, the binary is one cargo
+//! builds of the macro-compiled model instead ([`compiled`]).
 
 mod archive;
+pub mod compiled;
 mod description;
 
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
 use archive::Entry;
-use lagrangian_fmu::instance::{Instance, Interface};
-use lagrangian_fmu::resources::{SCENARIO_FILE, SPEC_FILE};
-use lagrangian_fmu::variables::first_paragraph;
+use lagrangian_fmi::instance::{Instance, Interface};
+use lagrangian_fmi::resources::{SCENARIO_FILE, SPEC_FILE};
+use lagrangian_fmi::variables::first_paragraph;
 use lagrangian_model::{Interpreted, WithDimension};
 use lagrangian_sim::scenario::Scenario;
 use std::path::{Path, PathBuf};
@@ -43,6 +45,26 @@ pub struct Args {
     /// one built beside the lpm executable).
     #[arg(long)]
     runtime: Option<PathBuf>,
+    /// Pack a binary of the macro-compiled model instead of the generic
+    /// runtime (built by cargo against the lagrangian source tree).
+    #[arg(long, conflicts_with = "runtime")]
+    compiled: bool,
+    /// The cargo profile of the --compiled build [default: release].
+    #[arg(long, requires = "compiled")]
+    profile: Option<String>,
+    /// The lagrangian source tree of the --compiled build (default:
+    /// $LPM_SOURCE, else the tree this lpm was built from).
+    #[arg(long, requires = "compiled")]
+    source: Option<PathBuf>,
+}
+
+/// Which FMU binary an export packs.
+pub enum Binary<'a> {
+    /// The generic runtime, which interprets the resources: this library,
+    /// else [`find_runtime`]'s.
+    Generic(Option<&'a Path>),
+    /// A binary of the macro-compiled model, built by cargo.
+    Compiled(&'a compiled::Build),
 }
 
 /// What an export wrote.
@@ -59,11 +81,19 @@ pub struct Exported {
 
 /// Runs `lpm export-fmu`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let exported = export(
+    let build = compiled::Build {
+        profile: options.profile.unwrap_or_else(|| "release".to_string()),
+        source: options.source,
+    };
+    let binary = match options.compiled {
+        true => Binary::Compiled(&build),
+        false => Binary::Generic(options.runtime.as_deref()),
+    };
+    let exported = export_with(
         &options.spec,
         options.scenario.as_deref(),
         &options.out,
-        options.runtime.as_deref(),
+        binary,
     )?;
     Ok(Outcome::success(format!(
         "wrote {} ({} bytes): FMI 2.0 Co-Simulation and Model Exchange, {} variables, {} event indicators, binaries/{}\n",
@@ -85,13 +115,29 @@ pub fn export(
     out: &Path,
     runtime: Option<&Path>,
 ) -> Result<Exported, Failure> {
+    export_with(spec, scenario, out, Binary::Generic(runtime))
+}
+
+/// Exports `spec` under `scenario` as [`export`] does, packing `binary`.
+pub fn export_with(
+    spec: &Path,
+    scenario: Option<&Path>,
+    out: &Path,
+    binary: Binary,
+) -> Result<Exported, Failure> {
     let (compiled, model, scenario_path, resolved) =
         crate::simulate::load_spec(spec, scenario, &[])?;
     model.with_dimension(Supported).map_err(Failure::model)?;
-    let library = find_runtime(runtime)?;
+    let spec_bytes = read(spec)?;
+    let library = match binary {
+        Binary::Generic(runtime) => find_runtime(runtime)?,
+        Binary::Compiled(build) => {
+            compiled::build(spec, &String::from_utf8_lossy(&spec_bytes), build)?
+        }
+    };
     let mut resources = vec![Entry {
         name: format!("resources/{SPEC_FILE}"),
-        bytes: read(spec)?,
+        bytes: spec_bytes,
         executable: false,
     }];
     if let Some(path) = &scenario_path {
@@ -286,7 +332,7 @@ fn load_packed(resources: &[Entry]) -> Result<Instance, Failure> {
 fn stage_and_load(
     dir: &Path,
     resources: &[Entry],
-) -> Result<lagrangian_fmu::resources::Loaded, Failure> {
+) -> Result<lagrangian_fmi::resources::Loaded, Failure> {
     for entry in resources {
         let relative = entry.name.strip_prefix("resources/").unwrap_or(&entry.name);
         let path = dir.join(relative);
@@ -294,7 +340,7 @@ fn stage_and_load(
             .and_then(|()| std::fs::write(&path, &entry.bytes));
         written.map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
     }
-    lagrangian_fmu::resources::load(dir).map_err(|message| {
+    lagrangian_fmi::resources::load(dir).map_err(|message| {
         Failure::new(
             ExitStatus::Scenario,
             format!("the packed resources do not load: {message}"),

@@ -154,3 +154,80 @@ fn a_spec_name_the_fmu_also_gives_its_crush_signal_is_an_error_not_a_second_vari
     );
     assert!(!Path::new(&out).exists());
 }
+
+/// `lpm export-fmu --compiled` with the environment `variables` set.
+fn export_compiled(args: &[&str], variables: &[(&str, &Path)]) -> std::process::Output {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_lpm"));
+    command.current_dir(ROOT).args(["export-fmu", "--compiled"]);
+    command.args(args).env_remove("LPM_SOURCE");
+    for (name, value) in variables {
+        command.env(name, value);
+    }
+    command.output().unwrap()
+}
+
+#[test]
+fn compiled_without_a_source_tree_says_how_to_name_one() {
+    let dir = temporary("export-fmu-source");
+    let out = dir.join("y.fmu").display().to_string();
+    let tree = dir.join("no-tree");
+    for (args, variables) in [
+        (
+            vec![YARIS, "--out", &out, "--source", tree.to_str().unwrap()],
+            vec![],
+        ),
+        (
+            vec![YARIS, "--out", &out],
+            vec![("LPM_SOURCE", tree.as_path())],
+        ),
+    ] {
+        let run = export_compiled(&args, &variables);
+        assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+        let message = stderr(&run);
+        assert!(message.contains(&tree.display().to_string()), "{message}");
+        assert!(
+            message.contains("name it with --source DIR or LPM_SOURCE"),
+            "{message}"
+        );
+    }
+    assert!(!Path::new(&out).exists());
+}
+
+#[test]
+fn compiled_without_cargo_says_so_and_writes_no_fmu() {
+    let dir = temporary("export-fmu-cargo");
+    let out = dir.join("y.fmu").display().to_string();
+    let cargo = dir.join("no-cargo");
+    let variables = [("CARGO", cargo.as_path()), ("CARGO_TARGET_DIR", &dir)];
+    let run = export_compiled(&[YARIS, "--out", &out], &variables);
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    let message = stderr(&run);
+    assert!(
+        message.contains(&format!("`{}` cannot be run", cargo.display())),
+        "{message}"
+    );
+    assert!(!Path::new(&out).exists());
+    // The crate it would have built is there, with the model as `lpm
+    // generate` emits it.
+    let crates: Vec<_> = std::fs::read_dir(dir.join("lpm-export-fmu"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(crates.len(), 1, "{crates:?}");
+    let model = std::fs::read_to_string(crates[0].join("src/model.rs")).unwrap();
+    let generated = Path::new(ROOT).join("generated/src/yaris_double_pendulum.rs");
+    let generated = std::fs::read_to_string(generated).unwrap();
+    let body = |text: &str| text.split_once("\n\n").unwrap().1.to_string();
+    assert_eq!(body(&model), body(&generated));
+}
+
+#[test]
+fn compiled_and_a_runtime_are_exclusive() {
+    let run = export_compiled(&[YARIS, "--out", "x.fmu", "--runtime", "r.so"], &[]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("cannot be used with"),
+        "{}",
+        stderr(&run)
+    );
+}
