@@ -1,7 +1,8 @@
 //! Crash components that supply a model's input functions: the crush
 //! element (a force–deflection curve or the secant stiffness of eqs 1–2,
 //! hysteresis, contact, gap), a failing torsional weld,
-//! tabulated time histories and constants.
+//! tabulated time histories and constants, and contact laws cited by
+//! name.
 //!
 //! # The contract of a component
 //!
@@ -77,6 +78,7 @@
 
 pub mod bound;
 pub mod constant;
+pub mod contact;
 pub mod crush;
 pub mod curve;
 mod pchip;
@@ -203,6 +205,13 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     fn breakpoints(&self) -> &[f64] {
         &[]
     }
+
+    /// The power \[W\] the component dissipates (a damper, contact or
+    /// friction), at its value input's arguments `args`, in its current
+    /// state; `None` (the default) for one that dissipates nothing.
+    fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
+        None
+    }
 }
 
 /// The state of a contact element's contact (see [`Component::contact`]).
@@ -288,6 +297,7 @@ components! {
     weld => weld::WeldSection,
     table => tabulated::TableSection,
     constant => constant::ConstantSection,
+    contact => contact::ContactSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
 }
