@@ -1,8 +1,8 @@
 //! Crash components that supply a model's input functions: the crush
 //! element (a force–deflection curve or the secant stiffness of eqs 1–2,
 //! hysteresis, contact, gap), a failing torsional weld,
-//! tabulated time histories and constants, contact laws cited by name
-//! and a Kelvin–Voigt element.
+//! tabulated time histories and constants, contact laws cited by name,
+//! a Kelvin–Voigt element and friction.
 //!
 //! # The contract of a component
 //!
@@ -81,6 +81,7 @@ pub mod constant;
 pub mod contact;
 pub mod crush;
 pub mod curve;
+pub mod friction;
 pub mod kelvin_voigt;
 mod pchip;
 pub mod table;
@@ -300,6 +301,7 @@ components! {
     constant => constant::ConstantSection,
     contact => contact::ContactSection,
     kelvin_voigt => kelvin_voigt::KelvinVoigtSection,
+    friction => friction::FrictionSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
 }
