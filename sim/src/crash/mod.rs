@@ -28,7 +28,9 @@
 //!   value input's arguments ([`Component::column_values`]): each is a
 //!   trajectory column `NAME.QUANTITY [unit]`;
 //! * answers the queries of the summary and the plots
-//!   ([`Component::force_deflection`], [`Component::failure_time`]).
+//!   ([`Component::force_deflection`], [`Component::failure_time`]);
+//! * if it dissipates energy (a damper, contact or friction), gives the
+//!   power it dissipates ([`Component::dissipated_power`]).
 //!
 //! A component with events keeps state, which it reads from the arguments
 //! of its value input: that input must be called at one place of the

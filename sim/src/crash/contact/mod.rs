@@ -21,6 +21,12 @@
 //! force, penetration and dissipated power are trajectory columns
 //! (`NAME.force [N]`, `NAME.penetration [m]`, `NAME.power [W]`).
 //!
+//! The dissipated power ([`Component::dissipated_power`]) is the damping's,
+//! `(c + k·D·δⁿ/v₀)·δ̇²`. A contact that lets go with `δ > 0` (the linear
+//! laws) still holds its spring's energy `k·δ^(n+1)/(n+1)` then; it is lost
+//! as the wall relaxes out of contact, so a balance of the body's energy
+//! counts it as dissipated at the separation.
+//!
 //! Its scenario section is `type = "contact"` (`ContactSection`), with
 //! `law = "hunt_crossley"` (or another law's name), `stiffness`,
 //! `restitution`, `exponent` for the laws with a power of `δ`, `mass` for
