@@ -86,6 +86,7 @@ pub mod curve;
 pub mod friction;
 pub mod kelvin_voigt;
 mod pchip;
+pub mod stick_slip;
 pub mod table;
 pub mod tabulated;
 #[cfg(test)]
@@ -304,6 +305,7 @@ components! {
     contact => contact::ContactSection,
     kelvin_voigt => kelvin_voigt::KelvinVoigtSection,
     friction => friction::FrictionSection,
+    stick_slip => stick_slip::StickSlipSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
 }
