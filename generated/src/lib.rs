@@ -41,6 +41,9 @@ pub mod slider_crank;
 /// Generated from `specs/spring_mass_damper.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod spring_mass_damper;
+/// Generated from `specs/wall_impact.lpm`.
+#[rustfmt::skip] // formatted by prettyplease
+pub mod wall_impact;
 /// Generated from `specs/yaris_double_pendulum.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod yaris_double_pendulum;

@@ -1,7 +1,8 @@
 //! Crash components that supply a model's input functions: the crush
 //! element (a force–deflection curve or the secant stiffness of eqs 1–2,
 //! hysteresis, contact, gap), a failing torsional weld,
-//! tabulated time histories and constants.
+//! tabulated time histories and constants, contact laws cited by name,
+//! a Kelvin–Voigt element and friction.
 //!
 //! # The contract of a component
 //!
@@ -27,7 +28,9 @@
 //!   value input's arguments ([`Component::column_values`]): each is a
 //!   trajectory column `NAME.QUANTITY [unit]`;
 //! * answers the queries of the summary and the plots
-//!   ([`Component::force_deflection`], [`Component::failure_time`]).
+//!   ([`Component::force_deflection`], [`Component::failure_time`]);
+//! * if it dissipates energy (a damper, contact or friction), gives the
+//!   power it dissipates ([`Component::dissipated_power`]).
 //!
 //! A component with events keeps state, which it reads from the arguments
 //! of its value input: that input must be called at one place of the
@@ -77,9 +80,13 @@
 
 pub mod bound;
 pub mod constant;
+pub mod contact;
 pub mod crush;
 pub mod curve;
+pub mod friction;
+pub mod kelvin_voigt;
 mod pchip;
+pub mod stick_slip;
 pub mod table;
 pub mod tabulated;
 #[cfg(test)]
@@ -203,6 +210,13 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     fn breakpoints(&self) -> &[f64] {
         &[]
     }
+
+    /// The power \[W\] the component dissipates (a damper, contact or
+    /// friction), at its value input's arguments `args`, in its current
+    /// state; `None` (the default) for one that dissipates nothing.
+    fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
+        None
+    }
 }
 
 /// The state of a contact element's contact (see [`Component::contact`]).
@@ -288,6 +302,10 @@ components! {
     weld => weld::WeldSection,
     table => tabulated::TableSection,
     constant => constant::ConstantSection,
+    contact => contact::ContactSection,
+    kelvin_voigt => kelvin_voigt::KelvinVoigtSection,
+    friction => friction::FrictionSection,
+    stick_slip => stick_slip::StickSlipSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
 }

@@ -1,0 +1,335 @@
+//! Friction without internal state: Coulomb's law, smoothed, with a
+//! Stribeck effect and viscous friction as options.
+//!
+//! The friction force against a sliding velocity `v` under a normal force
+//! `N ≥ 0` is
+//!
+//! `F = μ(v)·N·tanh(v/v_ε) + σ·v`, `μ(v) = μ_c + (μ_s − μ_c)·exp(−(|v|/v_s)^δ)`
+//!
+//! in the sign of `v` (the model subtracts it): Coulomb's kinetic
+//! coefficient `μ_c`, falling from the static coefficient `μ_s` at rest
+//! over the Stribeck velocity `v_s` (Stribeck, R., 1902; the exponential
+//! form of Armstrong-Hélouvry, B., Dupont, P. and Canudas de Wit, C., 1994,
+//! "A survey of models, analysis tools and compensation methods for the
+//! control of machines with friction", Automatica 30: 1083–1138; `δ = 2`
+//! by default, Tustin's 1947 law is `δ = 1`), and the viscous coefficient
+//! `σ`. The sign of `v` is smoothed by `tanh(v/v_ε)`: below the smoothing
+//! velocity `v_ε` the friction acts as a steep damper `μ_s·N/v_ε`, so a
+//! body held by it creeps at a speed of order `v_ε·(applied / μ_s·N)`
+//! instead of sticking — choose `v_ε` well below the speeds of interest.
+//! Its force and the power it dissipates, `F·v`, are trajectory columns
+//! (`NAME.force [N]`, `NAME.power [W]`).
+//!
+//! Its scenario section is `type = "friction"` (`FrictionSection`): the
+//! normal force is either the entry `normal_force` [N], the input then
+//! taking the sliding velocity alone, or the input's second argument.
+
+use super::curve::OutOfRange;
+use super::{Binder, Column, Component, Event, Port, Section};
+use crate::scenario::bind::{Ports, non_negative, positive};
+use serde::Deserialize;
+
+/// The friction law's coefficients.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Friction {
+    /// `μ_c`, the kinetic (Coulomb) coefficient.
+    pub coulomb: f64,
+    /// `μ_s ≥ μ_c`, the static coefficient.
+    pub stiction: f64,
+    /// `v_s` [m/s] (any positive number when `μ_s = μ_c`).
+    pub stribeck_velocity: f64,
+    /// `δ > 0`.
+    pub stribeck_exponent: f64,
+    /// `σ` [N·s/m].
+    pub viscous: f64,
+    /// `v_ε` [m/s].
+    pub smoothing_velocity: f64,
+    /// `N` [N] if fixed; `None`: the input's second argument.
+    pub normal_force: Option<f64>,
+}
+
+/// Its columns: the friction force and the dissipated power.
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "power",
+        unit: "W",
+    },
+];
+
+impl Friction {
+    /// `(μ(v), dμ/dv)`: the Stribeck curve.
+    pub fn coefficient(&self, v: f64) -> (f64, f64) {
+        let x = v.abs() / self.stribeck_velocity;
+        let fall = (self.stiction - self.coulomb) * (-x.powf(self.stribeck_exponent)).exp();
+        let slope = match v == 0.0 {
+            true => 0.0,
+            false => {
+                let d = self.stribeck_exponent;
+                -fall * d * x.powf(d - 1.0) / self.stribeck_velocity * v.signum()
+            }
+        };
+        (self.coulomb + fall, slope)
+    }
+
+    /// `(v, N)` from the input's arguments.
+    fn sliding(&self, args: &[f64]) -> (f64, f64) {
+        (args[0], self.normal_force.unwrap_or_else(|| args[1]))
+    }
+
+    /// `(F, ∂F/∂v, ∂F/∂N)` at the input's arguments.
+    pub fn force(&self, args: &[f64]) -> (f64, f64, f64) {
+        let (v, normal) = self.sliding(args);
+        let (mu, dmu) = self.coefficient(v);
+        let sign = (v / self.smoothing_velocity).tanh();
+        let dsign = (1.0 - sign * sign) / self.smoothing_velocity;
+        let f = mu * normal * sign + self.viscous * v;
+        let dv = (dmu * sign + mu * dsign) * normal + self.viscous;
+        (f, dv, mu * sign)
+    }
+
+    /// `F·v` [W].
+    pub fn power(&self, args: &[f64]) -> f64 {
+        self.force(args).0 * args[0]
+    }
+}
+
+impl Component for Friction {
+    fn kind(&self) -> &'static str {
+        "friction"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some(match self.normal_force {
+            Some(_) => (1, "the sliding velocity"),
+            None => (2, "the sliding velocity and the normal force"),
+        })
+    }
+
+    /// `F`; `Stiffness` is `∂F/∂v`, `Damping` is `∂F/∂N` (the derivatives
+    /// by the first and second argument).
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        let (f, dv, dn) = self.force(args);
+        Ok(match port {
+            Port::Value => f,
+            Port::Stiffness => dv,
+            Port::Damping => dn,
+        })
+    }
+
+    /// None: it keeps no state.
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force(args).0;
+        out[1] = self.power(args);
+        Ok(())
+    }
+
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        Some(self.power(args))
+    }
+}
+
+/// `[components.NAME]` with `type = "friction"`: `coefficient` (`μ_c`),
+/// `static_coefficient` (`μ_s`, default `μ_c`), `stribeck_velocity`
+/// (needed when `μ_s > μ_c`), `stribeck_exponent` (default 2), `viscous`
+/// (default 0), `smoothing_velocity`, `normal_force` (optional) and the
+/// inputs it supplies.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FrictionSection {
+    inputs: Ports,
+    coefficient: f64,
+    static_coefficient: Option<f64>,
+    stribeck_velocity: Option<f64>,
+    #[serde(default = "two")]
+    stribeck_exponent: f64,
+    #[serde(default)]
+    viscous: f64,
+    smoothing_velocity: f64,
+    normal_force: Option<f64>,
+}
+
+fn two() -> f64 {
+    2.0
+}
+
+impl Section for FrictionSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let friction = self.friction(name)?;
+        let c = binder.add(name.to_string(), Box::new(friction));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+impl FrictionSection {
+    /// The friction `[components.{name}]` describes.
+    fn friction(&self, name: &str) -> Result<Friction, String> {
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        let coulomb = non_negative(&key("coefficient"), self.coefficient)?;
+        let stiction = self.static_coefficient.unwrap_or(coulomb);
+        let stiction = non_negative(&key("static_coefficient"), stiction)?;
+        if stiction < coulomb {
+            return Err(format!(
+                "components.{name}.static_coefficient = {stiction}: the static coefficient μ_s must be at least the kinetic one (coefficient = {coulomb})"
+            ));
+        }
+        let stribeck_velocity = match (self.stribeck_velocity, stiction > coulomb) {
+            (Some(v), _) => positive(&key("stribeck_velocity"), v)?,
+            (None, false) => 1.0,
+            (None, true) => {
+                return Err(format!(
+                    "components.{name}.stribeck_velocity is missing: the friction falls from the static coefficient {stiction} to {coulomb} over it [m/s]"
+                ));
+            }
+        };
+        Ok(Friction {
+            coulomb,
+            stiction,
+            stribeck_velocity,
+            stribeck_exponent: positive(&key("stribeck_exponent"), self.stribeck_exponent)?,
+            viscous: non_negative(&key("viscous"), self.viscous)?,
+            smoothing_velocity: positive(&key("smoothing_velocity"), self.smoothing_velocity)?,
+            normal_force: self
+                .normal_force
+                .map(|n| non_negative(&key("normal_force"), n))
+                .transpose()?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::{ModelNames, Scenario};
+    use crate::simulate::simulate;
+    use lagrangian_model::Interpreted;
+
+    fn stribeck() -> Friction {
+        Friction {
+            coulomb: 0.3,
+            stiction: 0.5,
+            stribeck_velocity: 0.1,
+            stribeck_exponent: 2.0,
+            viscous: 4.0,
+            smoothing_velocity: 1e-9,
+            normal_force: None,
+        }
+    }
+
+    #[test]
+    fn the_stribeck_curve_follows_its_closed_form() {
+        let f = stribeck();
+        // Under N = 10 N: F(v) = 10·μ(v) + 4·v, μ(v) = 0.3 + 0.2·exp(−(v/0.1)²).
+        for v in [1e-6, 0.05, 0.1, 0.2, 1.0] {
+            let mu = 0.3 + 0.2 * (-(v / 0.1f64).powi(2)).exp();
+            let (force, _, dn) = f.force(&[v, 10.0]);
+            assert!((force - (10.0 * mu + 4.0 * v)).abs() < 1e-12, "{v}");
+            assert!((dn - mu).abs() < 1e-12, "{v}");
+            // Odd in v.
+            assert_eq!(f.force(&[-v, 10.0]).0, -force);
+        }
+        // At v_s the excess of stiction has fallen to 1/e.
+        let (mu, _) = f.coefficient(0.1);
+        assert!((mu - (0.3 + 0.2 / std::f64::consts::E)).abs() < 1e-15);
+        // dμ/dv by central differences, on the falling branch.
+        let (_, slope) = f.coefficient(0.07);
+        let h = 1e-7;
+        let fd = (f.coefficient(0.07 + h).0 - f.coefficient(0.07 - h).0) / (2.0 * h);
+        assert!((slope - fd).abs() < 1e-6 * slope.abs(), "{slope} {fd}");
+        assert_eq!(f.power(&[0.2, 10.0]), f.force(&[0.2, 10.0]).0 * 0.2);
+    }
+
+    /// A 1 kg block sliding on the floor, its friction `friction(v)`.
+    const BLOCK: &str = "model Block;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, }\n\
+        inputs { friction(v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -friction(dot(x));\n";
+
+    /// μ = 0.3 under its weight, from 2 m/s.
+    const SLIDING: &str = "[simulation]\nt_end = 0.8\nrtol = 1e-10\natol = 1e-12\n\
+        [initial]\nvelocities = { x = 2.0 }\n\
+        [components.floor]\ntype = \"friction\"\ninputs = { force = \"friction\" }\n\
+        coefficient = 0.3\nsmoothing_velocity = 1e-4\nnormal_force = 9.81\n";
+
+    fn block() -> (Interpreted<1>, ModelNames) {
+        let model = lagrangian_core::interpret(BLOCK).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        (Interpreted::new(model).unwrap(), names)
+    }
+
+    #[test]
+    fn a_sliding_block_stops_where_coulomb_says() {
+        // Constant deceleration μg until v₀/(μg) = 0.6796 s, after
+        // v₀²/(2μg) = 0.6796 m.
+        let (model, names) = block();
+        let scenario = Scenario::parse(SLIDING, None, &names, &[]).unwrap();
+        let result = simulate(&model, &scenario).unwrap();
+        let mu_g = 0.3 * 9.81;
+        for sample in result.samples.iter().filter(|s| s.t < 0.6) {
+            let x = 2.0 * sample.t - 0.5 * mu_g * sample.t * sample.t;
+            assert!(
+                (sample.q[0] - x).abs() < 1e-6,
+                "{}: {}",
+                sample.t,
+                sample.q[0]
+            );
+        }
+        let last = result.samples.last().unwrap();
+        let stop = 4.0 / (2.0 * mu_g);
+        assert!((last.q[0] - stop).abs() < 1e-4, "{} vs {stop}", last.q[0]);
+        assert!(last.v[0].abs() < 1e-4, "{}", last.v[0]);
+    }
+
+    #[test]
+    fn bad_coefficients_are_refused() {
+        let (_, names) = block();
+        let refused = |from: &str, to: &str| {
+            let text = SLIDING.replace(from, to);
+            Scenario::parse(&text, None, &names, &[])
+                .unwrap_err()
+                .message
+        };
+        let stiction = "coefficient = 0.3\nstatic_coefficient";
+        assert_eq!(
+            refused("coefficient = 0.3", &format!("{stiction} = 0.2")),
+            "components.floor.static_coefficient = 0.2: the static coefficient μ_s must be at least the kinetic one (coefficient = 0.3)"
+        );
+        assert_eq!(
+            refused("coefficient = 0.3", &format!("{stiction} = 0.5")),
+            "components.floor.stribeck_velocity is missing: the friction falls from the static coefficient 0.5 to 0.3 over it [m/s]"
+        );
+        assert_eq!(
+            refused("coefficient = 0.3", "coefficient = -0.3"),
+            "components.floor.coefficient = -0.3: must be a finite number ≥ 0"
+        );
+        assert_eq!(
+            refused("smoothing_velocity = 1e-4", "smoothing_velocity = 0.0"),
+            "components.floor.smoothing_velocity = 0: must be a positive, finite number"
+        );
+    }
+}
