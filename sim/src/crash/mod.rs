@@ -75,11 +75,14 @@
 //! two traits. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
 
+pub mod bouc_wen;
 pub mod bound;
 pub mod constant;
 pub mod crush;
 pub mod curve;
+pub mod maxwell;
 mod pchip;
+pub mod states;
 pub mod table;
 pub mod tabulated;
 #[cfg(test)]
@@ -163,6 +166,29 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// the dynamics does not call that input).
     fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
 
+    /// The component's internal states `z` (a hysteretic variable, a
+    /// dashpot's displacement), with their units: first-order states with
+    /// `ż = g(z, args)` that the integrator carries beside `q` and `q̇`.
+    /// Each is a trajectory column `NAME.STATE [unit]`. None by default.
+    fn states(&self) -> &'static [Column] {
+        &[]
+    }
+
+    /// The initial values of [`Component::states`], into `z` (the
+    /// scenario's, or the component's documented default).
+    fn initial_states(&self, _z: &mut [f64]) {}
+
+    /// Takes the current values of [`Component::states`], which
+    /// [`Component::value`] and the other methods then read. The problem
+    /// calls it before every evaluation at a state of the run.
+    fn set_states(&mut self, _z: &[f64]) {}
+
+    /// `ż = g(z, args)` of [`Component::states`] at its value input's
+    /// arguments `args` and the states last set, into `rates`.
+    fn state_rates(&self, _args: &[f64], _rates: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
     /// The quantities worth plotting, in the order
     /// [`Component::column_values`] writes them; none by default.
     fn columns(&self) -> &'static [Column] {
@@ -202,6 +228,15 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// rather than step across.
     fn breakpoints(&self) -> &[f64] {
         &[]
+    }
+
+    /// The power the component dissipates \[W\] at its value input's
+    /// arguments `args` (and its internal states, for one that has them);
+    /// `None` (the default) for a component that dissipates nothing, at
+    /// any arguments. Its integral is the energy it dissipated, carried as
+    /// an internal state of the run and reported by name.
+    fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
+        None
     }
 }
 
@@ -290,6 +325,8 @@ components! {
     constant => constant::ConstantSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
+    bouc_wen => bouc_wen::BoucWenSection,
+    maxwell => maxwell::MaxwellSection,
 }
 
 impl ComponentSection {
