@@ -177,6 +177,7 @@ mod tests {
         force x = -element(U);\n";
 
     const SCENARIO: &str = "[simulation]\nt_end = 0.05\noutput_interval = 0.001\n\
+        [metrics]\ndisplacement = [\"relax.dashpot\"]\n\
         [components.relax]\ntype = \"maxwell\"\ninputs = { force = \"element\" }\n\
         stiffness = 2.0e4\ndamping = 200.0\n";
 
@@ -186,10 +187,7 @@ mod tests {
         let names = ModelNames::of_interpreted(&model);
         let model = Interpreted::<1>::new(model).unwrap();
         for method in ["dopri5", "tr-bdf2"] {
-            let text = SCENARIO.replace(
-                "[components",
-                &format!("method = \"{method}\"\n[components"),
-            );
+            let text = SCENARIO.replace("[metrics]", &format!("method = \"{method}\"\n[metrics]"));
             let scenario = Scenario::parse(&text, None, &names, &[]).unwrap();
             let result = simulate(&model, &scenario).unwrap();
             let names: Vec<&str> = (result.component_columns.iter())
@@ -223,6 +221,15 @@ mod tests {
                     s.t
                 );
             }
+            // The state is a channel like any column: the dashpot creeps
+            // to u0·(1 − exp(−k t/c)) by the end.
+            let channel = &result.summary.channels.0[0];
+            let creep = u0 * (1.0 - (-k * 0.05 / c).exp());
+            let max = channel.get("max").unwrap();
+            assert!(
+                (max - creep).abs() < tolerance * u0,
+                "{method}: {max} vs {creep}"
+            );
         }
     }
 }

@@ -80,6 +80,7 @@ pub mod bound;
 pub mod constant;
 pub mod crush;
 pub mod curve;
+pub mod lugre;
 pub mod maxwell;
 mod pchip;
 pub mod states;
@@ -327,6 +328,7 @@ components! {
     test_spring => test_spring::SpringSection,
     bouc_wen => bouc_wen::BoucWenSection,
     maxwell => maxwell::MaxwellSection,
+    lugre => lugre::LuGreSection,
 }
 
 impl ComponentSection {
