@@ -80,6 +80,7 @@ pub mod bound;
 pub mod constant;
 pub mod crush;
 pub mod curve;
+pub mod dahl;
 pub mod lugre;
 pub mod maxwell;
 mod pchip;
@@ -329,6 +330,7 @@ components! {
     bouc_wen => bouc_wen::BoucWenSection,
     maxwell => maxwell::MaxwellSection,
     lugre => lugre::LuGreSection,
+    dahl => dahl::DahlSection,
 }
 
 impl ComponentSection {
