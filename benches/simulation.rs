@@ -59,6 +59,7 @@ fn phase(y: &PeerState) -> PhaseState<3> {
         q: SVector::from_column_slice(&y.as_slice()[0..3]),
         v: SVector::from_column_slice(&y.as_slice()[3..6]),
         work: [y[6], y[7]],
+        z: Default::default(),
     }
 }
 

@@ -50,6 +50,7 @@ impl OdeProblem<PhaseState<3>> for Problem {
             q: y.v,
             v: a,
             work: [e.damping_power, e.external_power],
+            z: Default::default(),
         };
         Ok(())
     }

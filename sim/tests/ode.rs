@@ -480,6 +480,7 @@ impl OdeProblem<PhaseState<1>> for StiffSpring {
             q: y.v,
             v: Vector1::new(a),
             work: [self.c * y.v[0] * y.v[0], 0.0],
+            z: Default::default(),
         };
         Ok(())
     }

@@ -3,9 +3,10 @@
 //! the trajectory.
 
 use super::curve::OutOfRange;
+use super::states::StateLayout;
 use super::{Component, Contact, Port};
 use crate::fault::Fault;
-use crate::ode::Direction;
+use crate::ode::{Direction, Internal};
 use lagrangian_model::InputFunctions;
 use std::cell::RefCell;
 
@@ -46,6 +47,10 @@ pub struct BoundInputs {
     /// The input names, for messages.
     pub input_names: Vec<String>,
     failure: RefCell<Option<Fault>>,
+    /// Where the components' internal states lie in the run's `z`.
+    layout: StateLayout,
+    /// The `z` last given to the components ([`BoundInputs::load`]).
+    loaded: Internal,
 }
 
 impl BoundInputs {
@@ -57,12 +62,15 @@ impl BoundInputs {
         event_arguments: Vec<Option<(usize, usize)>>,
         input_names: Vec<String>,
     ) -> BoundInputs {
+        let layout = StateLayout::of(&components, &event_arguments);
         BoundInputs {
             components,
             bindings,
             event_arguments,
             input_names,
             failure: RefCell::new(None),
+            layout,
+            loaded: Internal::EMPTY,
         }
     }
 
@@ -202,6 +210,7 @@ impl BoundInputs {
                 (name, Some(column.unit.to_string()))
             }));
         }
+        columns.extend(self.layout.columns(&self.components));
         columns
     }
 
@@ -216,6 +225,7 @@ impl BoundInputs {
             let result = component.column_values(args, &mut values[first..]);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
+        values.extend_from_slice(self.loaded.as_slice());
         Ok(values)
     }
 
@@ -248,6 +258,59 @@ impl BoundInputs {
             }
         }
         end
+    }
+
+    /// The number of internal states of the run (see [`StateLayout`]).
+    pub fn internal_count(&self) -> usize {
+        self.layout.len()
+    }
+
+    /// The components' internal states at the start of a run, which it
+    /// also gives them.
+    pub fn initial_internal(&mut self) -> Result<Internal, Fault> {
+        let z = (self.layout.initial(&self.components)).map_err(Fault::Component)?;
+        self.load(&z);
+        Ok(z)
+    }
+
+    /// Gives the components their internal states from `z`; an empty `z`
+    /// (a state that does not carry them: the equilibrium, a linearization)
+    /// leaves them as they were.
+    pub fn load(&mut self, z: &Internal) {
+        if z.is_empty() || self.layout.is_empty() {
+            return;
+        }
+        self.layout.load(&mut self.components, z);
+        self.loaded = *z;
+    }
+
+    /// The rates `ż` of the internal states last loaded, given the model's
+    /// input `arguments` at the same state, into `rates` (of their length).
+    pub fn internal_rates(&self, arguments: &[f64], rates: &mut [f64]) -> Result<(), Fault> {
+        for (c, offset) in self.layout.stateful() {
+            let component = &self.components[c].component;
+            let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+            let count = component.states().len();
+            let result = component.state_rates(args, &mut rates[offset..offset + count]);
+            result.map_err(|e| self.out_of_range(c, None, e))?;
+        }
+        for (c, index) in self.layout.dissipative() {
+            let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+            rates[index] = self.components[c]
+                .component
+                .dissipated_power(args)
+                .unwrap_or(0.0);
+        }
+        Ok(())
+    }
+
+    /// The energy each dissipative component dissipated, by name, read
+    /// from a run's internal states `z` \[J\].
+    pub fn dissipated_energies(&self, z: &Internal) -> Vec<(String, f64)> {
+        (self.layout.dissipative())
+            .filter(|&(_, index)| index < z.len())
+            .map(|(c, index)| (self.components[c].name.clone(), z.as_slice()[index]))
+            .collect()
     }
 
     /// The time a component named `name` (any component, if `None`) failed,

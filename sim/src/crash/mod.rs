@@ -78,14 +78,19 @@
 //! two traits. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
 
+pub mod bouc_wen;
 pub mod bound;
 pub mod constant;
 pub mod contact;
 pub mod crush;
 pub mod curve;
+pub mod dahl;
 pub mod friction;
 pub mod kelvin_voigt;
+pub mod lugre;
+pub mod maxwell;
 mod pchip;
+pub mod states;
 pub mod stick_slip;
 pub mod table;
 pub mod tabulated;
@@ -170,6 +175,29 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// the dynamics does not call that input).
     fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
 
+    /// The component's internal states `z` (a hysteretic variable, a
+    /// dashpot's displacement), with their units: first-order states with
+    /// `ż = g(z, args)` that the integrator carries beside `q` and `q̇`.
+    /// Each is a trajectory column `NAME.STATE [unit]`. None by default.
+    fn states(&self) -> &'static [Column] {
+        &[]
+    }
+
+    /// The initial values of [`Component::states`], into `z` (the
+    /// scenario's, or the component's documented default).
+    fn initial_states(&self, _z: &mut [f64]) {}
+
+    /// Takes the current values of [`Component::states`], which
+    /// [`Component::value`] and the other methods then read. The problem
+    /// calls it before every evaluation at a state of the run.
+    fn set_states(&mut self, _z: &[f64]) {}
+
+    /// `ż = g(z, args)` of [`Component::states`] at its value input's
+    /// arguments `args` and the states last set, into `rates`.
+    fn state_rates(&self, _args: &[f64], _rates: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
     /// The quantities worth plotting, in the order
     /// [`Component::column_values`] writes them; none by default.
     fn columns(&self) -> &'static [Column] {
@@ -211,9 +239,13 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         &[]
     }
 
-    /// The power \[W\] the component dissipates (a damper, contact or
-    /// friction), at its value input's arguments `args`, in its current
-    /// state; `None` (the default) for one that dissipates nothing.
+    /// The power the component dissipates \[W\] at its value input's
+    /// arguments `args` (and its internal states, for one that has them);
+    /// `None` (the default) for a component that dissipates nothing, at
+    /// any arguments. Its integral is the energy it dissipated, carried as
+    /// an internal state of the run and reported by name. Whether it is
+    /// `Some` must not depend on the arguments: it is asked once, at zero
+    /// arguments, to lay out the run's states.
     fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
         None
     }
@@ -306,6 +338,10 @@ components! {
     kelvin_voigt => kelvin_voigt::KelvinVoigtSection,
     friction => friction::FrictionSection,
     stick_slip => stick_slip::StickSlipSection,
+    bouc_wen => bouc_wen::BoucWenSection,
+    maxwell => maxwell::MaxwellSection,
+    lugre => lugre::LuGreSection,
+    dahl => dahl::DahlSection,
     #[cfg(test)]
     test_spring => test_spring::SpringSection,
 }

@@ -25,6 +25,7 @@ mod driver;
 mod events;
 pub mod explicit;
 mod hermite;
+mod internal;
 mod lu;
 mod method;
 mod stops;
@@ -34,6 +35,7 @@ mod vector;
 
 pub use events::{Direction, EventAction};
 pub use hermite::{Hermite, hermite_weights};
+pub use internal::{CAPACITY as INTERNAL_CAPACITY, Internal};
 pub use method::{Method, UnknownMethod, integrate};
 pub use vector::{OdeVector, PhaseState};
 

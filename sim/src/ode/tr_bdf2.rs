@@ -23,15 +23,21 @@
 //! `A_q = ∂a/∂q`, `A_v = ∂a/∂v` from the model's derived Jacobians (or
 //! forward differences of `a`: for a model with constraints, of its
 //! constrained accelerations, whose Jacobians are not derived); `w` follows
-//! each stage explicitly. The end of each accepted step is projected onto
+//! each stage explicitly. The components' internal states `z`, `ż = g(…)`,
+//! take part in the Newton iterations with the diagonal of `∂g/∂z` alone,
+//! by forward differences: `Δz_k = r_z,k / (1 − dh ∂g_k/∂z_k)`. Leaving out
+//! the coupling of `z` with `(q, v)` makes the iteration a simplified
+//! Newton one, which converges to the same stage values (it is checked
+//! like the rest) at the cost of more iterations when the coupling is
+//! strong. The end of each accepted step is projected onto
 //! what the problem keeps invariant ([`AccelerationJacobians::project`]).
 
 use super::driver::{Attempt, Stepper};
 use super::hermite::Hermite;
 use super::lu::Lu;
 use super::{
-    Observer, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats, error_norm,
-    evaluate,
+    Internal, Observer, OdeProblem, OdeVector, Options, Outcome, PhaseState, SolverError, Stats,
+    error_norm, evaluate,
 };
 use nalgebra::{SMatrix, SVector};
 
@@ -119,6 +125,7 @@ impl<const N: usize, P: AccelerationJacobians<N>> Stepper<PhaseState<N>, P> for 
         stats: &mut Stats,
     ) -> Result<Attempt<Self::Dense>, SolverError<P::Error>> {
         let (a_q, a_v) = jacobians(problem, t, y, k1, stats)?;
+        let g_z = internal_diagonal(problem, t, y, k1, stats)?;
         let dh = D * h;
         let newton_matrix = SMatrix::<f64, N, N>::identity() - a_v * dh - a_q * (dh * dh);
         let Some(lu) = Lu::new(newton_matrix) else {
@@ -127,6 +134,7 @@ impl<const N: usize, P: AccelerationJacobians<N>> Stepper<PhaseState<N>, P> for 
         let newton = Newton {
             lu: &lu,
             a_q: &a_q,
+            g_z: &g_z,
             dh,
             options: &self.options,
         };
@@ -246,22 +254,51 @@ fn jacobians<const N: usize, P: AccelerationJacobians<N>>(
     Ok((a_q, a_v))
 }
 
+/// `∂g_k/∂z_k` for each internal state `z_k`, by forward differences of
+/// `F`; empty without internal states.
+fn internal_diagonal<const N: usize, P: OdeProblem<PhaseState<N>>>(
+    problem: &mut P,
+    t: f64,
+    y: &PhaseState<N>,
+    f: &PhaseState<N>,
+    stats: &mut Stats,
+) -> Result<Internal, SolverError<P::Error>> {
+    let mut diagonal = y.z;
+    let mut out = PhaseState::zeros();
+    for k in 0..y.z.len() {
+        let mut perturbed = *y;
+        let step = f64::EPSILON.sqrt() * y.z.as_slice()[k].abs().max(1.0);
+        perturbed.z.as_mut_slice()[k] += step;
+        evaluate(problem, t, &perturbed, &mut out, stats)?;
+        diagonal.as_mut_slice()[k] = (out.z.as_slice()[k] - f.z.as_slice()[k]) / step;
+    }
+    Ok(diagonal)
+}
+
 /// Simplified Newton iterations for one implicit stage `Y = base + dh F(t, Y)`.
 struct Newton<'a, const N: usize> {
     lu: &'a Lu<N>,
     a_q: &'a SMatrix<f64, N, N>,
+    /// `∂g_k/∂z_k` of the internal states.
+    g_z: &'a Internal,
     dh: f64,
     options: &'a Options,
 }
 
 impl<const N: usize> Newton<'_, N> {
-    /// `(I − dh J)⁻¹ r` on `(q, v)`; the energy integrals pass through.
+    /// `(I − dh J)⁻¹ r` on `(q, v)`, and on each internal state with its
+    /// own diagonal; the energy integrals pass through.
     fn apply_inverse(&self, r: &PhaseState<N>) -> PhaseState<N> {
         let v: SVector<f64, N> = self.lu.solve(&(r.v + self.a_q * r.q * self.dh));
+        let mut z = r.z;
+        for (zk, gk) in z.as_mut_slice().iter_mut().zip(self.g_z.as_slice()) {
+            *zk /= 1.0 - self.dh * gk;
+        }
         PhaseState {
             q: r.q + v * self.dh,
             v,
             work: r.work,
+            z,
         }
     }
 

@@ -1,5 +1,6 @@
 //! State vectors the integrators work on.
 
+use super::internal::Internal;
 use nalgebra::{DVector, SVector};
 
 /// A state vector: fixed-size ones live on the stack, so integrating them
@@ -76,11 +77,13 @@ impl OdeVector for DVector<f64> {
     }
 }
 
-/// The state of a mechanical model: coordinates `q`, velocities `v = q̇`, and
+/// The state of a mechanical model: coordinates `q`, velocities `v = q̇`,
 /// two running integrals for energy bookkeeping: `work[0] = ∫ Σ ∂D/∂q̇·q̇ dt`
 /// (energy dissipated by `D`) and `work[1] = ∫ Σ Q·q̇ dt` (work of the
-/// generalized forces). Integrating them with the state makes the energy
-/// balance as accurate as the solution.
+/// generalized forces), and the internal states `z` of the scenario's
+/// components (none for most runs; see [`Internal`]). Integrating the
+/// integrals with the state makes the energy balance as accurate as the
+/// solution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhaseState<const N: usize> {
     /// Generalized coordinates, in the model's units (\[m\] or \[rad\]).
@@ -89,15 +92,20 @@ pub struct PhaseState<const N: usize> {
     pub v: SVector<f64, N>,
     /// `[dissipated, external work]` since the start of the run \[J\].
     pub work: [f64; 2],
+    /// The components' internal states, in the order the problem gives
+    /// them; empty when it has none, or holds them fixed.
+    pub z: Internal,
 }
 
 impl<const N: usize> PhaseState<N> {
-    /// The state at coordinates `q` and velocities `v`, with no work done yet.
+    /// The state at coordinates `q` and velocities `v`, with no work done
+    /// yet and no internal states.
     pub fn new(q: SVector<f64, N>, v: SVector<f64, N>) -> Self {
         PhaseState {
             q,
             v,
             work: [0.0; 2],
+            z: Internal::EMPTY,
         }
     }
 
@@ -109,7 +117,7 @@ impl<const N: usize> PhaseState<N> {
 
 impl<const N: usize> OdeVector for PhaseState<N> {
     fn len(&self) -> usize {
-        2 * N + 2
+        2 * N + 2 + self.z.len()
     }
 
     fn get(&self, i: usize) -> f64 {
@@ -117,28 +125,40 @@ impl<const N: usize> OdeVector for PhaseState<N> {
             self.q[i]
         } else if i < 2 * N {
             self.v[i - N]
-        } else {
+        } else if i < 2 * N + 2 {
             self.work[i - 2 * N]
+        } else {
+            self.z.as_slice()[i - 2 * N - 2]
         }
     }
 
     fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
-        *self = *base;
+        (self.q, self.v, self.work) = (base.q, base.v, base.work);
+        self.z.assign(&base.z);
         for (c, x) in terms {
-            self.q.axpy(*c, &x.q, 1.0);
-            self.v.axpy(*c, &x.v, 1.0);
-            self.work[0] += c * x.work[0];
-            self.work[1] += c * x.work[1];
+            self.add(*c, x);
         }
     }
 
     fn set_sum(&mut self, terms: &[(f64, &Self)]) {
-        *self = PhaseState::zeros();
+        (self.q, self.v, self.work) = (SVector::zeros(), SVector::zeros(), [0.0; 2]);
+        self.z.assign(&Internal::EMPTY);
         for (c, x) in terms {
-            self.q.axpy(*c, &x.q, 1.0);
-            self.v.axpy(*c, &x.v, 1.0);
-            self.work[0] += c * x.work[0];
-            self.work[1] += c * x.work[1];
+            self.add(*c, x);
+        }
+    }
+}
+
+impl<const N: usize> PhaseState<N> {
+    /// `self ← self + c·x`.
+    #[inline]
+    fn add(&mut self, c: f64, x: &Self) {
+        self.q.axpy(c, &x.q, 1.0);
+        self.v.axpy(c, &x.v, 1.0);
+        self.work[0] += c * x.work[0];
+        self.work[1] += c * x.work[1];
+        if !x.z.is_empty() {
+            self.z.axpy(c, &x.z);
         }
     }
 }

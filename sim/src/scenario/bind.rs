@@ -168,8 +168,9 @@ impl<'a> Binder<'a> {
     fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, String> {
         let mut arguments = vec![None; self.components.len()];
         for (c, named) in self.components.iter().enumerate() {
-            let stateful = !named.component.events().is_empty();
-            if !stateful && named.component.columns().is_empty() {
+            let component = &named.component;
+            let stateful = !component.events().is_empty() || !component.states().is_empty();
+            if !stateful && component.columns().is_empty() && !dissipative(component.as_ref()) {
                 continue;
             }
             let value = Some(Binding {
@@ -208,4 +209,11 @@ impl<'a> Binder<'a> {
             )),
         }
     }
+}
+
+/// Whether `component` dissipates energy ([`Component::dissipated_power`]
+/// at zero arguments of the number it takes).
+fn dissipative(component: &dyn Component) -> bool {
+    let n = component.arguments().map_or(0, |(n, _)| n);
+    component.dissipated_power(&vec![0.0; n]).is_some()
 }

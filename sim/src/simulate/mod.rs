@@ -350,7 +350,8 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     }
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
     let end_of_contact = problem.inputs.end_of_contact(&scenario.contact);
-    let summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
+    let mut summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
+    summary.dissipated_by = problem.inputs.dissipated_energies(&outcome.y.z);
     let warnings = run_warnings(scenario, &sampler.metrics, &summary);
     let constraints = projection.map(|projection| ConstraintReport {
         names: own(model.constraint_names()),
@@ -432,8 +433,9 @@ fn initial_state<const N: usize, S: LagrangianSystem<N>>(
             &mut v,
         )?),
     };
-    let y0 = PhaseState::new(q, v);
+    let mut y0 = PhaseState::new(q, v);
     problem.start(0.0, &y0)?;
+    y0.z = problem.initial_internal()?;
     Ok((y0, projection))
 }
 
@@ -631,6 +633,7 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     (inputs, components): (bool, bool),
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
+    problem.inputs.load(&y.z);
     let problem::Accelerations {
         a,
         multipliers,

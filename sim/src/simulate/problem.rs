@@ -5,7 +5,7 @@ use super::constrained::Workspace;
 use crate::crash::BoundInputs;
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
-use crate::ode::{Direction, EventAction, OdeProblem, PhaseState};
+use crate::ode::{Direction, EventAction, Internal, OdeProblem, PhaseState};
 use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
@@ -34,7 +34,13 @@ pub struct Accelerations<const N: usize> {
     pub residual: Vec<f64>,
 }
 
-/// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`.
+/// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`, and
+/// `ż = g(z, …)` of the components' internal states.
+///
+/// Every evaluation at a state first gives the components its `z`
+/// ([`BoundInputs::load`]); a state without `z` (the static equilibrium, a
+/// linearization) holds them at the values last given, which
+/// [`CrashProblem::start`] sets to their initial ones.
 pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// The model, with the scenario's parameters.
     pub system: &'a S,
@@ -76,13 +82,45 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         }
     }
 
-    /// Puts the crash components in the state a run from `(t, y)` starts in.
+    /// Puts the crash components in the state a run from `(t, y)` starts
+    /// in, with their internal states at `y.z`, or at their initial values
+    /// when `y` carries none.
     pub fn start(&mut self, t: f64, y: &PhaseState<N>) -> Result<(), SolverError> {
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        let error = |fault| SolverError::Rhs { t, error: fault };
+        self.inputs.start(&self.arguments).map_err(error)?;
+        if y.z.is_empty() {
+            self.inputs.initial_internal().map_err(error)?;
+        } else {
+            self.inputs.load(&y.z);
+        }
+        Ok(())
+    }
+
+    /// The internal states a run starts with (empty for a scenario whose
+    /// components have none).
+    pub fn initial_internal(&mut self) -> Result<Internal, SolverError> {
+        let error = |fault| SolverError::Rhs {
+            t: 0.0,
+            error: fault,
+        };
+        self.inputs.initial_internal().map_err(error)
+    }
+
+    /// `ż` at `(t, y)`, the components' states loaded, into `rates`.
+    fn internal_rates(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+        rates: &mut Internal,
+    ) -> Result<(), Fault> {
+        self.system
+            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        *rates = y.z;
         self.inputs
-            .start(&self.arguments)
-            .map_err(|fault| SolverError::Rhs { t, error: fault })
+            .internal_rates(&self.arguments, rates.as_mut_slice())?;
+        self.input_failure()
     }
 
     /// The failure an input reported since the last call, if any.
@@ -302,8 +340,13 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
     type Error = Fault;
 
     fn rhs(&mut self, t: f64, y: &PhaseState<N>, dy: &mut PhaseState<N>) -> Result<(), Fault> {
+        self.inputs.load(&y.z);
         let (a, work) = self.accelerations_and_powers(t, &y.q, &y.v)?;
-        *dy = PhaseState { q: y.v, v: a, work };
+        (dy.q, dy.v, dy.work) = (y.v, a, work);
+        match y.z.is_empty() {
+            true => dy.z.assign(&Internal::EMPTY),
+            false => self.internal_rates(t, y, &mut dy.z)?,
+        }
         Ok(())
     }
 
@@ -315,6 +358,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
     }
 
     fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), Fault> {
+        self.inputs.load(&y.z);
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         let (components, switching) = g.split_at_mut(self.inputs.event_count());
@@ -346,6 +390,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
             });
             return EventAction::Restart;
         }
+        self.inputs.load(&y.z);
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         match self.inputs.on_event(k, t, &self.arguments) {
@@ -380,6 +425,7 @@ impl<const N: usize, S: LagrangianSystem<N>> AccelerationJacobians<N> for CrashP
             // Those of M q̈ = f; the constrained ones are not derived.
             return Ok(None);
         }
+        self.inputs.load(&y.z);
         let a = self.accelerations(t, &y.q, &y.v)?;
         let mut j = Jacobians::<N>::default();
         match self

@@ -187,6 +187,15 @@ macro_rules! summary {
             /// The metrics of the scenario's channels (`[metrics]
             /// displacement`, `velocity`, `acceleration`, `force`), by name.
             pub channels: Channels,
+            /// The energy each dissipative component (a damper, a
+            /// hysteretic spring, a contact or friction element) dissipated
+            /// over the run, by name, in scenario order \[J\]; not in
+            /// `summary.json` when there is none.
+            #[serde(
+                skip_serializing_if = "Vec::is_empty",
+                serialize_with = "by_name"
+            )]
+            pub dissipated_by: Vec<(String, f64)>,
         }
 
         impl Summary {
@@ -199,6 +208,7 @@ macro_rules! summary {
             pub const EMPTY: Summary = Summary {
                 $($name: <$type as Field>::EMPTY,)*
                 channels: Channels(Vec::new()),
+                dissipated_by: Vec::new(),
             };
 
             /// The values, in [`Summary::METRICS`] order.
@@ -293,8 +303,16 @@ impl Summary {
         if !out.is_empty() {
             let _ = writeln!(out, "{note}");
         }
+        for (name, energy) in &self.dissipated_by {
+            let _ = writeln!(out, "  dissipated by {name:<9}{energy:.4e} J");
+        }
         out
     }
+}
+
+/// `[(name, energy)]` as the map `{name: energy}`.
+fn by_name<S: serde::Serializer>(entries: &[(String, f64)], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(entries.iter().map(|(name, energy)| (name, energy)))
 }
 
 #[cfg(test)]

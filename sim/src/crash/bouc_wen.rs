@@ -1,0 +1,409 @@
+//! A Bouc–Wen hysteretic spring: a smooth elastic–plastic force with one
+//! internal state, the hysteretic variable `z` (Bouc 1967, Wen 1976; in the
+//! normalized form of Ikhouane & Rodellar, *Systems with Hysteresis*, 2007,
+//! with the yield force `Fy` and yield deflection `uy` of the peer
+//! railway-impact-simulator).
+//!
+//! With `k = Fy/uy` the initial stiffness and `a` the ratio of the
+//! post-yield to the initial stiffness,
+//!
+//! ```text
+//! F  = a·k·u + (1 − a)·Fy·z
+//! ż  = (A·u̇ − β·|u̇|·|z|ⁿ⁻¹·z − γ·u̇·|z|ⁿ) / uy
+//! ```
+//!
+//! `u` and `u̇` are the arguments of its input (a deflection and its rate;
+//! `F` has the sign of `u`). For `A = 1`, `β + γ = 1`, `|z|` stays below 1 and
+//! the hysteretic part of the force saturates at `(1 − a)·Fy`; a larger `n`
+//! makes the yield sharper. The energy stored in the hysteretic part is
+//! `(1 − a)·Fy·uy·z²/(2A)`, so the power it dissipates is
+//!
+//! ```text
+//! P = (1 − a)·Fy/A · (β·|u̇|·|z|ⁿ⁺¹ + γ·u̇·z·|z|ⁿ)
+//! ```
+//!
+//! (non-negative for `β ≥ |γ|`), whose integral over a closed loop is the
+//! loop's area `∮ F du`. Its columns are `NAME.force [N]` and
+//! `NAME.deflection [m]`, its state `NAME.z [1]`.
+//!
+//! Its scenario section is `type = "bouc_wen"` (`BoucWenSection`):
+//! `inputs = { force = "F1" }`, `fy`, `uy`, and optionally `a` (0), `A` (1),
+//! `beta` (0.5), `gamma` (0.5), `n` (1) and the initial `z0` (0).
+
+use super::curve::OutOfRange;
+use super::{Binder, Column, Component, Event, Port, Section};
+use crate::scenario::bind::{Ports, finite, non_negative, positive};
+use serde::Deserialize;
+
+/// The spring's parameters and its hysteretic variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoucWen {
+    /// Yield force `Fy` \[N\].
+    pub fy: f64,
+    /// Yield deflection `uy` \[m\].
+    pub uy: f64,
+    /// Post-yield stiffness ratio `a`, in `[0, 1)`.
+    pub a: f64,
+    /// `A`, the hysteretic variable's elastic rate.
+    pub big_a: f64,
+    /// `β`.
+    pub beta: f64,
+    /// `γ`.
+    pub gamma: f64,
+    /// The exponent `n`.
+    pub n: f64,
+    /// The initial `z`.
+    pub z0: f64,
+    /// The current `z`, as the integrator last set it.
+    z: f64,
+}
+
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "deflection",
+        unit: "m",
+    },
+];
+
+const STATES: &[Column] = &[Column {
+    quantity: "z",
+    unit: "1",
+}];
+
+impl BoucWen {
+    /// A spring at its initial state `z0`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        fy: f64,
+        uy: f64,
+        a: f64,
+        big_a: f64,
+        beta: f64,
+        gamma: f64,
+        n: f64,
+        z0: f64,
+    ) -> Self {
+        BoucWen {
+            fy,
+            uy,
+            a,
+            big_a,
+            beta,
+            gamma,
+            n,
+            z0,
+            z: z0,
+        }
+    }
+
+    /// `F` at deflection `u` and the current `z`.
+    pub fn force(&self, u: f64) -> f64 {
+        self.a * self.fy / self.uy * u + (1.0 - self.a) * self.fy * self.z
+    }
+
+    /// `ż` at rate `du` and the current `z`.
+    pub fn z_rate(&self, du: f64) -> f64 {
+        let z = self.z;
+        let zn = z.abs().powf(self.n);
+        (self.big_a * du - self.beta * du.abs() * z.signum() * zn - self.gamma * du * zn) / self.uy
+    }
+}
+
+impl Component for BoucWen {
+    fn kind(&self) -> &'static str {
+        "bouc_wen"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the deflection and its rate"))
+    }
+
+    /// `F`; its derivative with respect to `u` at a fixed `z` is `a·k`.
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(match port {
+            Port::Value => self.force(args[0]),
+            Port::Stiffness => self.a * self.fy / self.uy,
+            Port::Damping => 0.0,
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.z = self.z0;
+        Ok(())
+    }
+
+    fn states(&self) -> &'static [Column] {
+        STATES
+    }
+
+    fn initial_states(&self, z: &mut [f64]) {
+        z[0] = self.z0;
+    }
+
+    fn set_states(&mut self, z: &[f64]) {
+        self.z = z[0];
+    }
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.z_rate(args[1]);
+        Ok(())
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force(args[0]);
+        out[1] = args[0];
+        Ok(())
+    }
+
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        let (du, z) = (args[1], self.z);
+        let zn = z.abs().powf(self.n);
+        let hysteretic = self.beta * du.abs() * z.abs() * zn + self.gamma * du * z * zn;
+        Some((1.0 - self.a) * self.fy / self.big_a * hysteretic)
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn half() -> f64 {
+    0.5
+}
+
+/// `[components.NAME]` with `type = "bouc_wen"`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BoucWenSection {
+    inputs: Ports,
+    fy: f64,
+    uy: f64,
+    #[serde(default)]
+    a: f64,
+    #[serde(default = "one", rename = "A")]
+    big_a: f64,
+    #[serde(default = "half")]
+    beta: f64,
+    #[serde(default = "half")]
+    gamma: f64,
+    #[serde(default = "one")]
+    n: f64,
+    #[serde(default)]
+    z0: f64,
+}
+
+impl BoucWenSection {
+    /// The spring, its entries checked.
+    fn spring(&self, name: &str) -> Result<BoucWen, String> {
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        let a = non_negative(&key("a"), self.a)?;
+        if a >= 1.0 {
+            return Err(format!(
+                "{} = {a}: must be below 1 (the post-yield stiffness ratio)",
+                key("a")
+            ));
+        }
+        let (beta, gamma) = (
+            finite(&key("beta"), self.beta)?,
+            finite(&key("gamma"), self.gamma)?,
+        );
+        if beta + gamma <= 0.0 {
+            return Err(format!(
+                "components.{name}: beta + gamma = {}: must be positive, or the hysteresis loop is unbounded",
+                beta + gamma
+            ));
+        }
+        Ok(BoucWen::new(
+            positive(&key("fy"), self.fy)?,
+            positive(&key("uy"), self.uy)?,
+            a,
+            positive(&key("A"), self.big_a)?,
+            beta,
+            gamma,
+            positive(&key("n"), self.n)?,
+            finite(&key("z0"), self.z0)?,
+        ))
+    }
+}
+
+impl Section for BoucWenSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let spring = self.spring(name)?;
+        let c = binder.add(name.to_string(), Box::new(spring));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scenario::{ModelNames, Scenario};
+    use crate::simulate::{SimulationResult, simulate};
+    use lagrangian_model::Interpreted;
+
+    /// A unit mass whose spring input is driven through
+    /// `u = U sin(w t)`, whatever the mass does.
+    const DRIVEN: &str = "model Driven;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, U [m] = 0.02, w [rad/s] = 20.0, }\n\
+        inputs { spring(u [m], v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -spring(U * sin(w * t), U * w * cos(w * t));\n";
+
+    /// A unit mass on the spring: `u = x`.
+    const MASS: &str = "model Mass;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, }\n\
+        inputs { spring(u [m], v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -spring(x, dot(x));\n";
+
+    /// The spring of `tests/reference/bouc_wen_loop.py`.
+    const SPRING: &str = "[components.spring]\ntype = \"bouc_wen\"\n\
+        inputs = { force = \"spring\" }\n\
+        fy = 1000.0\nuy = 0.01\na = 0.1\nA = 1.0\nbeta = 0.5\ngamma = 0.5\nn = 2.0\n";
+
+    fn run(model: &str, simulation: &str) -> Result<SimulationResult, String> {
+        let model = lagrangian_core::interpret(model).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        let model = Interpreted::<1>::new(model).unwrap();
+        let text = format!("{simulation}{SPRING}");
+        let scenario = Scenario::parse(&text, None, &names, &[]).map_err(|e| e.message)?;
+        simulate(&model, &scenario).map_err(|e| e.to_string())
+    }
+
+    /// The values of component column `name` over the run.
+    fn column(result: &SimulationResult, name: &str) -> Vec<f64> {
+        let k = (result.component_columns.iter())
+            .position(|(n, _)| n == name)
+            .unwrap_or_else(|| panic!("no column {name}: {:?}", result.component_columns));
+        result.samples.iter().map(|s| s.components[k]).collect()
+    }
+
+    /// The loop area of the fourth cycle, by `tests/reference/bouc_wen_loop.py`.
+    const LOOP_AREA: f64 = 3.274356140008e1;
+
+    #[test]
+    fn the_dissipated_energy_of_a_cycle_is_the_area_of_its_loop() {
+        let period = 2.0 * std::f64::consts::PI / 20.0;
+        for method in ["dopri5", "tr-bdf2"] {
+            let simulation = format!(
+                "[simulation]\nt_end = {}\nmethod = \"{method}\"\noutput_interval = {}\n",
+                4.0 * period,
+                period / 2000.0
+            );
+            let result = run(DRIVEN, &simulation).unwrap();
+            let (force, u) = (
+                column(&result, "spring.force"),
+                column(&result, "spring.deflection"),
+            );
+            let dissipated = column(&result, "spring.dissipated_energy");
+            let (start, end) = (6000, 8000);
+            let trapezoid: f64 = (start..end)
+                .map(|i| 0.5 * (force[i] + force[i + 1]) * (u[i + 1] - u[i]))
+                .sum();
+            let integrated = dissipated[end] - dissipated[start];
+            // Against the independent reference: the integrated power;
+            // against our own trajectory: the trapezoid area of its samples.
+            let tolerance = if method == "dopri5" { 1e-6 } else { 1e-4 };
+            assert!(
+                (integrated / LOOP_AREA - 1.0).abs() < tolerance,
+                "{method}: {integrated} vs {LOOP_AREA}"
+            );
+            assert!(
+                (trapezoid / LOOP_AREA - 1.0).abs() < 1e-5,
+                "{method}: {trapezoid}"
+            );
+            assert_eq!(
+                result.summary.dissipated_by,
+                [("spring".to_string(), dissipated[8000])]
+            );
+        }
+    }
+
+    #[test]
+    fn with_a_large_exponent_the_force_saturates_at_the_yield_force() {
+        // β = γ = 0.5, A = 1, a = 0: z → 1 and F → Fy under loading.
+        // u = U·w·t at 0.4 m/s: 5 uy at t = 0.125 s.
+        let model = DRIVEN.replace("U * sin(w * t), U * w * cos(w * t)", "U * w * t, U * w");
+        let simulation = "[simulation]\nt_end = 0.125\noutput_interval = 0.025\n";
+        let text = SPRING
+            .replace("a = 0.1", "a = 0.0")
+            .replace("n = 2.0", "n = 25.0");
+        let model = lagrangian_core::interpret(&model).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        let model = Interpreted::<1>::new(model).unwrap();
+        let scenario = Scenario::parse(&format!("{simulation}{text}"), None, &names, &[]).unwrap();
+        let result = simulate(&model, &scenario).unwrap();
+        let force = column(&result, "spring.force");
+        // From u = 3 uy on, the closed form of the saturated spring: Fy.
+        for f in &force[3..] {
+            assert!((f / 1000.0 - 1.0).abs() < 1e-3, "{force:?}");
+        }
+        // z rises to its bound 1 and stays there (to the tolerances).
+        assert!(column(&result, "spring.z").iter().all(|z| *z < 1.0 + 1e-8));
+    }
+
+    #[test]
+    fn the_energy_balance_closes_with_the_hysteretic_energy() {
+        // A unit mass at 2 m/s on the spring: T + stored + dissipated = T0.
+        let simulation = "[simulation]\nt_end = 0.5\n[initial]\nvelocities = { x = 2.0 }\n";
+        let result = run(MASS, simulation).unwrap();
+        let (x, z) = (
+            column(&result, "spring.deflection"),
+            column(&result, "spring.z"),
+        );
+        let dissipated = column(&result, "spring.dissipated_energy");
+        let (k, fy, uy, a) = (1.0e5, 1000.0, 0.01, 0.1);
+        for (i, s) in result.samples.iter().enumerate() {
+            let stored = 0.5 * a * k * x[i] * x[i] + 0.5 * (1.0 - a) * fy * uy * z[i] * z[i];
+            let total = s.kinetic + stored + dissipated[i];
+            assert!((total / 2.0 - 1.0).abs() < 1e-6, "t = {}: {total}", s.t);
+        }
+        assert!(dissipated.last().unwrap() > &0.5, "{dissipated:?}");
+    }
+
+    #[test]
+    fn parameters_that_make_the_loop_unbounded_are_refused_by_name() {
+        let simulation = "[simulation]\nt_end = 0.1\n";
+        let refused = |from: &str, to: &str| {
+            let model = lagrangian_core::interpret(MASS).unwrap();
+            let names = ModelNames::of_interpreted(&model);
+            let text = format!("{simulation}{}", SPRING.replace(from, to));
+            Scenario::parse(&text, None, &names, &[])
+                .unwrap_err()
+                .message
+        };
+        assert_eq!(
+            refused("gamma = 0.5", "gamma = -0.5"),
+            "components.spring: beta + gamma = 0: must be positive, or the hysteresis loop is unbounded"
+        );
+        assert_eq!(
+            refused("n = 2.0", "n = 0.0"),
+            "components.spring.n = 0: must be a positive, finite number"
+        );
+        assert_eq!(
+            refused("uy = 0.01", "uy = -0.01"),
+            "components.spring.uy = -0.01: must be a positive, finite number"
+        );
+    }
+}

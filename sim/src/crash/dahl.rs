@@ -1,0 +1,217 @@
+//! Dahl friction (Dahl, *A solid friction model*, Aerospace Corp.
+//! TOR-0158(3107-18)-1, 1968): the friction force as a function of the
+//! sliding displacement, rising from zero with a presliding stiffness `σ0`
+//! towards the Coulomb force `Fc`, with hysteresis when the motion
+//! reverses. In the bristle form, with the internal state `z` (`F = σ0·z`):
+//!
+//! ```text
+//! r = 1 − σ0·z·sign(v)/Fc
+//! ż = v·|r|^α·sign(r)
+//! F = σ0·z
+//! ```
+//!
+//! `v` is the second argument of its input (the sliding displacement and
+//! its velocity). At a steady sliding speed `F = Fc·sign(v)`; for `α = 1`
+//! it is LuGre without the Stribeck effect and damping. It stores
+//! `σ0·z²/2`, so the power it dissipates is `F·v − σ0·z·ż`. Its columns
+//! are `NAME.force [N]` and `NAME.velocity [m/s]`, its state `NAME.z [m]`.
+//!
+//! Its scenario section is `type = "dahl"` (`DahlSection`):
+//! `inputs = { force = "F" }`, `fc`, `sigma0`, and optionally `alpha` (1)
+//! and the initial `z0` (0).
+
+use super::curve::OutOfRange;
+use super::{Binder, Column, Component, Event, Port, Section};
+use crate::scenario::bind::{Ports, finite, positive};
+use serde::Deserialize;
+
+/// The friction law's parameters and the bristles' deflection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dahl {
+    /// Coulomb force `Fc` \[N\].
+    pub fc: f64,
+    /// Presliding stiffness `σ0` \[N/m\].
+    pub sigma0: f64,
+    /// The exponent `α`.
+    pub alpha: f64,
+    /// The initial `z` \[m\].
+    pub z0: f64,
+    /// The current `z`, as the integrator last set it.
+    z: f64,
+}
+
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "velocity",
+        unit: "m/s",
+    },
+];
+
+const STATES: &[Column] = &[Column {
+    quantity: "z",
+    unit: "m",
+}];
+
+impl Dahl {
+    /// `ż` at velocity `v` and the current `z`.
+    pub fn z_rate(&self, v: f64) -> f64 {
+        let r = 1.0 - self.sigma0 * self.z * v.signum() / self.fc;
+        v * r.abs().powf(self.alpha) * r.signum()
+    }
+
+    /// `F` at the current `z`.
+    pub fn force(&self) -> f64 {
+        self.sigma0 * self.z
+    }
+}
+
+impl Component for Dahl {
+    fn kind(&self) -> &'static str {
+        "dahl"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the sliding displacement and its velocity"))
+    }
+
+    /// `F`; at a fixed `z` it depends on neither argument.
+    fn value(&self, port: Port, _args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(match port {
+            Port::Value => self.force(),
+            Port::Stiffness | Port::Damping => 0.0,
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.z = self.z0;
+        Ok(())
+    }
+
+    fn states(&self) -> &'static [Column] {
+        STATES
+    }
+
+    fn initial_states(&self, z: &mut [f64]) {
+        z[0] = self.z0;
+    }
+
+    fn set_states(&mut self, z: &[f64]) {
+        self.z = z[0];
+    }
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.z_rate(args[1]);
+        Ok(())
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force();
+        out[1] = args[1];
+        Ok(())
+    }
+
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        let v = args.get(1).copied().unwrap_or(0.0);
+        Some(self.force() * v - self.sigma0 * self.z * self.z_rate(v))
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// `[components.NAME]` with `type = "dahl"`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct DahlSection {
+    inputs: Ports,
+    fc: f64,
+    sigma0: f64,
+    #[serde(default = "one")]
+    alpha: f64,
+    #[serde(default)]
+    z0: f64,
+}
+
+impl Section for DahlSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        let z0 = finite(&key("z0"), self.z0)?;
+        let law = Dahl {
+            fc: positive(&key("fc"), self.fc)?,
+            sigma0: positive(&key("sigma0"), self.sigma0)?,
+            alpha: positive(&key("alpha"), self.alpha)?,
+            z0,
+            z: z0,
+        };
+        let c = binder.add(name.to_string(), Box::new(law));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scenario::{ModelNames, Scenario};
+    use crate::simulate::simulate;
+    use lagrangian_model::Interpreted;
+
+    /// A unit mass whose friction input slides at `V` from rest at 0.
+    const SLIDING: &str = "model Sliding;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, V [m/s] = 0.01, }\n\
+        inputs { friction(s [m], v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -friction(V * t, V);\n";
+
+    const SCENARIO: &str = "[simulation]\nt_end = 0.01\noutput_interval = 1e-4\n\
+        [components.surface]\ntype = \"dahl\"\ninputs = { force = \"friction\" }\n\
+        fc = 2.0\nsigma0 = 1.0e4\n";
+
+    #[test]
+    fn the_force_rises_to_the_coulomb_force_along_its_closed_form() {
+        let model = lagrangian_core::interpret(SLIDING).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        let model = Interpreted::<1>::new(model).unwrap();
+        let scenario = Scenario::parse(SCENARIO, None, &names, &[]).unwrap();
+        let result = simulate(&model, &scenario).unwrap();
+        // α = 1 from rest: dF/ds = σ0 (1 − F/Fc), F = Fc (1 − exp(−σ0 s/Fc)).
+        for s in &result.samples {
+            let slid = 0.01 * s.t;
+            let closed = 2.0 * (1.0 - (-1.0e4 * slid / 2.0).exp());
+            let force = s.components[0];
+            assert!(
+                (force - closed).abs() < 1e-7,
+                "t = {}: {force} vs {closed}",
+                s.t
+            );
+        }
+        // All the work of sliding past the stored energy is dissipated.
+        let last = result.samples.last().unwrap();
+        let (force, dissipated) = (last.components[0], last.components[3]);
+        // ∫F ds over s = V·t_end = 1e-4 m.
+        let (fc, sigma0, slid): (f64, f64, f64) = (2.0, 1.0e4, 1e-4);
+        let work = fc * slid - fc * fc / sigma0 * (1.0 - (-sigma0 * slid / fc).exp());
+        let stored = 0.5 * force * force / 1.0e4;
+        assert!((dissipated - (work - stored)).abs() < 1e-9, "{dissipated}");
+    }
+}

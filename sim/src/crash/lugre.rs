@@ -1,0 +1,287 @@
+//! LuGre friction (Canudas de Wit, Olsson, Åström & Lischinsky, *A new
+//! model for control of systems with friction*, IEEE TAC 1995): the
+//! contact's bristles deflect by `z`, an internal state, which gives
+//! presliding stiffness, stiction with a break-away force, the Stribeck
+//! drop of the friction force with speed, and stick–slip.
+//!
+//! ```text
+//! g(v) = Fc + (Fs − Fc)·exp(−(v/vs)²)
+//! ż    = v − σ0·|v|·z / g(v)
+//! F    = σ0·z + σ1·ż + σ2·v
+//! ```
+//!
+//! `v` is the second argument of its input (the sliding displacement and
+//! its velocity); `F` opposes the motion when the model subtracts it. At a
+//! steady sliding speed `ż = 0` and `F = g(v)·sign(v) + σ2·v`: the
+//! Stribeck curve. The bristles store `σ0·z²/2`, so the power it
+//! dissipates is `F·v − σ0·z·ż`. Its columns are `NAME.force [N]` and
+//! `NAME.velocity [m/s]`, its state `NAME.z [m]`.
+//!
+//! Its scenario section is `type = "lugre"` (`LuGreSection`):
+//! `inputs = { force = "F" }`, `fc`, `fs`, `vs`, `sigma0`, and optionally
+//! `sigma1` (0), `sigma2` (0) and the initial `z0` (0).
+
+use super::curve::OutOfRange;
+use super::{Binder, Column, Component, Event, Port, Section};
+use crate::scenario::bind::{Ports, finite, non_negative, positive};
+use serde::Deserialize;
+
+/// The friction law's parameters and the bristles' deflection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LuGre {
+    /// Coulomb force `Fc` \[N\].
+    pub fc: f64,
+    /// Static (break-away) force `Fs ≥ Fc` \[N\].
+    pub fs: f64,
+    /// Stribeck velocity `vs` \[m/s\].
+    pub vs: f64,
+    /// Bristle stiffness `σ0` \[N/m\].
+    pub sigma0: f64,
+    /// Bristle damping `σ1` [N·s/m].
+    pub sigma1: f64,
+    /// Viscous friction `σ2` [N·s/m].
+    pub sigma2: f64,
+    /// The initial `z` \[m\].
+    pub z0: f64,
+    /// The current `z`, as the integrator last set it.
+    z: f64,
+}
+
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "velocity",
+        unit: "m/s",
+    },
+];
+
+const STATES: &[Column] = &[Column {
+    quantity: "z",
+    unit: "m",
+}];
+
+impl LuGre {
+    /// `g(v)` and `g'(v)`.
+    fn stribeck(&self, v: f64) -> (f64, f64) {
+        let decay = (-(v / self.vs).powi(2)).exp();
+        let g = self.fc + (self.fs - self.fc) * decay;
+        (
+            g,
+            (self.fs - self.fc) * decay * (-2.0 * v / (self.vs * self.vs)),
+        )
+    }
+
+    /// `ż` at velocity `v` and the current `z`.
+    pub fn z_rate(&self, v: f64) -> f64 {
+        v - self.sigma0 * v.abs() * self.z / self.stribeck(v).0
+    }
+
+    /// `F` at velocity `v`.
+    pub fn force(&self, v: f64) -> f64 {
+        self.sigma0 * self.z + self.sigma1 * self.z_rate(v) + self.sigma2 * v
+    }
+
+    /// `∂F/∂v` at a fixed `z`.
+    fn damping(&self, v: f64) -> f64 {
+        let (g, dg) = self.stribeck(v);
+        let dz = 1.0 - self.sigma0 * self.z * (v.signum() * g - v.abs() * dg) / (g * g);
+        self.sigma1 * dz + self.sigma2
+    }
+}
+
+impl Component for LuGre {
+    fn kind(&self) -> &'static str {
+        "lugre"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        Some((2, "the sliding displacement and its velocity"))
+    }
+
+    /// `F`; at a fixed `z` it does not depend on the displacement.
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(match port {
+            Port::Value => self.force(args[1]),
+            Port::Stiffness => 0.0,
+            Port::Damping => self.damping(args[1]),
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.z = self.z0;
+        Ok(())
+    }
+
+    fn states(&self) -> &'static [Column] {
+        STATES
+    }
+
+    fn initial_states(&self, z: &mut [f64]) {
+        z[0] = self.z0;
+    }
+
+    fn set_states(&mut self, z: &[f64]) {
+        self.z = z[0];
+    }
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.z_rate(args[1]);
+        Ok(())
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force(args[1]);
+        out[1] = args[1];
+        Ok(())
+    }
+
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        let v = args.get(1).copied().unwrap_or(0.0);
+        Some(self.force(v) * v - self.sigma0 * self.z * self.z_rate(v))
+    }
+}
+
+/// `[components.NAME]` with `type = "lugre"`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LuGreSection {
+    inputs: Ports,
+    fc: f64,
+    fs: f64,
+    vs: f64,
+    sigma0: f64,
+    #[serde(default)]
+    sigma1: f64,
+    #[serde(default)]
+    sigma2: f64,
+    #[serde(default)]
+    z0: f64,
+}
+
+impl LuGreSection {
+    /// The friction law, its entries checked.
+    fn law(&self, name: &str) -> Result<LuGre, String> {
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        let fc = positive(&key("fc"), self.fc)?;
+        let fs = positive(&key("fs"), self.fs)?;
+        if fs < fc {
+            return Err(format!(
+                "{} = {fs}: must be at least fc = {fc} (the break-away force is the largest)",
+                key("fs")
+            ));
+        }
+        let z0 = finite(&key("z0"), self.z0)?;
+        Ok(LuGre {
+            fc,
+            fs,
+            vs: positive(&key("vs"), self.vs)?,
+            sigma0: positive(&key("sigma0"), self.sigma0)?,
+            sigma1: non_negative(&key("sigma1"), self.sigma1)?,
+            sigma2: non_negative(&key("sigma2"), self.sigma2)?,
+            z0,
+            z: z0,
+        })
+    }
+}
+
+impl Section for LuGreSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let law = self.law(name)?;
+        let c = binder.add(name.to_string(), Box::new(law));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scenario::{ModelNames, Scenario};
+    use crate::simulate::{SimulationResult, simulate};
+    use lagrangian_model::Interpreted;
+
+    /// A unit mass whose friction input slides at a prescribed speed `V`.
+    const SLIDING: &str = "model Sliding;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, V [m/s] = 0.01, }\n\
+        inputs { friction(s [m], v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -friction(V * t, V);\n";
+
+    /// A block of 1 kg on the surface, pulled through a spring of
+    /// 2 kN/m whose end moves at 0.1 m/s.
+    const PULLED: &str = "model Pulled;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, k [N/m] = 2000.0, V [m/s] = 0.1, }\n\
+        inputs { friction(s [m], v [m/s]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        potential = 0.5 * k * pow(x - V * t, 2);\n\
+        force x = -friction(x, dot(x));\n";
+
+    const LAW: &str = "[components.surface]\ntype = \"lugre\"\n\
+        inputs = { force = \"friction\" }\n\
+        fc = 1.0\nfs = 1.5\nvs = 0.001\nsigma0 = 1.0e5\nsigma1 = 316.0\nsigma2 = 0.4\n";
+
+    fn run(model: &str, simulation: &str) -> SimulationResult {
+        let model = lagrangian_core::interpret(model).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        let model = Interpreted::<1>::new(model).unwrap();
+        let text = format!("{simulation}{LAW}");
+        let scenario = Scenario::parse(&text, None, &names, &[]).unwrap();
+        simulate(&model, &scenario).unwrap()
+    }
+
+    #[test]
+    fn at_a_steady_speed_the_force_follows_the_stribeck_curve() {
+        // Slowest: z settles in g/(σ0·v) = 0.074 s at v = 2e-4 m/s, to
+        // exp(−1/0.074) ≈ 1e-6 by the end; z ≈ 1e-5 m needs a small atol.
+        let simulation = "[simulation]\nt_end = 1.0\noutput_interval = 1.0\natol = 1e-14\n";
+        for speed in [2e-4, 1e-3, 3e-3, 1e-2, 0.1] {
+            let model = SLIDING.replace("V [m/s] = 0.01", &format!("V [m/s] = {speed}"));
+            let result = run(&model, simulation);
+            let force = result.samples.last().unwrap().components[0];
+            let closed = 1.0 + 0.5 * (-(speed / 1e-3f64).powi(2)).exp() + 0.4 * speed;
+            assert!(
+                (force / closed - 1.0).abs() < 1e-5,
+                "v = {speed}: {force} vs {closed}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_block_pulled_through_a_spring_sticks_and_slips() {
+        let simulation = "[simulation]\nt_end = 1.0\noutput_interval = 1e-3\n";
+        let result = run(PULLED, simulation);
+        let v: Vec<f64> = result.samples.iter().map(|s| s.v[0]).collect();
+        // Stuck (far slower than the pull) and slipping (faster) in turn,
+        // more than once.
+        let stuck = |x: &f64| x.abs() < 0.01;
+        let slipping = |x: &f64| *x > 0.15;
+        let changes = v
+            .windows(2)
+            .filter(|w| stuck(&w[0]) && !stuck(&w[1]))
+            .count();
+        assert!(changes >= 2, "{changes} slips");
+        assert!(v.iter().any(stuck) && v.iter().any(slipping));
+        let (name, dissipated) = &result.summary.dissipated_by[0];
+        assert_eq!(name, "surface");
+        assert!(*dissipated > 0.0);
+    }
+}

@@ -1,0 +1,235 @@
+//! A Maxwell element: a linear spring and a viscous dashpot in series
+//! (Maxwell 1867), the simplest model of stress relaxation, with one
+//! internal state, the dashpot's displacement `d`.
+//!
+//! ```text
+//! F = k·(u − d)
+//! ḋ = F / c
+//! ```
+//!
+//! `u` is the argument of its input (the element's total deflection; a
+//! second argument, its rate, is not needed but may be given). Held at a
+//! step deflection `u₀`, its force relaxes as `k·u₀·exp(−k·t/c)`. It stores
+//! `k·(u − d)²/2` in the spring and dissipates `P = F²/c` in the dashpot.
+//! Its columns are `NAME.force [N]` and `NAME.deflection [m]`, its state
+//! `NAME.dashpot [m]`.
+//!
+//! Its scenario section is `type = "maxwell"` (`MaxwellSection`):
+//! `inputs = { force = "F" }`, `stiffness`, `damping` and optionally the
+//! initial dashpot displacement `dashpot0` (0).
+
+use super::curve::OutOfRange;
+use super::{Binder, Column, Component, Event, Port, Section};
+use crate::scenario::bind::{Ports, finite, positive};
+use serde::Deserialize;
+
+/// The element's parameters and its dashpot's displacement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Maxwell {
+    /// The spring's stiffness `k` \[N/m\].
+    pub stiffness: f64,
+    /// The dashpot's damping `c` [N·s/m].
+    pub damping: f64,
+    /// The initial dashpot displacement \[m\].
+    pub dashpot0: f64,
+    /// The current dashpot displacement `d`, as the integrator last set it.
+    dashpot: f64,
+}
+
+const COLUMNS: &[Column] = &[
+    Column {
+        quantity: "force",
+        unit: "N",
+    },
+    Column {
+        quantity: "deflection",
+        unit: "m",
+    },
+];
+
+const STATES: &[Column] = &[Column {
+    quantity: "dashpot",
+    unit: "m",
+}];
+
+impl Maxwell {
+    /// An element whose dashpot starts at `dashpot0`.
+    pub fn new(stiffness: f64, damping: f64, dashpot0: f64) -> Maxwell {
+        Maxwell {
+            stiffness,
+            damping,
+            dashpot0,
+            dashpot: dashpot0,
+        }
+    }
+
+    /// `F` at deflection `u`.
+    pub fn force(&self, u: f64) -> f64 {
+        self.stiffness * (u - self.dashpot)
+    }
+}
+
+impl Component for Maxwell {
+    fn kind(&self) -> &'static str {
+        "maxwell"
+    }
+
+    fn arguments(&self) -> Option<(usize, &'static str)> {
+        None
+    }
+
+    /// `F`; its derivative with respect to `u` at a fixed `d` is `k`.
+    fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(match port {
+            Port::Value => self.force(args[0]),
+            Port::Stiffness => self.stiffness,
+            Port::Damping => 0.0,
+        })
+    }
+
+    fn events(&self) -> &'static [Event] {
+        &[]
+    }
+
+    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
+        Ok(())
+    }
+
+    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
+        Ok(String::new())
+    }
+
+    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+        self.dashpot = self.dashpot0;
+        Ok(())
+    }
+
+    fn states(&self) -> &'static [Column] {
+        STATES
+    }
+
+    fn initial_states(&self, z: &mut [f64]) {
+        z[0] = self.dashpot0;
+    }
+
+    fn set_states(&mut self, z: &[f64]) {
+        self.dashpot = z[0];
+    }
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.force(args[0]) / self.damping;
+        Ok(())
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force(args[0]);
+        out[1] = args[0];
+        Ok(())
+    }
+
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        let force = self.force(args.first().copied().unwrap_or(0.0));
+        Some(force * force / self.damping)
+    }
+}
+
+/// `[components.NAME]` with `type = "maxwell"`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaxwellSection {
+    inputs: Ports,
+    stiffness: f64,
+    damping: f64,
+    #[serde(default)]
+    dashpot0: f64,
+}
+
+impl Section for MaxwellSection {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+        let key = |entry: &str| format!("components.{name}.{entry}");
+        let element = Maxwell::new(
+            positive(&key("stiffness"), self.stiffness)?,
+            positive(&key("damping"), self.damping)?,
+            finite(&key("dashpot0"), self.dashpot0)?,
+        );
+        let c = binder.add(name.to_string(), Box::new(element));
+        binder.bind_ports(&self.inputs, "force", c, name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scenario::{ModelNames, Scenario};
+    use crate::simulate::simulate;
+    use lagrangian_model::Interpreted;
+
+    /// A unit mass whose element is held at a step deflection `U` from
+    /// `t = 0`.
+    const HELD: &str = "model Held;\n\
+        coordinates { x [m], }\n\
+        parameters { m [kg] = 1.0, U [m] = 0.01, }\n\
+        inputs { element(u [m]) [N], }\n\
+        kinetic = 0.5 * m * pow(dot(x), 2);\n\
+        force x = -element(U);\n";
+
+    const SCENARIO: &str = "[simulation]\nt_end = 0.05\noutput_interval = 0.001\n\
+        [metrics]\ndisplacement = [\"relax.dashpot\"]\n\
+        [components.relax]\ntype = \"maxwell\"\ninputs = { force = \"element\" }\n\
+        stiffness = 2.0e4\ndamping = 200.0\n";
+
+    #[test]
+    fn under_a_step_deflection_the_force_relaxes_exponentially() {
+        let model = lagrangian_core::interpret(HELD).unwrap();
+        let names = ModelNames::of_interpreted(&model);
+        let model = Interpreted::<1>::new(model).unwrap();
+        for method in ["dopri5", "tr-bdf2"] {
+            let text = SCENARIO.replace("[metrics]", &format!("method = \"{method}\"\n[metrics]"));
+            let scenario = Scenario::parse(&text, None, &names, &[]).unwrap();
+            let result = simulate(&model, &scenario).unwrap();
+            let names: Vec<&str> = (result.component_columns.iter())
+                .map(|(n, _)| n.as_str())
+                .collect();
+            assert_eq!(
+                names,
+                [
+                    "relax.force",
+                    "relax.deflection",
+                    "relax.dashpot",
+                    "relax.dissipated_energy"
+                ]
+            );
+            let (k, c, u0) = (2.0e4, 200.0, 0.01);
+            let tolerance = if method == "dopri5" { 1e-7 } else { 1e-4 };
+            for s in &result.samples {
+                let expected = k * u0 * (-k * s.t / c).exp();
+                let force = s.components[0];
+                assert!(
+                    (force - expected).abs() < tolerance * k * u0,
+                    "{method} t = {}: {force} vs {expected}",
+                    s.t
+                );
+                // What the dashpot dissipated is what the spring lost.
+                let dissipated = 0.5 * k * u0 * u0 * (1.0 - (-2.0 * k * s.t / c).exp());
+                let error = (s.components[3] - dissipated).abs();
+                assert!(
+                    error < tolerance * 0.5 * k * u0 * u0,
+                    "{method} t = {}",
+                    s.t
+                );
+            }
+            // The state is a channel like any column: the dashpot creeps
+            // to u0·(1 − exp(−k t/c)) by the end.
+            let channel = &result.summary.channels.0[0];
+            let creep = u0 * (1.0 - (-k * 0.05 / c).exp());
+            let max = channel.get("max").unwrap();
+            assert!(
+                (max - creep).abs() < tolerance * u0,
+                "{method}: {max} vs {creep}"
+            );
+        }
+    }
+}

@@ -1,0 +1,94 @@
+//! The internal states of a run's components, carried inline in
+//! [`super::PhaseState`].
+//!
+//! The buffer has a fixed capacity so that a state stays `Copy` and
+//! integrating it does not allocate; only its first [`Internal::len`]
+//! values take part in the arithmetic, so a run without internal states
+//! (the usual case) computes exactly what it did before they existed. A
+//! heap vector would allocate with every copy of the state, and a const
+//! length would have to be known when the model is compiled, while the
+//! scenario decides how many states there are.
+
+/// The most internal states a run can carry.
+pub const CAPACITY: usize = 32;
+
+/// Up to [`CAPACITY`] values; those past [`Internal::len`] are zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Internal {
+    len: usize,
+    values: [f64; CAPACITY],
+}
+
+impl Default for Internal {
+    fn default() -> Self {
+        Internal::EMPTY
+    }
+}
+
+impl Internal {
+    /// No internal states.
+    pub const EMPTY: Internal = Internal {
+        len: 0,
+        values: [0.0; CAPACITY],
+    };
+
+    /// `len` zeros, or `None` when `len` exceeds [`CAPACITY`].
+    pub fn zeros(len: usize) -> Option<Internal> {
+        (len <= CAPACITY).then_some(Internal {
+            len,
+            values: [0.0; CAPACITY],
+        })
+    }
+
+    /// The number of values.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// `true` without values.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The values.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+
+    /// The values, to change.
+    pub fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.values[..self.len]
+    }
+
+    /// `self ← other`, copying only the values in use.
+    pub fn assign(&mut self, other: &Internal) {
+        self.values[..other.len].copy_from_slice(other.as_slice());
+        self.values[other.len..self.len.max(other.len)].fill(0.0);
+        self.len = other.len;
+    }
+
+    /// `self ← self + c·x`, taking `x`'s length where it is longer.
+    pub(crate) fn axpy(&mut self, c: f64, x: &Internal) {
+        self.len = self.len.max(x.len);
+        for (value, xi) in self.values.iter_mut().zip(x.as_slice()) {
+            *value += c * xi;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_values_in_use_take_part() {
+        let mut a = Internal::zeros(2).unwrap();
+        a.as_mut_slice().copy_from_slice(&[1.0, 2.0]);
+        let mut b = Internal::EMPTY;
+        b.axpy(2.0, &a);
+        assert_eq!(b.as_slice(), &[2.0, 4.0]);
+        b.assign(&Internal::EMPTY);
+        assert_eq!(b, Internal::EMPTY);
+        assert_eq!(Internal::zeros(CAPACITY + 1), None);
+    }
+}
