@@ -291,8 +291,9 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
 }
 
 /// The summary of a run only — what a sweep records: the same numbers as
-/// `simulate(…).summary`, without keeping the samples or evaluating the
-/// inputs at them (the outputs are evaluated, for the metrics to read).
+/// `simulate(…).summary`, without keeping the samples; each sample
+/// evaluates only what the summary and the scenario's channels read (the
+/// outputs, say, only for a channel of them).
 pub fn simulate_summary<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     scenario: &Scenario,
