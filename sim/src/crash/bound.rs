@@ -29,7 +29,21 @@ pub struct Binding {
     pub port: Port,
 }
 
+/// A bound input as a call reads it: the binding, with the number of
+/// arguments its component takes (`None`: any), asked once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Resolved {
+    component: usize,
+    port: Port,
+    arity: Option<usize>,
+}
+
 /// A model's inputs bound to components; implements [`InputFunctions`].
+///
+/// The bindings are resolved when the inputs are made ([`BoundInputs::new`]),
+/// so that an input call is one indexed call of its component: a change of
+/// `bindings`, or a component replaced by one of another arity, goes
+/// through a new `BoundInputs`.
 ///
 /// A value that cannot be produced (a table read outside its range under the
 /// `error` policy) is returned as NaN and the reason kept, so the integrator
@@ -46,6 +60,8 @@ pub struct BoundInputs {
     pub event_arguments: Vec<Option<(usize, usize)>>,
     /// The input names, for messages.
     pub input_names: Vec<String>,
+    /// `bindings` resolved, by input index.
+    resolved: Vec<Option<Resolved>>,
     failure: RefCell<Option<Fault>>,
     /// Where the components' internal states lie in the run's `z`.
     layout: StateLayout,
@@ -63,11 +79,23 @@ impl BoundInputs {
         input_names: Vec<String>,
     ) -> BoundInputs {
         let layout = StateLayout::of(&components, &event_arguments);
+        let resolved = (bindings.iter())
+            .map(|binding| {
+                let binding = (*binding)?;
+                let named = components.get(binding.component)?;
+                Some(Resolved {
+                    component: binding.component,
+                    port: binding.port,
+                    arity: named.component.arguments().map(|(needed, _)| needed),
+                })
+            })
+            .collect();
         BoundInputs {
             components,
             bindings,
             event_arguments,
             input_names,
+            resolved,
             failure: RefCell::new(None),
             layout,
             loaded: Internal::EMPTY,
@@ -325,8 +353,25 @@ impl BoundInputs {
 
 impl InputFunctions for BoundInputs {
     fn value(&self, input: usize, args: &[f64]) -> f64 {
+        if let Some(Some(r)) = self.resolved.get(input)
+            && r.arity.is_none_or(|needed| needed == args.len())
+        {
+            return match self.components[r.component].component.value(r.port, args) {
+                Ok(v) => v,
+                Err(e) => self.fail(self.out_of_range(r.component, Some(input), e)),
+            };
+        }
+        self.unresolved_value(input, args)
+    }
+}
+
+impl BoundInputs {
+    /// The value of an input call that is not resolved: unbound, called
+    /// with the wrong number of arguments (both faults), or bound after
+    /// [`BoundInputs::new`].
+    fn unresolved_value(&self, input: usize, args: &[f64]) -> f64 {
+        let name = self.input_names.get(input).map_or("?", String::as_str);
         let Some(Some(binding)) = self.bindings.get(input) else {
-            let name = self.input_names.get(input).map_or("?", String::as_str);
             return self.fail(Fault::Component(format!("input function `{name}` has no value: bind it in the scenario or give it with --set {name}=VALUE")));
         };
         let named = &self.components[binding.component];
@@ -337,8 +382,7 @@ impl InputFunctions for BoundInputs {
             // a compiled model does not tell them for inputs only its
             // Jacobians call.
             return self.fail(Fault::Component(format!(
-                "input `{}` is called with {} argument{}, but {} component `{}` needs {needed}",
-                self.input_names[input],
+                "input `{name}` is called with {} argument{}, but {} component `{}` needs {needed}",
                 args.len(),
                 if args.len() == 1 { "" } else { "s" },
                 named.component.kind(),

@@ -230,7 +230,13 @@ fn held_inputs(inputs: &BoundInputs) -> BoundInputs {
             held.event_arguments.push(None);
         }
     }
-    held
+    // Made anew, so that the added bindings are resolved.
+    BoundInputs::new(
+        held.components,
+        held.bindings,
+        held.event_arguments,
+        held.input_names,
+    )
 }
 
 /// The operating state, with the start and the solved coordinates of an

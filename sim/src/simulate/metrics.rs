@@ -96,8 +96,9 @@ pub struct Metrics {
     rebound: f64,
     /// Time and deviations from equilibrium of the pitch coordinates, for
     /// their extremes over the run and within the pulse (whose end is
-    /// known at the end).
-    pitch_history: Vec<(f64, Vec<f64>)>,
+    /// known at the end); as many deviations as pitch coordinates, the
+    /// rest 0.
+    pitch_history: Vec<(f64, [f64; 2])>,
     /// Time, crush and crush rate of every sample, for the pulse metrics
     /// (filtering needs the whole record) and the crush at the end of
     /// contact.
@@ -152,8 +153,11 @@ impl Metrics {
         });
         let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
         self.energy_error = self.energy_error.max(balance);
-        let deviations: Vec<f64> = self.pitch.iter().map(|(k, q0)| s.q[*k] - q0).collect();
-        if !deviations.is_empty() {
+        if !self.pitch.is_empty() {
+            let mut deviations = [0.0; 2];
+            for (d, (k, q0)) in deviations.iter_mut().zip(&self.pitch) {
+                *d = s.q[*k] - q0;
+            }
             self.pitch_history.push((s.t, deviations));
         }
         if let Some(crush) = &self.crush {
@@ -262,7 +266,7 @@ impl Metrics {
     fn pitch_extremes_until(&self, end: f64) -> Vec<f64> {
         let mut extremes = vec![0.0f64; self.pitch.len()];
         for (_, deviations) in self.pitch_history.iter().take_while(|(t, _)| *t <= end) {
-            for (extreme, &d) in extremes.iter_mut().zip(deviations) {
+            for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
                 if d.abs() > extreme.abs() {
                     *extreme = d;
                 }

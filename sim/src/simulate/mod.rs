@@ -5,6 +5,7 @@ mod channels;
 pub mod constrained;
 mod equilibrium;
 mod metrics;
+mod needs;
 mod problem;
 pub mod stepwise;
 mod stops;
@@ -22,7 +23,7 @@ pub use summary::{Field, Metric, Summary, Text, Value};
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
 use crate::pulse::STANDARD_GRAVITY;
-use crate::scenario::{Column, MAX_SAMPLES, Scenario};
+use crate::scenario::{MAX_SAMPLES, Scenario};
 use crate::warning::{self, Warning};
 use lagrangian_model::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
@@ -290,8 +291,9 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
 }
 
 /// The summary of a run only — what a sweep records: the same numbers as
-/// `simulate(…).summary`, without keeping the samples or evaluating the
-/// inputs at them (the outputs are evaluated, for the metrics to read).
+/// `simulate(…).summary`, without keeping the samples; each sample
+/// evaluates only what the summary and the scenario's channels read (the
+/// outputs, say, only for a channel of them).
 pub fn simulate_summary<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     scenario: &Scenario,
@@ -324,7 +326,9 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let (y0, projection) = initial_state(&mut problem, scenario)?;
     let g = gravity(&model);
     let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
-    let mut sampler = Sampler::new(scenario, metrics, keep);
+    let needs = needs::Needs::of(scenario, keep, problem.system.constraint_count());
+    let outputs = model.output_names().len();
+    let mut sampler = Sampler::new(scenario, metrics, (needs, outputs));
     sampler.start(&mut problem, &y0);
     let outcome = ode::integrate(
         scenario.method,
@@ -446,10 +450,10 @@ struct Sampler<const N: usize> {
     metrics: Metrics,
     /// The samples, when the run keeps them.
     samples: Vec<Sample>,
-    keep: bool,
-    /// Whether the samples need the components' columns: kept, or read by
-    /// a channel.
-    components: bool,
+    /// What each sample evaluates.
+    needs: needs::Needs,
+    /// The number of the model's outputs.
+    outputs: usize,
     /// The first sample that could not be evaluated.
     error: Option<SolverError>,
     interval: f64,
@@ -468,7 +472,9 @@ struct Sampler<const N: usize> {
 }
 
 impl<const N: usize> Sampler<N> {
-    fn new(scenario: &Scenario, metrics: Metrics, keep: bool) -> Self {
+    /// The sampler of `scenario`'s output times, evaluating what `needs`
+    /// asks of a model with `outputs` outputs.
+    fn new(scenario: &Scenario, metrics: Metrics, (needs, outputs): (needs::Needs, usize)) -> Self {
         let interval = scenario.output_interval;
         let bound = (scenario.t_end / interval + 1.0).ceil();
         let last = if bound >= 0.0 {
@@ -476,14 +482,11 @@ impl<const N: usize> Sampler<N> {
         } else {
             0 // NaN
         };
-        let read = |c: &crate::scenario::Channel| {
-            (c.signal.terms.iter()).any(|(_, column)| matches!(column, Column::Component(_)))
-        };
         Sampler {
             metrics,
             samples: Vec::new(),
-            keep,
-            components: keep || scenario.channels.iter().any(read),
+            needs,
+            outputs,
             error: None,
             interval,
             t_end: scenario.t_end,
@@ -533,14 +536,14 @@ impl<const N: usize> Sampler<N> {
         t: f64,
         y: &PhaseState<N>,
     ) {
-        match sample(problem, t, y, (self.keep, self.components)) {
+        match sample(problem, t, y, &self.needs, self.outputs) {
             Ok((view, columns)) => {
                 self.drift.resize(view.residual.len(), 0.0);
                 for (d, g) in self.drift.iter_mut().zip(&view.residual) {
                     *d = d.max(g.abs());
                 }
                 self.metrics.push(view.as_view());
-                if self.keep {
+                if self.needs.kept {
                     self.samples.push(view.into_sample(columns));
                 }
             }
@@ -623,14 +626,17 @@ impl<const N: usize> SampleValues<N> {
     }
 }
 
-/// Evaluates a sample, with the input values when `inputs` is set and the
-/// components' columns when `components` is; the outputs (at the
-/// accelerations of the sample) always, for the channels.
+/// Evaluates a sample: its energies, and what `needs` asks for of the
+/// accelerations (with the constraints' multipliers and residuals), the
+/// `outputs` outputs (at those accelerations), the components' columns and,
+/// for a kept sample, the input values; a quantity not asked for is left
+/// NaN (or empty).
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
-    (inputs, components): (bool, bool),
+    needs: &needs::Needs,
+    outputs: usize,
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
     problem.inputs.load(&y.z);
@@ -638,15 +644,24 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         a,
         multipliers,
         residual,
-    } = (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?;
+    } = match needs.accelerations {
+        true => (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?,
+        false => problem::Accelerations::not_evaluated(),
+    };
     let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
-    let mut outputs = vec![0.0; problem.system.output_names().len()];
-    (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut outputs);
-    let components = match components {
+    let outputs = match needs.outputs {
+        true => {
+            let mut values = vec![0.0; outputs];
+            (problem.system).outputs(t, &y.q, &y.v, &a, &problem.inputs, &mut values);
+            values
+        }
+        false => Vec::new(),
+    };
+    let components = match needs.components {
         true => problem.component_values(t, &y.q, &y.v).map_err(fault)?,
         false => Vec::new(),
     };
-    let values = match inputs {
+    let values = match needs.kept {
         true => problem.input_values(t, &y.q, &y.v),
         false => Vec::new(),
     };

@@ -34,6 +34,18 @@ pub struct Accelerations<const N: usize> {
     pub residual: Vec<f64>,
 }
 
+impl<const N: usize> Accelerations<N> {
+    /// Accelerations that were not evaluated: NaN, without constraints'
+    /// values.
+    pub fn not_evaluated() -> Accelerations<N> {
+        Accelerations {
+            a: SVector::repeat(f64::NAN),
+            multipliers: Vec::new(),
+            residual: Vec::new(),
+        }
+    }
+}
+
 /// `q̇ = v`, `M(q) v̇ = f(q, v, t)`, `ẇ = (Σ ∂D/∂q̇·q̇, Σ Q·q̇)`, and
 /// `ż = g(z, …)` of the components' internal states.
 ///

@@ -304,8 +304,8 @@ fn the_crush_when_contact_ends_is_the_permanent_crush() {
 
 const DOUBLE_PENDULUM: &str = include_str!("../../../specs/double_pendulum.lpm");
 
-/// A run that keeps only its summary (a sweep's) evaluates the outputs too,
-/// for the metrics, to the values a full run records.
+/// A run that keeps only its summary (a sweep's) evaluates the outputs
+/// when a channel reads them, to the values a full run records.
 #[test]
 fn outputs_are_evaluated_in_summary_only_runs_too() {
     let model = lagrangian_core::interpret(DOUBLE_PENDULUM).unwrap();
@@ -321,8 +321,12 @@ fn outputs_are_evaluated_in_summary_only_runs_too() {
     let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
     let q = SVector::from_column_slice(&last.q);
     let v = SVector::from_column_slice(&last.v);
-    let (values, inputs) =
-        sample(&mut problem, last.t, &PhaseState::new(q, v), (false, true)).unwrap();
+    let channel = ["metrics.displacement=[\"y2_position\"]".to_string()];
+    let read = Scenario::parse(text, None, &names, &channel).unwrap();
+    let needs = needs::Needs::of(&read, false, 0);
+    assert!(needs.outputs && needs.accelerations && !needs.kept);
+    let y = PhaseState::new(q, v);
+    let (values, inputs) = sample(&mut problem, last.t, &y, &needs, 3).unwrap();
     assert!(inputs.is_empty());
     assert_eq!(values.as_view().outputs, &last.outputs[..]);
     // At rest the lower bob hangs 2 m below the pivot, unaccelerated.
@@ -357,4 +361,47 @@ fn a_channel_reads_a_components_column_in_a_summary_only_run_too() {
     );
     let error = error.unwrap_err().to_string();
     assert!(error.contains("did you mean `wall.force`?"), "{error}");
+}
+
+/// A summary-only run evaluates at its samples only what the summary and
+/// the channels read, and its summary is the full run's.
+#[test]
+fn a_summary_only_run_evaluates_what_is_read() {
+    let model = lagrangian_core::interpret(DOUBLE_PENDULUM).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    let system = Interpreted::<2>::new(model).unwrap();
+    let text = "[simulation]\nt_end = 0.05\n[initial.coordinates]\ntheta1 = 0.5\n";
+    let bare = Scenario::parse(text, None, &names, &[]).unwrap();
+    let none = needs::Needs::of(&bare, false, 0);
+    assert_eq!(
+        (none.accelerations, none.outputs, none.components),
+        (false, false, false)
+    );
+    // With nothing read the accelerations stay NaN, the energies do not.
+    let mut problem = CrashProblem::new(&system, bare.inputs.clone());
+    let y = PhaseState::new(SVector::from([0.5, 0.0]), SVector::zeros());
+    let (values, _) = sample(&mut problem, 0.0, &y, &none, 3).unwrap();
+    assert!(values.a.iter().all(|a| a.is_nan()) && values.outputs.is_empty());
+    assert!(values.potential.is_finite() && values.potential != 0.0);
+    let with = |setting: &str| Scenario::parse(text, None, &names, &[setting.into()]).unwrap();
+    let accelerations = with("metrics.acceleration=[\"theta1_ddot\"]");
+    let needs = needs::Needs::of(&accelerations, false, 0);
+    assert!(needs.accelerations && !needs.outputs && !needs.components);
+    let outputs = with("metrics.displacement=[\"x2_position\"]");
+    let needs = needs::Needs::of(&outputs, false, 0);
+    assert!(needs.accelerations && needs.outputs && !needs.components);
+    for scenario in [&bare, &accelerations, &outputs] {
+        let full = simulate(&system, scenario).unwrap().summary;
+        assert_eq!(simulate_summary(&system, scenario).unwrap(), full);
+    }
+    assert!(
+        needs::Needs::of(&bare, true, 0)
+            == needs::Needs {
+                accelerations: true,
+                outputs: true,
+                components: true,
+                kept: true,
+            }
+    );
+    assert!(needs::Needs::of(&bare, false, 1).accelerations);
 }

@@ -1,0 +1,58 @@
+//! What a run's output samples must evaluate: only what the summary, the
+//! scenario's channels or the kept samples read.
+//!
+//! A sample always has its state (interpolated from the dense output) and
+//! its energies (the summary's energy balance reads them); the model's
+//! other quantities cost an evaluation each and are computed only when
+//! something reads them.
+
+use crate::scenario::{Column, Scenario};
+
+/// The quantities the samples of one run evaluate beyond the state and
+/// the energies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Needs {
+    /// `q̈` (with the constraints' `λ` and `g`): read by the crush
+    /// channel's deceleration, a channel of accelerations, outputs,
+    /// multipliers or residuals, the constraints' drift, or kept samples.
+    pub accelerations: bool,
+    /// The model's outputs: read by a channel, or kept.
+    pub outputs: bool,
+    /// The components' columns: read by a channel, or kept.
+    pub components: bool,
+    /// The samples are kept: everything is evaluated, the values of the
+    /// input calls too.
+    pub kept: bool,
+}
+
+impl Needs {
+    /// What the samples of `scenario` must evaluate for a model with
+    /// `constraints` constraints; everything when the samples are `kept`.
+    pub(crate) fn of(scenario: &Scenario, kept: bool, constraints: usize) -> Needs {
+        let read = |wanted: fn(Column) -> bool| {
+            (scenario.channels.iter())
+                .flat_map(|channel| &channel.signal.terms)
+                .any(|&(_, column)| wanted(column))
+        };
+        let outputs = kept || read(|c| matches!(c, Column::Output(_)));
+        Needs {
+            accelerations: kept
+                || outputs
+                || scenario.crush.is_some()
+                || constraints > 0
+                || read(reads_accelerations),
+            outputs,
+            components: kept || read(|c| matches!(c, Column::Component(_))),
+            kept,
+        }
+    }
+}
+
+/// Whether a channel of `column` reads the solution of `M q̈ = f`.
+fn reads_accelerations(column: Column) -> bool {
+    match column {
+        Column::Acceleration(_) | Column::Multiplier(_) | Column::Residual(_) => true,
+        Column::Output(_) => true,
+        Column::Coordinate(_) | Column::Velocity(_) | Column::Component(_) => false,
+    }
+}
