@@ -175,19 +175,22 @@ fn yaris_states() -> Vec<(Vector3<f64>, Vector3<f64>)> {
 struct Variants {
     compiled: Yaris,
     interpreted: Interpreted<3>,
+    /// The interpreted model with its routines as native code (`lagrangian-jit`).
+    native: Interpreted<3>,
     /// The compiled model's parameters, for CasADi's C.
     parameters: [f64; casadi::PARAMETERS],
     states: Vec<(Vector3<f64>, Vector3<f64>)>,
 }
 
 impl Variants {
-    const NAMES: [&str; 6] = [
+    const NAMES: [&str; 7] = [
         "hand-written",
         "compiled",
         "casadi",
         "interpreted",
         "compiled-mf",
         "casadi-mf",
+        "jit",
     ];
 
     fn new() -> Variants {
@@ -199,10 +202,12 @@ impl Variants {
         .unwrap();
         let interpreted =
             Interpreted::<3>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
+        let native = Interpreted::<3>::new(native_model(&source)).unwrap();
         let parameters = compiled.parameters().try_into().unwrap();
         Variants {
             compiled,
             interpreted,
+            native,
             parameters,
             states: yaris_states(),
         }
@@ -226,7 +231,8 @@ impl Variants {
                 let (_, f) = self.compiled.mass_matrix_and_forcing_pair(t, q, v, &inputs);
                 f[0]
             }
-            _ => casadi::mass_forcing(t, cq, cv, p).1[0],
+            5 => casadi::mass_forcing(t, cq, cv, p).1[0],
+            _ => self.native.accelerations(t, q, v, &inputs).unwrap()[0],
         }
     }
 
@@ -239,6 +245,7 @@ impl Variants {
             Box::new(|i| self.run::<3>(i)),
             Box::new(|i| self.run::<4>(i)),
             Box::new(|i| self.run::<5>(i)),
+            Box::new(|i| self.run::<6>(i)),
         ]
     }
 
@@ -257,6 +264,8 @@ impl Variants {
             let a = self.compiled.accelerations(0.01, q, v, &inputs).unwrap();
             let b = self.interpreted.accelerations(0.01, q, v, &inputs).unwrap();
             assert_eq!(a, b, "compiled and interpreted agree bit for bit");
+            let b = self.native.accelerations(0.01, q, v, &inputs).unwrap();
+            assert_eq!(a, b, "compiled and native code agree bit for bit");
             let c = casadi::accelerations(0.01, &(*q).into(), &(*v).into(), &self.parameters);
             let c = Vector3::from(c);
             assert!((a - c).amax() <= 1e-12 * a.amax(), "CasADi's q̈ {c} vs {a}");
@@ -298,7 +307,8 @@ fn paper_model() {
         interpreted,
         compiled_mf,
         casadi_mf,
-    ] = [0, 1, 2, 3, 4, 5];
+        native,
+    ] = [0, 1, 2, 3, 4, 5, 6];
     println!(
         "Batches of {n} calls taken in turn, 31 rounds; medians, and medians of paired ratios."
     );
@@ -320,6 +330,11 @@ fn paper_model() {
         "| interpreted (spec file) | {:.1} | {:.2} × compiled |",
         ns(interpreted),
         ratio(compiled, interpreted)
+    );
+    println!(
+        "| interpreted, native code (lagrangian-jit) | {:.1} | {:.2} × compiled |",
+        ns(native),
+        ratio(compiled, native)
     );
     println!();
     println!(
@@ -351,6 +366,7 @@ fn chain_20() {
     ))
     .unwrap();
     let interpreted = Interpreted::<20>::new(lagrangian_core::interpret(&source).unwrap()).unwrap();
+    let native = Interpreted::<20>::new(native_model(&source)).unwrap();
     let states: Vec<(SVector<f64, 20>, SVector<f64, 20>)> = (0..16)
         .map(|k| {
             let x = k as f64 / 16.0;
@@ -364,6 +380,8 @@ fn chain_20() {
         let a = compiled.accelerations(0.0, q, v, &NoInputs).unwrap();
         let b = interpreted.accelerations(0.0, q, v, &NoInputs).unwrap();
         assert_eq!(a, b, "compiled and interpreted agree bit for bit");
+        let b = native.accelerations(0.0, q, v, &NoInputs).unwrap();
+        assert_eq!(a, b, "compiled and native code agree bit for bit");
     }
     let pick = |i: usize| &states[i % states.len()];
     let compiled_ns = median_ns(20_000, |i| {
@@ -378,6 +396,12 @@ fn chain_20() {
             .accelerations(0.0, black_box(q), black_box(v), &NoInputs)
             .unwrap()[0]
     });
+    let native_ns = median_ns(5_000, |i| {
+        let (q, v) = pick(i);
+        native
+            .accelerations(0.0, black_box(q), black_box(v), &NoInputs)
+            .unwrap()[0]
+    });
     println!("| 20-link pendulum chain | q̈ = M⁻¹f (µs) | ratio to compiled |");
     println!("|---|---|---|");
     println!(
@@ -389,4 +413,20 @@ fn chain_20() {
         interpreted_ns / 1e3,
         interpreted_ns / compiled_ns
     );
+    println!(
+        "| interpreted, native code (lagrangian-jit) | {:.2} | {:.2} |",
+        native_ns / 1e3,
+        native_ns / compiled_ns
+    );
+}
+
+/// The spec `source` interpreted, its routines compiled to native code;
+/// prints how long that compilation took.
+fn native_model(source: &str) -> lagrangian::InterpretedModel {
+    let mut model = lagrangian_core::interpret(source).unwrap();
+    let start = std::time::Instant::now();
+    lagrangian_jit::accelerate(&mut model).unwrap();
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    eprintln!("native code for {}: {ms:.1} ms", model.name());
+    model
 }

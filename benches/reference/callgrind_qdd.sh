@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Instructions per q̈ of each implementation in benches/evaluation.rs (the
 # compiled model, CasADi's C, the hand-written reference, the interpreter,
-# and M, f alone), counted by callgrind: stable where wall-clock times on a
-# shared machine are not.
+# the interpreter running native code (jit), and M, f alone), counted by
+# callgrind: stable where wall-clock times on a shared machine are not.
 #
 # Each variant runs twice under callgrind, for N1 and N2 calls; the
 # difference of the two totals over N2 − N1 is the count per call, free of
@@ -24,7 +24,7 @@ total() { # variant calls -> instructions of the whole run
 
 echo "| variant | instructions per call |"
 echo "|---|---|"
-for variant in compiled casadi hand-written interpreted compiled-mf casadi-mf; do
+for variant in compiled casadi hand-written interpreted jit compiled-mf casadi-mf; do
     a=$(total "$variant" "$N1")
     b=$(total "$variant" "$N2")
     echo "| $variant | $(( (b - a) / (N2 - N1) )) |"

@@ -39,7 +39,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<Outcome, Failure> {
     let compiled = compile(&args.spec)?;
     let defaults = compiled.default_parameters();
-    let mut model = compiled.interpreted();
+    let mut model = crate::spec::interpreted(&compiled);
     let state = parse_state("--state", &args.state, model.coordinates())?;
     let (q, qd) = state.split_at(model.dimension());
     let (inputs, set): (Box<dyn InputFunctions>, Vec<usize>) = match &args.scenario {

@@ -94,7 +94,7 @@ pub struct Fitting {
 /// are not read); `progress` sees the number of simulations and the cost.
 pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result<Fitting, Failure> {
     let compiled = compile(&options.spec)?;
-    let model = compiled.interpreted();
+    let model = crate::spec::interpreted(&compiled);
     let names = ModelNames::of_interpreted(&model);
     let scenario_path = match &options.scenario {
         Some(p) => p.clone(),

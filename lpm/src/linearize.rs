@@ -46,7 +46,7 @@ pub struct Args {
 
 /// Runs `lpm linearize`.
 pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let model = with_jacobians(compile(&args.spec)?, &args.spec).interpreted();
+    let model = crate::spec::interpreted(&with_jacobians(compile(&args.spec)?, &args.spec));
     let names = ModelNames::of_interpreted(&model);
     let at = parse_at(&args.at, model.coordinates())?;
     let scenario_path = match &args.scenario {

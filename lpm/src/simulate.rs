@@ -130,7 +130,7 @@ pub fn load_spec(
     settings: &[String],
 ) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), Failure> {
     let compiled = compile(spec)?;
-    let model = compiled.interpreted();
+    let model = crate::spec::interpreted(&compiled);
     let names = ModelNames::of_interpreted(&model);
     let scenario_path = match scenario {
         Some(p) => Some(p.to_path_buf()),

@@ -4,6 +4,7 @@
 use crate::failure::Failure;
 use crate::status::ExitStatus;
 use lagrangian_core::Compiled;
+use lagrangian_model::InterpretedModel;
 use lagrangian_sim::scenario::scenarios_for;
 use std::path::{Path, PathBuf};
 
@@ -19,6 +20,20 @@ pub fn compile(path: &Path) -> Result<Compiled, Failure> {
         eprint!("{}", warning.render_warning(&file, &source));
     }
     Ok(compiled)
+}
+
+/// The model of a compiled spec as `lpm` runs it: interpreted, its
+/// routines compiled to native code where the `jit` feature is on (the
+/// same numbers, bit for bit, several times faster); a model the native
+/// compiler cannot handle stays interpreted, with a note on stderr.
+pub fn interpreted(compiled: &Compiled) -> InterpretedModel {
+    #[cfg_attr(not(feature = "jit"), expect(unused_mut))]
+    let mut model = compiled.interpreted();
+    #[cfg(feature = "jit")]
+    if let Err(error) = lagrangian_jit::accelerate(&mut model) {
+        eprintln!("note: {error}; interpreting the model instead");
+    }
+    model
 }
 
 /// The scenario beside a spec (`<spec dir>/scenarios/*.toml` whose `spec`

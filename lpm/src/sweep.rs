@@ -178,7 +178,7 @@ fn load(options: &Args) -> Result<(InterpretedModel, BaseScenario), Failure> {
         Some(spec) => spec.clone(),
         None => spec_of(&options.scenario, &text)?,
     };
-    let model = compile(&spec)?.interpreted();
+    let model = crate::spec::interpreted(&compile(&spec)?);
     let base = BaseScenario {
         text,
         file: Some(options.scenario.clone()),

@@ -3,6 +3,7 @@
 
 use crate::error::ModelError;
 use crate::layout::{ConstraintLayout, Energies, RoutineKind, mass_entries, unpack_dynamics};
+use crate::native::{NativeRoutines, with_input_call};
 use crate::tape::Tape;
 use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
@@ -131,6 +132,8 @@ pub struct InterpretedModel {
     /// The tape's register file, holding the constants and the parameters.
     registers: RefCell<Vec<f64>>,
     outputs: RefCell<Vec<f64>>,
+    /// Native code for the tape's routines, run in its place where it has them.
+    native: Option<Arc<dyn NativeRoutines>>,
 }
 
 impl InterpretedModel {
@@ -148,7 +151,25 @@ impl InterpretedModel {
             description: Arc::new(description),
             tape: Arc::new(tape),
             parameters,
+            native: None,
         })
+    }
+
+    /// The tape the model runs.
+    pub fn tape(&self) -> &Tape {
+        &self.tape
+    }
+
+    /// Runs the routines `native` has code for with it instead of the tape
+    /// (see [`crate::native`]); `native` must have been made for this
+    /// model's tape.
+    pub fn set_native(&mut self, native: Arc<dyn NativeRoutines>) {
+        self.native = Some(native);
+    }
+
+    /// Whether native code runs some of the routines.
+    pub fn has_native(&self) -> bool {
+        self.native.is_some()
     }
 
     /// The number of coordinates.
@@ -284,10 +305,29 @@ impl InterpretedModel {
         let mut registers = self.registers.borrow_mut();
         let mut outputs = self.outputs.borrow_mut();
         let out = &mut outputs[..self.tape.output_count(kind)];
-        if !self.tape.run(kind, state, inputs, &mut registers, out) {
+        if !self.run_native(kind, state, inputs, &mut registers, out)
+            && !self.tape.run(kind, state, inputs, &mut registers, out)
+        {
             return Err(ModelError::JacobiansNotDerived);
         }
         Ok(take(out))
+    }
+
+    /// Runs routine `kind` as native code; `false` when there is none for it.
+    #[inline]
+    fn run_native<I: InputFunctions + ?Sized>(
+        &self,
+        kind: RoutineKind,
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        registers: &mut [f64],
+        out: &mut [f64],
+    ) -> bool {
+        let Some(native) = &self.native else {
+            return false;
+        };
+        self.tape.load_state(state, registers);
+        with_input_call(inputs, |call| native.run(kind, registers, out, call))
     }
 
     /// `M` (row-major `n × n`) and `f` at one state.

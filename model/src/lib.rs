@@ -30,6 +30,7 @@ pub mod layout;
 #[cfg(feature = "nalgebra")]
 pub mod linalg;
 pub mod names;
+pub mod native;
 #[cfg(feature = "nalgebra")]
 mod system;
 pub mod tape;

@@ -286,6 +286,36 @@ impl Tape {
         Some((&self.routines[k], &self.steps[k]))
     }
 
+    /// The sizes of the register file's regions.
+    pub fn layout(&self) -> &RegisterLayout {
+        &self.layout
+    }
+
+    /// The routines, as [`Tape::new`] was given them.
+    pub fn routines(&self) -> &[TapeRoutine] {
+        &self.routines
+    }
+
+    /// The argument registers of the input calls (see [`Tape::new`]).
+    pub fn arguments(&self) -> &[u32] {
+        &self.arguments
+    }
+
+    /// Writes `(t, q, q̇, q̈)` into the state slots of `registers`, as
+    /// [`Tape::run`] does first; `q̈` may be empty. `registers` must come
+    /// from [`Tape::registers`].
+    pub fn load_state(&self, state: (f64, &[f64], &[f64], &[f64]), registers: &mut [f64]) {
+        let (t, q, qd, qdd) = state;
+        let n = self.layout.dimension;
+        let base = self.layout.coordinate(0) as usize;
+        registers[base..base + n].copy_from_slice(q);
+        registers[base + n..base + 2 * n].copy_from_slice(qd);
+        if qdd.len() == n {
+            registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
+        }
+        registers[self.layout.time() as usize] = t;
+    }
+
     /// Runs routine `kind` at `(t, q, q̇, q̈)` and writes its outputs to `out`;
     /// `q̈` may be empty for routines that do not use it. Returns `false`
     /// when the tape has no such routine.
@@ -310,15 +340,7 @@ impl Tape {
             self.layout.registers(),
             "a file of this tape"
         );
-        let (t, q, qd, qdd) = state;
-        let n = self.layout.dimension;
-        let base = self.layout.coordinate(0) as usize;
-        registers[base..base + n].copy_from_slice(q);
-        registers[base + n..base + 2 * n].copy_from_slice(qd);
-        if qdd.len() == n {
-            registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
-        }
-        registers[self.layout.time() as usize] = t;
+        self.load_state(state, registers);
         let file = registers.as_mut_ptr();
         for &step in steps {
             // SAFETY: `Tape::new` checked that every register of every
