@@ -21,11 +21,10 @@
 //! The peer: railway-impact-simulator (MIT), Bouc–Wen springs, HHT-α, run on
 //! the same configuration by benches/peer/railway/run_peer.py into
 //! benches/peer/railway/pioneer_peer.json; without the Rayleigh damping the
-//! peer always adds, its model is ours but for the springs' loading curve
-//! (its Bouc–Wen curve bends a little below the yield force, our
-//! elastic–plastic one is straight up to it) and the integrator (HHT-α with
-//! a fixed 0.1 ms step against DOPRI5 at rtol 1e-8): peak wall force, contact
-//! duration, main impact and the peak decelerations agree within 1 %.
+//! peer always adds, its model is ours (the same Bouc–Wen springs and
+//! linear wall) but for the integrator (HHT-α with a fixed 0.1 ms step
+//! against DOPRI5 at rtol 1e-8): peak wall force, contact duration, main
+//! impact and the peak decelerations agree within 1 %.
 
 use lagrangian_model::Interpreted;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
