@@ -148,6 +148,10 @@ fn every_spec_agrees_bit_for_bit_with_its_compiled_code() {
             compare::<10, pendulum_chain_10::PendulumChain10>("pendulum_chain_10"),
         ),
         (
+            "pioneer_wagon",
+            compare::<7, pioneer_wagon::PioneerWagon>("pioneer_wagon"),
+        ),
+        (
             "simple_pendulum",
             compare::<1, simple_pendulum::SimplePendulum>("simple_pendulum"),
         ),
@@ -158,6 +162,10 @@ fn every_spec_agrees_bit_for_bit_with_its_compiled_code() {
         (
             "spring_mass_damper",
             compare::<1, spring_mass_damper::SpringMassDamper>("spring_mass_damper"),
+        ),
+        (
+            "wall_impact",
+            compare::<1, wall_impact::WallImpact>("wall_impact"),
         ),
         (
             "yaris_double_pendulum",
