@@ -5,7 +5,7 @@
 //! INPUT=VALUE` adds one too.
 
 use super::curve::OutOfRange;
-use super::{Binder, Component, Event, Port, Section};
+use super::{Binder, Component, Port, Section};
 use crate::scenario::bind::finite;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -38,18 +38,8 @@ impl Component for Constant {
         }
     }
 
-    /// None: it keeps no state.
-    fn events(&self) -> &'static [Event] {
-        &[]
-    }
-
-    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
-
-    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
-        Ok(String::new())
-    }
+    // None: it keeps no state.
+    no_events!();
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         Ok(())

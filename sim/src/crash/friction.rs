@@ -25,7 +25,7 @@
 //! taking the sliding velocity alone, or the input's second argument.
 
 use super::curve::OutOfRange;
-use super::{Binder, Column, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Port, Section};
 use crate::scenario::bind::{Ports, non_negative, positive};
 use serde::Deserialize;
 
@@ -120,18 +120,8 @@ impl Component for Friction {
         })
     }
 
-    /// None: it keeps no state.
-    fn events(&self) -> &'static [Event] {
-        &[]
-    }
-
-    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
-
-    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
-        Ok(String::new())
-    }
+    // None: it keeps no state.
+    no_events!();
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         Ok(())

@@ -9,7 +9,7 @@
 //! `stiffness` `k` [N/m] and `damping` `c` [N·s/m], both ≥ 0.
 
 use super::curve::OutOfRange;
-use super::{Binder, Column, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Port, Section};
 use crate::scenario::bind::{Ports, non_negative};
 use serde::Deserialize;
 
@@ -63,18 +63,8 @@ impl Component for KelvinVoigt {
         })
     }
 
-    /// None: it keeps no state.
-    fn events(&self) -> &'static [Event] {
-        &[]
-    }
-
-    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
-
-    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
-        Ok(String::new())
-    }
+    // None: it keeps no state.
+    no_events!();
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         Ok(())

@@ -19,7 +19,7 @@
 //! initial dashpot displacement `dashpot0` (0).
 
 use super::curve::OutOfRange;
-use super::{Binder, Column, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Port, Section};
 use crate::scenario::bind::{Ports, finite, positive};
 use serde::Deserialize;
 
@@ -87,17 +87,7 @@ impl Component for Maxwell {
         })
     }
 
-    fn events(&self) -> &'static [Event] {
-        &[]
-    }
-
-    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
-
-    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
-        Ok(String::new())
-    }
+    no_events!();
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         self.dashpot = self.dashpot0;

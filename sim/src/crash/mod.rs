@@ -51,8 +51,8 @@
 //! 1. Write `sim/src/crash/KIND.rs` with
 //!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
 //!      method but the two queries is required; a component without events
-//!      returns `&[]` from `events` and has nothing to do in `event_values`
-//!      and `on_event`, one with events lists them in a
+//!      writes `no_events!();` in its `impl` (empty `events`, nothing to do
+//!      in `event_values` and `on_event`), one with events lists them in a
 //!      `const EVENTS: &[Event]`; one with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
 //!      `column_values`;
@@ -77,6 +77,35 @@
 //! events, the summary and the plots reach every component through these
 //! two traits. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
+
+/// The event methods of a component without events: `events` empty,
+/// nothing to evaluate or apply. Written out in the component's `impl`
+/// (`no_events!();`), so that leaving a component's events out stays a
+/// visible choice rather than a default.
+macro_rules! no_events {
+    () => {
+        fn events(&self) -> &'static [$crate::crash::Event] {
+            &[]
+        }
+
+        fn event_values(
+            &self,
+            _args: &[f64],
+            _g: &mut [f64],
+        ) -> Result<(), $crate::crash::curve::OutOfRange> {
+            Ok(())
+        }
+
+        fn on_event(
+            &mut self,
+            _k: usize,
+            _t: f64,
+            _args: &[f64],
+        ) -> Result<String, $crate::crash::curve::OutOfRange> {
+            Ok(String::new())
+        }
+    };
+}
 
 pub mod bouc_wen;
 pub mod bound;

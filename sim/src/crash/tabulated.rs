@@ -15,7 +15,7 @@
 
 use super::curve::{Curve, OutOfRange, Outside};
 use super::table::Table;
-use super::{Binder, Component, Event, Port, Section};
+use super::{Binder, Component, Port, Section};
 use crate::scenario::bind::outside;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -49,18 +49,8 @@ impl Component for Tabulated {
         }
     }
 
-    /// None: it keeps no state.
-    fn events(&self) -> &'static [Event] {
-        &[]
-    }
-
-    fn event_values(&self, _args: &[f64], _g: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
-
-    fn on_event(&mut self, _k: usize, _t: f64, _args: &[f64]) -> Result<String, OutOfRange> {
-        Ok(String::new())
-    }
+    // None: it keeps no state.
+    no_events!();
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         Ok(())
