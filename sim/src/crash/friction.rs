@@ -18,10 +18,10 @@
 //! body held by it creeps at a speed of order `v_ε·(applied / μ_s·N)`
 //! instead of sticking — choose `v_ε` well below the speeds of interest.
 //! Its force and the power it dissipates, `F·v`, are trajectory columns
-//! (`NAME.force [N]`, `NAME.power [W]`).
+//! (`NAME.force \[N\]`, `NAME.power \[W\]`).
 //!
 //! Its scenario section is `type = "friction"` (`FrictionSection`): the
-//! normal force is either the entry `normal_force` [N], the input then
+//! normal force is either the entry `normal_force` \[N\], the input then
 //! taking the sliding velocity alone, or the input's second argument.
 
 use super::curve::OutOfRange;
@@ -44,7 +44,7 @@ pub struct Friction {
     pub viscous: f64,
     /// `v_ε` [m/s].
     pub smoothing_velocity: f64,
-    /// `N` [N] if fixed; `None`: the input's second argument.
+    /// `N` \[N\] if fixed; `None`: the input's second argument.
     pub normal_force: Option<f64>,
 }
 
@@ -91,7 +91,7 @@ impl Friction {
         (f, dv, mu * sign)
     }
 
-    /// `F·v` [W].
+    /// `F·v` \[W\].
     pub fn power(&self, args: &[f64]) -> f64 {
         self.force(args).0 * args[0]
     }

@@ -3,7 +3,7 @@
 //! linear viscoelasticity), in the sign of its input's arguments (`u` an
 //! extension gives a tension). Unlike a contact it pulls as well as
 //! pushes. Its force and the power its dashpot dissipates, `c·u̇²`, are
-//! trajectory columns (`NAME.force [N]`, `NAME.power [W]`).
+//! trajectory columns (`NAME.force \[N\]`, `NAME.power \[W\]`).
 //!
 //! Its scenario section is `type = "kelvin_voigt"` (`KelvinVoigtSection`):
 //! `stiffness` `k` [N/m] and `damping` `c` [N·s/m], both ≥ 0.
@@ -40,7 +40,7 @@ impl KelvinVoigt {
         self.stiffness * args[0] + self.damping * args[1]
     }
 
-    /// `c·u̇²` [W].
+    /// `c·u̇²` \[W\].
     pub fn power(&self, args: &[f64]) -> f64 {
         self.damping * args[1] * args[1]
     }

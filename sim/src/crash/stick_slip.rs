@@ -16,11 +16,11 @@
 //!   (event: it sticks there if `|F_a| ≤ μ_s·N`, else slides the other way).
 //!
 //! Its force and the power it dissipates, `F·v`, are trajectory columns
-//! (`NAME.force [N]`, `NAME.power [W]`).
+//! (`NAME.force \[N\]`, `NAME.power \[W\]`).
 //!
 //! Its scenario section is `type = "stick_slip"` (`StickSlipSection`):
 //! `coefficient` `μ_k`, `static_coefficient` `μ_s ≥ μ_k` (default `μ_k`)
-//! and `normal_force` `N` [N].
+//! and `normal_force` `N` \[N\].
 
 use super::curve::OutOfRange;
 use super::{Binder, Column, Component, Event, Port, Section};
@@ -35,7 +35,7 @@ pub struct StickSlip {
     pub kinetic: f64,
     /// `μ_s ≥ μ_k`.
     pub stiction: f64,
-    /// `N` [N].
+    /// `N` \[N\].
     pub normal_force: f64,
     /// `None`: sticking; `Some(s)`: sliding in direction `s = ±1`.
     sliding: Option<f64>,

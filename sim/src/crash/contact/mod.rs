@@ -19,7 +19,7 @@
 //! reaches 0 again with `P ≥ 0` (contact, where `v₀` is taken). Both are
 //! events of the integration, so the force is smooth within a step. Its
 //! force, penetration and dissipated power are trajectory columns
-//! (`NAME.force [N]`, `NAME.penetration [m]`, `NAME.power [W]`).
+//! (`NAME.force \[N\]`, `NAME.penetration [m]`, `NAME.power \[W\]`).
 //!
 //! The dissipated power ([`Component::dissipated_power`]) is the damping's,
 //! `(c + k·D·δⁿ/v₀)·δ̇²`. A contact that lets go with `δ > 0` (the linear
@@ -150,7 +150,7 @@ impl ContactForce {
     }
 
     /// The dissipative part of `P`, `c·δ̇ + k·D·δⁿ·δ̇ / v₀`, times `δ̇`:
-    /// the power its damping dissipates [W].
+    /// the power its damping dissipates \[W\].
     pub fn damping_power(&self, delta: f64, rate: f64, impact: f64) -> f64 {
         let power = delta.abs().powf(self.exponent).copysign(delta);
         let chi = self.stiffness * self.hysteresis / impact;
@@ -260,7 +260,7 @@ impl ContactElement {
         self.law_force(delta, rate)
     }
 
-    /// The power its damping dissipates at the input's arguments [W]: 0 out
+    /// The power its damping dissipates at the input's arguments \[W\]: 0 out
     /// of contact.
     pub fn power(&self, args: &[f64]) -> f64 {
         if !self.in_contact {
