@@ -80,7 +80,7 @@ fn no_status(kind: fmi2StatusKind) -> Outcome {
     })
 }
 
-/// See [`no_status`].
+/// See `no_status`.
 pub extern "C" fn fmi2GetStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -110,7 +110,7 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     })
 }
 
-/// See [`no_status`].
+/// See `no_status`.
 pub extern "C" fn fmi2GetIntegerStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,
@@ -140,7 +140,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     })
 }
 
-/// See [`no_status`].
+/// See `no_status`.
 pub extern "C" fn fmi2GetStringStatus(
     c: fmi2Component,
     kind: fmi2StatusKind,

@@ -6,7 +6,7 @@
 //! the squared velocity of the tenth body of a chain is a sum over every
 //! pair of links. The graph keeps what the spec writes — `let` helpers,
 //! positions and their velocities — as shared nodes, and differentiates
-//! them by the chain rule ([`calculus`]), so that the mass matrix and the
+//! them by the chain rule (the `calculus` module), so that the mass matrix and the
 //! forcing of an `n`-link chain take `O(n²)` nodes. Where the operands of an
 //! operation are small canonical expressions, the operation is done in the
 //! canonical form (a *leaf*), so that sines and cosines of one angle still

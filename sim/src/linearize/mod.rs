@@ -15,7 +15,7 @@
 //! (`A` is `2n × 2n`, of the constrained accelerations without Baumgarte's
 //! stabilization, by central differences), about an equilibrium on the
 //! constraints; its modes are those of the motion on the constraints
-//! (`2(n − m)` eigenvalues, [`manifold`]).
+//! (`2(n − m)` eigenvalues, the `manifold` module).
 
 mod manifold;
 mod modes;
@@ -126,7 +126,7 @@ pub struct Linearization {
     /// How `A` was obtained.
     pub source: StateMatrixSource,
     /// The modes of `A`, by increasing frequency; for a model with
-    /// constraints, those of its motion on them ([`manifold`]).
+    /// constraints, those of its motion on them (the `manifold` module).
     pub modes: Vec<Mode>,
     /// The model's constraints (empty without): `A` is then that of the
     /// constrained accelerations, and its modes those on the constraints.
