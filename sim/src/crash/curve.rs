@@ -245,12 +245,55 @@ impl Curve {
 
     /// `(y(x), dy/dx)`.
     pub fn eval(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        self.eval_as(x, x)
+    }
+
+    /// The piece of the curve that `x` lies in: the pieces lie between
+    /// consecutive [`Curve::kinks`], piece 0 below the first, piece
+    /// `kinks().len()` above the last; a point on a kink is in the piece
+    /// above it. A smooth curve is one piece.
+    pub fn piece(&self, x: f64) -> usize {
+        self.kinks().partition_point(|&kink| kink <= x)
+    }
+
+    /// The ends of piece `piece` ([`Curve::piece`]): the kinks below and
+    /// above it, −∞ or +∞ where it has none.
+    pub fn piece_ends(&self, piece: usize) -> (f64, f64) {
+        let kinks = self.kinks();
+        let below = piece.checked_sub(1).and_then(|k| kinks.get(k));
+        let above = kinks.get(piece);
+        (
+            below.copied().unwrap_or(f64::NEG_INFINITY),
+            above.copied().unwrap_or(f64::INFINITY),
+        )
+    }
+
+    /// `(y, dy/dx)` at `x` of the formula of piece `piece` ([`Curve::piece`])
+    /// continued past its ends, so that it is smooth in `x`; the curve
+    /// itself ([`Curve::eval`]) for `None`. Within the piece both agree.
+    pub fn eval_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let Some(piece) = piece else {
+            return self.eval(x);
+        };
+        // A point inside the piece, which chooses the formula.
+        let at = match self.piece_ends(piece) {
+            (below, above) if below.is_finite() && above.is_finite() => 0.5 * (below + above),
+            (below, _) if below.is_finite() => below + below.abs().max(1.0),
+            (_, above) if above.is_finite() => above - above.abs().max(1.0),
+            _ => x,
+        };
+        self.eval_as(x, at)
+    }
+
+    /// `(y, dy/dx)` at `x` of the formula (the segment, or the policy
+    /// outside) that holds at `at`.
+    fn eval_as(&self, x: f64, at: f64) -> Result<(f64, f64), OutOfRange> {
         let (first, last) = (self.xs[0], self.xs[self.xs.len() - 1]);
-        let inside = x >= first && x <= last;
+        let inside = at >= first && at <= last;
         if !inside {
             match self.outside {
                 Outside::Hold => {
-                    let y = if x < first {
+                    let y = if at < first {
                         self.ys[0]
                     } else {
                         self.ys[self.ys.len() - 1]
@@ -268,14 +311,14 @@ impl Curve {
                 Outside::Extrapolate => {}
             }
         }
-        let i = self.segment(x);
+        let i = self.segment(at);
         match &self.tangents {
             None => {
                 let slope = self.slopes[i];
                 Ok((self.ys[i] + slope * (x - self.xs[i]), slope))
             }
             Some(d) if !inside => {
-                let end = if x < first { 0 } else { self.xs.len() - 1 };
+                let end = if at < first { 0 } else { self.xs.len() - 1 };
                 Ok((self.ys[end] + d[end] * (x - self.xs[end]), d[end]))
             }
             Some(d) => {
@@ -449,8 +492,19 @@ impl SecantCurve {
     /// The force `F(x) = k(|x|)·x` of eq 1 and its derivative
     /// `dF/dx = k(|x|) + |x|·k'(|x|)`.
     pub fn force(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
-        let (k, slope) = self.coefficient(x)?;
+        self.force_on(None, x)
+    }
+
+    /// [`SecantCurve::force`] with `k` on piece `piece` of its curve in
+    /// `|x|` ([`Curve::eval_on`]).
+    pub fn force_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let (k, slope) = self.curve.eval_on(piece, x.abs())?;
         Ok((k * x, k + x.abs() * slope))
+    }
+
+    /// The curve `k(|x|)`, through `(0, k_1)`.
+    pub fn curve(&self) -> &Curve {
+        &self.curve
     }
 
     /// The last breakpoint (the maximum dynamic crush `C` or velocity `v_0`).
@@ -483,8 +537,19 @@ impl ForceCurve {
 
     /// The force `F(x) = sign(x)·F(|x|)` and its derivative `dF/dx = F'(|x|)`.
     pub fn force(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
-        let (f, slope) = self.curve.eval(x.abs())?;
+        self.force_on(None, x)
+    }
+
+    /// [`ForceCurve::force`] on piece `piece` of its curve in `|x|`
+    /// ([`Curve::eval_on`]).
+    pub fn force_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let (f, slope) = self.curve.eval_on(piece, x.abs())?;
         Ok((if x < 0.0 { -f } else { f }, slope))
+    }
+
+    /// The curve `F(|x|)`, through `(0, 0)`.
+    pub fn curve(&self) -> &Curve {
+        &self.curve
     }
 }
 
