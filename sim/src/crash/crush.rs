@@ -291,15 +291,16 @@ impl CrushElement {
         g[2..].copy_from_slice(&damping);
     }
 
-    /// Applies kink event `k` (4–7): the next segment of the curve crossed.
-    fn cross_kink(&mut self, k: usize) -> String {
+    /// Applies kink event `k` (4–7) at `(δ, δ̇)`: the next segment of the
+    /// curve crossed.
+    fn cross_kink(&mut self, k: usize, delta: f64, rate: f64) -> String {
         let crossed = match k % 2 {
             0 => Crossed::Below,
             _ => Crossed::Above,
         };
         match k {
-            4 | 5 => self.loading_piece.cross(crossed),
-            _ => self.damping_piece.cross(crossed),
+            4 | 5 => (self.loading_piece).cross(self.loading.curve(), crossed, delta.abs()),
+            _ => (self.damping_piece).cross(self.damping.curve(), crossed, rate.abs()),
         }
         // Not a change of regime: the event log leaves it out.
         String::new()
@@ -417,7 +418,7 @@ impl Component for CrushElement {
     /// plus the gap), and is empty for a kink (events 4–7), which changes
     /// no regime.
     fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
-        let (delta, _) = self.crush(args);
+        let (delta, rate) = self.crush(args);
         let crush = delta + self.gap;
         Ok(match k {
             0 => {
@@ -445,7 +446,7 @@ impl Component for CrushElement {
                 self.separated_at = None;
                 format!("contact at crush {crush:.4} m")
             }
-            k => self.cross_kink(k),
+            k => self.cross_kink(k, delta, rate),
         })
     }
 

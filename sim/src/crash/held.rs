@@ -79,12 +79,14 @@ impl Held {
         ]
     }
 
-    /// Moves to the next piece across the kink `crossed`.
-    pub fn cross(&mut self, crossed: Crossed) {
+    /// Moves across the kink `crossed` of `curve`, the argument now at `x`:
+    /// to the next piece, or further if `x` lies beyond it (a crossing
+    /// seen late, as by an importer of an FMU that steps across two kinks).
+    pub fn cross(&mut self, curve: &Curve, crossed: Crossed, x: f64) {
         if let Some(piece) = &mut self.0 {
             *piece = match crossed {
-                Crossed::Below => piece.saturating_sub(1),
-                Crossed::Above => *piece + 1,
+                Crossed::Below => piece.saturating_sub(1).min(curve.piece(x)),
+                Crossed::Above => (*piece + 1).max(curve.piece(x)),
             };
         }
     }
@@ -137,17 +139,23 @@ mod tests {
             held.event_values(&curve, 1.25, f64::NEG_INFINITY),
             [0.25, -0.75]
         );
-        held.cross(Crossed::Above);
+        // Crossed on the kink: the next piece.
+        held.cross(&curve, Crossed::Above, 2.0);
         assert_eq!(
             held.event_values(&curve, 2.5, f64::NEG_INFINITY),
             [0.5, -0.5]
         );
-        held.cross(Crossed::Above);
+        held.cross(&curve, Crossed::Above, 3.0);
         // Above the last kink: nothing to rise to.
         assert_eq!(
             held.event_values(&curve, 3.5, f64::NEG_INFINITY),
             [0.5, -1.0]
         );
+        // Seen late, beyond the next kink too: the piece the argument is on.
+        held.cross(&curve, Crossed::Below, 0.5);
+        assert_eq!(held.piece(), Some(1));
+        held.cross(&curve, Crossed::Above, 1.0);
+        assert_eq!(held.piece(), Some(2));
         // On the first piece of a curve in |x| nothing lies below 0.
         let first = Held::at(&curve, 0.5, true);
         assert_eq!(first.event_values(&curve, 0.5, 0.0), [1.0, -0.5]);

@@ -137,9 +137,14 @@ impl Weld {
         ))
     }
 
-    /// Holds the next segment across the kink `crossed`; no description.
-    fn cross(&mut self, crossed: Crossed) -> String {
-        self.held.cross(crossed);
+    /// Holds the next segment across the kink `crossed`, the angle now at
+    /// `angle`; no description.
+    fn cross(&mut self, crossed: Crossed, angle: f64) -> String {
+        if let Some(curve) = self.curve() {
+            let mut held = self.held;
+            held.cross(curve, crossed, angle);
+            self.held = held;
+        }
         String::new()
     }
 
@@ -213,8 +218,8 @@ impl Component for Weld {
     fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
         match k {
             0 | 1 => self.fail(t, args[0]),
-            2 => Ok(self.cross(Crossed::Below)),
-            _ => Ok(self.cross(Crossed::Above)),
+            2 => Ok(self.cross(Crossed::Below, args[0])),
+            _ => Ok(self.cross(Crossed::Above, args[0])),
         }
     }
 
@@ -344,5 +349,63 @@ mod tests {
         assert_eq!(weld.moment(&[0.05, 2.0]).unwrap(), (20.0, 0.0, 10.0));
         weld.event_values(&[0.09, 0.0], &mut g).unwrap();
         assert_eq!(g[..2], [-1.0, -1.0]);
+    }
+
+    /// A weld whose curves have kinks (at 0 and 0.05 rad intact, at 0 after
+    /// failure), held or not.
+    fn kinked(stop_at_kinks: bool) -> Weld {
+        let intact = Curve::new(
+            vec![-0.1, 0.0, 0.05, 0.1],
+            vec![-1.0e4, 0.0, 1.0e4, 1.2e4],
+            Outside::Extrapolate,
+        )
+        .unwrap();
+        let post = Curve::new(
+            vec![-0.1, 0.0, 0.1],
+            vec![-2e3, 0.0, 1e3],
+            Outside::Extrapolate,
+        );
+        Weld::new(intact, 0.0, Some(1.1e4), None, Some(post.unwrap()), 0.0)
+            .with_stop_at_kinks(stop_at_kinks)
+    }
+
+    #[test]
+    fn walked_through_its_kinks_by_its_events_the_weld_gives_its_curves_moment() {
+        let (mut held, mut unheld) = (kinked(true), kinked(false));
+        held.start(Some(&[-0.0195, 0.0])).unwrap();
+        unheld.start(Some(&[-0.0195, 0.0])).unwrap();
+        // Out to 0.0905 rad (failing at 0.075 rad, 11 kN·m) and back, the
+        // points off the kinks (where the slope has two values).
+        let out = (0..=110).map(|i| -0.0195 + 0.001 * i as f64);
+        let path: Vec<f64> = out.clone().chain(out.rev()).collect();
+        let (mut before, mut after) = ([0.0; 4], [0.0; 4]);
+        let mut handled = Vec::new();
+        for pair in path.windows(2) {
+            let (a, b) = ([pair[0], 0.0], [pair[1], 0.0]);
+            for weld in [&mut held, &mut unheld] {
+                weld.event_values(&a, &mut before).unwrap();
+                weld.event_values(&b, &mut after).unwrap();
+                let crossed = (0..4).find(|&k| EVENTS[k].direction.crosses(before[k], after[k]));
+                if let Some(k) = crossed {
+                    let note = weld.on_event(k, pair[1], &b).unwrap();
+                    handled.push((weld.stop_at_kinks, k, note.is_empty()));
+                }
+            }
+            assert_eq!(
+                held.moment(&b).unwrap(),
+                unheld.moment(&b).unwrap(),
+                "{b:?}"
+            );
+        }
+        // Held: the kinks at 0 and 0.05 rad out, the failure, the kink at 0
+        // back; not held: the failure only.
+        let expected = [
+            (true, 3, true),
+            (true, 3, true),
+            (true, 0, false),
+            (false, 0, false),
+            (true, 2, true),
+        ];
+        assert_eq!(handled, expected);
     }
 }
