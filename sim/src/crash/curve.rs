@@ -103,8 +103,8 @@ pub struct Curve {
     ys: Arc<[f64]>,
     /// The slope of each segment, computed once.
     slopes: Arc<[f64]>,
-    /// The points where the slope changes, ends included unless the end
-    /// segments are extrapolated.
+    /// The points where the slope changes, ends included where the policy
+    /// outside changes the end segment.
     kinks: Arc<[f64]>,
     /// The tangent at each point of a curve interpolated by a monotone
     /// cubic (PCHIP); `None`: linear between the points.
@@ -171,9 +171,17 @@ impl Curve {
             .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
             .collect();
         let last = xs.len() - 1;
+        // An end is a kink where the policy outside changes the end
+        // segment: `error` always (the curve ends there).
+        let end = |y: f64, slope: f64| match outside {
+            Outside::Extrapolate => false,
+            Outside::Hold => slope != 0.0,
+            Outside::Zero => slope != 0.0 || y != 0.0,
+            Outside::Error => true,
+        };
         let kink = |i: usize| match i {
-            0 => outside != Outside::Extrapolate,
-            i if i == last => outside != Outside::Extrapolate,
+            0 => end(ys[0], slopes[0]),
+            i if i == last => end(ys[last], slopes[last - 1]),
             i => slopes[i - 1] != slopes[i],
         };
         let kinks = (0..=last).filter(|&i| kink(i)).map(|i| xs[i]).collect();
@@ -200,7 +208,9 @@ impl Curve {
     }
 
     /// The points where the slope of a curve interpolated linearly jumps,
-    /// in increasing order (the ends too, unless extrapolated); none for a
+    /// in increasing order: the ends too, unless the policy outside
+    /// continues the end segment (`extrapolate`, or `hold` of a flat one,
+    /// `zero` of a flat one at 0) — always under `error`; none for a
     /// smooth one.
     pub fn kinks(&self) -> &[f64] {
         match self.tangents {
@@ -728,6 +738,14 @@ mod tests {
         };
         assert_eq!(curve(Outside::Zero).kinks(), [0.0, 2.0, 3.0, 4.0]);
         assert_eq!(curve(Outside::Extrapolate).kinks(), [2.0, 3.0]);
+        // Flat ends held are no kinks; flat at 0 neither is zero outside.
+        let flat = |outside| {
+            let xs = vec![0.0, 1.0, 2.0, 3.0];
+            Curve::new(xs, vec![1.0, 1.0, 0.0, 0.0], outside).unwrap()
+        };
+        assert_eq!(flat(Outside::Hold).kinks(), [1.0, 2.0]);
+        assert_eq!(flat(Outside::Zero).kinks(), [0.0, 1.0, 2.0]);
+        assert_eq!(flat(Outside::Error).kinks(), [0.0, 1.0, 2.0, 3.0]);
     }
 
     #[test]
