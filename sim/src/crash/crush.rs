@@ -30,7 +30,12 @@
 //!   there.
 //!
 //! Each change of regime is an event of the integration, so the force is
-//! smooth within a step. The element's force `P` and deflection `δ` are
+//! smooth within a step. So is each kink of the two curves (a breakpoint
+//! of `k`, `S` or `c`): with `stop_at_kinks` (the default) the element
+//! holds the segment of each curve that `|δ|` and `|δ̇|` are on, continued
+//! past its breakpoints, and crossing a breakpoint is an event after which
+//! it holds the next one ([`super::held`]); the force is the same, only no
+//! step straddles a kink. The element's force `P` and deflection `δ` are
 //! trajectory columns (`NAME.force [N]`, `NAME.deflection [m]`).
 //!
 //! Its scenario section is `type = "crush"` (`CrushSection`): the loading
@@ -38,7 +43,8 @@
 //! stiffness) or `force_breakpoints` and `force_values` (force–deflection),
 //! never both.
 
-use super::curve::{ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
+use super::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
+use super::held::{self, Crossed, Held};
 use super::{Binder, Column, Component, Contact, Event, Port, Section};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside};
@@ -56,9 +62,22 @@ pub enum LoadingCurve {
 impl LoadingCurve {
     /// `(S(δ), dS/dδ)`: the spring force and its tangent stiffness.
     pub fn force(&self, delta: f64) -> Result<(f64, f64), OutOfRange> {
+        self.force_on(Held::NONE, delta)
+    }
+
+    /// [`LoadingCurve::force`] on the held piece of its curve in `|δ|`.
+    pub fn force_on(&self, held: Held, delta: f64) -> Result<(f64, f64), OutOfRange> {
         match self {
-            LoadingCurve::SecantStiffness(k) => k.force(delta),
-            LoadingCurve::ForceDeflection(f) => f.force(delta),
+            LoadingCurve::SecantStiffness(k) => k.force_on(held.piece(), delta),
+            LoadingCurve::ForceDeflection(f) => f.force_on(held.piece(), delta),
+        }
+    }
+
+    /// The curve in `|δ|` whose kinks are the form's: `k` or `S`.
+    pub fn curve(&self) -> &Curve {
+        match self {
+            LoadingCurve::SecantStiffness(k) => k.curve(),
+            LoadingCurve::ForceDeflection(f) => f.curve(),
         }
     }
 }
@@ -98,6 +117,15 @@ pub struct CrushElement {
     /// The crush at which the contact opens \[m\]: the deflection is the
     /// crush less the gap. 0 unless [`CrushElement::with_gap`] sets it.
     pub gap: f64,
+    /// No step straddles a kink of the loading or damping curve: the
+    /// segment of each is held within a step (see the module
+    /// documentation). On unless [`CrushElement::with_stop_at_kinks`]
+    /// turns it off.
+    pub stop_at_kinks: bool,
+    /// The piece of the loading curve held (on the loading curve).
+    loading_piece: Held,
+    /// The piece of the damping curve held.
+    damping_piece: Held,
     phase: Phase,
     in_contact: bool,
     /// When the last contact ended, while out of contact after one.
@@ -122,7 +150,23 @@ const EVENTS: &[Event] = &[
         name: "contact",
         direction: Direction::Rising,
     },
+    SPRING_KINKS[0],
+    SPRING_KINKS[1],
+    DAMPER_KINKS[0],
+    DAMPER_KINKS[1],
 ];
+
+/// The loading curve's held segment ends: `|δ|` crosses a breakpoint.
+const SPRING_KINKS: [Event; 2] = held::events(
+    "crush below a breakpoint of the loading curve",
+    "crush above a breakpoint of the loading curve",
+);
+
+/// The damping curve's held segment ends: `|δ̇|` crosses a breakpoint.
+const DAMPER_KINKS: [Event; 2] = held::events(
+    "crush rate below a breakpoint of the damping curve",
+    "crush rate above a breakpoint of the damping curve",
+);
 
 /// The element's columns: its compressive force and its deflection.
 const COLUMNS: &[Column] = &[
@@ -152,6 +196,9 @@ impl CrushElement {
             compression_sign,
             contact_only,
             gap: 0.0,
+            stop_at_kinks: true,
+            loading_piece: Held::NONE,
+            damping_piece: Held::NONE,
             phase: Phase::Loading,
             in_contact: true,
             separated_at: None,
@@ -162,6 +209,15 @@ impl CrushElement {
     /// for a compression-only element).
     pub fn with_gap(self, gap: f64) -> CrushElement {
         CrushElement { gap, ..self }
+    }
+
+    /// The element that holds the segments of its curves within a step
+    /// (`true`, the default) or steps across their kinks (`false`).
+    pub fn with_stop_at_kinks(self, stop_at_kinks: bool) -> CrushElement {
+        CrushElement {
+            stop_at_kinks,
+            ..self
+        }
     }
 
     /// Whether the element is in contact with the barrier.
@@ -177,7 +233,7 @@ impl CrushElement {
 
     /// `S + D`: the compressive force the barrier would exert in contact.
     fn total(&self, delta: f64, rate: f64) -> Result<f64, OutOfRange> {
-        Ok(self.spring(delta)?.0 + self.damping.force(rate)?.0)
+        Ok(self.spring(delta)?.0 + self.damper(rate)?.0)
     }
 
     /// `min(δ − δ₀, S + D)`, non-negative once the gap has closed (`δ₀` the
@@ -205,15 +261,63 @@ impl CrushElement {
                 },
                 Unloading::Plastic { stiffness },
             ) => Ok((peak_force - stiffness * (peak_crush - delta), stiffness)),
-            _ => self.loading.force(delta),
+            _ => self.loading.force_on(self.loading_piece, delta),
         }
+    }
+
+    /// `(D, dD/dδ̇)` on the held segment of the damping curve.
+    fn damper(&self, rate: f64) -> Result<(f64, f64), OutOfRange> {
+        self.damping.force_on(self.damping_piece.piece(), rate)
+    }
+
+    /// Whether the spring follows the loading curve (not the plastic
+    /// unloading line).
+    fn on_loading_curve(&self) -> bool {
+        match (self.phase, self.unloading) {
+            (Phase::Unloading { .. }, Unloading::Plastic { .. }) => false,
+            (Phase::Loading, _) | (_, Unloading::Elastic) => true,
+        }
+    }
+
+    /// The event functions of the held segments' ends (events 4–7).
+    fn kink_values(&self, delta: f64, rate: f64, g: &mut [f64]) {
+        let spring = match self.on_loading_curve() {
+            true => self.loading_piece,
+            false => Held::NONE,
+        };
+        let loading = spring.event_values(self.loading.curve(), delta.abs(), 0.0);
+        let damping = (self.damping_piece).event_values(self.damping.curve(), rate.abs(), 0.0);
+        g[..2].copy_from_slice(&loading);
+        g[2..].copy_from_slice(&damping);
+    }
+
+    /// Applies kink event `k` (4–7) at `(δ, δ̇)`: the next segment of the
+    /// curve crossed.
+    fn cross_kink(&mut self, k: usize, delta: f64, rate: f64) -> String {
+        let crossed = match k % 2 {
+            0 => Crossed::Below,
+            _ => Crossed::Above,
+        };
+        match k {
+            4 | 5 => (self.loading_piece).cross(self.loading.curve(), crossed, delta.abs()),
+            _ => (self.damping_piece).cross(self.damping.curve(), crossed, rate.abs()),
+        }
+        // Not a change of regime: the event log leaves it out.
+        String::new()
+    }
+
+    /// Holds the segments that `(δ, δ̇)` are on, when stopping at kinks.
+    fn hold_segments(&mut self, delta: f64, rate: f64) {
+        let hold = self.stop_at_kinks;
+        self.loading_piece = Held::at(self.loading.curve(), delta.abs(), hold);
+        self.damping_piece = Held::at(self.damping.curve(), rate.abs(), hold);
     }
 
     /// `(P, ∂P/∂δ, ∂P/∂δ̇)`: the compressive force and its derivatives.
     fn compressive(&self, args: &[f64]) -> Result<(f64, f64, f64), OutOfRange> {
         let (delta, rate) = self.crush(args);
         let (s, ds) = self.spring(delta)?;
-        let (d, dd) = self.damping.force(rate)?;
+        let (d, dd) = self.damper(rate)?;
         if self.contact_only && !self.in_contact {
             return Ok((0.0, 0.0, 0.0));
         }
@@ -280,7 +384,11 @@ impl Component for CrushElement {
     /// 1. reloading past the peak (unloading): `δ − δ_peak`, rising;
     /// 2. separation (contact only, in contact): `S + D`, falling;
     /// 3. contact (contact only, separated): `min(δ − δ₀, S + D)`, rising —
-    ///    the gap closes at the spring's zero `δ₀` with the barrier pushing.
+    ///    the gap closes at the spring's zero `δ₀` with the barrier pushing;
+    /// 4. kink below (stopping at kinks, on the loading curve): `|δ|` less
+    ///    the breakpoint below the held segment, falling;
+    /// 5. kink above (likewise): `|δ|` less the breakpoint above it, rising;
+    /// 6. 7. the same of `|δ̇|` and the damping curve (stopping at kinks).
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let (delta, rate) = self.crush(args);
         let plastic = matches!(self.unloading, Unloading::Plastic { .. });
@@ -302,17 +410,19 @@ impl Component for CrushElement {
         } else {
             -1.0
         };
+        self.kink_values(delta, rate, &mut g[4..8]);
         Ok(())
     }
 
     /// Applies event `k`; the description gives the crush (the deflection
-    /// plus the gap).
+    /// plus the gap), and is empty for a kink (events 4–7), which changes
+    /// no regime.
     fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
-        let (delta, _) = self.crush(args);
+        let (delta, rate) = self.crush(args);
         let crush = delta + self.gap;
         Ok(match k {
             0 => {
-                let peak_force = self.loading.force(delta)?.0;
+                let peak_force = self.spring(delta)?.0;
                 self.phase = Phase::Unloading {
                     peak_crush: delta,
                     peak_force,
@@ -331,11 +441,12 @@ impl Component for CrushElement {
                 self.separated_at = Some(t);
                 format!("separation at crush {crush:.4} m")
             }
-            _ => {
+            3 => {
                 self.in_contact = true;
                 self.separated_at = None;
                 format!("contact at crush {crush:.4} m")
             }
+            k => self.cross_kink(k, delta, rate),
         })
     }
 
@@ -349,8 +460,9 @@ impl Component for CrushElement {
         self.phase = Phase::Loading;
         self.in_contact = true;
         self.separated_at = None;
+        let (delta, rate) = self.crush(args);
+        self.hold_segments(delta, rate);
         if self.contact_only {
-            let (delta, rate) = self.crush(args);
             self.in_contact = self.closing(delta, rate)? >= 0.0;
         }
         Ok(())
@@ -403,6 +515,8 @@ pub(crate) struct CrushSection {
     contact_only: bool,
     #[serde(default = "hold")]
     outside: String,
+    #[serde(default = "yes")]
+    stop_at_kinks: bool,
 }
 
 fn elastic() -> String {
@@ -441,6 +555,7 @@ impl CrushSection {
             self.compression_sign(name)?,
             self.contact_only,
         );
+        let element = element.with_stop_at_kinks(self.stop_at_kinks);
         Ok(element.with_gap(self.gap(name)?))
     }
 
@@ -561,7 +676,7 @@ mod tests {
     #[test]
     fn plastic_unloading_leaves_a_permanent_set_and_separates() {
         let mut e = element(Unloading::Plastic { stiffness: 1.0e8 });
-        let mut g = [0.0; 4];
+        let mut g = [0.0; 8];
         // At the peak the crush rate passes zero: event 0.
         e.event_values(&[-0.3, 0.0], &mut g).unwrap();
         assert_eq!(g[0], 0.0);
@@ -589,7 +704,7 @@ mod tests {
         assert_eq!(e.force(&[0.05, -15.0]).unwrap(), 0.0);
         // The contact function is the gap (δ − 0) until it closes, although
         // the damper alone would push already (S + D > 0 at 1 mm).
-        let mut g = [0.0; 4];
+        let mut g = [0.0; 8];
         e.event_values(&[0.001, -15.0], &mut g).unwrap();
         assert_eq!((g[2], g[3]), (1.0, -0.001));
         e.event_values(&[-0.001, -15.0], &mut g).unwrap();
@@ -647,12 +762,20 @@ mod tests {
         e.column_values(&[0.02, 10.0], &mut columns).unwrap();
         assert_eq!(columns, [0.0, 0.02 - 0.05]);
         // The contact function changes sign where the crush passes the gap.
-        let mut g = [0.0; 4];
+        let mut g = [0.0; 8];
         e.event_values(&[0.049, 10.0], &mut g).unwrap();
         assert!(g[3] < 0.0);
         e.event_values(&[0.051, 10.0], &mut g).unwrap();
         assert!((g[3] - 0.001).abs() < 1e-12, "{g:?}");
         e.on_event(3, 0.0, &[0.05, 10.0]).unwrap();
+        // The deflection passes the breakpoint at 0.1 m (0.15 m of crush):
+        // the kink event, which the integration locates, moves the held
+        // segment on.
+        e.event_values(&[0.149, 1.0], &mut g).unwrap();
+        assert!(g[5] < 0.0);
+        e.event_values(&[0.151, 1.0], &mut g).unwrap();
+        assert!((g[5] - 0.001).abs() < 1e-12, "{g:?}");
+        assert_eq!(e.on_event(5, 0.0, &[0.15, 1.0]).unwrap(), "");
         // 0.35 m of crush is 0.3 m of deflection: 175 kN.
         assert!((e.force(&[0.35, 1.0]).unwrap() - 175e3).abs() < 1e-9);
         // Peak there: the permanent deflection is 0.3 − 175 kN / 10 MN/m.

@@ -103,8 +103,8 @@ pub struct Curve {
     ys: Arc<[f64]>,
     /// The slope of each segment, computed once.
     slopes: Arc<[f64]>,
-    /// The points where the slope changes, ends included unless the end
-    /// segments are extrapolated.
+    /// The points where the slope changes, ends included where the policy
+    /// outside changes the end segment.
     kinks: Arc<[f64]>,
     /// The tangent at each point of a curve interpolated by a monotone
     /// cubic (PCHIP); `None`: linear between the points.
@@ -171,9 +171,17 @@ impl Curve {
             .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
             .collect();
         let last = xs.len() - 1;
+        // An end is a kink where the policy outside changes the end
+        // segment: `error` always (the curve ends there).
+        let end = |y: f64, slope: f64| match outside {
+            Outside::Extrapolate => false,
+            Outside::Hold => slope != 0.0,
+            Outside::Zero => slope != 0.0 || y != 0.0,
+            Outside::Error => true,
+        };
         let kink = |i: usize| match i {
-            0 => outside != Outside::Extrapolate,
-            i if i == last => outside != Outside::Extrapolate,
+            0 => end(ys[0], slopes[0]),
+            i if i == last => end(ys[last], slopes[last - 1]),
             i => slopes[i - 1] != slopes[i],
         };
         let kinks = (0..=last).filter(|&i| kink(i)).map(|i| xs[i]).collect();
@@ -200,7 +208,9 @@ impl Curve {
     }
 
     /// The points where the slope of a curve interpolated linearly jumps,
-    /// in increasing order (the ends too, unless extrapolated); none for a
+    /// in increasing order: the ends too, unless the policy outside
+    /// continues the end segment (`extrapolate`, or `hold` of a flat one,
+    /// `zero` of a flat one at 0) — always under `error`; none for a
     /// smooth one.
     pub fn kinks(&self) -> &[f64] {
         match self.tangents {
@@ -245,12 +255,55 @@ impl Curve {
 
     /// `(y(x), dy/dx)`.
     pub fn eval(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        self.eval_as(x, x)
+    }
+
+    /// The piece of the curve that `x` lies in: the pieces lie between
+    /// consecutive [`Curve::kinks`], piece 0 below the first, piece
+    /// `kinks().len()` above the last; a point on a kink is in the piece
+    /// above it. A smooth curve is one piece.
+    pub fn piece(&self, x: f64) -> usize {
+        self.kinks().partition_point(|&kink| kink <= x)
+    }
+
+    /// The ends of piece `piece` ([`Curve::piece`]): the kinks below and
+    /// above it, −∞ or +∞ where it has none.
+    pub fn piece_ends(&self, piece: usize) -> (f64, f64) {
+        let kinks = self.kinks();
+        let below = piece.checked_sub(1).and_then(|k| kinks.get(k));
+        let above = kinks.get(piece);
+        (
+            below.copied().unwrap_or(f64::NEG_INFINITY),
+            above.copied().unwrap_or(f64::INFINITY),
+        )
+    }
+
+    /// `(y, dy/dx)` at `x` of the formula of piece `piece` ([`Curve::piece`])
+    /// continued past its ends, so that it is smooth in `x`; the curve
+    /// itself ([`Curve::eval`]) for `None`. Within the piece both agree.
+    pub fn eval_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let Some(piece) = piece else {
+            return self.eval(x);
+        };
+        // A point inside the piece, which chooses the formula.
+        let at = match self.piece_ends(piece) {
+            (below, above) if below.is_finite() && above.is_finite() => 0.5 * (below + above),
+            (below, _) if below.is_finite() => below + below.abs().max(1.0),
+            (_, above) if above.is_finite() => above - above.abs().max(1.0),
+            _ => x,
+        };
+        self.eval_as(x, at)
+    }
+
+    /// `(y, dy/dx)` at `x` of the formula (the segment, or the policy
+    /// outside) that holds at `at`.
+    fn eval_as(&self, x: f64, at: f64) -> Result<(f64, f64), OutOfRange> {
         let (first, last) = (self.xs[0], self.xs[self.xs.len() - 1]);
-        let inside = x >= first && x <= last;
+        let inside = at >= first && at <= last;
         if !inside {
             match self.outside {
                 Outside::Hold => {
-                    let y = if x < first {
+                    let y = if at < first {
                         self.ys[0]
                     } else {
                         self.ys[self.ys.len() - 1]
@@ -268,14 +321,14 @@ impl Curve {
                 Outside::Extrapolate => {}
             }
         }
-        let i = self.segment(x);
+        let i = self.segment(at);
         match &self.tangents {
             None => {
                 let slope = self.slopes[i];
                 Ok((self.ys[i] + slope * (x - self.xs[i]), slope))
             }
             Some(d) if !inside => {
-                let end = if x < first { 0 } else { self.xs.len() - 1 };
+                let end = if at < first { 0 } else { self.xs.len() - 1 };
                 Ok((self.ys[end] + d[end] * (x - self.xs[end]), d[end]))
             }
             Some(d) => {
@@ -449,8 +502,19 @@ impl SecantCurve {
     /// The force `F(x) = k(|x|)·x` of eq 1 and its derivative
     /// `dF/dx = k(|x|) + |x|·k'(|x|)`.
     pub fn force(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
-        let (k, slope) = self.coefficient(x)?;
+        self.force_on(None, x)
+    }
+
+    /// [`SecantCurve::force`] with `k` on piece `piece` of its curve in
+    /// `|x|` ([`Curve::eval_on`]).
+    pub fn force_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let (k, slope) = self.curve.eval_on(piece, x.abs())?;
         Ok((k * x, k + x.abs() * slope))
+    }
+
+    /// The curve `k(|x|)`, through `(0, k_1)`.
+    pub fn curve(&self) -> &Curve {
+        &self.curve
     }
 
     /// The last breakpoint (the maximum dynamic crush `C` or velocity `v_0`).
@@ -483,8 +547,19 @@ impl ForceCurve {
 
     /// The force `F(x) = sign(x)·F(|x|)` and its derivative `dF/dx = F'(|x|)`.
     pub fn force(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
-        let (f, slope) = self.curve.eval(x.abs())?;
+        self.force_on(None, x)
+    }
+
+    /// [`ForceCurve::force`] on piece `piece` of its curve in `|x|`
+    /// ([`Curve::eval_on`]).
+    pub fn force_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let (f, slope) = self.curve.eval_on(piece, x.abs())?;
         Ok((if x < 0.0 { -f } else { f }, slope))
+    }
+
+    /// The curve `F(|x|)`, through `(0, 0)`.
+    pub fn curve(&self) -> &Curve {
+        &self.curve
     }
 }
 
@@ -663,6 +738,14 @@ mod tests {
         };
         assert_eq!(curve(Outside::Zero).kinks(), [0.0, 2.0, 3.0, 4.0]);
         assert_eq!(curve(Outside::Extrapolate).kinks(), [2.0, 3.0]);
+        // Flat ends held are no kinks; flat at 0 neither is zero outside.
+        let flat = |outside| {
+            let xs = vec![0.0, 1.0, 2.0, 3.0];
+            Curve::new(xs, vec![1.0, 1.0, 0.0, 0.0], outside).unwrap()
+        };
+        assert_eq!(flat(Outside::Hold).kinks(), [1.0, 2.0]);
+        assert_eq!(flat(Outside::Zero).kinks(), [0.0, 1.0, 2.0]);
+        assert_eq!(flat(Outside::Error).kinks(), [0.0, 1.0, 2.0, 3.0]);
     }
 
     #[test]

@@ -115,6 +115,7 @@ pub mod crush;
 pub mod curve;
 pub mod dahl;
 pub mod friction;
+pub mod held;
 pub mod kelvin_voigt;
 pub mod lugre;
 pub mod maxwell;
@@ -196,7 +197,9 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
 
     /// Applies event `k` at time `t` and its value input's arguments `args`;
-    /// returns a description of the change.
+    /// returns a description of the change, or an empty one for an event
+    /// that changes no regime (a kink of a curve crossed, see
+    /// [`held`]), which the run's event log leaves out.
     fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
 
     /// Puts the component in its initial state for a run that starts with

@@ -6,9 +6,15 @@
 //! curve and damping for the rest of the run. Its moment and angle are
 //! trajectory columns (`NAME.moment [N*m]`, `NAME.angle [rad]`).
 //!
+//! With `stop_at_kinks` (the default) no step straddles a kink of the curve
+//! in use: the weld holds the segment the angle is on, continued past its
+//! points, and crossing a kink is an event after which it holds the next
+//! one ([`super::held`]).
+//!
 //! Its scenario section is `type = "weld"` (`WeldSection`).
 
 use super::curve::{Curve, OutOfRange};
+use super::held::{self, Crossed, Held};
 use super::{Binder, Column, Component, Event, Port, Section};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside, positive};
@@ -29,6 +35,11 @@ pub struct Weld {
     pub post_failure: Option<Curve>,
     /// `c` after failure [N·m·s/rad].
     pub post_failure_damping: f64,
+    /// No step straddles a kink of the curve in use (see the module
+    /// documentation); on unless [`Weld::with_stop_at_kinks`] turns it off.
+    pub stop_at_kinks: bool,
+    /// The piece of the curve in use held.
+    held: Held,
     failed_at: Option<f64>,
 }
 
@@ -42,7 +53,15 @@ const EVENTS: &[Event] = &[
         name: "weld failure (angle)",
         direction: Direction::Rising,
     },
+    KINKS[0],
+    KINKS[1],
 ];
+
+/// The held segment ends: the angle crosses a kink of the curve in use.
+const KINKS: [Event; 2] = held::events(
+    "angle below a kink of the weld's curve",
+    "angle above a kink of the weld's curve",
+);
 
 /// The weld's columns: its moment and its angle.
 const COLUMNS: &[Column] = &[
@@ -73,8 +92,60 @@ impl Weld {
             failure_angle,
             post_failure,
             post_failure_damping,
+            stop_at_kinks: true,
+            held: Held::NONE,
             failed_at: None,
         }
+    }
+
+    /// The weld that holds the segment of its curve within a step (`true`,
+    /// the default) or steps across its kinks (`false`).
+    pub fn with_stop_at_kinks(self, stop_at_kinks: bool) -> Weld {
+        Weld {
+            stop_at_kinks,
+            ..self
+        }
+    }
+
+    /// The moment curve in use: the intact one, or after failure the
+    /// post-failure one if any.
+    fn curve(&self) -> Option<&Curve> {
+        match self.failed_at {
+            None => Some(&self.intact),
+            Some(_) => self.post_failure.as_ref(),
+        }
+    }
+
+    /// `(M_intact(θ), dM/dθ)` on the held segment, while intact.
+    fn intact_moment(&self, angle: f64) -> Result<(f64, f64), OutOfRange> {
+        self.held.eval(&self.intact, angle)
+    }
+
+    /// Fails at time `t` and angle `angle`; holds the post-failure curve's
+    /// segment there.
+    fn fail(&mut self, t: f64, angle: f64) -> Result<String, OutOfRange> {
+        let moment = self.intact_moment(angle)?.0;
+        self.failed_at = Some(t);
+        self.held = match &self.post_failure {
+            Some(curve) => Held::at(curve, angle, self.stop_at_kinks),
+            None => Held::NONE,
+        };
+        Ok(format!(
+            "weld fails at θ = {:.3}° (spring moment {:.2} kN·m)",
+            angle.to_degrees(),
+            moment / 1e3
+        ))
+    }
+
+    /// Holds the next segment across the kink `crossed`, the angle now at
+    /// `angle`; no description.
+    fn cross(&mut self, crossed: Crossed, angle: f64) -> String {
+        if let Some(curve) = self.curve() {
+            let mut held = self.held;
+            held.cross(curve, crossed, angle);
+            self.held = held;
+        }
+        String::new()
     }
 
     /// The time of failure, if the weld failed.
@@ -87,7 +158,7 @@ impl Weld {
         let (angle, rate) = (args[0], args[1]);
         if self.failed_at.is_some() {
             let (m, dm) = match &self.post_failure {
-                Some(curve) => curve.eval(angle)?,
+                Some(curve) => self.held.eval(curve, angle)?,
                 None => (0.0, 0.0),
             };
             return Ok((
@@ -96,7 +167,7 @@ impl Weld {
                 self.post_failure_damping,
             ));
         }
-        let (m, dm) = self.intact.eval(angle)?;
+        let (m, dm) = self.intact_moment(angle)?;
         Ok((m + self.damping * rate, dm, self.damping))
     }
 }
@@ -123,34 +194,40 @@ impl Component for Weld {
         EVENTS
     }
 
-    /// `|M_intact(θ)| − M_fail` and `|θ| − θ_fail` while intact; −1 otherwise.
+    /// `|M_intact(θ)| − M_fail` and `|θ| − θ_fail` while intact; −1 otherwise;
+    /// then (stopping at kinks) `θ` less the kinks below (falling) and above
+    /// (rising) the held segment of the curve in use.
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let intact = self.failed_at.is_none();
         g[0] = match self.failure_moment {
-            Some(limit) if intact => self.intact.eval(args[0])?.0.abs() - limit,
+            Some(limit) if intact => self.intact_moment(args[0])?.0.abs() - limit,
             _ => -1.0,
         };
         g[1] = match self.failure_angle {
             Some(limit) if intact => args[0].abs() - limit,
             _ => -1.0,
         };
+        let curve = self.curve().unwrap_or(&self.intact);
+        let kinks = self.held.event_values(curve, args[0], f64::NEG_INFINITY);
+        g[2..4].copy_from_slice(&kinks);
         Ok(())
     }
 
-    /// Either event is the failure.
-    fn on_event(&mut self, _k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
-        let moment = self.intact.eval(args[0])?.0;
-        self.failed_at = Some(t);
-        Ok(format!(
-            "weld fails at θ = {:.3}° (spring moment {:.2} kN·m)",
-            args[0].to_degrees(),
-            moment / 1e3
-        ))
+    /// Events 0 and 1 are the failure; 2 and 3 a kink of the curve crossed
+    /// (the next segment held; an empty description: no change of regime).
+    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange> {
+        match k {
+            0 | 1 => self.fail(t, args[0]),
+            2 => Ok(self.cross(Crossed::Below, args[0])),
+            _ => Ok(self.cross(Crossed::Above, args[0])),
+        }
     }
 
-    /// Intact again.
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
+    /// Intact again, holding the segment of the angle `args` start at.
+    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange> {
         self.failed_at = None;
+        let angle = args.map_or(0.0, |args| args[0]);
+        self.held = Held::at(&self.intact, angle, self.stop_at_kinks);
         Ok(())
     }
 
@@ -187,6 +264,12 @@ pub(crate) struct WeldSection {
     post_failure_damping: f64,
     #[serde(default = "extrapolate")]
     outside: String,
+    #[serde(default = "yes")]
+    stop_at_kinks: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn extrapolate() -> String {
@@ -235,7 +318,8 @@ impl WeldSection {
             self.failure_angle,
             post,
             self.post_failure_damping,
-        ))
+        )
+        .with_stop_at_kinks(self.stop_at_kinks))
     }
 }
 
@@ -257,13 +341,71 @@ mod tests {
         let mut columns = [0.0; 2];
         weld.column_values(&[0.02, 1.0], &mut columns).unwrap();
         assert!((columns[0] - 2.1e3).abs() < 1e-9 && columns[1] == 0.02);
-        let mut g = [0.0; 2];
+        let mut g = [0.0; 4];
         weld.event_values(&[0.05, 0.0], &mut g).unwrap();
         assert!(g[0].abs() < 1e-9 && g[1] == -1.0, "{g:?}");
         weld.on_event(0, 0.042, &[0.05, 0.0]).unwrap();
         assert_eq!(weld.failed_at(), Some(0.042));
         assert_eq!(weld.moment(&[0.05, 2.0]).unwrap(), (20.0, 0.0, 10.0));
         weld.event_values(&[0.09, 0.0], &mut g).unwrap();
-        assert_eq!(g, [-1.0, -1.0]);
+        assert_eq!(g[..2], [-1.0, -1.0]);
+    }
+
+    /// A weld whose curves have kinks (at 0 and 0.05 rad intact, at 0 after
+    /// failure), held or not.
+    fn kinked(stop_at_kinks: bool) -> Weld {
+        let intact = Curve::new(
+            vec![-0.1, 0.0, 0.05, 0.1],
+            vec![-1.0e4, 0.0, 1.0e4, 1.2e4],
+            Outside::Extrapolate,
+        )
+        .unwrap();
+        let post = Curve::new(
+            vec![-0.1, 0.0, 0.1],
+            vec![-2e3, 0.0, 1e3],
+            Outside::Extrapolate,
+        );
+        Weld::new(intact, 0.0, Some(1.1e4), None, Some(post.unwrap()), 0.0)
+            .with_stop_at_kinks(stop_at_kinks)
+    }
+
+    #[test]
+    fn walked_through_its_kinks_by_its_events_the_weld_gives_its_curves_moment() {
+        let (mut held, mut unheld) = (kinked(true), kinked(false));
+        held.start(Some(&[-0.0195, 0.0])).unwrap();
+        unheld.start(Some(&[-0.0195, 0.0])).unwrap();
+        // Out to 0.0905 rad (failing at 0.075 rad, 11 kN·m) and back, the
+        // points off the kinks (where the slope has two values).
+        let out = (0..=110).map(|i| -0.0195 + 0.001 * i as f64);
+        let path: Vec<f64> = out.clone().chain(out.rev()).collect();
+        let (mut before, mut after) = ([0.0; 4], [0.0; 4]);
+        let mut handled = Vec::new();
+        for pair in path.windows(2) {
+            let (a, b) = ([pair[0], 0.0], [pair[1], 0.0]);
+            for weld in [&mut held, &mut unheld] {
+                weld.event_values(&a, &mut before).unwrap();
+                weld.event_values(&b, &mut after).unwrap();
+                let crossed = (0..4).find(|&k| EVENTS[k].direction.crosses(before[k], after[k]));
+                if let Some(k) = crossed {
+                    let note = weld.on_event(k, pair[1], &b).unwrap();
+                    handled.push((weld.stop_at_kinks, k, note.is_empty()));
+                }
+            }
+            assert_eq!(
+                held.moment(&b).unwrap(),
+                unheld.moment(&b).unwrap(),
+                "{b:?}"
+            );
+        }
+        // Held: the kinks at 0 and 0.05 rad out, the failure, the kink at 0
+        // back; not held: the failure only.
+        let expected = [
+            (true, 3, true),
+            (true, 3, true),
+            (true, 0, false),
+            (false, 0, false),
+            (true, 2, true),
+        ];
+        assert_eq!(handled, expected);
     }
 }

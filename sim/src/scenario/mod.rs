@@ -38,8 +38,10 @@
 //! \[N·s/m\] in the secant form (eq 2), and optionally `gap` \[m\] (the
 //! contact opens after that much crush, and the curve starts there; needs
 //! `contact_only = true`, the default), `unloading = "plastic"` with
-//! `unloading_stiffness` \[N/m\], and `outside` (what the curves do beyond
-//! their last breakpoint: `hold`, `extrapolate`, `zero`, `error`). Its force
+//! `unloading_stiffness` \[N/m\], `outside` (what the curves do beyond
+//! their last breakpoint: `hold`, `extrapolate`, `zero`, `error`) and
+//! `stop_at_kinks` (default `true`: crossing a breakpoint of either curve
+//! is an event, so no step straddles a kink). Its force
 //! and deflection (compression positive, the deflection measured from the
 //! gap) are trajectory columns `NAME.force [N]`, `NAME.deflection [m]`.
 //!

@@ -406,6 +406,8 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         match self.inputs.on_event(k, t, &self.arguments) {
+            // A kink of a component's curve: not a change of regime.
+            Ok((_, description)) if description.is_empty() => EventAction::Restart,
             Ok((component, description)) => {
                 self.events.push(EventRecord {
                     t,
