@@ -335,7 +335,10 @@ mod tests {
         // β = γ = 0.5, A = 1, a = 0: z → 1 and F → Fy under loading.
         // u = U·w·t at 0.4 m/s: 5 uy at t = 0.125 s.
         let model = DRIVEN.replace("U * sin(w * t), U * w * cos(w * t)", "U * w * t, U * w");
-        let simulation = "[simulation]\nt_end = 0.125\noutput_interval = 0.025\n";
+        // Saturated, z is a stiff state (∂ż/∂z = −n·u̇/uy = −1000 /s) that
+        // dopri5 holds at its stability limit, where z wanders by about
+        // the tolerance: rtol 1e-9 keeps that well inside the bound below.
+        let simulation = "[simulation]\nt_end = 0.125\noutput_interval = 0.025\nrtol = 1e-9\n";
         let text = SPRING
             .replace("a = 0.1", "a = 0.0")
             .replace("n = 2.0", "n = 25.0");
