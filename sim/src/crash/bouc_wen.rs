@@ -69,11 +69,6 @@ const COLUMNS: &[Column] = &[
     },
 ];
 
-const STATES: &[Column] = &[Column {
-    quantity: "z",
-    unit: "1",
-}];
-
 impl BoucWen {
     /// A spring at its initial state `z0`.
     #[allow(clippy::too_many_arguments)]
@@ -133,22 +128,7 @@ impl Component for BoucWen {
 
     no_events!();
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        self.z = self.z0;
-        Ok(())
-    }
-
-    fn states(&self) -> &'static [Column] {
-        STATES
-    }
-
-    fn initial_states(&self, z: &mut [f64]) {
-        z[0] = self.z0;
-    }
-
-    fn set_states(&mut self, z: &[f64]) {
-        self.z = z[0];
-    }
+    one_state!(z: "z" ["1"], from z0);
 
     fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
         rates[0] = self.z_rate(args[1]);

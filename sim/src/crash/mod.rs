@@ -58,7 +58,10 @@
 //!      in `event_values` and `on_event`), one with events lists them in a
 //!      `const EVENTS: &[Event]`; one with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
-//!      `column_values`;
+//!      `column_values`; one with a single internal state writes
+//!      `one_state!(FIELD: "QUANTITY" ["UNIT"], from INITIAL_FIELD);` for
+//!      `start`, `states`, `initial_states` and `set_states`, and gives its
+//!      `state_rates`;
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
@@ -106,6 +109,38 @@ macro_rules! no_events {
             _args: &[f64],
         ) -> Result<String, $crate::crash::curve::OutOfRange> {
             Ok(String::new())
+        }
+    };
+}
+
+/// The plumbing of a component with one internal state, written in its
+/// `impl` (`one_state!(z: "z" ["m"], from z0);`): the state's column
+/// `NAME.QUANTITY [UNIT]` ([`Component::states`]), the field that holds
+/// its current value (`z`) and the field of its initial value (`z0`).
+/// [`Component::start`] puts the state back to its initial value,
+/// [`Component::initial_states`] gives that value and
+/// [`Component::set_states`] takes the integrator's.
+macro_rules! one_state {
+    ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
+        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::crash::curve::OutOfRange> {
+            self.$state = self.$initial;
+            Ok(())
+        }
+
+        fn states(&self) -> &'static [$crate::crash::Column] {
+            const STATES: &[$crate::crash::Column] = &[$crate::crash::Column {
+                quantity: $quantity,
+                unit: $unit,
+            }];
+            STATES
+        }
+
+        fn initial_states(&self, z: &mut [f64]) {
+            z[0] = self.$initial;
+        }
+
+        fn set_states(&mut self, z: &[f64]) {
+            self.$state = z[0];
         }
     };
 }
