@@ -221,10 +221,18 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "channels",
         // What looked wrong in the run (`[]` here: see trust_cli.rs).
         "warnings",
+        // The energy each dissipative component dissipated.
+        "dissipated_by",
     ];
     expected.sort();
     assert_eq!(keys, expected);
     let number = |k: &str| summary[k].as_f64().unwrap();
+    // The crush element takes most of the ½·1168 kg·(15.5556 m/s)² ≈ 141 kJ,
+    // the weld a little.
+    let dissipated = |name: &str| summary["dissipated_by"][name].as_f64().unwrap();
+    let (front_end, weld) = (dissipated("front_end"), dissipated("weld"));
+    assert!((130e3..141e3).contains(&front_end), "{front_end}");
+    assert!(weld > 0.0 && weld < 1e3, "{weld}");
     // ESW = v0² / (2 g C) with the scenario's 15.5556 m/s and the run's crush.
     let esw = 15.5556f64.powi(2) / (2.0 * 9.80665 * number("max_crush_m"));
     assert!((number("equivalent_square_wave_g") / esw - 1.0).abs() < 1e-9);
@@ -249,6 +257,8 @@ fn simulate_writes_the_summary_trajectory_and_plots() {
         "front_end.deflection [m]",
         "weld.moment [N*m]",
         "weld.angle [rad]",
+        "front_end.dissipated_energy [J]",
+        "weld.dissipated_energy [J]",
     ] {
         assert!(header.contains(column), "{column} missing from {header}");
     }

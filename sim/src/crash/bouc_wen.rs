@@ -69,11 +69,6 @@ const COLUMNS: &[Column] = &[
     },
 ];
 
-const STATES: &[Column] = &[Column {
-    quantity: "z",
-    unit: "1",
-}];
-
 impl BoucWen {
     /// A spring at its initial state `z0`.
     #[allow(clippy::too_many_arguments)]
@@ -133,22 +128,7 @@ impl Component for BoucWen {
 
     no_events!();
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        self.z = self.z0;
-        Ok(())
-    }
-
-    fn states(&self) -> &'static [Column] {
-        STATES
-    }
-
-    fn initial_states(&self, z: &mut [f64]) {
-        z[0] = self.z0;
-    }
-
-    fn set_states(&mut self, z: &[f64]) {
-        self.z = z[0];
-    }
+    one_state!(z: "z" ["1"], from z0);
 
     fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
         rates[0] = self.z_rate(args[1]);
@@ -335,7 +315,10 @@ mod tests {
         // β = γ = 0.5, A = 1, a = 0: z → 1 and F → Fy under loading.
         // u = U·w·t at 0.4 m/s: 5 uy at t = 0.125 s.
         let model = DRIVEN.replace("U * sin(w * t), U * w * cos(w * t)", "U * w * t, U * w");
-        let simulation = "[simulation]\nt_end = 0.125\noutput_interval = 0.025\n";
+        // Saturated, z is a stiff state (∂ż/∂z = −n·u̇/uy = −1000 /s) that
+        // dopri5 holds at its stability limit, where z wanders by about
+        // the tolerance: rtol 1e-9 keeps that well inside the bound below.
+        let simulation = "[simulation]\nt_end = 0.125\noutput_interval = 0.025\nrtol = 1e-9\n";
         let text = SPRING
             .replace("a = 0.1", "a = 0.0")
             .replace("n = 2.0", "n = 25.0");

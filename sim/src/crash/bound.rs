@@ -67,6 +67,9 @@ pub struct BoundInputs {
     layout: StateLayout,
     /// The `z` last given to the components ([`BoundInputs::load`]).
     loaded: Internal,
+    /// The elastic energy each component stored when the run started
+    /// ([`Component::stored_energy`]; 0 for one without).
+    stored_at_start: Vec<f64>,
 }
 
 impl BoundInputs {
@@ -99,6 +102,7 @@ impl BoundInputs {
             failure: RefCell::new(None),
             layout,
             loaded: Internal::EMPTY,
+            stored_at_start: Vec::new(),
         }
     }
 
@@ -130,7 +134,28 @@ impl BoundInputs {
             let result = self.components[c].component.start(args);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
+        self.stored_at_start = vec![0.0; self.components.len()];
+        for (c, _) in self.layout.dissipative() {
+            self.stored_at_start[c] = self.stored(c, arguments)?;
+        }
         Ok(())
+    }
+
+    /// The elastic energy component `c` stores at the model's input
+    /// `arguments` ([`Component::stored_energy`]).
+    fn stored(&self, c: usize, arguments: &[f64]) -> Result<f64, Fault> {
+        let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+        let result = self.components[c].component.stored_energy(args);
+        result.map_err(|e| self.out_of_range(c, None, e))
+    }
+
+    /// The energy component `c`, whose energy state is `z[index]` in the
+    /// states last loaded, has dissipated at the model's input `arguments`
+    /// there: that state less the elastic energy the component has stored
+    /// since the start.
+    fn dissipated(&self, c: usize, index: usize, arguments: &[f64]) -> Result<f64, Fault> {
+        let stored = self.stored(c, arguments)? - self.stored_at_start.get(c).unwrap_or(&0.0);
+        Ok(self.loaded.as_slice()[index] - stored)
     }
 
     /// The number of events of component `c` that the integrator watches:
@@ -253,7 +278,13 @@ impl BoundInputs {
             let result = component.column_values(args, &mut values[first..]);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
+        let first = values.len();
         values.extend_from_slice(self.loaded.as_slice());
+        for (c, index) in self.layout.dissipative() {
+            if index < self.loaded.len() {
+                values[first + index] = self.dissipated(c, index, arguments)?;
+            }
+        }
         Ok(values)
     }
 
@@ -332,12 +363,18 @@ impl BoundInputs {
         Ok(())
     }
 
-    /// The energy each dissipative component dissipated, by name, read
-    /// from a run's internal states `z` \[J\].
-    pub fn dissipated_energies(&self, z: &Internal) -> Vec<(String, f64)> {
+    /// The energy each dissipative component dissipated, by name \[J\], at
+    /// the state last loaded, whose model's input arguments are
+    /// `arguments`: its energy state (the integral of
+    /// [`Component::dissipated_power`]) less the elastic energy it has
+    /// stored since the start ([`Component::stored_energy`]).
+    pub fn dissipated_energies(&self, arguments: &[f64]) -> Result<Vec<(String, f64)>, Fault> {
         (self.layout.dissipative())
-            .filter(|&(_, index)| index < z.len())
-            .map(|(c, index)| (self.components[c].name.clone(), z.as_slice()[index]))
+            .filter(|&(_, index)| index < self.loaded.len())
+            .map(|(c, index)| {
+                let energy = self.dissipated(c, index, arguments)?;
+                Ok((self.components[c].name.clone(), energy))
+            })
             .collect()
     }
 

@@ -50,6 +50,8 @@ use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
 
+mod energy;
+
 /// The loading curve `S(δ)` of the crush spring, in one of its two forms.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoadingCurve {
@@ -489,6 +491,19 @@ impl Component for CrushElement {
             (false, Some(t)) => Contact::EndedAt(t),
             (false, None) => Contact::Never,
         })
+    }
+
+    /// The power the element absorbs, `P·δ̇`, of which
+    /// [`Component::stored_energy`] says what it stores (`energy` module);
+    /// NaN where a curve cannot be evaluated (the force then reports it).
+    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+        Some(self.absorbed_power(args).unwrap_or(f64::NAN))
+    }
+
+    /// In contact, the energy of the unloading line (plastic unloading) or
+    /// `∫₀^δ S dx` (elastic, or under tension); 0 separated.
+    fn stored_energy(&self, args: &[f64]) -> Result<f64, OutOfRange> {
+        self.stored(args)
     }
 }
 

@@ -58,11 +58,6 @@ const COLUMNS: &[Column] = &[
     },
 ];
 
-const STATES: &[Column] = &[Column {
-    quantity: "z",
-    unit: "m",
-}];
-
 impl LuGre {
     /// `g(v)` and `g'(v)`.
     fn stribeck(&self, v: f64) -> (f64, f64) {
@@ -112,22 +107,7 @@ impl Component for LuGre {
 
     no_events!();
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        self.z = self.z0;
-        Ok(())
-    }
-
-    fn states(&self) -> &'static [Column] {
-        STATES
-    }
-
-    fn initial_states(&self, z: &mut [f64]) {
-        z[0] = self.z0;
-    }
-
-    fn set_states(&mut self, z: &[f64]) {
-        self.z = z[0];
-    }
+    one_state!(z: "z" ["m"], from z0);
 
     fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
         rates[0] = self.z_rate(args[1]);

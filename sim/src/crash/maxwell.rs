@@ -47,11 +47,6 @@ const COLUMNS: &[Column] = &[
     },
 ];
 
-const STATES: &[Column] = &[Column {
-    quantity: "dashpot",
-    unit: "m",
-}];
-
 impl Maxwell {
     /// An element whose dashpot starts at `dashpot0`.
     pub fn new(stiffness: f64, damping: f64, dashpot0: f64) -> Maxwell {
@@ -89,22 +84,7 @@ impl Component for Maxwell {
 
     no_events!();
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        self.dashpot = self.dashpot0;
-        Ok(())
-    }
-
-    fn states(&self) -> &'static [Column] {
-        STATES
-    }
-
-    fn initial_states(&self, z: &mut [f64]) {
-        z[0] = self.dashpot0;
-    }
-
-    fn set_states(&mut self, z: &[f64]) {
-        self.dashpot = z[0];
-    }
+    one_state!(dashpot: "dashpot" ["m"], from dashpot0);
 
     fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
         rates[0] = self.force(args[0]) / self.damping;

@@ -30,7 +30,10 @@
 //! * answers the queries of the summary and the plots
 //!   ([`Component::force_deflection`], [`Component::failure_time`]);
 //! * if it dissipates energy (a damper, contact or friction), gives the
-//!   power it dissipates ([`Component::dissipated_power`]).
+//!   power it dissipates ([`Component::dissipated_power`]), or the power
+//!   it absorbs with the elastic energy it stores of it
+//!   ([`Component::stored_energy`]: a spring that unloads plastically,
+//!   separates or breaks).
 //!
 //! A component with events keeps state, which it reads from the arguments
 //! of its value input: that input must be called at one place of the
@@ -55,7 +58,10 @@
 //!      in `event_values` and `on_event`), one with events lists them in a
 //!      `const EVENTS: &[Event]`; one with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
-//!      `column_values`;
+//!      `column_values`; one with a single internal state writes
+//!      `one_state!(FIELD: "QUANTITY" ["UNIT"], from INITIAL_FIELD);` for
+//!      `start`, `states`, `initial_states` and `set_states`, and gives its
+//!      `state_rates`;
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
@@ -107,6 +113,38 @@ macro_rules! no_events {
     };
 }
 
+/// The plumbing of a component with one internal state, written in its
+/// `impl` (`one_state!(z: "z" ["m"], from z0);`): the state's column
+/// `NAME.QUANTITY [UNIT]` ([`Component::states`]), the field that holds
+/// its current value (`z`) and the field of its initial value (`z0`).
+/// [`Component::start`] puts the state back to its initial value,
+/// [`Component::initial_states`] gives that value and
+/// [`Component::set_states`] takes the integrator's.
+macro_rules! one_state {
+    ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
+        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::crash::curve::OutOfRange> {
+            self.$state = self.$initial;
+            Ok(())
+        }
+
+        fn states(&self) -> &'static [$crate::crash::Column] {
+            const STATES: &[$crate::crash::Column] = &[$crate::crash::Column {
+                quantity: $quantity,
+                unit: $unit,
+            }];
+            STATES
+        }
+
+        fn initial_states(&self, z: &mut [f64]) {
+            z[0] = self.$initial;
+        }
+
+        fn set_states(&mut self, z: &[f64]) {
+            self.$state = z[0];
+        }
+    };
+}
+
 pub mod bouc_wen;
 pub mod bound;
 pub mod constant;
@@ -116,6 +154,7 @@ pub mod curve;
 pub mod dahl;
 pub mod friction;
 pub mod held;
+mod integral;
 pub mod kelvin_voigt;
 pub mod lugre;
 pub mod maxwell;
@@ -274,12 +313,28 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// The power the component dissipates \[W\] at its value input's
     /// arguments `args` (and its internal states, for one that has them);
     /// `None` (the default) for a component that dissipates nothing, at
-    /// any arguments. Its integral is the energy it dissipated, carried as
+    /// any arguments. Its integral, less the growth of
+    /// [`Component::stored_energy`] for a component that returns the
+    /// power it absorbs instead, is the energy it dissipated, carried as
     /// an internal state of the run and reported by name. Whether it is
     /// `Some` must not depend on the arguments: it is asked once, at zero
     /// arguments, to lay out the run's states.
     fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
         None
+    }
+
+    /// The elastic energy \[J\] a dissipative component stores at its
+    /// value input's arguments `args` in its current regime, for one whose
+    /// [`Component::dissipated_power`] is the power it absorbs, part of
+    /// which it stores and may give back (a crush spring, a weld); 0 (the
+    /// default) for one whose power is dissipated as it is absorbed. The
+    /// energy reported as dissipated is the integral of that power less
+    /// what this energy has grown by since the start: the work absorbed
+    /// less the elastic energy still stored. An event may change it (a
+    /// spring that separates or breaks releases it); the dissipated energy
+    /// then steps by as much.
+    fn stored_energy(&self, _args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(0.0)
     }
 }
 

@@ -2,7 +2,9 @@
 //! for the integrator: first each component's own states
 //! ([`super::Component::states`]), in component order, then the energy each
 //! dissipative component ([`super::Component::dissipated_power`]) has
-//! dissipated since the start of the run.
+//! dissipated since the start of the run. The energies are quadratures
+//! ([`Internal::quadratures`]): integrated with each step, they do not
+//! control its size.
 
 use super::NamedComponent;
 use crate::ode::{INTERNAL_CAPACITY, Internal};
@@ -58,12 +60,13 @@ impl StateLayout {
     /// dissipated; an error when there are more than the integrator
     /// carries.
     pub fn initial(&self, components: &[NamedComponent]) -> Result<Internal, String> {
-        let mut z = Internal::zeros(self.len).ok_or_else(|| {
+        let z = Internal::zeros(self.len).ok_or_else(|| {
             format!(
                 "the scenario's components have {} internal states (with one dissipated energy per dissipative component); a run carries at most {INTERNAL_CAPACITY}",
                 self.len
             )
         })?;
+        let mut z = z.with_quadratures(self.energies.len());
         for &(c, offset, count) in &self.states {
             let slice = &mut z.as_mut_slice()[offset..offset + count];
             components[c].component.initial_states(slice);

@@ -7,7 +7,9 @@
 //! stabilization `β = 0.04`, `α = 1/p − 0.75 β` for a method of order `p`
 //! (no growth right after a rejection). The first step follows Hairer's
 //! `hinit` (the same as SciPy's `select_initial_step`). Without an estimate,
-//! or with `Options::fixed_step`, steps have the fixed size.
+//! or with `Options::fixed_step`, steps have the fixed size. A controlled
+//! step whose stages reach a state where `F` is not finite is rejected and
+//! retried shorter; the error is reported once the step cannot shrink.
 
 use super::driver::{Attempt, Stepper, Truncate};
 use super::hermite::Hermite;
@@ -274,7 +276,19 @@ impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
     ) -> Result<Attempt<Dense<Y>>, SolverError<P::Error>> {
         let tableau = self.tableau;
         for i in 1..tableau.stages() {
-            self.stage(problem, (t, y, f), (i, h), stats)?;
+            let stage = self.stage(problem, (t, y, f), (i, h), stats);
+            if let Err(SolverError::NonFinite { .. }) = stage
+                && self.fixed.is_none()
+                && h * MIN_FACTOR >= self.options.min_step
+            {
+                // A step so long that its stages leave the region where F
+                // is finite (a stiff internal state that grows without
+                // bound once the method is unstable): rejected, like an
+                // error estimate that is NaN.
+                self.rejected_last = true;
+                return Ok(Attempt::Rejected(h * MIN_FACTOR));
+            }
+            stage?;
         }
         if !tableau.fsal {
             Self::weighted(&self.k, f, &self.rows.solution, h, Some(y), &mut self.y1);

@@ -8,6 +8,12 @@
 //! heap vector would allocate with every copy of the state, and a const
 //! length would have to be known when the model is compiled, while the
 //! scenario decides how many states there are.
+//!
+//! The last [`Internal::quadratures`] values are quadratures: integrals
+//! such as a component's dissipated energy, whose rates depend on the
+//! solution but which feed nothing back into it. They are integrated with
+//! every step but do not control its size (they stay out of the error
+//! norm): a quadrature's error follows the solution's.
 
 /// The most internal states a run can carry.
 pub const CAPACITY: usize = 32;
@@ -16,6 +22,8 @@ pub const CAPACITY: usize = 32;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Internal {
     len: usize,
+    /// How many of the last values are quadratures.
+    quadratures: usize,
     values: [f64; CAPACITY],
 }
 
@@ -29,6 +37,7 @@ impl Internal {
     /// No internal states.
     pub const EMPTY: Internal = Internal {
         len: 0,
+        quadratures: 0,
         values: [0.0; CAPACITY],
     };
 
@@ -36,8 +45,30 @@ impl Internal {
     pub fn zeros(len: usize) -> Option<Internal> {
         (len <= CAPACITY).then_some(Internal {
             len,
+            quadratures: 0,
             values: [0.0; CAPACITY],
         })
+    }
+
+    /// The same values, the last `count` of them (at most all) marked as
+    /// quadratures.
+    pub fn with_quadratures(self, count: usize) -> Internal {
+        Internal {
+            quadratures: count.min(self.len),
+            ..self
+        }
+    }
+
+    /// How many of the last values are quadratures, which do not control
+    /// the step size.
+    pub fn quadratures(&self) -> usize {
+        self.quadratures
+    }
+
+    /// How many of the first values control the step size: all but the
+    /// quadratures.
+    pub fn controlled_len(&self) -> usize {
+        self.len - self.quadratures
     }
 
     /// The number of values.
@@ -64,12 +95,15 @@ impl Internal {
     pub fn assign(&mut self, other: &Internal) {
         self.values[..other.len].copy_from_slice(other.as_slice());
         self.values[other.len..self.len.max(other.len)].fill(0.0);
-        self.len = other.len;
+        (self.len, self.quadratures) = (other.len, other.quadratures);
     }
 
-    /// `self ← self + c·x`, taking `x`'s length where it is longer.
+    /// `self ← self + c·x`, taking `x`'s length (and quadratures) where it
+    /// is longer.
     pub(crate) fn axpy(&mut self, c: f64, x: &Internal) {
-        self.len = self.len.max(x.len);
+        if x.len > self.len {
+            (self.len, self.quadratures) = (x.len, x.quadratures);
+        }
         for (value, xi) in self.values.iter_mut().zip(x.as_slice()) {
             *value += c * xi;
         }
@@ -90,5 +124,24 @@ mod tests {
         b.assign(&Internal::EMPTY);
         assert_eq!(b, Internal::EMPTY);
         assert_eq!(Internal::zeros(CAPACITY + 1), None);
+    }
+
+    #[test]
+    fn quadratures_are_the_last_values_and_travel_with_them() {
+        let a = Internal::zeros(3).unwrap().with_quadratures(1);
+        assert_eq!((a.quadratures(), a.controlled_len()), (1, 2));
+        let mut b = Internal::EMPTY;
+        b.axpy(1.0, &a);
+        assert_eq!(b.controlled_len(), 2);
+        let mut c = Internal::zeros(1).unwrap();
+        c.assign(&a);
+        assert_eq!((c.len(), c.quadratures()), (3, 1));
+        assert_eq!(
+            Internal::zeros(2)
+                .unwrap()
+                .with_quadratures(5)
+                .controlled_len(),
+            0
+        );
     }
 }

@@ -277,9 +277,11 @@ pub(crate) fn evaluate<Y: OdeVector, P: OdeProblem<Y>>(
 }
 
 /// The weighted RMS norm of the local error estimate `err` (Hairer; SciPy):
-/// `sqrt(mean((err_i / (atol + rtol·max(|y0_i|, |y1_i|)))²))`.
+/// `sqrt(mean((err_i / (atol + rtol·max(|y0_i|, |y1_i|)))²))` over the
+/// components that control the step ([`OdeVector::controlled_len`] of
+/// `y0`): quadratures are left out.
 pub(crate) fn error_norm<Y: OdeVector>(err: &Y, y0: &Y, y1: &Y, options: &Options) -> f64 {
-    let n = err.len();
+    let n = y0.controlled_len().min(err.len());
     let mut sum = 0.0;
     for i in 0..n {
         let scale = options.atol + options.rtol * y0.get(i).abs().max(y1.get(i).abs());

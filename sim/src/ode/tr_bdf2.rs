@@ -23,8 +23,10 @@
 //! `A_q = ∂a/∂q`, `A_v = ∂a/∂v` from the model's derived Jacobians (or
 //! forward differences of `a`: for a model with constraints, of its
 //! constrained accelerations, whose Jacobians are not derived); `w` follows
-//! each stage explicitly. The components' internal states `z`, `ż = g(…)`,
-//! take part in the Newton iterations with the diagonal of `∂g/∂z` alone,
+//! each stage explicitly, as do the quadratures among the internal states
+//! (the components' dissipated energies), which stay out of the error
+//! norms of the step and of the Newton iterations. The components' other
+//! internal states `z`, `ż = g(…)`, take part in the Newton iterations with the diagonal of `∂g/∂z` alone,
 //! by forward differences: `Δz_k = r_z,k / (1 − dh ∂g_k/∂z_k)`. Leaving out
 //! the coupling of `z` with `(q, v)` makes the iteration a simplified
 //! Newton one, which converges to the same stage values (it is checked
@@ -255,7 +257,8 @@ fn jacobians<const N: usize, P: AccelerationJacobians<N>>(
 }
 
 /// `∂g_k/∂z_k` for each internal state `z_k`, by forward differences of
-/// `F`; empty without internal states.
+/// `F`; 0 for the quadratures, whose rates do not depend on them; empty
+/// without internal states.
 fn internal_diagonal<const N: usize, P: OdeProblem<PhaseState<N>>>(
     problem: &mut P,
     t: f64,
@@ -264,8 +267,9 @@ fn internal_diagonal<const N: usize, P: OdeProblem<PhaseState<N>>>(
     stats: &mut Stats,
 ) -> Result<Internal, SolverError<P::Error>> {
     let mut diagonal = y.z;
+    diagonal.as_mut_slice().fill(0.0);
     let mut out = PhaseState::zeros();
-    for k in 0..y.z.len() {
+    for k in 0..y.z.controlled_len() {
         let mut perturbed = *y;
         let step = f64::EPSILON.sqrt() * y.z.as_slice()[k].abs().max(1.0);
         perturbed.z.as_mut_slice()[k] += step;
@@ -328,9 +332,15 @@ impl<const N: usize> Newton<'_, N> {
             previous = size;
             if size < 1e-3 {
                 evaluate(problem, t, &y, &mut f, stats)?;
-                // The energy integrals follow explicitly from the converged stage.
+                // The energy integrals and the quadratures follow
+                // explicitly from the converged stage.
                 y.work[0] = base.work[0] + self.dh * f.work[0];
                 y.work[1] = base.work[1] + self.dh * f.work[1];
+                let first = y.z.controlled_len();
+                let (base_z, f_z) = (base.z.as_slice(), f.z.as_slice());
+                for (k, value) in y.z.as_mut_slice().iter_mut().enumerate().skip(first) {
+                    *value = base_z[k] + self.dh * f_z[k];
+                }
                 return Ok(Some((y, f)));
             }
         }

@@ -9,6 +9,14 @@ pub trait OdeVector: Clone {
     /// The number of components.
     fn len(&self) -> usize;
 
+    /// How many of the first components control the step size: they enter
+    /// the error norm. The rest are quadratures, integrated with each step
+    /// but not controlling it (their error follows the solution's). All
+    /// by default.
+    fn controlled_len(&self) -> usize {
+        self.len()
+    }
+
     /// `true` for a vector of no components.
     fn is_empty(&self) -> bool {
         self.len() == 0
@@ -120,6 +128,13 @@ impl<const N: usize> OdeVector for PhaseState<N> {
         2 * N + 2 + self.z.len()
     }
 
+    /// All but the quadratures of `z` (the components' dissipated
+    /// energies); the two work integrals control the step as they always
+    /// have.
+    fn controlled_len(&self) -> usize {
+        2 * N + 2 + self.z.controlled_len()
+    }
+
     fn get(&self, i: usize) -> f64 {
         if i < N {
             self.q[i]
@@ -160,5 +175,45 @@ impl<const N: usize> PhaseState<N> {
         if !x.z.is_empty() {
             self.z.axpy(c, &x.z);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Options, error_norm};
+    use super::*;
+
+    /// A state of one coordinate with internal states `z`, the last
+    /// `quadratures` of them quadratures.
+    fn state(value: f64, z: &[f64], quadratures: usize) -> PhaseState<1> {
+        let mut internal = Internal::zeros(z.len()).unwrap();
+        internal.as_mut_slice().copy_from_slice(z);
+        PhaseState {
+            q: SVector::from([value]),
+            v: SVector::from([value]),
+            work: [value; 2],
+            z: internal.with_quadratures(quadratures),
+        }
+    }
+
+    #[test]
+    fn quadratures_stay_out_of_the_error_norm() {
+        let options = Options::default();
+        let y = state(1.0, &[0.5, 100.0], 1);
+        let without = state(1.0, &[0.5], 0);
+        // A quadrature's error, however large, changes nothing: the norm
+        // is the one of the state without it, to the bit.
+        let err = state(1e-7, &[1e-7, 1e3], 1);
+        let err_without = state(1e-7, &[1e-7], 0);
+        let norm = error_norm(&err, &y, &y, &options);
+        assert_eq!(norm, error_norm(&err_without, &without, &without, &options));
+        assert_eq!(y.controlled_len(), 5);
+        // The same entry as a controlled state does count.
+        let controlled = state(1.0, &[0.5, 100.0], 0);
+        assert!(error_norm(&err, &controlled, &controlled, &options) > 10.0 * norm);
+        // Combinations carry the split.
+        let mut sum = PhaseState::zeros();
+        sum.set_sum(&[(1.0, &y), (2.0, &err)]);
+        assert_eq!(sum.controlled_len(), 5);
     }
 }

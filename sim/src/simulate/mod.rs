@@ -355,7 +355,11 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let weld = problem.inputs.weld_failure(scenario.weld.as_deref());
     let end_of_contact = problem.inputs.end_of_contact(&scenario.contact);
     let mut summary = sampler.metrics.finish(&outcome.stats, weld, end_of_contact);
-    summary.dissipated_by = problem.inputs.dissipated_energies(&outcome.y.z);
+    summary.dissipated_by =
+        (problem.dissipated_energies(outcome.t, &outcome.y)).map_err(|error| SolverError::Rhs {
+            t: outcome.t,
+            error,
+        })?;
     let warnings = run_warnings(scenario, &sampler.metrics, &summary);
     let constraints = projection.map(|projection| ConstraintReport {
         names: own(model.constraint_names()),

@@ -346,6 +346,18 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         self.system.input_arguments(t, q, v, &mut self.arguments);
         self.inputs.column_values(&self.arguments)
     }
+
+    /// The energy each dissipative component has dissipated at `(t, y)`
+    /// (see [`BoundInputs::dissipated_energies`]).
+    pub fn dissipated_energies(
+        &mut self,
+        t: f64,
+        y: &PhaseState<N>,
+    ) -> Result<Vec<(String, f64)>, Fault> {
+        self.inputs.load(&y.z);
+        (self.system).input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        self.inputs.dissipated_energies(&self.arguments)
+    }
 }
 
 impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for CrashProblem<'_, N, S> {

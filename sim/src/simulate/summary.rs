@@ -304,7 +304,7 @@ impl Summary {
             let _ = writeln!(out, "{note}");
         }
         for (name, energy) in &self.dissipated_by {
-            let _ = writeln!(out, "  dissipated by {name:<9}{energy:.4e} J");
+            let _ = writeln!(out, "  dissipated by {name:<8} {energy:.4e} J");
         }
         out
     }

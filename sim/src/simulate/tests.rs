@@ -211,8 +211,12 @@ fn impact(settings: &[&str]) -> (Interpreted<1>, Scenario) {
 fn a_force_deflection_curve_behind_a_gap_stops_the_mass_where_its_energy_says() {
     let (system, scenario) = impact(&[]);
     let result = simulate(&system, &scenario).unwrap();
-    let columns = [("wall.force", "N"), ("wall.deflection", "m")]
-        .map(|(name, unit)| (name.to_string(), Some(unit.to_string())));
+    let columns = [
+        ("wall.force", "N"),
+        ("wall.deflection", "m"),
+        ("wall.dissipated_energy", "J"),
+    ]
+    .map(|(name, unit)| (name.to_string(), Some(unit.to_string())));
     assert_eq!(result.component_columns, columns);
     // ½·860·10² = 43 kJ = ∫F: 8.5 kJ to 0.1 m, then 170 kN·u + 12.5 kN/m·u²
     // for u = 0.2 m: the peak is at 0.3 m of deflection, 175 kN.
