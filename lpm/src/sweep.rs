@@ -680,7 +680,9 @@ impl WithDimension for Sweep<'_> {
         let streamed = match self.envelope {
             None => stream_sweep(&system, self.job, self.stop, self.sink),
             Some((what, envelope)) => {
-                stream_envelope(&system, self.job, what, envelope, self.stop, self.sink)
+                let sink = self.sink;
+                let mut sink = |row: Row, _: &Envelope| sink(row);
+                stream_envelope(&system, self.job, what, envelope, self.stop, &mut sink)
             }
         };
         streamed.map_err(Failure::io)
