@@ -8,13 +8,13 @@
 //! flag and sees each finished run.
 
 use super::{
-    Args, DesignArg, Prepared, Sweep, Tally, envelope, merge, merge_into, plan_report, prepare,
-    shard, wants_parquet,
+    Args, DesignArg, Enveloping, Prepared, Sweep, Tally, envelope, merge, merge_into, plan_report,
+    prepare, shard, wants_parquet,
 };
 use crate::failure::Failure;
 use crate::status::ExitStatus;
 use clap::ValueEnum;
-use lagrangian_sim::sweep::{Envelope, Row, SweepJob, sweep_csv, write_envelope_csv};
+use lagrangian_sim::sweep::{Envelope, Row, Shard, SweepJob, sweep_csv, write_envelope_csv};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -44,7 +44,12 @@ pub fn tables(
     check_shard_count(options)?;
     let shard = shard(options).map_err(Failure::usage)?;
     let prepared = prepare(options)?;
-    let request = envelope::request(options, shard, &prepared)?;
+    let request = envelope::request(options, &prepared)?;
+    if request.is_some() && shard != Shard::ALL {
+        return Err(Failure::usage(
+            "envelope= with a shard: in Python the envelope is that of the whole sweep; run it unsharded (the command line writes and merges shards' partial envelopes)",
+        ));
+    }
     let mut accumulated = request
         .as_ref()
         .map(|r| (r.job(), Envelope::new(&r.channels)));
@@ -75,7 +80,11 @@ pub fn tables(
         job,
         stop,
         sink: &mut sink,
-        envelope: accumulated.as_mut().map(|(job, envelope)| (*job, envelope)),
+        envelope: (accumulated.as_mut()).map(|(job, envelope)| Enveloping {
+            job: *job,
+            envelope,
+            after: None,
+        }),
     };
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     check_finished(finished, runs.len(), &tally)?;

@@ -5,8 +5,8 @@
 //!
 //! The file is JSON (`"format": "lagrangian-sweep-envelope"`, `"version":
 //! 1`). Besides the accumulators it says which sweep it belongs to: the
-//! plan's run count and axes, a digest of its block's values, the channels
-//! and a digest of its block's weights. Reading it against another sweep
+//! plan's run count and axes, a digest of the values of the runs it holds,
+//! the channels and a digest of those runs' weights. Reading it against another sweep
 //! is an error that names the file and what differs. Numbers are written
 //! as Rust's shortest round-tripping text (`"0.1"`, `"NaN"`), read back
 //! exactly; an exact sum is its [`ExactSum::terms`].
@@ -34,37 +34,50 @@ pub fn partial_envelope_path(table: &Path) -> PathBuf {
     table.with_file_name(name)
 }
 
-/// The sweep a partial envelope belongs to, as far as its block shows.
+/// The sweep a partial envelope belongs to, as far as the runs it holds
+/// show.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SweepMark {
     /// The plan's number of runs.
     pub plan_runs: usize,
     /// The plan's axes (table columns).
     pub axes: Vec<String>,
-    /// A digest of the plan's values for the block's runs.
+    /// A digest of the plan's values for the runs held.
     pub values: String,
     /// The channels, as given.
     pub channels: Vec<String>,
-    /// A digest of the weights of the block's runs.
+    /// A digest of the weights of the runs held.
     pub weights: String,
 }
 
 impl SweepMark {
-    /// The mark of `plan`, `channels` and `weights` over the runs `block`.
-    pub fn of(plan: &Plan, channels: &[String], weights: &Weights, block: &Range<usize>) -> Self {
-        let mut values = Digest::new();
-        let mut weighed = Digest::new();
-        for run in block.clone() {
-            plan.point(run).iter().for_each(|x| values.add(x.to_bits()));
-            weighed.add(weights.of_run(plan, run).to_bits());
+    /// The mark of `plan`, `channels` and `weights` over the runs `held`.
+    pub fn of(plan: &Plan, channels: &[String], weights: &Weights, held: &Range<usize>) -> Self {
+        let mut mark = SweepMark::empty(plan, channels);
+        for run in held.clone() {
+            mark.take(plan, weights, run);
         }
+        mark
+    }
+
+    /// The mark of `plan` and `channels` over no run.
+    pub fn empty(plan: &Plan, channels: &[String]) -> SweepMark {
         SweepMark {
             plan_runs: plan.len(),
             axes: plan.axes().iter().map(|a| a.column()).collect(),
-            values: values.hex(),
+            values: Digest::new().hex(),
             channels: channels.to_vec(),
-            weights: weighed.hex(),
+            weights: Digest::new().hex(),
         }
+    }
+
+    /// Takes run `run` (the next after those held) into the digests.
+    pub fn take(&mut self, plan: &Plan, weights: &Weights, run: usize) {
+        let mut values = Digest::from_hex(&self.values);
+        plan.point(run).iter().for_each(|x| values.add(x.to_bits()));
+        let mut weighed = Digest::from_hex(&self.weights);
+        weighed.add(weights.of_run(plan, run).to_bits());
+        (self.values, self.weights) = (values.hex(), weighed.hex());
     }
 
     /// What differs between this mark (of a file) and `expected` (of the
@@ -113,6 +126,12 @@ impl Digest {
 
     fn hex(&self) -> String {
         format!("{:016x}", self.0)
+    }
+
+    /// The digest [`Digest::hex`] wrote; one that does not parse differs
+    /// from every digest written.
+    fn from_hex(text: &str) -> Digest {
+        Digest(u64::from_str_radix(text, 16).unwrap_or(0))
     }
 }
 
@@ -256,7 +275,8 @@ impl PartialEnvelope {
             )));
         }
         let block = start..end;
-        let expected = SweepMark::of(plan, channels, weights, &block);
+        let held = start..start + text.done;
+        let expected = SweepMark::of(plan, channels, weights, &held);
         if let Some(why) = text.sweep.difference(&expected) {
             return Err(at(format!("not a part of this sweep: {why}")));
         }
@@ -518,8 +538,9 @@ mod tests {
     #[test]
     fn an_unfinished_block_is_refused_by_the_merge() {
         let dir = directory("unfinished");
-        let mut part = partial(0..4, &Weights::Equal);
-        part.done = 3;
+        // What a sweep stopped after three runs of four leaves.
+        let mut part = partial(0..3, &Weights::Equal);
+        part.block = 0..4;
         let path = write(&dir, "part.json", &part);
         let error = merged_envelope(&[path], &plan(), &channels(), &Weights::Equal).unwrap_err();
         assert!(
