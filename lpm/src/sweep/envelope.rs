@@ -37,7 +37,9 @@ pub struct EnvelopeArgs {
         requires = "envelope_out"
     )]
     pub envelope: Vec<String>,
-    /// The envelope table: .csv or .parquet, one row per output time.
+    /// The envelope table: .csv or .parquet, one row per output time. A
+    /// shard writes its partial envelope beside its table instead
+    /// (OUT.envelope.json), and --merge of the shards writes this table.
     #[arg(long, value_name = "FILE.csv|FILE.parquet", requires = "envelope")]
     pub envelope_out: Option<PathBuf>,
     /// The envelope plot (SVG): the band between minimum and maximum and
@@ -366,4 +368,23 @@ pub(super) fn with_merged(
 ) -> Result<Outcome, Failure> {
     let line = write(request, envelope)?;
     Ok(Outcome::success(outcome.text + &line))
+}
+
+/// The partial envelope of the runs `block` of `plan` (all done) as the
+/// JSON bytes a shard writes beside its table.
+pub(super) fn partial_json(
+    request: &EnvelopeRequest,
+    plan: &Plan,
+    block: &Range<usize>,
+    envelope: Envelope,
+) -> Result<Vec<u8>, Failure> {
+    let partial = PartialEnvelope {
+        mark: SweepMark::of(plan, &request.names(), &request.weights, block),
+        block: block.clone(),
+        done: block.len(),
+        envelope,
+    };
+    let mut bytes = Vec::new();
+    partial.write(&mut bytes).map_err(Failure::io)?;
+    Ok(bytes)
 }

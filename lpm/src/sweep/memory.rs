@@ -35,7 +35,8 @@ pub fn table(
 }
 
 /// [`table`], and with `options.envelope`'s channels the envelope table
-/// as the CSV bytes `--envelope-out FILE.csv` writes.
+/// as the CSV bytes `--envelope-out FILE.csv` writes — for a shard, the
+/// partial envelope the command writes beside the shard's table (JSON).
 pub fn tables(
     options: &Args,
     stop: &AtomicBool,
@@ -45,11 +46,6 @@ pub fn tables(
     let shard = shard(options).map_err(Failure::usage)?;
     let prepared = prepare(options)?;
     let request = envelope::request(options, &prepared)?;
-    if request.is_some() && shard != Shard::ALL {
-        return Err(Failure::usage(
-            "envelope= with a shard: in Python the envelope is that of the whole sweep; run it unsharded (the command line writes and merges shards' partial envelopes)",
-        ));
-    }
     let mut accumulated = request
         .as_ref()
         .map(|r| (r.job(), Envelope::new(&r.channels)));
@@ -89,8 +85,13 @@ pub fn tables(
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     check_finished(finished, runs.len(), &tally)?;
     let table = sweep_csv(&layout, &rows).map_err(Failure::io)?;
-    let envelope = accumulated.map(|(_, envelope)| envelope_csv(&envelope));
-    Ok((table, envelope.transpose()?))
+    let envelope = match (&request, accumulated) {
+        (Some(request), Some((_, envelope))) if shard != Shard::ALL => {
+            Some(envelope::partial_json(request, &plan, &runs, envelope)?)
+        }
+        (_, accumulated) => (accumulated.map(|(_, e)| envelope_csv(&e))).transpose()?,
+    };
+    Ok((table, envelope))
 }
 
 /// An interrupted sweep, or one whose every run failed, is a failure.
@@ -130,6 +131,27 @@ pub fn merged(options: &Args, parts: &[PathBuf]) -> Result<Vec<u8>, Failure> {
     let mut bytes = Vec::new();
     merge_into(parts, &prepared, false, &mut bytes)?;
     Ok(bytes)
+}
+
+/// [`merged`], and with `options.envelope`'s channels the envelope of the
+/// whole sweep from the partial envelopes beside the parts
+/// (`PART.envelope.json`), as the CSV bytes `--envelope-out FILE.csv`
+/// writes.
+pub fn merged_tables(
+    options: &Args,
+    parts: &[PathBuf],
+) -> Result<(Vec<u8>, Option<Vec<u8>>), Failure> {
+    let prepared = prepare(options)?;
+    let request = envelope::request(options, &prepared)?;
+    let envelope = (request.as_ref())
+        .map(|request| envelope::merged(request, parts, &prepared))
+        .transpose()?;
+    if let Some(out) = &options.out {
+        merge(parts, &prepared, out, wants_parquet(options, out)?)?;
+    }
+    let mut bytes = Vec::new();
+    merge_into(parts, &prepared, false, &mut bytes)?;
+    Ok((bytes, envelope.as_ref().map(envelope_csv).transpose()?))
 }
 
 /// What `lpm sweep --plan` prints for `options`.
