@@ -248,8 +248,9 @@ pub(super) struct Tracked<'r> {
 
 impl<'r> Tracked<'r> {
     /// The envelope of the runs `block` of `plan` to accumulate beside the
-    /// journal `journal`: with `resume`, the one saved there (when it
-    /// holds no more runs than the `journaled` ones), else an empty one.
+    /// journal `journal`: when resuming a journal of `resume` runs, the one
+    /// saved there (if it holds no more runs than the journal), else an
+    /// empty one.
     pub fn start(
         request: &'r EnvelopeRequest,
         plan: &'r Plan,
