@@ -263,12 +263,17 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
     let parquet = out.as_deref().map(|out| wants_parquet(&options, out));
     let prepared = prepare(&options)?;
     let parquet = parquet.transpose()?;
-    let envelope = envelope::request(&options, shard, &prepared)?;
+    let envelope = envelope::request(&options, &prepared)?;
     match (out, parquet) {
         _ if options.plan_only => plan_report(prepared),
-        (Some(out), Some(parquet)) if !options.merge.is_empty() => {
-            merge(&options.merge, &prepared, &out, parquet)
-        }
+        (Some(out), Some(parquet)) if !options.merge.is_empty() => match &envelope {
+            None => merge(&options.merge, &prepared, &out, parquet),
+            Some(request) => {
+                let merged = envelope::merged(request, &options.merge, &prepared)?;
+                let outcome = merge(&options.merge, &prepared, &out, parquet)?;
+                envelope::with_merged(outcome, request, &merged)
+            }
+        },
         (Some(out), Some(parquet)) => {
             let output = Output {
                 table: &out,
@@ -307,18 +312,29 @@ fn sweep(
     let (plan, base, settings, layout) = (&plan, &base, &settings, &layout);
     let journal_path = journal_path(out);
     let (mut journal, done) = open_journal(options, out, &journal_path, layout, plan, &runs)?;
+    let resume = options.resume.then_some(done);
+    let mut tracked = (output.envelope)
+        .map(|request| envelope::Tracked::start(request, plan, &runs, &journal_path, resume))
+        .transpose()?;
+    // With an envelope, the runs the journal holds beyond it are made again
+    // for their histories (their rows are in the journal already).
+    let from = tracked.as_ref().map_or(done, |t| t.done());
+    let journaled = runs.start + done;
     let bar = progress_bar(options.quiet, runs.len());
     bar.set_position(done as u64);
     let stop = stop_on_signal();
     let start = Instant::now();
     let mut tally = Tally::default();
     let mut sink = |row: Row| -> Result<(), String> {
+        if row.run < journaled {
+            return Ok(());
+        }
         journal.append(&row)?;
         tally.count(&row);
         bar.inc(1);
         Ok(())
     };
-    let remaining = runs.start + done..runs.end;
+    let remaining = runs.start + from..runs.end;
     let job = SweepJob {
         base,
         plan,
@@ -326,35 +342,32 @@ fn sweep(
         runs: remaining.clone(),
         threads: options.threads,
     };
-    let mut accumulated = output
-        .envelope
-        .map(|e| (e.job(), Envelope::new(&e.channels)));
     let sweep = Sweep {
         job,
         stop: &stop,
         sink: &mut sink,
-        envelope: accumulated.as_mut().map(|(job, envelope)| (*job, envelope)),
+        envelope: tracked.as_mut().map(|t| t.streaming()),
     };
-    let finished = model.with_dimension(sweep).map_err(Failure::model)??;
+    let streamed = model.with_dimension(sweep).map_err(Failure::model)??;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     drop(journal);
-    if finished < remaining.len() {
-        return Err(Failure::rendered(
-            ExitStatus::Interrupted,
-            format!(
-                "stopped: {} of {} runs are done and kept in {}; run the same command with --resume to finish",
-                done + finished,
-                runs.len(),
-                journal_path.display()
-            ),
-        ));
+    let finished = streamed - (done - from).min(streamed);
+    if streamed < remaining.len() {
+        if let Some(tracked) = &mut tracked {
+            tracked.save()?;
+        }
+        return Err(stopped(done + finished, runs.len(), &journal_path));
     }
-    finish_output(&journal_path, out, layout, parquet)?;
-    let envelope_line = match (output.envelope, &accumulated) {
-        (Some(request), Some((_, envelope))) => envelope::write(request, envelope)?,
-        _ => String::new(),
+    // The envelope's files first: a sweep stopped in between resumes.
+    let envelope_line = match &mut tracked {
+        Some(tracked) => tracked.finish(shard, out)?,
+        None => String::new(),
     };
+    finish_output(&journal_path, out, layout, parquet)?;
+    if let Some(tracked) = &tracked {
+        tracked.remove_checkpoint()?;
+    }
     let counts = Counts {
         runs: &runs,
         total: plan.len(),
@@ -371,6 +384,18 @@ fn sweep(
         ));
     }
     Ok(Outcome::success(text))
+}
+
+/// The failure of a sweep stopped with `kept` of its `runs` runs in the
+/// journal `journal`.
+fn stopped(kept: usize, runs: usize, journal: &Path) -> Failure {
+    Failure::rendered(
+        ExitStatus::Interrupted,
+        format!(
+            "stopped: {kept} of {runs} runs are done and kept in {}; run the same command with --resume to finish",
+            journal.display()
+        ),
+    )
 }
 
 /// How many runs there were and how long they took.
@@ -670,7 +695,15 @@ struct Sweep<'a> {
     job: SweepJob<'a>,
     stop: &'a AtomicBool,
     sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
-    envelope: Option<(EnvelopeJob<'a>, &'a mut Envelope)>,
+    envelope: Option<Enveloping<'a>>,
+}
+
+/// The envelope a sweep accumulates: the channels and weights, the
+/// accumulators, and what to do after each row (save them now and then).
+struct Enveloping<'a> {
+    job: EnvelopeJob<'a>,
+    envelope: &'a mut Envelope,
+    after: Option<&'a mut dyn envelope::AfterRow>,
 }
 
 impl WithDimension for Sweep<'_> {
@@ -679,8 +712,21 @@ impl WithDimension for Sweep<'_> {
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
         let streamed = match self.envelope {
             None => stream_sweep(&system, self.job, self.stop, self.sink),
-            Some((what, envelope)) => {
-                stream_envelope(&system, self.job, what, envelope, self.stop, self.sink)
+            Some(Enveloping {
+                job,
+                envelope,
+                mut after,
+            }) => {
+                let sink = self.sink;
+                let mut sink = |row: Row, envelope: &Envelope| {
+                    let run = row.run;
+                    sink(row)?;
+                    match after.as_mut() {
+                        Some(checkpoints) => checkpoints.after(run, envelope),
+                        None => Ok(()),
+                    }
+                };
+                stream_envelope(&system, self.job, job, envelope, self.stop, &mut sink)
             }
         };
         streamed.map_err(Failure::io)

@@ -390,7 +390,9 @@ def sweep(
     channel's min and max over the runs, the runs attaining them and the
     weighted mean); ``weights`` (``--weights``) is ``{key: [w, …]}`` (one
     per value of grid axis ``key``), a ``"KEY=W1,…"`` string or the path
-    of a CSV file of ``run,weight``.
+    of a CSV file of ``run,weight``. For a shard the second is the
+    shard's partial envelope instead (the JSON text ``lpm sweep`` writes
+    beside a shard's table), which :func:`merge_sweep` takes with the table.
     """
     options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings,
                              shard, shard_index, shard_count, threads,
@@ -398,6 +400,8 @@ def sweep(
     if not options["envelope"]:
         return _table(_lagrangian.sweep_table(options))
     table, envelope_table = _lagrangian.sweep_envelope(options)
+    if envelope_table.startswith("{"):
+        return _table(table), envelope_table
     return _table(table), _table(envelope_table)
 
 
@@ -436,6 +440,8 @@ def merge_sweep(
     seed: int = 1,
     out: Optional[Union[str, os.PathLike]] = None,
     format: Optional[str] = None,
+    envelope=None,
+    weights=None,
     set: Optional[Mapping[str, Any]] = None,
     **settings: Any,
 ):
@@ -446,11 +452,17 @@ def merge_sweep(
     full run (a ``DataFileError`` names a missing, repeated or foreign
     part). With ``out`` the table is also written there as the command
     writes it (CSV or Parquet by the extension, or ``format``).
+
+    With ``envelope`` (and ``weights``) as the shards had them, each part is
+    a ``(table, partial_envelope)`` pair :func:`sweep` returned for a shard
+    (or a file with its partial envelope beside it), and the result is
+    ``(table, envelope_table)``: the envelope of the whole sweep, that of
+    one full run.
     """
     import tempfile
 
     options = _sweep_options(scenario, spec, grid, samples, vary, design, seed, set, settings,
-                             out=out, format=format)
+                             out=out, format=format, envelope=envelope, weights=weights)
     with tempfile.TemporaryDirectory(prefix="lagrangian-merge-") as directory:
         paths = []
         for k, part in enumerate(parts):
@@ -458,10 +470,19 @@ def merge_sweep(
                 paths.append(os.fspath(part))
                 continue
             path = os.path.join(directory, f"parts[{k}]")
+            if isinstance(part, tuple):
+                # A shard's table and its partial envelope, which the merge
+                # reads beside the table.
+                part, partial = part
+                with open(path + ".envelope.json", "w", encoding="utf-8") as f:
+                    f.write(partial)
             with open(path, "w", encoding="utf-8", newline="") as f:
                 f.write(_table_csv(part))
             paths.append(path)
         try:
+            if options["envelope"]:
+                table, envelope_table = _lagrangian.sweep_merge_envelope(options, paths)
+                return _table(table), _table(envelope_table)
             return _table(_lagrangian.sweep_merge(options, paths))
         except LagrangianError as e:
             # A table part is named `parts[k]`, not by its temporary file.

@@ -115,7 +115,9 @@ pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<Str
 }
 
 /// [`sweep_table`] with the envelope table of `options["envelope"]`'s
-/// channels, as `--envelope-out FILE.csv` writes it: `(table, envelope)`.
+/// channels, as `--envelope-out FILE.csv` writes it: `(table, envelope)`;
+/// for a shard, the envelope is the partial envelope (JSON) the command
+/// writes beside the shard's table.
 #[pyfunction]
 pub(crate) fn sweep_envelope(py: Python<'_>, options: SweepOptions) -> PyResult<(String, String)> {
     let (table, envelope) = sweep_tables(py, options)?;
@@ -136,6 +138,24 @@ pub(crate) fn sweep_merge(
     let args = options.args().map_err(raise)?;
     py.detach(|| lpm::sweep::memory::merged(&args, &parts).and_then(text))
         .map_err(raise)
+}
+
+/// [`sweep_merge`] with the envelope of `options["envelope"]`'s channels
+/// merged from the partial envelopes beside the parts
+/// (`PART.envelope.json`): `(table, envelope)` as CSV text.
+#[pyfunction]
+pub(crate) fn sweep_merge_envelope(
+    py: Python<'_>,
+    options: SweepOptions,
+    parts: Vec<PathBuf>,
+) -> PyResult<(String, String)> {
+    let args = options.args().map_err(raise)?;
+    let (table, envelope) = py
+        .detach(|| lpm::sweep::memory::merged_tables(&args, &parts))
+        .map_err(raise)?;
+    let envelope =
+        envelope.ok_or_else(|| raise(Failure::usage("give the channels to envelope")))?;
+    Ok((text(table).map_err(raise)?, text(envelope).map_err(raise)?))
 }
 
 /// What `lpm sweep --plan` prints for `options`.

@@ -377,5 +377,6 @@ fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ensembles::sweep_envelope, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::fit, m)?)?;
     m.add_function(wrap_pyfunction!(export_fmu, m)?)?;
+    m.add_function(wrap_pyfunction!(ensembles::sweep_merge_envelope, m)?)?;
     Ok(())
 }

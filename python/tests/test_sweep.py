@@ -177,3 +177,25 @@ def test_an_envelope_is_the_table_of_lpm_sweep_envelope_out(tmp_path):
     with pytest.raises(lagrangian.UsageError, match="the weight of initial.velocities.r = -15.5556 is -0.5"):
         lagrangian.sweep(scenario=SCENARIO, grid=grid, t_end=0.02, envelope="r",
                          weights={"initial.velocities.r": [0.2, -0.5, 0.3]})
+
+
+def test_shards_envelopes_merge_to_the_envelope_of_the_whole_sweep(tmp_path):
+    grid = {"initial.velocities.r": [-12, -15.5556, -18]}
+    weights = {"initial.velocities.r": [0.2, 0.5, 0.3]}
+    plan = dict(scenario=SCENARIO, grid=grid, t_end=0.02, envelope=["r", "front_end.force"],
+                weights=weights)
+    whole, whole_envelope = lagrangian.sweep(**plan)
+    parts = [lagrangian.sweep(**plan, shard_index=k, shard_count=2) for k in range(2)]
+    assert all(partial.startswith('{"format":"lagrangian-sweep-envelope"') for _, partial in parts)
+    table, envelope = lagrangian.merge_sweep(parts[::-1], **plan)
+    assert table.equals(whole) if hasattr(table, "equals") else len(table["run"]) == 3
+    envelope_out = tmp_path / "envelope.csv"
+    cli_table(tmp_path, "--grid", "initial.velocities.r=-12,-15.5556,-18",
+              "--set", "simulation.t_end=0.02", "--quiet",
+              "--envelope", "r,front_end.force", "--weights", "initial.velocities.r=0.2,0.5,0.3",
+              "--envelope-out", envelope_out)
+    assert_table_is_csv(envelope, envelope_out)
+    assert_table_is_csv(whole_envelope, envelope_out)
+    other = dict(plan, weights=None)
+    with pytest.raises(lagrangian.DataFileError, match="other --weights"):
+        lagrangian.merge_sweep(parts, **other)

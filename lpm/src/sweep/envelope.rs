@@ -1,15 +1,27 @@
 //! `lpm sweep --envelope`: the flags that ask for envelopes and weighted
 //! mean histories of chosen channels, what they are read into, and the
 //! files they write.
+//!
+//! A whole sweep writes the envelope table (and plot). A shard writes its
+//! partial envelope beside its table (`part.csv.envelope.json`), which
+//! `--merge` finds beside each part and combines. While the runs go on, the
+//! partial envelope of the runs finished so far is saved beside the
+//! journal (`OUT.partial.envelope.json`) every few seconds and when the
+//! sweep stops, so that `--resume` carries on from it; the runs the journal
+//! holds beyond it are made again for their histories.
 
 use super::{Args, Prepared, write_beside};
-use crate::failure::Failure;
+use crate::failure::{Failure, Outcome};
+use crate::status::ExitStatus;
 use lagrangian_sim::plot::{Band, bands_svg};
 use lagrangian_sim::scenario::Signal;
 use lagrangian_sim::sweep::{
-    Envelope, EnvelopeJob, Shard, Weights, run_scenario, write_envelope_csv, write_envelope_parquet,
+    Envelope, EnvelopeJob, PartialEnvelope, Plan, Shard, SweepMark, Weights, merged_envelope,
+    partial_envelope_path, run_scenario, write_envelope_csv, write_envelope_parquet,
 };
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 /// The envelope flags of `lpm sweep`.
 #[derive(clap::Args, Clone, Debug, Default)]
@@ -25,7 +37,9 @@ pub struct EnvelopeArgs {
         requires = "envelope_out"
     )]
     pub envelope: Vec<String>,
-    /// The envelope table: .csv or .parquet, one row per output time.
+    /// The envelope table: .csv or .parquet, one row per output time. A
+    /// shard writes its partial envelope beside its table instead
+    /// (OUT.envelope.json), and --merge of the shards writes this table.
     #[arg(long, value_name = "FILE.csv|FILE.parquet", requires = "envelope")]
     pub envelope_out: Option<PathBuf>,
     /// The envelope plot (SVG): the band between minimum and maximum and
@@ -57,19 +71,22 @@ impl EnvelopeRequest {
             weights: &self.weights,
         }
     }
+
+    /// The channels' names, as given.
+    pub fn names(&self) -> Vec<String> {
+        self.channels.iter().map(|s| s.name.clone()).collect()
+    }
 }
 
 /// The envelope request of `options`, `None` without `--envelope`.
 pub(super) fn request(
     options: &Args,
-    shard: Shard,
     prepared: &Prepared,
 ) -> Result<Option<EnvelopeRequest>, Failure> {
     let args = &options.envelope;
     if args.envelope.is_empty() {
         return Ok(None);
     }
-    refuse_partial_sweeps(options, shard)?;
     let out = args.envelope_out.clone();
     if let Some(out) = &out {
         table_is_parquet(out)?;
@@ -86,20 +103,6 @@ pub(super) fn request(
         out,
         plot,
     }))
-}
-
-/// Shards, merges and resumed sweeps do not see every run's history.
-fn refuse_partial_sweeps(options: &Args, shard: Shard) -> Result<(), Failure> {
-    let why = if shard != Shard::ALL {
-        "--envelope with a shard: a shard writes no envelope (its runs are a part of the sweep); run the sweep whole for its envelope"
-    } else if !options.merge.is_empty() {
-        "--envelope with --merge: the shards' tables hold no histories to envelope; run the sweep whole for its envelope"
-    } else if options.resume {
-        "--envelope with --resume: the journal holds the finished runs' metrics, not their histories; delete it and run the sweep again"
-    } else {
-        return Ok(());
-    };
-    Err(Failure::usage(why))
 }
 
 /// Whether the envelope table is Parquet, from its extension.
@@ -182,4 +185,207 @@ fn bands(envelope: &Envelope) -> Vec<Band> {
             mean: envelope.mean(k),
         })
         .collect()
+}
+
+/// How often the partial envelope of a sweep under way is saved.
+const CHECKPOINT_EVERY: Duration = Duration::from_secs(2);
+
+/// The partial envelope of a sweep under way, saved beside its journal.
+pub(super) struct Checkpoints<'r> {
+    plan: &'r Plan,
+    weights: &'r Weights,
+    path: PathBuf,
+    /// The mark of the runs held.
+    mark: SweepMark,
+    block: Range<usize>,
+    /// How many runs of the block, from its first, the envelope holds.
+    done: usize,
+    saved: Instant,
+}
+
+/// What a sweep does after each row it adds to its envelope.
+pub(super) trait AfterRow {
+    /// Run `run` is done and `envelope` holds every run up to it.
+    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), String>;
+}
+
+impl AfterRow for Checkpoints<'_> {
+    /// Takes the run into the mark; saves the envelope when the last save
+    /// is a while ago.
+    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), String> {
+        self.mark.take(self.plan, self.weights, run);
+        self.done = run + 1 - self.block.start;
+        match self.saved.elapsed() >= CHECKPOINT_EVERY {
+            true => self.save(envelope, &self.path.clone()),
+            false => Ok(()),
+        }
+    }
+}
+
+impl Checkpoints<'_> {
+    /// Writes the partial envelope to `path` (whole or not at all).
+    fn save(&mut self, envelope: &Envelope, path: &Path) -> Result<(), String> {
+        let partial = PartialEnvelope {
+            mark: self.mark.clone(),
+            block: self.block.clone(),
+            done: self.done,
+            envelope: envelope.clone(),
+        };
+        write_beside(path, |file| partial.write(file))?;
+        self.saved = Instant::now();
+        Ok(())
+    }
+}
+
+/// The envelope of a sweep under way and where it is saved.
+pub(super) struct Tracked<'r> {
+    request: &'r EnvelopeRequest,
+    /// The runs accumulated so far.
+    pub envelope: Envelope,
+    /// Its saves beside the journal.
+    pub checkpoints: Checkpoints<'r>,
+}
+
+impl<'r> Tracked<'r> {
+    /// The envelope of the runs `block` of `plan` to accumulate beside the
+    /// journal `journal`: when resuming a journal of `resume` runs, the one
+    /// saved there (if it holds no more runs than the journal), else an
+    /// empty one.
+    pub fn start(
+        request: &'r EnvelopeRequest,
+        plan: &'r Plan,
+        block: &Range<usize>,
+        journal: &Path,
+        resume: Option<usize>,
+    ) -> Result<Tracked<'r>, Failure> {
+        let names = request.names();
+        let path = partial_envelope_path(journal);
+        let saved = match resume {
+            Some(journaled) if path.exists() => {
+                let saved = PartialEnvelope::read(&path, plan, &names, &request.weights)
+                    .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}")))?;
+                (saved.block == *block && saved.done <= journaled).then_some(saved)
+            }
+            _ => None,
+        };
+        let (envelope, done, mark) = match saved {
+            Some(saved) => (saved.envelope, saved.done, saved.mark),
+            None => {
+                let mark = SweepMark::empty(plan, &names);
+                (Envelope::named(names), 0, mark)
+            }
+        };
+        let checkpoints = Checkpoints {
+            plan,
+            weights: &request.weights,
+            path,
+            mark,
+            block: block.clone(),
+            done,
+            saved: Instant::now(),
+        };
+        Ok(Tracked {
+            request,
+            envelope,
+            checkpoints,
+        })
+    }
+
+    /// What the sweep accumulates into, saving it now and then.
+    pub(super) fn streaming(&mut self) -> super::Enveloping<'_> {
+        super::Enveloping {
+            job: self.request.job(),
+            envelope: &mut self.envelope,
+            after: Some(&mut self.checkpoints),
+        }
+    }
+
+    /// How many runs of the block, from its first, the envelope holds.
+    pub fn done(&self) -> usize {
+        self.checkpoints.done
+    }
+
+    /// Saves the envelope beside the journal (a sweep that stops).
+    pub fn save(&mut self) -> Result<(), Failure> {
+        let path = self.checkpoints.path.clone();
+        (self.checkpoints.save(&self.envelope, &path)).map_err(Failure::io)
+    }
+
+    /// The envelope's files once every run is done: the table and plot of
+    /// a whole sweep, or a shard's partial envelope beside its table
+    /// `out`; returns the line reporting them.
+    pub fn finish(&mut self, shard: Shard, out: &Path) -> Result<String, Failure> {
+        if shard == Shard::ALL {
+            return write(self.request, &self.envelope);
+        }
+        let partial = partial_envelope_path(out);
+        (self.checkpoints.save(&self.envelope, &partial)).map_err(Failure::io)?;
+        Ok(format!(
+            "partial envelope of {} runs: wrote {} (--merge the shards for the envelope)\n",
+            self.envelope.runs,
+            partial.display()
+        ))
+    }
+
+    /// Removes the envelope saved beside the journal (the sweep is done).
+    pub fn remove_checkpoint(&self) -> Result<(), Failure> {
+        let path = &self.checkpoints.path;
+        match path.exists() {
+            true => std::fs::remove_file(path)
+                .map_err(|e| Failure::io(format!("cannot remove {}: {e}", path.display()))),
+            false => Ok(()),
+        }
+    }
+}
+
+/// `--merge` with `--envelope`: the partial envelopes beside the shards'
+/// tables `parts`, merged into the envelope of the whole sweep.
+pub(super) fn merged(
+    request: &EnvelopeRequest,
+    parts: &[PathBuf],
+    prepared: &Prepared,
+) -> Result<Envelope, Failure> {
+    let data = |e: String| Failure::new(ExitStatus::DataFile, e);
+    let mut paths = Vec::new();
+    for part in parts {
+        let path = partial_envelope_path(part);
+        if !path.exists() {
+            return Err(data(format!(
+                "--envelope: {} is missing: the shard that wrote {} ran without --envelope; run it again with this sweep's --envelope flags",
+                path.display(),
+                part.display()
+            )));
+        }
+        paths.push(path);
+    }
+    merged_envelope(&paths, &prepared.plan, &request.names(), &request.weights).map_err(data)
+}
+
+/// `outcome` of a merge with the line of the envelope's files appended.
+pub(super) fn with_merged(
+    outcome: Outcome,
+    request: &EnvelopeRequest,
+    envelope: &Envelope,
+) -> Result<Outcome, Failure> {
+    let line = write(request, envelope)?;
+    Ok(Outcome::success(outcome.text + &line))
+}
+
+/// The partial envelope of the runs `block` of `plan` (all done) as the
+/// JSON bytes a shard writes beside its table.
+pub(super) fn partial_json(
+    request: &EnvelopeRequest,
+    plan: &Plan,
+    block: &Range<usize>,
+    envelope: Envelope,
+) -> Result<Vec<u8>, Failure> {
+    let partial = PartialEnvelope {
+        mark: SweepMark::of(plan, &request.names(), &request.weights, block),
+        block: block.clone(),
+        done: block.len(),
+        envelope,
+    };
+    let mut bytes = Vec::new();
+    partial.write(&mut bytes).map_err(Failure::io)?;
+    Ok(bytes)
 }

@@ -8,13 +8,13 @@
 //! flag and sees each finished run.
 
 use super::{
-    Args, DesignArg, Prepared, Sweep, Tally, envelope, merge, merge_into, plan_report, prepare,
-    shard, wants_parquet,
+    Args, DesignArg, Enveloping, Prepared, Sweep, Tally, envelope, merge, merge_into, plan_report,
+    prepare, shard, wants_parquet,
 };
 use crate::failure::Failure;
 use crate::status::ExitStatus;
 use clap::ValueEnum;
-use lagrangian_sim::sweep::{Envelope, Row, SweepJob, sweep_csv, write_envelope_csv};
+use lagrangian_sim::sweep::{Envelope, Row, Shard, SweepJob, sweep_csv, write_envelope_csv};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -35,7 +35,8 @@ pub fn table(
 }
 
 /// [`table`], and with `options.envelope`'s channels the envelope table
-/// as the CSV bytes `--envelope-out FILE.csv` writes.
+/// as the CSV bytes `--envelope-out FILE.csv` writes — for a shard, the
+/// partial envelope the command writes beside the shard's table (JSON).
 pub fn tables(
     options: &Args,
     stop: &AtomicBool,
@@ -44,7 +45,7 @@ pub fn tables(
     check_shard_count(options)?;
     let shard = shard(options).map_err(Failure::usage)?;
     let prepared = prepare(options)?;
-    let request = envelope::request(options, shard, &prepared)?;
+    let request = envelope::request(options, &prepared)?;
     let mut accumulated = request
         .as_ref()
         .map(|r| (r.job(), Envelope::new(&r.channels)));
@@ -75,13 +76,22 @@ pub fn tables(
         job,
         stop,
         sink: &mut sink,
-        envelope: accumulated.as_mut().map(|(job, envelope)| (*job, envelope)),
+        envelope: (accumulated.as_mut()).map(|(job, envelope)| Enveloping {
+            job: *job,
+            envelope,
+            after: None,
+        }),
     };
     let finished = model.with_dimension(sweep).map_err(Failure::model)??;
     check_finished(finished, runs.len(), &tally)?;
     let table = sweep_csv(&layout, &rows).map_err(Failure::io)?;
-    let envelope = accumulated.map(|(_, envelope)| envelope_csv(&envelope));
-    Ok((table, envelope.transpose()?))
+    let envelope = match (&request, accumulated) {
+        (Some(request), Some((_, envelope))) if shard != Shard::ALL => {
+            Some(envelope::partial_json(request, &plan, &runs, envelope)?)
+        }
+        (_, accumulated) => (accumulated.map(|(_, e)| envelope_csv(&e))).transpose()?,
+    };
+    Ok((table, envelope))
 }
 
 /// An interrupted sweep, or one whose every run failed, is a failure.
@@ -121,6 +131,27 @@ pub fn merged(options: &Args, parts: &[PathBuf]) -> Result<Vec<u8>, Failure> {
     let mut bytes = Vec::new();
     merge_into(parts, &prepared, false, &mut bytes)?;
     Ok(bytes)
+}
+
+/// [`merged`], and with `options.envelope`'s channels the envelope of the
+/// whole sweep from the partial envelopes beside the parts
+/// (`PART.envelope.json`), as the CSV bytes `--envelope-out FILE.csv`
+/// writes.
+pub fn merged_tables(
+    options: &Args,
+    parts: &[PathBuf],
+) -> Result<(Vec<u8>, Option<Vec<u8>>), Failure> {
+    let prepared = prepare(options)?;
+    let request = envelope::request(options, &prepared)?;
+    let envelope = (request.as_ref())
+        .map(|request| envelope::merged(request, parts, &prepared))
+        .transpose()?;
+    if let Some(out) = &options.out {
+        merge(parts, &prepared, out, wants_parquet(options, out)?)?;
+    }
+    let mut bytes = Vec::new();
+    merge_into(parts, &prepared, false, &mut bytes)?;
+    Ok((bytes, envelope.as_ref().map(envelope_csv).transpose()?))
 }
 
 /// What `lpm sweep --plan` prints for `options`.

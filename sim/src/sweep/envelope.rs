@@ -4,10 +4,13 @@
 //!
 //! An [`Envelope`] takes the runs one at a time ([`Envelope::add`]) and
 //! keeps only its accumulators — memory grows with the output times and
-//! the channels, not with the runs. Runs are added in run order (as
-//! [`stream_envelope`] hands them over), so the sums, and hence the file,
-//! do not depend on the number of threads.
+//! the channels, not with the runs. Envelopes of disjoint sets of runs
+//! combine ([`Envelope::merge`]). Neither depends on the order of the runs:
+//! an extreme keeps the lowest run attaining it, and the sums are exact
+//! ([`ExactSum`]) and rounded once, so one run, any number of threads and
+//! any split into shards merged in any order give the same bits.
 
+use super::exact_sum::ExactSum;
 use super::plan::Plan;
 use super::run::{Row, SweepJob, scenario_of, simulation_failure, stream_runs};
 use super::shared::SharedScenario;
@@ -49,26 +52,44 @@ pub struct ChannelEnvelope {
     pub name: String,
     /// The largest value over the runs.
     pub max: Vec<f64>,
-    /// The first run (in run order) attaining `max`; `None` where no run
-    /// has a finite value.
+    /// The lowest run attaining `max`; `None` where no run has a finite
+    /// value.
     pub max_run: Vec<Option<usize>>,
     /// The smallest value over the runs.
     pub min: Vec<f64>,
-    /// The first run attaining `min`.
+    /// The lowest run attaining `min`.
     pub min_run: Vec<Option<usize>>,
-    /// `Σ wᵢ xᵢ(t)`, summed in run order.
-    pub weighted_sum: Vec<f64>,
+    /// `Σ wᵢ xᵢ(t)`, exact.
+    pub weighted_sum: Vec<ExactSum>,
+}
+
+/// Whether a candidate value beats the kept one (`>` for a maximum).
+type Beats = fn(f64, f64) -> bool;
+
+/// Keeps `(x, run)` in `(value, at)` if `x` beats the value kept, or
+/// equals it from a lower run: the result does not depend on the order
+/// the candidates come in.
+fn keep(value: &mut f64, at: &mut Option<usize>, x: f64, run: usize, beats: Beats) {
+    let better = match *at {
+        None => true,
+        Some(kept) => beats(x, *value) || (x == *value && run < kept),
+    };
+    if better {
+        (*value, *at) = (x, Some(run));
+    }
 }
 
 impl ChannelEnvelope {
-    fn new(name: &str, points: usize) -> ChannelEnvelope {
+    /// The accumulators of channel `name` over `points` output times, with
+    /// no run yet.
+    pub fn new(name: &str, points: usize) -> ChannelEnvelope {
         ChannelEnvelope {
             name: name.to_string(),
             max: vec![f64::NAN; points],
             max_run: vec![None; points],
             min: vec![f64::NAN; points],
             min_run: vec![None; points],
-            weighted_sum: vec![0.0; points],
+            weighted_sum: vec![ExactSum::new(); points],
         }
     }
 
@@ -76,13 +97,37 @@ impl ChannelEnvelope {
     /// take no part in the extremes (the sum shows them).
     fn add(&mut self, run: usize, w: f64, x: &[f64]) {
         for (k, &x) in x.iter().enumerate() {
-            if x.is_finite() && (self.max[k].is_nan() || x > self.max[k]) {
-                (self.max[k], self.max_run[k]) = (x, Some(run));
+            if x.is_finite() {
+                keep(&mut self.max[k], &mut self.max_run[k], x, run, |a, b| a > b);
+                keep(&mut self.min[k], &mut self.min_run[k], x, run, |a, b| a < b);
             }
-            if x.is_finite() && (self.min[k].is_nan() || x < self.min[k]) {
-                (self.min[k], self.min_run[k]) = (x, Some(run));
+            self.weighted_sum[k].add_product(w, x);
+        }
+    }
+
+    /// Takes the accumulators of `other`, over other runs on the same
+    /// output times.
+    fn merge(&mut self, other: &ChannelEnvelope) {
+        for k in 0..self.max.len() {
+            if let Some(run) = other.max_run[k] {
+                keep(
+                    &mut self.max[k],
+                    &mut self.max_run[k],
+                    other.max[k],
+                    run,
+                    |a, b| a > b,
+                );
             }
-            self.weighted_sum[k] += w * x;
+            if let Some(run) = other.min_run[k] {
+                keep(
+                    &mut self.min[k],
+                    &mut self.min_run[k],
+                    other.min[k],
+                    run,
+                    |a, b| a < b,
+                );
+            }
+            self.weighted_sum[k].merge(&other.weighted_sum[k]);
         }
     }
 }
@@ -92,13 +137,13 @@ impl ChannelEnvelope {
 pub struct Envelope {
     /// The output times every run shares (those of the first run added).
     pub t: Vec<f64>,
-    /// One per channel, in the order given.
+    /// One per channel, in the order given; none before the first run.
     pub channels: Vec<ChannelEnvelope>,
-    /// `Σ wᵢ` over the runs added.
-    pub total_weight: f64,
+    /// `Σ wᵢ` over the runs added, exact.
+    pub total_weight: ExactSum,
     /// How many runs were added.
     pub runs: usize,
-    /// The first run added, whose output times the others must share.
+    /// The lowest run added, whose output times the others must share.
     first_run: Option<usize>,
     names: Vec<String>,
 }
@@ -106,21 +151,37 @@ pub struct Envelope {
 impl Envelope {
     /// An envelope of `channels` with no run yet.
     pub fn new(channels: &[Signal]) -> Envelope {
+        let names: Vec<String> = channels.iter().map(|s| s.name.clone()).collect();
+        Envelope::named(names)
+    }
+
+    /// An envelope of the channels called `names` with no run yet.
+    pub fn named(names: Vec<String>) -> Envelope {
         Envelope {
             t: Vec::new(),
             channels: Vec::new(),
-            total_weight: 0.0,
+            total_weight: ExactSum::new(),
             runs: 0,
             first_run: None,
-            names: channels.iter().map(|s| s.name.clone()).collect(),
+            names,
         }
     }
 
+    /// The channels' names, in the order given.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The lowest run added; `None` before the first.
+    pub fn first_run(&self) -> Option<usize> {
+        self.first_run
+    }
+
     /// Adds run `run` with weight `weight`; its output times must be those
-    /// of the first run added.
+    /// of the runs added before.
     pub fn add(&mut self, run: usize, weight: f64, history: &History) -> Result<(), String> {
         match self.first_run {
-            None => self.start(run, history),
+            None => self.start(&history.t),
             Some(first) if history.t != self.t => {
                 return Err(different_times(run, &history.t, first, &self.t));
             }
@@ -129,26 +190,86 @@ impl Envelope {
         for (channel, x) in self.channels.iter_mut().zip(&history.values) {
             channel.add(run, weight, x);
         }
-        self.total_weight += weight;
+        self.total_weight.add(weight);
         self.runs += 1;
+        self.first_run = Some(self.first_run.map_or(run, |first| first.min(run)));
         Ok(())
     }
 
-    fn start(&mut self, run: usize, history: &History) {
-        self.first_run = Some(run);
-        self.t = history.t.clone();
+    /// The accumulators over the output times `t`, with no run yet.
+    fn start(&mut self, t: &[f64]) {
+        self.t = t.to_vec();
         self.channels = (self.names.iter())
-            .map(|name| ChannelEnvelope::new(name, history.t.len()))
+            .map(|name| ChannelEnvelope::new(name, t.len()))
             .collect();
     }
 
-    /// The weighted mean history of channel `k`: `Σ wᵢ xᵢ(t) / Σ wᵢ`
-    /// (NaN when the runs added weigh nothing).
+    /// Adds the runs of `other`, an envelope of the same channels over
+    /// other runs: the result is that of adding its runs one by one.
+    pub fn merge(&mut self, other: &Envelope) -> Result<(), String> {
+        if other.names != self.names {
+            return Err(format!(
+                "--envelope: the channels {} cannot merge with {}",
+                other.names.join(","),
+                self.names.join(",")
+            ));
+        }
+        let Some(other_first) = other.first_run else {
+            return Ok(());
+        };
+        match self.first_run {
+            None => self.start(&other.t),
+            Some(first) if other.t != self.t => {
+                return Err(different_times(other_first, &other.t, first, &self.t));
+            }
+            Some(_) => {}
+        }
+        for (channel, theirs) in self.channels.iter_mut().zip(&other.channels) {
+            channel.merge(theirs);
+        }
+        self.total_weight.merge(&other.total_weight);
+        self.runs += other.runs;
+        self.first_run = Some(self.first_run.map_or(other_first, |f| f.min(other_first)));
+        Ok(())
+    }
+
+    /// An envelope of `names` from its accumulators (as a partial
+    /// envelope's file holds them); `first_run` is `None` for no run.
+    pub fn restore(
+        names: Vec<String>,
+        accumulated: Accumulated,
+        first_run: Option<usize>,
+    ) -> Envelope {
+        Envelope {
+            t: accumulated.t,
+            channels: accumulated.channels,
+            total_weight: accumulated.total_weight,
+            runs: accumulated.runs,
+            first_run,
+            names,
+        }
+    }
+
+    /// The weighted mean history of channel `k`: `Σ wᵢ xᵢ(t) / Σ wᵢ`, each
+    /// sum rounded once (NaN when the runs added weigh nothing).
     pub fn mean(&self, k: usize) -> Vec<f64> {
-        let w = self.total_weight;
-        let mean = |s: &f64| if w > 0.0 { s / w } else { f64::NAN };
+        let w = self.total_weight.value();
+        let mean = |s: &ExactSum| if w > 0.0 { s.value() / w } else { f64::NAN };
         self.channels[k].weighted_sum.iter().map(mean).collect()
     }
+}
+
+/// What [`Envelope::restore`] restores.
+#[derive(Clone, Debug)]
+pub struct Accumulated {
+    /// The output times (empty for no run).
+    pub t: Vec<f64>,
+    /// One per channel (none for no run).
+    pub channels: Vec<ChannelEnvelope>,
+    /// `Σ wᵢ`.
+    pub total_weight: ExactSum,
+    /// How many runs were added.
+    pub runs: usize,
 }
 
 fn different_times(run: usize, t: &[f64], first: usize, first_t: &[f64]) -> String {
@@ -202,14 +323,15 @@ fn run_with_history<const N: usize, S: LagrangianSystem<N> + Clone>(
 
 /// [`super::stream_sweep`] that also adds every finished run to
 /// `envelope`, in run order, with its weight from `what.weights`. Failed
-/// runs have no history and stay out of the envelope.
+/// runs have no history and stay out of the envelope. `sink` sees each row
+/// with the envelope that holds every run up to it.
 pub fn stream_envelope<const N: usize, S>(
     system: &S,
     job: SweepJob<'_>,
     what: EnvelopeJob<'_>,
     envelope: &mut Envelope,
     stop: &AtomicBool,
-    sink: &mut dyn FnMut(Row) -> Result<(), String>,
+    sink: &mut dyn FnMut(Row, &Envelope) -> Result<(), String>,
 ) -> Result<usize, String>
 where
     S: LagrangianSystem<N> + Clone + Send,
@@ -222,7 +344,7 @@ where
         if let Some(history) = &history {
             envelope.add(row.run, what.weights.of_run(plan, row.run), history)?;
         }
-        sink(row)
+        sink(row, envelope)
     })
 }
 
@@ -262,7 +384,76 @@ mod tests {
         );
         assert_eq!(e.mean(0)[..2], [1.0, 0.5]);
         assert!(e.mean(0)[2].is_nan(), "the sum shows a NaN");
-        assert_eq!((e.runs, e.total_weight), (2, 4.0));
+        assert_eq!((e.runs, e.total_weight.value()), (2, 4.0));
+    }
+
+    /// Runs 0..5 of one channel at three output times, with ties.
+    fn runs() -> Vec<(usize, f64, History)> {
+        let t = [0.0, 0.1, 0.2];
+        let x = [
+            [0.1, 2.0, -1.0],
+            [0.2, 2.0, 1e20],
+            [0.3, -3.0, f64::NAN],
+            [0.1, 2.0, -1e20],
+            [0.7, -3.0, 1.0],
+        ];
+        let w = [0.2, 0.5, 0.3, 0.1, 0.7];
+        (0..5).map(|k| (k, w[k], history(&t, &x[k]))).collect()
+    }
+
+    fn of(runs: &[(usize, f64, History)]) -> Envelope {
+        let mut e = envelope();
+        for (run, w, h) in runs {
+            e.add(*run, *w, h).unwrap();
+        }
+        e
+    }
+
+    #[test]
+    fn any_order_and_any_split_merged_in_any_order_give_the_same_envelope() {
+        let runs = runs();
+        let whole = of(&runs);
+        let c = &whole.channels[0];
+        assert_eq!(
+            c.max_run,
+            [Some(4), Some(0), Some(1)],
+            "ties: the lowest run"
+        );
+        assert_eq!(c.min_run, [Some(0), Some(2), Some(3)]);
+        let mut reversed = runs.clone();
+        reversed.reverse();
+        assert_eq!(of(&reversed), whole);
+        let parts = [of(&runs[..2]), of(&runs[2..3]), of(&runs[3..]), of(&[])];
+        for order in [[0, 1, 2, 3], [3, 2, 0, 1], [1, 3, 2, 0]] {
+            let mut merged = envelope();
+            for k in order {
+                merged.merge(&parts[k]).unwrap();
+            }
+            assert_eq!(merged, whole, "order {order:?}");
+        }
+    }
+
+    #[test]
+    fn the_mean_is_the_exact_weighted_sum_rounded_once() {
+        let t = [0.0, 0.1];
+        let mut e = envelope();
+        for (run, x) in [(0, [1e20, 0.5]), (1, [1.0, 0.25]), (2, [-1e20, 0.25])] {
+            e.add(run, 1.0, &history(&t, &x)).unwrap();
+        }
+        // Added in order, 1e20 + 1 − 1e20 would be 0.
+        assert_eq!(e.mean(0), [1.0 / 3.0, 1.0 / 3.0]);
+        assert!(of(&runs()).mean(0)[2].is_nan(), "run 2's NaN shows");
+    }
+
+    #[test]
+    fn merging_other_channels_or_other_times_is_an_error() {
+        let mut e = of(&runs()[..1]);
+        let mut other = Envelope::named(vec!["y".into()]);
+        assert!(e.merge(&other).unwrap_err().contains("the channels y"));
+        other = envelope();
+        other.add(7, 1.0, &history(&[0.0], &[1.0])).unwrap();
+        let error = e.merge(&other).unwrap_err();
+        assert!(error.contains("run 7 has other output times"), "{error}");
     }
 
     #[test]

@@ -8,7 +8,9 @@
 //! [`merged_rows`], are the full sweep.
 
 mod envelope;
+mod envelope_file;
 mod envelope_table;
+mod exact_sum;
 mod journal;
 mod merge;
 mod plan;
@@ -18,8 +20,13 @@ mod shared;
 mod table;
 mod weights;
 
-pub use envelope::{ChannelEnvelope, Envelope, EnvelopeJob, History, stream_envelope};
+pub use envelope::{Accumulated, ChannelEnvelope, Envelope, EnvelopeJob, History, stream_envelope};
+pub use envelope_file::{
+    ENVELOPE_FORMAT, ENVELOPE_VERSION, PartialEnvelope, SweepMark, merged_envelope,
+    partial_envelope_path,
+};
 pub use envelope_table::{envelope_columns, write_envelope_csv, write_envelope_parquet};
+pub use exact_sum::ExactSum;
 pub use journal::{Journal, journal_path, read_groups};
 pub use merge::merged_rows;
 pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};

@@ -1,0 +1,551 @@
+//! A partial envelope on disk: the accumulators of an [`Envelope`] over a
+//! block of a sweep's runs — a shard's, or the runs a stopped sweep has
+//! finished — that merge with the other blocks' into the envelope of the
+//! whole sweep, bit for bit that of one run.
+//!
+//! The file is JSON (`"format": "lagrangian-sweep-envelope"`, `"version":
+//! 1`). Besides the accumulators it says which sweep it belongs to: the
+//! plan's run count and axes, a digest of the values of the runs it holds,
+//! the channels and a digest of those runs' weights. Reading it against another sweep
+//! is an error that names the file and what differs. Numbers are written
+//! as Rust's shortest round-tripping text (`"0.1"`, `"NaN"`), read back
+//! exactly; an exact sum is its [`ExactSum::terms`].
+
+use super::envelope::{Accumulated, ChannelEnvelope, Envelope};
+use super::exact_sum::ExactSum;
+use super::plan::Plan;
+use super::weights::Weights;
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+/// The `format` entry of every partial envelope.
+pub const ENVELOPE_FORMAT: &str = "lagrangian-sweep-envelope";
+
+/// The version this code writes and reads.
+pub const ENVELOPE_VERSION: u32 = 1;
+
+/// The partial envelope beside a table: `part-1.csv` →
+/// `part-1.csv.envelope.json`.
+pub fn partial_envelope_path(table: &Path) -> PathBuf {
+    let mut name = table.file_name().unwrap_or_default().to_os_string();
+    name.push(".envelope.json");
+    table.with_file_name(name)
+}
+
+/// The sweep a partial envelope belongs to, as far as the runs it holds
+/// show.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SweepMark {
+    /// The plan's number of runs.
+    pub plan_runs: usize,
+    /// The plan's axes (table columns).
+    pub axes: Vec<String>,
+    /// A digest of the plan's values for the runs held.
+    pub values: String,
+    /// The channels, as given.
+    pub channels: Vec<String>,
+    /// A digest of the weights of the runs held.
+    pub weights: String,
+}
+
+impl SweepMark {
+    /// The mark of `plan`, `channels` and `weights` over the runs `held`.
+    pub fn of(plan: &Plan, channels: &[String], weights: &Weights, held: &Range<usize>) -> Self {
+        let mut mark = SweepMark::empty(plan, channels);
+        for run in held.clone() {
+            mark.take(plan, weights, run);
+        }
+        mark
+    }
+
+    /// The mark of `plan` and `channels` over no run.
+    pub fn empty(plan: &Plan, channels: &[String]) -> SweepMark {
+        SweepMark {
+            plan_runs: plan.len(),
+            axes: plan.axes().iter().map(|a| a.column()).collect(),
+            values: Digest::new().hex(),
+            channels: channels.to_vec(),
+            weights: Digest::new().hex(),
+        }
+    }
+
+    /// Takes run `run` (the next after those held) into the digests.
+    pub fn take(&mut self, plan: &Plan, weights: &Weights, run: usize) {
+        let mut values = Digest::from_hex(&self.values);
+        plan.point(run).iter().for_each(|x| values.add(x.to_bits()));
+        let mut weighed = Digest::from_hex(&self.weights);
+        weighed.add(weights.of_run(plan, run).to_bits());
+        (self.values, self.weights) = (values.hex(), weighed.hex());
+    }
+
+    /// What differs between this mark (of a file) and `expected` (of the
+    /// sweep at hand); `None` when they agree.
+    fn difference(&self, expected: &SweepMark) -> Option<String> {
+        if (self.plan_runs, &self.axes) != (expected.plan_runs, &expected.axes) {
+            return Some(format!(
+                "it belongs to a sweep of {} runs over {}, this one has {} runs over {}",
+                self.plan_runs,
+                self.axes.join(", "),
+                expected.plan_runs,
+                expected.axes.join(", ")
+            ));
+        }
+        if self.values != expected.values {
+            return Some("its runs have other values than this sweep's (another --grid, --samples, --vary, --design or --seed)".into());
+        }
+        if self.channels != expected.channels {
+            return Some(format!(
+                "its channels are {}, this sweep's {}",
+                self.channels.join(","),
+                expected.channels.join(",")
+            ));
+        }
+        if self.weights != expected.weights {
+            return Some("its runs have other --weights than this sweep's".into());
+        }
+        None
+    }
+}
+
+/// FNV-1a over 64-bit words: a digest to tell sweeps apart, not a
+/// safeguard against tampering.
+struct Digest(u64);
+
+impl Digest {
+    fn new() -> Digest {
+        Digest(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn add(&mut self, word: u64) {
+        for byte in word.to_le_bytes() {
+            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+
+    fn hex(&self) -> String {
+        format!("{:016x}", self.0)
+    }
+
+    /// The digest [`Digest::hex`] wrote; one that does not parse differs
+    /// from every digest written.
+    fn from_hex(text: &str) -> Digest {
+        Digest(u64::from_str_radix(text, 16).unwrap_or(0))
+    }
+}
+
+/// The accumulators of a block of runs and the sweep they belong to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartialEnvelope {
+    /// The sweep the block belongs to.
+    pub mark: SweepMark,
+    /// The block's runs (a shard's block).
+    pub block: Range<usize>,
+    /// How many of them, from the first, the envelope holds (finished or
+    /// failed); the block is complete when this is its length.
+    pub done: usize,
+    /// Their envelope.
+    pub envelope: Envelope,
+}
+
+/// The file's text of one channel; numbers as text.
+#[derive(Serialize, Deserialize)]
+struct ChannelText {
+    name: String,
+    min: Vec<String>,
+    min_run: Vec<Option<usize>>,
+    max: Vec<String>,
+    max_run: Vec<Option<usize>>,
+    weighted_sum: Vec<Vec<String>>,
+}
+
+/// The file's text.
+#[derive(Serialize, Deserialize)]
+struct FileText {
+    format: String,
+    version: u32,
+    sweep: SweepMark,
+    block: [usize; 2],
+    done: usize,
+    runs_added: usize,
+    first_run: Option<usize>,
+    total_weight: Vec<String>,
+    t: Vec<String>,
+    channels: Vec<ChannelText>,
+}
+
+/// The two entries read before the rest, to refuse a file of another kind
+/// or version with a message that says so.
+#[derive(Deserialize)]
+struct Header {
+    format: Option<String>,
+    version: Option<u32>,
+}
+
+fn numbers(x: &[f64]) -> Vec<String> {
+    x.iter().map(|x| format!("{x:?}")).collect()
+}
+
+fn parse_numbers(text: &[String]) -> Result<Vec<f64>, String> {
+    let parse = |s: &String| s.parse().map_err(|_| format!("`{s}` is not a number"));
+    text.iter().map(parse).collect()
+}
+
+impl ChannelText {
+    fn of(channel: &ChannelEnvelope) -> ChannelText {
+        ChannelText {
+            name: channel.name.clone(),
+            min: numbers(&channel.min),
+            min_run: channel.min_run.clone(),
+            max: numbers(&channel.max),
+            max_run: channel.max_run.clone(),
+            weighted_sum: (channel.weighted_sum.iter())
+                .map(|s| numbers(&s.terms()))
+                .collect(),
+        }
+    }
+
+    fn read(self, points: usize) -> Result<ChannelEnvelope, String> {
+        let sums = (self.weighted_sum.iter())
+            .map(|terms| parse_numbers(terms).map(|t| ExactSum::from_terms(&t)))
+            .collect::<Result<Vec<ExactSum>, String>>()?;
+        let channel = ChannelEnvelope {
+            min: parse_numbers(&self.min)?,
+            min_run: self.min_run,
+            max: parse_numbers(&self.max)?,
+            max_run: self.max_run,
+            weighted_sum: sums,
+            name: self.name,
+        };
+        let lengths = [
+            channel.min.len(),
+            channel.min_run.len(),
+            channel.max.len(),
+            channel.max_run.len(),
+            channel.weighted_sum.len(),
+        ];
+        match lengths.iter().all(|&n| n == points) {
+            true => Ok(channel),
+            false => Err(format!(
+                "channel {} does not have one entry per output time ({points})",
+                channel.name
+            )),
+        }
+    }
+}
+
+impl PartialEnvelope {
+    /// Writes the partial envelope as JSON to `out`.
+    pub fn write(&self, out: impl Write) -> Result<(), String> {
+        let envelope = &self.envelope;
+        let text = FileText {
+            format: ENVELOPE_FORMAT.to_string(),
+            version: ENVELOPE_VERSION,
+            sweep: self.mark.clone(),
+            block: [self.block.start, self.block.end],
+            done: self.done,
+            runs_added: envelope.runs,
+            first_run: envelope.first_run(),
+            total_weight: numbers(&envelope.total_weight.terms()),
+            t: numbers(&envelope.t),
+            channels: envelope.channels.iter().map(ChannelText::of).collect(),
+        };
+        serde_json::to_writer(out, &text).map_err(|e| format!("cannot write the envelope: {e}"))
+    }
+
+    /// Reads the partial envelope in `path` and checks that it belongs to
+    /// the sweep of `plan`, `channels` and `weights`; an error names the
+    /// file and what differs.
+    pub fn read(
+        path: &Path,
+        plan: &Plan,
+        channels: &[String],
+        weights: &Weights,
+    ) -> Result<PartialEnvelope, String> {
+        let at = |why: String| format!("{}: {why}", path.display());
+        let bytes = std::fs::read(path).map_err(|e| at(format!("cannot read: {e}")))?;
+        let text = parse(&bytes).map_err(at)?;
+        let [start, end] = text.block;
+        if start > end || end > plan.len() || text.done > end - start {
+            return Err(at(format!(
+                "runs {start}..{end} ({} done) are not a block of this sweep's {} runs",
+                text.done,
+                plan.len()
+            )));
+        }
+        let block = start..end;
+        let held = start..start + text.done;
+        let expected = SweepMark::of(plan, channels, weights, &held);
+        if let Some(why) = text.sweep.difference(&expected) {
+            return Err(at(format!("not a part of this sweep: {why}")));
+        }
+        let done = text.done;
+        let envelope = envelope_of(text, channels).map_err(at)?;
+        Ok(PartialEnvelope {
+            mark: expected,
+            block,
+            done,
+            envelope,
+        })
+    }
+}
+
+/// The file's text, its format and version checked first.
+fn parse(bytes: &[u8]) -> Result<FileText, String> {
+    let header: Header = serde_json::from_slice(bytes)
+        .map_err(|e| format!("not a partial envelope of lpm sweep: {e}"))?;
+    if header.format.as_deref() != Some(ENVELOPE_FORMAT) {
+        return Err(format!(
+            "not a partial envelope of lpm sweep (its format is {:?}, not {ENVELOPE_FORMAT:?})",
+            header.format.unwrap_or_default()
+        ));
+    }
+    if header.version != Some(ENVELOPE_VERSION) {
+        return Err(format!(
+            "version {} of the envelope file; this lpm reads version {ENVELOPE_VERSION}",
+            header.version.map_or("none".to_string(), |v| v.to_string())
+        ));
+    }
+    serde_json::from_slice(bytes).map_err(|e| format!("cannot read the envelope: {e}"))
+}
+
+/// The envelope of a file's text.
+fn envelope_of(text: FileText, channels: &[String]) -> Result<Envelope, String> {
+    let t = parse_numbers(&text.t)?;
+    let read = (text.channels.into_iter())
+        .map(|c| c.read(t.len()))
+        .collect::<Result<Vec<ChannelEnvelope>, String>>()?;
+    let expected = if text.first_run.is_some() {
+        channels.len()
+    } else {
+        0
+    };
+    if read.len() != expected || read.iter().zip(channels).any(|(c, name)| c.name != *name) {
+        return Err("its accumulators are not those of its channels".into());
+    }
+    let accumulated = Accumulated {
+        t,
+        channels: read,
+        total_weight: ExactSum::from_terms(&parse_numbers(&text.total_weight)?),
+        runs: text.runs_added,
+    };
+    Ok(Envelope::restore(
+        channels.to_vec(),
+        accumulated,
+        text.first_run,
+    ))
+}
+
+/// The envelope of the whole sweep from the partial envelopes in `paths`
+/// (any order), each read against the sweep of `plan`, `channels` and
+/// `weights`: their blocks, each complete, must cover every run once.
+pub fn merged_envelope(
+    paths: &[PathBuf],
+    plan: &Plan,
+    channels: &[String],
+    weights: &Weights,
+) -> Result<Envelope, String> {
+    let mut parts = Vec::new();
+    for path in paths {
+        let part = PartialEnvelope::read(path, plan, channels, weights)?;
+        if part.done < part.block.len() {
+            return Err(format!(
+                "{}: holds {} of the runs {}..{}: its shard did not finish (run it again with --resume)",
+                path.display(),
+                part.done,
+                part.block.start,
+                part.block.end
+            ));
+        }
+        parts.push((path, part));
+    }
+    parts.sort_by_key(|(_, part)| (part.block.start, part.block.end));
+    check_blocks(&parts, plan.len())?;
+    let mut whole = Envelope::named(channels.to_vec());
+    for (path, part) in &parts {
+        (whole.merge(&part.envelope)).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(whole)
+}
+
+/// The blocks, sorted, cover `0..total` each run once.
+fn check_blocks(parts: &[(&PathBuf, PartialEnvelope)], total: usize) -> Result<(), String> {
+    let mut next = 0;
+    let mut previous: Option<&Path> = None;
+    for (path, part) in parts.iter().filter(|(_, p)| !p.block.is_empty()) {
+        let block = &part.block;
+        if block.start < next {
+            return Err(format!(
+                "{}: runs {}..{} are also in {}: give each shard once",
+                path.display(),
+                block.start,
+                next.min(block.end),
+                previous.map_or(String::new(), |p| p.display().to_string())
+            ));
+        }
+        if block.start > next {
+            return Err(missing_runs(next, block.start, total));
+        }
+        next = block.end;
+        previous = Some(path.as_path());
+    }
+    match next < total {
+        true => Err(missing_runs(next, total, total)),
+        false => Ok(()),
+    }
+}
+
+fn missing_runs(from: usize, to: usize, total: usize) -> String {
+    format!(
+        "--envelope: runs {from}..{to} (of {total}) are in no part's envelope: give every shard's table, each with its envelope beside it"
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> Plan {
+        Plan::grid(&["v=1,2,3,4".to_string()]).unwrap()
+    }
+
+    fn channels() -> Vec<String> {
+        vec!["x".to_string()]
+    }
+
+    /// The partial envelope of `block` with x = v·t at t = 0, 0.1 and a
+    /// run that fails (no history) at v = 3.
+    fn partial(block: Range<usize>, weights: &Weights) -> PartialEnvelope {
+        let plan = plan();
+        let mut envelope = Envelope::named(channels());
+        for run in block.clone().filter(|&run| run != 2) {
+            let v = plan.point(run)[0];
+            let history = super::super::envelope::History {
+                t: vec![0.0, 0.1],
+                values: vec![vec![0.0, 0.1 * v]],
+            };
+            envelope
+                .add(run, weights.of_run(&plan, run), &history)
+                .unwrap();
+        }
+        PartialEnvelope {
+            mark: SweepMark::of(&plan, &channels(), weights, &block),
+            done: block.len(),
+            block,
+            envelope,
+        }
+    }
+
+    fn write(dir: &Path, name: &str, part: &PartialEnvelope) -> PathBuf {
+        let path = dir.join(name);
+        part.write(std::fs::File::create(&path).unwrap()).unwrap();
+        path
+    }
+
+    fn directory(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("envelope-file-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn a_written_partial_envelope_reads_back_the_same() {
+        let dir = directory("round-trip");
+        let weights = Weights::per_value("v=0.1,0.2,0.3,0.4", &plan()).unwrap();
+        for block in [0..4, 1..3, 2..3, 0..0] {
+            let part = partial(block.clone(), &weights);
+            let path = write(&dir, "part.json", &part);
+            let read = PartialEnvelope::read(&path, &plan(), &channels(), &weights).unwrap();
+            assert_eq!(read, part, "{block:?}");
+        }
+    }
+
+    #[test]
+    fn shards_merged_in_any_order_are_the_whole_sweep() {
+        let dir = directory("merge");
+        let w = Weights::per_value("v=0.1,0.2,0.3,0.4", &plan()).unwrap();
+        let whole = partial(0..4, &w).envelope;
+        let a = write(&dir, "a.json", &partial(0..1, &w));
+        let b = write(&dir, "b.json", &partial(1..3, &w));
+        let c = write(&dir, "c.json", &partial(3..4, &w));
+        let empty = write(&dir, "empty.json", &partial(1..1, &w));
+        for paths in [vec![&a, &b, &c], vec![&c, &empty, &a, &b]] {
+            let paths: Vec<PathBuf> = paths.into_iter().cloned().collect();
+            let merged = merged_envelope(&paths, &plan(), &channels(), &w).unwrap();
+            assert_eq!(merged, whole);
+        }
+        let merge = |paths: &[&PathBuf]| {
+            let paths: Vec<PathBuf> = paths.iter().map(|p| p.to_path_buf()).collect();
+            merged_envelope(&paths, &plan(), &channels(), &w).unwrap_err()
+        };
+        let missing = merge(&[&a, &c]);
+        assert!(
+            missing.contains("runs 1..3 (of 4) are in no part's envelope"),
+            "{missing}"
+        );
+        let twice = merge(&[&a, &b, &b, &c]);
+        assert!(twice.contains("b.json: runs 1..3 are also in"), "{twice}");
+    }
+
+    #[test]
+    fn a_partial_envelope_of_another_sweep_is_refused_naming_the_file_and_the_difference() {
+        let dir = directory("refused");
+        let equal = Weights::Equal;
+        let path = write(&dir, "part.json", &partial(0..2, &equal));
+        let read = |plan: &Plan, channels: &[String], weights: &Weights| {
+            PartialEnvelope::read(&path, plan, channels, weights).unwrap_err()
+        };
+        let other_values = Plan::grid(&["v=1,5,3,4".to_string()]).unwrap();
+        let other_count = Plan::grid(&["v=1,2,3".to_string()]).unwrap();
+        let weights = Weights::per_value("v=1,2,3,4", &plan()).unwrap();
+        let cases = [
+            (
+                read(&other_values, &channels(), &equal),
+                "its runs have other values",
+            ),
+            (
+                read(&other_count, &channels(), &equal),
+                "a sweep of 4 runs over v, this one has 3 runs over v",
+            ),
+            (
+                read(&plan(), &["y".to_string()], &equal),
+                "its channels are x, this sweep's y",
+            ),
+            (read(&plan(), &channels(), &weights), "other --weights"),
+        ];
+        for (error, what) in cases {
+            assert!(
+                error.starts_with(&format!("{}: ", path.display())),
+                "{error}"
+            );
+            assert!(error.contains(what), "{error}");
+        }
+        std::fs::write(
+            &path,
+            r#"{"format": "lagrangian-sweep-envelope", "version": 9}"#,
+        )
+        .unwrap();
+        let version = read(&plan(), &channels(), &equal);
+        assert!(
+            version.contains("version 9 of the envelope file"),
+            "{version}"
+        );
+        std::fs::write(&path, "a,b\n1,2\n").unwrap();
+        assert!(read(&plan(), &channels(), &equal).contains("not a partial envelope"));
+    }
+
+    #[test]
+    fn an_unfinished_block_is_refused_by_the_merge() {
+        let dir = directory("unfinished");
+        // What a sweep stopped after three runs of four leaves.
+        let mut part = partial(0..3, &Weights::Equal);
+        part.block = 0..4;
+        let path = write(&dir, "part.json", &part);
+        let error = merged_envelope(&[path], &plan(), &channels(), &Weights::Equal).unwrap_err();
+        assert!(
+            error.contains("holds 3 of the runs 0..4: its shard did not finish"),
+            "{error}"
+        );
+    }
+}
