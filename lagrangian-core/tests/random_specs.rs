@@ -325,7 +325,12 @@ proptest! {
         for state in &raw {
             let s = state.fit(&model);
             let context = |e: TestCaseError| TestCaseError::fail(format!("{e}\nat {s:?}\n{source}"));
-            program_matches_expressions(&compiled, &s).map_err(context)?;
+            // A model whose canonical form outgrows its budget is derived on
+            // the graph (no canonical expressions to compare with); the
+            // mechanics below check its program all the same.
+            if compiled.derivation.is_some() {
+                program_matches_expressions(&compiled, &s).map_err(context)?;
+            }
             equations_match_the_mechanics(&model, &compiled, &s).map_err(context)?;
             jacobians_match_differences(&compiled, &s).map_err(context)?;
         }
