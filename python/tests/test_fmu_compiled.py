@@ -1,5 +1,5 @@
 """`lpm export-fmu --compiled`: an FMU whose binary is the macro-compiled
-paper model (built by cargo with the tests' profile in the workspace's
+paper model (built by cargo with the debug profile in the workspace's
 target/) validates and runs the paper scenario bit for bit as the
 interpreting FMU; and only FMU binaries export the FMI entry points, not the
 Python extension.
@@ -25,7 +25,7 @@ YARIS = SPECS / "yaris_double_pendulum.lpm"
 RUNTIME = ROOT / "target" / "debug" / "liblagrangian_fmu.so"
 BINARY = "binaries/linux64/lagrangian_fmu.so"
 #: The README's command line (shown in a text block, which the Rust README
-#: test does not run: a release build), run here with the tests' profile.
+#: test does not run: a release build), run here with the debug profile.
 README_COMMAND = "lpm export-fmu specs/yaris_double_pendulum.lpm --compiled --out yaris.fmu"
 OUTPUTS = ["crush", "deceleration", "front_end.force", "r", "theta2", "der(theta1)"]
 
@@ -60,7 +60,7 @@ def fmus(tmp_path_factory):
     run_lpm("export-fmu", YARIS, "--out", interpreted)
     args = shlex.split(README_COMMAND)[1:]
     args[args.index("--out") + 1] = str(compiled)
-    run_lpm(*args, "--profile", "test")
+    run_lpm(*args, "--profile", "dev")
     return interpreted, compiled
 
 
