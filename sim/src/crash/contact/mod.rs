@@ -21,11 +21,12 @@
 //! force, penetration and dissipated power are trajectory columns
 //! (`NAME.force \[N\]`, `NAME.penetration [m]`, `NAME.power \[W\]`).
 //!
-//! The dissipated power ([`Component::dissipated_power`]) is the damping's,
-//! `(c + k·D·δⁿ/v₀)·δ̇²`. A contact that lets go with `δ > 0` (the linear
-//! laws) still holds its spring's energy `k·δ^(n+1)/(n+1)` then; it is lost
-//! as the wall relaxes out of contact, so a balance of the body's energy
-//! counts it as dissipated at the separation.
+//! The `NAME.power` column is the damping's power, `(c + k·D·δⁿ/v₀)·δ̇²`.
+//! The energy it reports as dissipated is the work it absorbs, `∫ P·δ̇ dt`,
+//! less what its spring still stores, `k·δ^(n+1)/(n+1)` in contact
+//! ([`Component::stored_energy`]): the damping's work, plus, for a contact
+//! that lets go with `δ > 0` (the linear laws), the spring energy it holds
+//! then, lost as the wall relaxes out of contact.
 //!
 //! Its scenario section is `type = "contact"` (`ContactSection`), with
 //! `law = "hunt_crossley"` (or another law's name), `stiffness`,
@@ -366,8 +367,20 @@ impl Component for ContactElement {
         })
     }
 
+    /// The power it absorbs, `P·δ̇`; 0 out of contact.
     fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.power(args))
+        let (force, _, _) = self.compressive(args);
+        Some(force * self.penetration(args).1)
+    }
+
+    /// Its spring's energy `k·|δ|^(n+1)/(n+1)` in contact; 0 out of it.
+    fn stored_energy(&self, args: &[f64]) -> Result<f64, OutOfRange> {
+        if !self.in_contact {
+            return Ok(0.0);
+        }
+        let delta = self.penetration(args).0.abs();
+        let n = self.force.exponent;
+        Ok(self.force.stiffness * delta.powf(n + 1.0) / (n + 1.0))
     }
 }
 

@@ -228,7 +228,13 @@ fn a_run_that_starts_short_of_the_wall_starts_separated() {
     // 1 cm in at 1 m/s: P = 1 kN + 100 N, pushing towards +x.
     let f = wall.value(Port::Value, &[-0.01, -1.0]).unwrap();
     assert!((f + 1100.0).abs() < 1e-9, "{f}");
-    assert_eq!(wall.dissipated_power(&[-0.01, -1.0]), Some(100.0));
+    // Its damper dissipates 100 N · 1 m/s; it absorbs P·δ̇ and its spring
+    // stores ½·k·δ² = 5 J.
+    assert!((wall.power(&[-0.01, -1.0]) - 100.0).abs() < 1e-12);
+    let absorbed = wall.dissipated_power(&[-0.01, -1.0]).unwrap();
+    assert!((absorbed - 1100.0).abs() < 1e-9, "{absorbed}");
+    let stored = wall.stored_energy(&[-0.01, -1.0]).unwrap();
+    assert!((stored - 5.0).abs() < 1e-12, "{stored}");
     // Starting at rest against it: in contact, at the least impact velocity.
     wall.start(Some(&[0.0, 0.0])).unwrap();
     assert!(wall.in_contact() && wall.impact_velocity() == 1e-3);
@@ -292,5 +298,26 @@ fn bad_entries_are_reported_with_the_component_and_the_value() {
     ];
     for (got, expected) in cases {
         assert_eq!(got, expected);
+    }
+}
+
+#[test]
+fn each_law_reports_as_dissipated_the_kinetic_energy_the_mass_lost() {
+    // The linear laws let go with δ > 0, their springs still loaded: that
+    // energy counts as dissipated at the separation, beside the damping's.
+    // The rebound speed is SciPy's (REFERENCE), so the loss is independent
+    // of the run: ½·m·v₀²·(1 − e²) with m = 2 kg, v₀ = 3 m/s.
+    let (e, expected) = REFERENCE[0];
+    for (law, reference) in ORDER.iter().zip(expected) {
+        let result = run(law, e);
+        let [(name, dissipated)] = result.summary.dissipated_by.as_slice() else {
+            panic!("{law}: {:?}", result.summary.dissipated_by)
+        };
+        assert_eq!(name, "wall");
+        let lost = 0.5 * 2.0 * 9.0 * (1.0 - reference * reference);
+        assert!(
+            (dissipated - lost).abs() < 1e-6 * lost,
+            "{law}: {dissipated} J vs {lost} J"
+        );
     }
 }
