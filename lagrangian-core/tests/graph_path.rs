@@ -98,7 +98,7 @@ fn every_shipped_spec_agrees_on_both_paths() {
 fn the_jacobians_agree_on_both_paths() {
     let source =
         lagrangian_core::examples::pendulum_chain(3).replace("kinetic =", "jacobians;\nkinetic =");
-    let path = std::env::temp_dir().join("graph_path_jacobians.lpm");
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("graph_path_jacobians.lpm");
     std::fs::write(&path, source).unwrap();
     check_spec(path.to_str().unwrap());
 }

@@ -18,7 +18,8 @@ fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
     let mut failures = Vec::new();
     for (k, case) in cases.iter().enumerate() {
         let name = case["name"].as_str().unwrap();
-        let out = std::env::temp_dir().join(format!("lpm-bad-{}-{k}", std::process::id()));
+        let out = common::scratch(&format!("bad-{k}"));
+        let _ = std::fs::remove_dir_all(&out);
         let args: Vec<String> = case["args"]
             .as_array()
             .unwrap()

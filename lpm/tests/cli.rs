@@ -164,7 +164,7 @@ fn chain_specs_compile() {
 }
 
 fn temporary_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("lpm-test-{name}-{}", std::process::id()));
+    let dir = common::scratch(&format!("cli-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }

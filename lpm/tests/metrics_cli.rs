@@ -44,8 +44,7 @@ fn a_half_sine_pulse_has_its_closed_form_olc_asi_and_stopping_time() {
         * (std::f64::consts::PI * 0.05 / (2.0 * tp)).sin()
         / (12.0 * G);
 
-    let dir = std::env::temp_dir().join(format!("lpm-metrics-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temporary("metrics");
     let file = dir.join("half_sine.csv");
     let mut text = String::from("t [ms], deceleration [g], velocity [km/h]\n");
     for k in 0..=2500 {

@@ -47,7 +47,7 @@ fn simulate_paper(name: &str, args: &[&str]) -> (std::process::Output, serde_jso
 
 /// The folder [`temporary`] made for `name`, without emptying it.
 fn temporary_path(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("lpm-test-{}-{name}", std::process::id()))
+    common::scratch(name)
 }
 
 fn warning_kinds(summary: &serde_json::Value) -> Vec<&str> {

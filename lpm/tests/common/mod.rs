@@ -28,10 +28,17 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A new folder under the system's temporary folder, named for the test
-/// and the process.
+/// The folder for test `name`'s files: under the build's own temporary
+/// folder (`target/tmp`, which `cargo clean` removes), not the system's,
+/// and named for the test alone, so that the next run replaces it instead
+/// of leaving another beside it. Its path, not yet made.
+pub fn scratch(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("lpm-test-{name}"))
+}
+
+/// A new, empty folder for test `name` (see [`scratch`]).
 pub fn temporary(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lpm-test-{}-{name}", std::process::id()));
+    let dir = scratch(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -133,6 +133,7 @@ mod tests {
             &mut |_, step| ends.push(step.t1()),
         )
         .unwrap();
+        std::fs::remove_dir_all(&dir).ok();
         (ends, outcome.stats)
     }
 

@@ -459,6 +459,7 @@ mod tests {
             let read = PartialEnvelope::read(&path, &plan(), &channels(), &weights).unwrap();
             assert_eq!(read, part, "{block:?}");
         }
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]
@@ -486,6 +487,7 @@ mod tests {
         );
         let twice = merge(&[&a, &b, &b, &c]);
         assert!(twice.contains("b.json: runs 1..3 are also in"), "{twice}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]
@@ -533,6 +535,7 @@ mod tests {
         );
         std::fs::write(&path, "a,b\n1,2\n").unwrap();
         assert!(read(&plan(), &channels(), &equal).contains("not a partial envelope"));
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]
@@ -547,5 +550,6 @@ mod tests {
             error.contains("holds 3 of the runs 0..4: its shard did not finish"),
             "{error}"
         );
+        std::fs::remove_dir_all(&dir).ok();
     }
 }
