@@ -340,7 +340,9 @@ impl BoundInputs {
             return;
         }
         self.layout.load(&mut self.components, z);
-        self.loaded = *z;
+        // Only the values in use: a copy of the whole buffer moves its
+        // capacity at every evaluation.
+        self.loaded.assign(z);
     }
 
     /// The rates `ż` of the internal states last loaded, given the model's
