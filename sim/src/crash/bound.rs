@@ -40,10 +40,11 @@ struct Resolved {
 
 /// A model's inputs bound to components; implements [`InputFunctions`].
 ///
-/// The bindings are resolved when the inputs are made ([`BoundInputs::new`]),
-/// so that an input call is one indexed call of its component: a change of
-/// `bindings`, or a component replaced by one of another arity, goes
-/// through a new `BoundInputs`.
+/// The bindings are resolved and the components' events counted when the
+/// inputs are made ([`BoundInputs::new`]), so that an input call is one
+/// indexed call of its component: a change of `bindings`, or a component
+/// replaced by one of another arity or with other events, goes through a
+/// new `BoundInputs`.
 ///
 /// A value that cannot be produced (a table read outside its range under the
 /// `error` policy) is returned as NaN and the reason kept, so the integrator
@@ -67,6 +68,10 @@ pub struct BoundInputs {
     layout: StateLayout,
     /// The `z` last given to the components ([`BoundInputs::load`]).
     loaded: Internal,
+    /// The number of event functions of all components together, counted
+    /// when the inputs are made: the integrator asks for it with every
+    /// event function of every step.
+    event_count: usize,
     /// The elastic energy each component stored when the run started
     /// ([`Component::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
@@ -93,7 +98,7 @@ impl BoundInputs {
                 })
             })
             .collect();
-        BoundInputs {
+        let mut inputs = BoundInputs {
             components,
             bindings,
             event_arguments,
@@ -102,8 +107,13 @@ impl BoundInputs {
             failure: RefCell::new(None),
             layout,
             loaded: Internal::EMPTY,
+            event_count: 0,
             stored_at_start: Vec::new(),
-        }
+        };
+        inputs.event_count = (0..inputs.components.len())
+            .map(|c| inputs.events_of(c))
+            .sum();
+        inputs
     }
 
     /// The first failure since the last call, which clears it.
@@ -182,7 +192,7 @@ impl BoundInputs {
 
     /// The number of event functions of all components together.
     pub fn event_count(&self) -> usize {
-        (0..self.components.len()).map(|c| self.events_of(c)).sum()
+        self.event_count
     }
 
     /// The direction of crossing that triggers global event `k`.
@@ -340,7 +350,9 @@ impl BoundInputs {
             return;
         }
         self.layout.load(&mut self.components, z);
-        self.loaded = *z;
+        // Only the values in use: a copy of the whole buffer moves its
+        // capacity at every evaluation.
+        self.loaded.assign(z);
     }
 
     /// The rates `ż` of the internal states last loaded, given the model's

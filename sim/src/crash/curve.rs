@@ -2,7 +2,10 @@
 //! crush characteristics: the secant form of the paper's eqs 1–2 and
 //! force–deflection curves.
 
+mod formula;
+
 use super::pchip;
+use formula::Formula;
 use std::cell::Cell;
 use std::fmt;
 use std::sync::Arc;
@@ -110,6 +113,12 @@ pub struct Curve {
     /// cubic (PCHIP); `None`: linear between the points.
     tangents: Option<Arc<[f64]>>,
     outside: Outside,
+    /// Every value is `+0` and the curve is linear between its points (a
+    /// table column that never acts, as the horizontal barrier forces of a
+    /// full frontal): it is 0, with slope 0, wherever it has a value.
+    zero: bool,
+    /// The formula of each piece ([`Curve::piece`]), for [`Curve::eval_on`].
+    formulas: Arc<[Formula]>,
     /// The segment of the last lookup: an integration asks for nearby `x`
     /// again and again (a time table at advancing `t`), so it is tried first.
     hint: Cell<usize>,
@@ -185,6 +194,7 @@ impl Curve {
             i => slopes[i - 1] != slopes[i],
         };
         let kinks = (0..=last).filter(|&i| kink(i)).map(|i| xs[i]).collect();
+        let zero = ys.iter().all(|y| y.to_bits() == 0);
         Curve {
             xs: xs.into(),
             ys: ys.into(),
@@ -192,8 +202,17 @@ impl Curve {
             kinks,
             tangents: None,
             outside,
+            zero,
+            formulas: Arc::new([]),
             hint: Cell::new(0),
         }
+        .with_formulas()
+    }
+
+    /// The curve with the formulas of its pieces.
+    fn with_formulas(self) -> Curve {
+        let formulas = self.piece_formulas();
+        Curve { formulas, ..self }
     }
 
     /// The same points interpolated by a monotone cubic (PCHIP): C¹, no
@@ -203,8 +222,10 @@ impl Curve {
         let tangents = pchip::tangents(&self.xs, &self.ys).into();
         Curve {
             tangents: Some(tangents),
+            zero: false,
             ..self
         }
+        .with_formulas()
     }
 
     /// The points where the slope of a curve interpolated linearly jumps,
@@ -282,17 +303,10 @@ impl Curve {
     /// continued past its ends, so that it is smooth in `x`; the curve
     /// itself ([`Curve::eval`]) for `None`. Within the piece both agree.
     pub fn eval_on(&self, piece: Option<usize>, x: f64) -> Result<(f64, f64), OutOfRange> {
-        let Some(piece) = piece else {
-            return self.eval(x);
-        };
-        // A point inside the piece, which chooses the formula.
-        let at = match self.piece_ends(piece) {
-            (below, above) if below.is_finite() && above.is_finite() => 0.5 * (below + above),
-            (below, _) if below.is_finite() => below + below.abs().max(1.0),
-            (_, above) if above.is_finite() => above - above.abs().max(1.0),
-            _ => x,
-        };
-        self.eval_as(x, at)
+        match piece.and_then(|piece| self.formulas.get(piece)) {
+            Some(formula) => formula.eval(self, x),
+            None => self.eval(x),
+        }
     }
 
     /// `(y, dy/dx)` at `x` of the formula (the segment, or the policy
@@ -300,6 +314,11 @@ impl Curve {
     fn eval_as(&self, x: f64, at: f64) -> Result<(f64, f64), OutOfRange> {
         let (first, last) = (self.xs[0], self.xs[self.xs.len() - 1]);
         let inside = at >= first && at <= last;
+        // What the formulas below give a zero curve at a finite `x`, where
+        // it has a value: `0 + 0·(x − x_i)`, `0` held, or `0` outside.
+        if self.zero && x.is_finite() && (inside || self.outside != Outside::Error) {
+            return Ok((0.0, 0.0));
+        }
         if !inside {
             match self.outside {
                 Outside::Hold => {
@@ -582,6 +601,124 @@ mod tests {
         probes.extend([8.0, -3.0, 2.5, 0.0, 7.0, 6.99, f64::NAN, 1.0, 0.5]);
         for x in probes {
             assert_eq!(curve.segment(x), reference(x), "x = {x}");
+        }
+    }
+
+    /// A result with its numbers as bits, so that `0` and `−0` differ and
+    /// NaN equals NaN.
+    fn bits(result: Result<(f64, f64), OutOfRange>) -> Result<(u64, u64), String> {
+        result
+            .map(|(y, slope)| (y.to_bits(), slope.to_bits()))
+            .map_err(|e| format!("{e:?}"))
+    }
+
+    #[test]
+    fn a_zero_curve_answers_bit_for_bit_as_its_formulas_do() {
+        let xs: Vec<f64> = vec![0.0, 0.5, 1.0, 2.5, 3.0];
+        // Forward and backward in small steps (as event location goes back
+        // within a step), the points themselves, beyond both ends, and
+        // numbers that are no positions.
+        let mut probes: Vec<f64> = (0..90).map(|k| -0.7 + 0.05 * k as f64).collect();
+        probes.extend((0..90).rev().map(|k| -0.7 + 0.05 * k as f64));
+        probes.extend(xs.iter().copied());
+        probes.extend([
+            -0.0,
+            1e300,
+            -1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ]);
+        for outside in [
+            Outside::Hold,
+            Outside::Extrapolate,
+            Outside::Zero,
+            Outside::Error,
+        ] {
+            let zero = Curve::new(xs.clone(), vec![0.0; xs.len()], outside).unwrap();
+            assert!(zero.zero, "{outside:?}");
+            let formulas = Curve {
+                zero: false,
+                ..zero.clone()
+            };
+            for &x in &probes {
+                assert_eq!(
+                    bits(zero.eval(x)),
+                    bits(formulas.eval(x)),
+                    "{outside:?} {x}"
+                );
+                for piece in 0..=zero.kinks().len() {
+                    let (held, general) = (
+                        zero.eval_on(Some(piece), x),
+                        formulas.eval_on(Some(piece), x),
+                    );
+                    assert_eq!(bits(held), bits(general), "{outside:?} {x} piece {piece}");
+                }
+            }
+        }
+        // Values of −0 (held as −0 before the first point), or a monotone
+        // cubic, take the formulas.
+        let negative = Curve::new(xs.clone(), vec![-0.0; xs.len()], Outside::Hold).unwrap();
+        assert!(!negative.zero);
+        assert_eq!(bits(negative.eval(-1.0)), Ok(((-0.0f64).to_bits(), 0)));
+        let smooth = Curve::new(xs.clone(), vec![0.0; xs.len()], Outside::Hold).unwrap();
+        assert!(!smooth.smooth().zero);
+    }
+
+    /// What `eval_on` evaluated at each call before the formulas of the
+    /// pieces were chosen once: the curve's formula at a point inside the
+    /// piece (its middle, or a unit or the kink's magnitude beyond a kink
+    /// at an end), or the curve itself for a piece without ends.
+    fn eval_on_by_search(curve: &Curve, piece: usize, x: f64) -> Result<(f64, f64), OutOfRange> {
+        let at = match curve.piece_ends(piece) {
+            (below, above) if below.is_finite() && above.is_finite() => 0.5 * (below + above),
+            (below, _) if below.is_finite() => below + below.abs().max(1.0),
+            (_, above) if above.is_finite() => above - above.abs().max(1.0),
+            _ => x,
+        };
+        curve.eval_as(x, at)
+    }
+
+    #[test]
+    fn a_held_piece_answers_bit_for_bit_as_the_search_for_its_formula() {
+        // Slopes 1, 1, 0, −2, 0 (kinks at 2, 3, 4; a piece of two segments
+        // below 2), ends per policy; and a curve of one piece per segment.
+        let xs = vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let bent = |outside| Curve::new(xs.clone(), vec![0.5, 1.5, 2.5, 2.5, 0.5, 0.5], outside);
+        let steep = |outside| Curve::new(vec![-1.0, 0.25, 3.0], vec![4.0, -2.0, 7.0], outside);
+        let mut probes: Vec<f64> = (0..140).map(|k| -1.5 + 0.05 * k as f64).collect();
+        probes.extend((0..140).rev().map(|k| -1.5 + 0.05 * k as f64));
+        probes.extend(xs.iter().copied());
+        probes.extend([
+            -0.0,
+            -7.0,
+            9.0,
+            1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ]);
+        let policies = [
+            Outside::Hold,
+            Outside::Extrapolate,
+            Outside::Zero,
+            Outside::Error,
+        ];
+        for outside in policies {
+            let bent = bent(outside).unwrap();
+            let steep = steep(outside).unwrap();
+            let zero = Curve::new(xs.clone(), vec![0.0; 6], outside).unwrap();
+            let constant = SecantCurve::constant(3.0).curve;
+            for curve in [bent.clone(), bent.smooth(), steep, zero, constant] {
+                // One piece beyond the last: the curve itself.
+                for piece in 0..=curve.kinks().len() + 1 {
+                    for &x in &probes {
+                        let held = curve.eval_on(Some(piece), x);
+                        let searched = eval_on_by_search(&curve, piece, x);
+                        assert_eq!(bits(held), bits(searched), "{curve:?} piece {piece} at {x}");
+                    }
+                }
+            }
         }
     }
 

@@ -129,7 +129,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     ) -> Result<(), Fault> {
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
-        *rates = y.z;
+        rates.assign(&y.z);
         self.inputs
             .internal_rates(&self.arguments, rates.as_mut_slice())?;
         self.input_failure()
