@@ -1,13 +1,13 @@
 //! Native code for the routines of an interpreted `lagrangian` model,
 //! compiled at run time with Cranelift.
 //!
-//! [`compile`] turns each routine of a model's [`Tape`] into one native
-//! function (`lower`), once per model; [`accelerate`] installs them in an
-//! [`InterpretedModel`], which then runs them in place of the tape's
-//! interpreter. The native code computes what the interpreter computes, bit
-//! for bit: the same IEEE operations in the same order, never a fused
-//! multiply-add, and the transcendental functions through the same `f64`
-//! methods (`shims`).
+//! [`compile`] turns each routine of a model's [`Tape`], its derived
+//! routines too, into one native function (`lower`), once per model;
+//! [`accelerate`] installs them in an [`InterpretedModel`], which then runs
+//! them in place of the tape's interpreter. The native code computes what
+//! the interpreter computes, bit for bit: the same IEEE operations in the
+//! same order, never a fused multiply-add, and the transcendental functions
+//! through the same `f64` methods (`shims`).
 //!
 //! Nothing here is required: a routine the compiler declines (too long for
 //! [`Options::max_instructions`], or not in the single-assignment form the
@@ -27,7 +27,7 @@ use cranelift_module::{FuncId, Linkage, Module};
 use lagrangian_model::InterpretedModel;
 use lagrangian_model::layout::RoutineKind;
 use lagrangian_model::native::{InputCall, InputTrampoline, NativeRoutines};
-use lagrangian_model::tape::{Tape, TapeRoutine};
+use lagrangian_model::tape::{DerivedRoutine, Tape, TapeRoutine};
 use std::fmt;
 use std::sync::Arc;
 
@@ -67,6 +67,9 @@ type RoutineFunction = unsafe extern "C" fn(*const f64, *mut f64, *const (), Inp
 #[derive(Clone, Copy)]
 struct Compiled {
     kind: RoutineKind,
+    /// Which derived routine it is, for one of the tape's derived routines
+    /// (`kind` is then the routine it is derived from).
+    derived: Option<DerivedRoutine>,
     function: RoutineFunction,
     outputs: usize,
 }
@@ -117,26 +120,30 @@ impl fmt::Debug for NativeCode {
 impl NativeCode {
     /// The routines that run as native code.
     pub fn compiled_routines(&self) -> impl Iterator<Item = RoutineKind> + '_ {
-        self.compiled.iter().map(|c| c.kind)
+        (self.compiled.iter())
+            .filter(|c| c.derived.is_none())
+            .map(|c| c.kind)
     }
 
-    /// The routines left to the tape, and why.
+    /// The tape's derived routines that run as native code.
+    pub fn compiled_derived_routines(&self) -> impl Iterator<Item = DerivedRoutine> + '_ {
+        self.compiled.iter().filter_map(|c| c.derived)
+    }
+
+    /// The routines left to the tape, and why (for a derived routine, the
+    /// routine it is derived from, and an error that names it).
     pub fn declined(&self) -> &[(RoutineKind, JitError)] {
         &self.declined
     }
-}
 
-impl NativeRoutines for NativeCode {
-    fn run(
+    /// Runs `compiled`; `false` when the slices do not fit it.
+    fn call(
         &self,
-        kind: RoutineKind,
+        compiled: &Compiled,
         registers: &[f64],
         out: &mut [f64],
         inputs: InputCall<'_>,
     ) -> bool {
-        let Some(compiled) = self.compiled.iter().find(|c| c.kind == kind) else {
-            return false;
-        };
         if registers.len() != self.registers || out.len() < compiled.outputs {
             return false;
         }
@@ -157,6 +164,30 @@ impl NativeRoutines for NativeCode {
     }
 }
 
+impl NativeRoutines for NativeCode {
+    fn run(
+        &self,
+        kind: RoutineKind,
+        registers: &[f64],
+        out: &mut [f64],
+        inputs: InputCall<'_>,
+    ) -> bool {
+        let found = (self.compiled.iter()).find(|c| c.kind == kind && c.derived.is_none());
+        found.is_some_and(|compiled| self.call(compiled, registers, out, inputs))
+    }
+
+    fn run_derived(
+        &self,
+        which: DerivedRoutine,
+        registers: &[f64],
+        out: &mut [f64],
+        inputs: InputCall<'_>,
+    ) -> bool {
+        let found = self.compiled.iter().find(|c| c.derived == Some(which));
+        found.is_some_and(|compiled| self.call(compiled, registers, out, inputs))
+    }
+}
+
 /// Compiles the routines of `tape` that `options` allows; `Err` when no
 /// native code can be made on this host.
 pub fn compile(tape: &Tape, options: &Options) -> Result<NativeCode, JitError> {
@@ -165,7 +196,11 @@ pub fn compile(tape: &Tape, options: &Options) -> Result<NativeCode, JitError> {
     let mut declined = Vec::new();
     let mut context = module.make_context();
     let mut builder_context = FunctionBuilderContext::new();
-    for (k, routine) in tape.routines().iter().enumerate() {
+    let routines = (tape.routines().iter().map(|routine| (None, routine))).chain(
+        tape.derived_routines()
+            .map(|(d, routine)| (Some(d), routine)),
+    );
+    for (k, (derived, routine)) in routines.enumerate() {
         let name = format!("routine_{k}");
         let made = define(
             &mut module,
@@ -177,17 +212,21 @@ pub fn compile(tape: &Tape, options: &Options) -> Result<NativeCode, JitError> {
             options,
         );
         module.clear_context(&mut context);
-        match made {
-            Ok(id) => defined.push((routine, id)),
-            Err(error) => declined.push((routine.kind, error)),
+        match (made, derived) {
+            (Ok(id), _) => defined.push((derived, routine, id)),
+            (Err(error), None) => declined.push((routine.kind, error)),
+            (Err(JitError(error)), Some(d)) => {
+                declined.push((routine.kind, JitError(format!("derived {d:?}: {error}"))))
+            }
         }
     }
     module
         .finalize_definitions()
         .map_err(|e| JitError(format!("finalizing: {e}")))?;
     let compiled = (defined.into_iter())
-        .map(|(routine, id)| Compiled {
+        .map(|(derived, routine, id)| Compiled {
             kind: routine.kind,
+            derived,
             // SAFETY: `id` was defined with `lower::routine_signature`,
             // the signature of `RoutineFunction`, in the host's calling
             // convention.

@@ -1,15 +1,18 @@
 //! Every spec of `specs/`: its native code (this crate) and its committed
 //! compiled code (`generated/`) agree bit for bit on `M`, `f`, `q̈`, the
 //! energies and every other routine the model has, at random states and
-//! parameters; and a routine the native compiler declines still runs, on
-//! the tape.
+//! parameters, and so does the tape on the mechanical energy (the tape's
+//! derived routine); and a routine the native compiler declines still
+//! runs, on the tape.
 
 use lagrangian_core::random::Lcg;
 use lagrangian_generated as generated;
 use lagrangian_jit::{Options, accelerate, compile};
 use lagrangian_model::layout::RoutineKind;
 use lagrangian_model::nalgebra::{SMatrix, SVector};
+use lagrangian_model::tape::{DerivedRoutine, Instruction};
 use lagrangian_model::{Interpreted, InterpretedModel, Jacobians, LagrangianSystem};
+use std::cell::Cell;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -34,6 +37,24 @@ fn interpreted(name: &str) -> InterpretedModel {
 
 fn bits(values: &[f64]) -> Vec<u64> {
     values.iter().map(|x| x.to_bits()).collect()
+}
+
+/// Asserts that the model's mechanical energy and `T`, `V` of its energies
+/// at one state are, bit for bit, `expected`.
+fn assert_mechanical_energy<const N: usize, M: LagrangianSystem<N>>(
+    what: &str,
+    model: &M,
+    (t, q, qd): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    expected: [f64; 2],
+) {
+    let mechanical = model.mechanical_energy(t, q, qd, &inputs);
+    let e = model.energies(t, q, qd, &inputs);
+    let at = format!("at t = {t}, q = {q:?}, q̇ = {qd:?}");
+    let expected = bits(&expected);
+    let got = bits(&[mechanical.kinetic, mechanical.potential]);
+    assert_eq!(got, expected, "{what}: mechanical energy {at}");
+    let got = bits(&[e.kinetic, e.potential]);
+    assert_eq!(got, expected, "{what}: T and V of the energies {at}");
 }
 
 /// Everything a model computes at one state, as bits.
@@ -92,7 +113,10 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(name: &str) -> Vec<
     let mut model = interpreted(name);
     let code = compile(model.tape(), &Options::default()).unwrap();
     assert!(code.declined().is_empty(), "{name}: {:?}", code.declined());
+    let derived: Vec<DerivedRoutine> = code.compiled_derived_routines().collect();
+    assert_eq!(derived, [DerivedRoutine::MechanicalEnergy], "{name}");
     let native_routines = code.compiled_routines().collect();
+    let mut tape = Interpreted::<N>::new(model.clone()).unwrap();
     model.set_native(Arc::new(code));
     let mut native = Interpreted::<N>::new(model).unwrap();
     let mut compiled = M::default();
@@ -105,6 +129,7 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(name: &str) -> Vec<
             let v = value * (1.0 + 0.2 * rng.symmetric()) + 0.1 * rng.symmetric();
             compiled.set_parameter(name, v).unwrap();
             native.set_parameter(name, v).unwrap();
+            tape.set_parameter(name, v).unwrap();
         }
         let t = rng.symmetric().abs();
         let mut vector = |scale: f64| SVector::<f64, N>::from_fn(|_, _| scale * rng.symmetric());
@@ -114,6 +139,14 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(name: &str) -> Vec<
         for ((what, w), (_, g)) in want.iter().zip(&got) {
             assert_eq!(w, g, "{name}: {what} at t = {t}, q = {q:?}, q̇ = {qd:?}");
         }
+        // T and V of the compiled energies, from each model's mechanical
+        // energy (the compiled model's takes them from its energies).
+        let e = compiled.energies(t, &q, &qd, &inputs);
+        let expected = [e.kinetic, e.potential];
+        let state = (t, &q, &qd);
+        assert_mechanical_energy(&format!("{name} compiled"), &compiled, state, expected);
+        assert_mechanical_energy(&format!("{name} native"), &native, state, expected);
+        assert_mechanical_energy(&format!("{name} tape"), &tape, state, expected);
     }
     native_routines
 }
@@ -234,4 +267,34 @@ fn a_panicking_input_panics_the_caller() {
     let result = std::panic::catch_unwind(run);
     let payload = result.unwrap_err();
     assert_eq!(payload.downcast_ref::<&str>(), Some(&"no barrier table"));
+}
+
+/// The paper model's mechanical energy calls no input, on the tape and as
+/// native code, while its energies call each input of their power of the
+/// forces (the crush element, the barrier tables, the weld) once.
+#[test]
+fn the_paper_models_mechanical_energy_calls_no_input() {
+    let tape = interpreted("yaris_double_pendulum");
+    let energies_routine = (tape.tape().routines().iter())
+        .find(|r| r.kind == RoutineKind::Energies)
+        .unwrap();
+    let is_call = |i: &Instruction| matches!(i, Instruction::Input { .. });
+    let calls_of_energies = energies_routine.instructions.iter().filter(|i| is_call(i));
+    let calls_of_energies = calls_of_energies.count();
+    assert!(calls_of_energies >= 6, "{calls_of_energies}");
+    let mut native = tape.clone();
+    accelerate(&mut native).unwrap();
+    let calls = Cell::new(0);
+    let counting = |index: usize, args: &[f64]| {
+        calls.set(calls.get() + 1);
+        inputs(index, args)
+    };
+    let (q, qd) = ([-0.1, 0.2, 0.3], [1.0, -2.0, 0.5]);
+    for (what, model) in [("tape", &tape), ("native", &native)] {
+        let energies = model.evaluate_energies(0.01, &q, &qd, &counting).unwrap();
+        assert_eq!(calls.replace(0), calls_of_energies, "{what}: energies");
+        let mechanical = (model.evaluate_mechanical_energy(0.01, &q, &qd, &counting)).unwrap();
+        assert_eq!(calls.get(), 0, "{what}: mechanical energy");
+        assert_eq!(mechanical, energies.mechanical(), "{what}");
+    }
 }

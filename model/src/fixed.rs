@@ -6,7 +6,7 @@ use crate::interpreted::InterpretedModel;
 use crate::layout::{RoutineKind, unpack_dynamics};
 use crate::linalg::{LdltPattern, solve_with_pattern};
 use crate::system::{Jacobians, LagrangianSystem};
-use crate::{Energies, InputFunctions};
+use crate::{Energies, InputFunctions, MechanicalEnergy};
 use nalgebra::{SMatrix, SVector};
 
 /// An [`InterpretedModel`] of known dimension `N`, usable wherever a compiled
@@ -219,6 +219,18 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
     ) -> Energies {
         self.0
             .evaluate_energies(t, q.as_slice(), qd.as_slice(), inputs)
+            .unwrap_or_default()
+    }
+
+    fn mechanical_energy<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> MechanicalEnergy {
+        self.0
+            .evaluate_mechanical_energy(t, q.as_slice(), qd.as_slice(), inputs)
             .unwrap_or_default()
     }
 

@@ -2,9 +2,11 @@
 //! recompiling, with the same numbers as the compiled code.
 
 use crate::error::ModelError;
-use crate::layout::{ConstraintLayout, Energies, RoutineKind, mass_entries, unpack_dynamics};
+use crate::layout::{
+    ConstraintLayout, Energies, MechanicalEnergy, RoutineKind, mass_entries, unpack_dynamics,
+};
 use crate::native::{NativeRoutines, with_input_call};
-use crate::tape::Tape;
+use crate::tape::{DerivedRoutine, Tape};
 use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -359,6 +361,39 @@ impl InterpretedModel {
             values.copy_from_slice(&out[..5]);
             Energies::from_outputs(&values)
         })
+    }
+
+    /// `T` and `V` at one state, bit for bit those of
+    /// [`InterpretedModel::evaluate_energies`], by the tape's
+    /// [`DerivedRoutine::MechanicalEnergy`]: without the operations and
+    /// input calls only the dissipation and the powers need.
+    pub fn evaluate_mechanical_energy<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        inputs: &I,
+    ) -> Result<MechanicalEnergy, ModelError> {
+        self.check(q)?;
+        self.check(qd)?;
+        let which = DerivedRoutine::MechanicalEnergy;
+        let state = (t, q, qd, &[][..]);
+        let mut registers = self.registers.borrow_mut();
+        let mut out = [0.0; 2];
+        let native = self.native.as_ref().is_some_and(|native| {
+            self.tape.load_state(state, &mut registers);
+            with_input_call(inputs, |call| {
+                native.run_derived(which, &registers, &mut out, call)
+            })
+        });
+        if native || (self.tape).run_derived(which, state, inputs, &mut registers, &mut out) {
+            let [kinetic, potential] = out;
+            return Ok(MechanicalEnergy { kinetic, potential });
+        }
+        drop(registers);
+        // No energies routine to derive it from: the error of the energies.
+        self.evaluate_energies(t, q, qd, inputs)
+            .map(|e| e.mechanical())
     }
 
     /// `(input index, number of arguments)` of every input call of the dynamics.

@@ -171,6 +171,27 @@ impl Energies {
             external_power,
         }
     }
+
+    /// `T` and `V`.
+    pub fn mechanical(&self) -> MechanicalEnergy {
+        MechanicalEnergy {
+            kinetic: self.kinetic,
+            potential: self.potential,
+        }
+    }
+}
+
+/// The mechanical energy at one state: `T` and `V`, the fields of
+/// [`Energies`] that need neither the dissipation nor the forces (those of
+/// the tape's [`DerivedRoutine::MechanicalEnergy`], in order).
+///
+/// [`DerivedRoutine::MechanicalEnergy`]: crate::tape::DerivedRoutine::MechanicalEnergy
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MechanicalEnergy {
+    /// Kinetic energy `T`.
+    pub kinetic: f64,
+    /// Potential energy `V`.
+    pub potential: f64,
 }
 
 /// What one output of a routine is: the place it has in the runtime's

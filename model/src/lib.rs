@@ -41,7 +41,7 @@ pub use fixed::{Interpreted, MAX_INTERPRETED_DIMENSION, WithDimension};
 pub use functions::Func;
 pub use inputs::{ConstantInputs, InputFunctions, NoInputs};
 pub use interpreted::{InterpretedModel, ModelDescription};
-pub use layout::Energies;
+pub use layout::{Energies, MechanicalEnergy};
 #[cfg(feature = "nalgebra")]
 pub use system::{Jacobians, LagrangianSystem, solve_mass_matrix};
 

@@ -15,6 +15,7 @@
 
 use crate::InputFunctions;
 use crate::layout::RoutineKind;
+use crate::tape::DerivedRoutine;
 use std::any::Any;
 use std::cell::Cell;
 use std::fmt;
@@ -36,6 +37,20 @@ pub trait NativeRoutines: Send + Sync + RefUnwindSafe + UnwindSafe + fmt::Debug 
         out: &mut [f64],
         inputs: InputCall<'_>,
     ) -> bool;
+
+    /// Runs the tape's derived routine `which` as [`NativeRoutines::run`]
+    /// runs a routine (see [`crate::tape::Tape::derived_routines`]);
+    /// `false`, having done nothing, when it has no code for it.
+    fn run_derived(
+        &self,
+        which: DerivedRoutine,
+        registers: &[f64],
+        out: &mut [f64],
+        inputs: InputCall<'_>,
+    ) -> bool {
+        let _ = (which, registers, out, inputs);
+        false
+    }
 }
 
 /// The signature native code calls an input function through: context,

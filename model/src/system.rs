@@ -1,6 +1,6 @@
 //! The interface every derived model implements, compiled or interpreted.
 
-use crate::{Energies, InputFunctions, ModelError};
+use crate::{Energies, InputFunctions, MechanicalEnergy, ModelError};
 use nalgebra::{SMatrix, SVector};
 
 /// Jacobians of the equations of motion `M(q) q̈ = f(q, q̇, t)` (the blocks of
@@ -67,6 +67,20 @@ pub trait LagrangianSystem<const N: usize> {
         qd: &SVector<f64, N>,
         inputs: &I,
     ) -> Energies;
+
+    /// `T` and `V` of [`LagrangianSystem::energies`], bit for bit: for a
+    /// caller that reads nothing else of them. A model may compute them
+    /// without the rest (the interpreted one does, without the input calls
+    /// only the powers make); by default they are taken from `energies`.
+    fn mechanical_energy<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+    ) -> MechanicalEnergy {
+        self.energies(t, q, qd, inputs).mechanical()
+    }
 
     /// Writes `M` and `f` as [`LagrangianSystem::mass_matrix_and_forcing`]
     /// does and returns the powers `[Σ ∂D/∂q̇·q̇, Σ Q·q̇]` of

@@ -17,6 +17,9 @@ use crate::layout::RoutineKind;
 use std::fmt;
 
 mod code;
+mod derived;
+
+pub use derived::DerivedRoutine;
 
 /// One instruction: destination register first, then the operands.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,7 +95,8 @@ impl Instruction {
 /// The instructions and output registers of one routine.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TapeRoutine {
-    /// What it computes.
+    /// What it computes (for a [`DerivedRoutine`], the routine whose outputs
+    /// it computes some of).
     pub kind: RoutineKind,
     /// Its instructions, in order.
     pub instructions: Vec<Instruction>,
@@ -178,6 +182,8 @@ pub struct Tape {
     /// Each routine's instructions as they run, superinstructions fused
     /// (see `code`); every register they name is inside the file.
     steps: Vec<Vec<code::Step>>,
+    /// The routines derived from those above (see `derived`), with their steps.
+    derived: Vec<(DerivedRoutine, TapeRoutine, Vec<code::Step>)>,
 }
 
 impl Tape {
@@ -226,11 +232,13 @@ impl Tape {
         let steps = (routines.iter())
             .map(|routine| code::steps(routine, &layout, &arguments))
             .collect();
+        let derived = derive(&layout, &routines, &arguments);
         Ok(Tape {
             layout,
             routines,
             arguments,
             steps,
+            derived,
         })
     }
 
@@ -301,6 +309,14 @@ impl Tape {
         &self.arguments
     }
 
+    /// The routines [`Tape::new`] derived from the others: one for each
+    /// [`DerivedRoutine`] whose source routine the tape has.
+    pub fn derived_routines(&self) -> impl Iterator<Item = (DerivedRoutine, &TapeRoutine)> {
+        self.derived
+            .iter()
+            .map(|(which, routine, _)| (*which, routine))
+    }
+
     /// Writes `(t, q, q̇, q̈)` into the state slots of `registers`, as
     /// [`Tape::run`] does first; `q̈` may be empty. `registers` must come
     /// from [`Tape::registers`].
@@ -335,6 +351,38 @@ impl Tape {
         let Some((routine, steps)) = self.routine_and_steps(kind) else {
             return false;
         };
+        self.run_steps((routine, steps), state, inputs, registers, out);
+        true
+    }
+
+    /// Runs the derived routine `which` as [`Tape::run`] runs a routine;
+    /// `false` when the tape has none (it lacks the source routine).
+    pub fn run_derived<I: InputFunctions + ?Sized>(
+        &self,
+        which: DerivedRoutine,
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        registers: &mut [f64],
+        out: &mut [f64],
+    ) -> bool {
+        let Some((_, routine, steps)) = self.derived.iter().find(|d| d.0 == which) else {
+            return false;
+        };
+        self.run_steps((routine, steps), state, inputs, registers, out);
+        true
+    }
+
+    /// Runs `steps`, those of `routine`, and writes its outputs to `out`
+    /// (see [`Tape::run`]).
+    #[inline(always)]
+    fn run_steps<I: InputFunctions + ?Sized>(
+        &self,
+        (routine, steps): (&TapeRoutine, &[code::Step]),
+        state: (f64, &[f64], &[f64], &[f64]),
+        inputs: &I,
+        registers: &mut [f64],
+        out: &mut [f64],
+    ) {
         assert_eq!(
             registers.len(),
             self.layout.registers(),
@@ -345,7 +393,8 @@ impl Tape {
         for &step in steps {
             // SAFETY: `Tape::new` checked that every register of every
             // instruction, hence of every step, is inside a file of
-            // `layout.registers()`, the length of `registers` (asserted).
+            // `layout.registers()`, the length of `registers` (asserted);
+            // a derived routine's instructions are some of those.
             unsafe {
                 step.run(file, |instruction| {
                     self.execute(
@@ -359,7 +408,6 @@ impl Tape {
         for (slot, &o) in out.iter_mut().zip(&routine.outputs) {
             *slot = registers[o as usize];
         }
-        true
     }
 
     #[inline(always)]
@@ -408,6 +456,28 @@ impl Tape {
             }
         }
     }
+}
+
+/// The derived routines of `routines` (see `derived`), with their steps:
+/// one for each [`DerivedRoutine`] whose source routine is there and has
+/// the outputs it keeps. The registers are inside the file (checked).
+fn derive(
+    layout: &RegisterLayout,
+    routines: &[TapeRoutine],
+    arguments: &[u32],
+) -> Vec<(DerivedRoutine, TapeRoutine, Vec<code::Step>)> {
+    let mut derived = Vec::new();
+    for which in DerivedRoutine::ALL {
+        let (source, keep) = which.definition();
+        let Some(source) = routines.iter().find(|r| r.kind == source) else {
+            continue;
+        };
+        if let Some(routine) = derived::pruned(source, keep, arguments, layout.registers()) {
+            let steps = code::steps(&routine, layout, arguments);
+            derived.push((which, routine, steps));
+        }
+    }
+    derived
 }
 
 #[cfg(test)]

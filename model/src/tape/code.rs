@@ -174,7 +174,7 @@ fn binary(instruction: Instruction) -> Option<(Binary, u32, u32, u32)> {
 }
 
 /// The registers `instruction` reads (input arguments from `arguments`).
-fn reads(instruction: &Instruction, arguments: &[u32]) -> Vec<u32> {
+pub(super) fn reads(instruction: &Instruction, arguments: &[u32]) -> Vec<u32> {
     if let Instruction::Input { start, count, .. } = *instruction {
         return arguments[start as usize..(start + count) as usize].to_vec();
     }

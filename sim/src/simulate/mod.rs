@@ -652,7 +652,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         true => (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?,
         false => problem::Accelerations::not_evaluated(),
     };
-    let energies = problem.system.energies(t, &y.q, &y.v, &problem.inputs);
+    // T and V only: the dissipation and the powers are integrated in `y`.
+    let energy = (problem.system).mechanical_energy(t, &y.q, &y.v, &problem.inputs);
     let outputs = match needs.outputs {
         true => {
             let mut values = vec![0.0; outputs];
@@ -673,8 +674,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         t,
         y: *y,
         a,
-        kinetic: energies.kinetic,
-        potential: energies.potential,
+        kinetic: energy.kinetic,
+        potential: energy.potential,
         outputs,
         components,
         multipliers,
