@@ -5,7 +5,7 @@
 //! INPUT=VALUE` adds one too.
 
 use super::curve::OutOfRange;
-use super::{Binder, Component, Port, Section};
+use super::{Binder, Component, Port, Section, Smoothness};
 use crate::scenario::bind::finite;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -43,6 +43,10 @@ impl Component for Constant {
 
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         Ok(())
+    }
+
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Smooth
     }
 }
 

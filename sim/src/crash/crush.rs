@@ -45,7 +45,7 @@
 
 use super::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use super::held::{self, Crossed, Held};
-use super::{Binder, Column, Component, Contact, Event, Port, Section};
+use super::{Binder, Column, Component, Contact, Event, Port, Section, Smoothness};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
@@ -504,6 +504,15 @@ impl Component for CrushElement {
     /// `∫₀^δ S dx` (elastic, or under tension); 0 separated.
     fn stored_energy(&self, args: &[f64]) -> Result<f64, OutOfRange> {
         self.stored(args)
+    }
+
+    /// Smooth when it holds the segments of its curves (`stop_at_kinks`):
+    /// its changes of regime and the kinks of its curves are then events.
+    fn smoothness(&self) -> Smoothness {
+        match self.stop_at_kinks {
+            true => Smoothness::Smooth,
+            false => Smoothness::Unknown,
+        }
     }
 }
 

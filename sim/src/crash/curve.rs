@@ -245,6 +245,18 @@ impl Curve {
         self.tangents.is_some()
     }
 
+    /// The points where the curve is not continuously differentiable, in
+    /// increasing order: its [`Curve::kinks`]; for a smooth one, its ends,
+    /// unless the policy outside continues the end tangent (`extrapolate`).
+    pub fn corners(&self) -> Vec<f64> {
+        match (&self.tangents, self.outside) {
+            (None, _) | (Some(_), Outside::Extrapolate) => self.kinks().to_vec(),
+            (Some(_), Outside::Hold | Outside::Zero | Outside::Error) => {
+                vec![self.xs[0], self.xs[self.xs.len() - 1]]
+            }
+        }
+    }
+
     /// The abscissae.
     pub fn xs(&self) -> &[f64] {
         &self.xs

@@ -9,7 +9,7 @@
 //! `stiffness` `k` [N/m] and `damping` `c` [N·s/m], both ≥ 0.
 
 use super::curve::OutOfRange;
-use super::{Binder, Column, Component, Port, Section};
+use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::scenario::bind::{Ports, non_negative};
 use serde::Deserialize;
 
@@ -82,6 +82,10 @@ impl Component for KelvinVoigt {
 
     fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
         Some(self.power(args))
+    }
+
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Smooth
     }
 }
 

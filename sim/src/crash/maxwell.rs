@@ -19,7 +19,7 @@
 //! initial dashpot displacement `dashpot0` (0).
 
 use super::curve::OutOfRange;
-use super::{Binder, Column, Component, Port, Section};
+use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::scenario::bind::{Ports, finite, positive};
 use serde::Deserialize;
 
@@ -104,6 +104,10 @@ impl Component for Maxwell {
     fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
         let force = self.force(args.first().copied().unwrap_or(0.0));
         Some(force * force / self.damping)
+    }
+
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Smooth
     }
 }
 

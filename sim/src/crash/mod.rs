@@ -336,6 +336,33 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     fn stored_energy(&self, _args: &[f64]) -> Result<f64, OutOfRange> {
         Ok(0.0)
     }
+
+    /// How smooth the component's ports are within a step of the
+    /// integration ([`Smoothness`]): the output samples of a step over
+    /// which every input the dynamics calls is smooth take `q̈` from the
+    /// step's dense output. [`Smoothness::Unknown`] (the default) has them
+    /// solve for it.
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Unknown
+    }
+}
+
+/// How smooth a component's ports are within a step of the integration
+/// (see [`Component::smoothness`]): smooth means continuously
+/// differentiable in the input's arguments, so that `q̈` is so in time
+/// and the derivative of a step's dense output follows it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Smoothness {
+    /// Not known to be smooth.
+    Unknown,
+    /// Smooth within every step: in its current state each port is a
+    /// smooth function of the arguments, continued past the events that
+    /// change it (a held segment of a curve, a regime).
+    Smooth,
+    /// Smooth except at these values of its first argument, in increasing
+    /// order, where a port's slope or value jumps: an input of time is
+    /// smooth over a step with none of them inside.
+    Kinks(Vec<f64>),
 }
 
 /// The state of a contact element's contact (see [`Component::contact`]).

@@ -15,7 +15,7 @@
 
 use super::curve::{Curve, OutOfRange, Outside};
 use super::table::Table;
-use super::{Binder, Component, Port, Section};
+use super::{Binder, Component, Port, Section, Smoothness};
 use crate::scenario::bind::outside;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -63,6 +63,11 @@ impl Component for Tabulated {
             true => self.curve.kinks(),
             false => &[],
         }
+    }
+
+    /// Smooth between the curve's corners ([`Curve::corners`]).
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Kinks(self.curve.corners())
     }
 }
 

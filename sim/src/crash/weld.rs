@@ -21,7 +21,7 @@
 use super::curve::{Curve, OutOfRange};
 use super::held::{self, Crossed, Held};
 use super::integral::integral;
-use super::{Binder, Column, Component, Event, Port, Section};
+use super::{Binder, Column, Component, Event, Port, Section, Smoothness};
 use crate::ode::Direction;
 use crate::scenario::bind::{Ports, non_negative, outside, positive};
 use serde::Deserialize;
@@ -270,6 +270,15 @@ impl Component for Weld {
         match curve {
             Some(curve) => integral(|x| curve.eval(x).map(|(m, _)| m), 0.0, args[0]),
             None => Ok(0.0),
+        }
+    }
+
+    /// Smooth when it holds the segment of its curve (`stop_at_kinks`):
+    /// its failure and the kinks of its curve are then events.
+    fn smoothness(&self) -> Smoothness {
+        match self.stop_at_kinks {
+            true => Smoothness::Smooth,
+            false => Smoothness::Unknown,
         }
     }
 }

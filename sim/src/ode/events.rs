@@ -231,6 +231,9 @@ mod tests {
         fn t1(&self) -> f64 {
             1e-3
         }
+        fn uncut_end(&self) -> f64 {
+            1e-3
+        }
         fn eval(&self, _t: f64, out: &mut PhaseState<1>) {
             *out = PhaseState::zeros();
         }

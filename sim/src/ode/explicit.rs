@@ -378,6 +378,23 @@ impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
             Dense::DormandPrince(d) => d.eval(t, out),
         }
     }
+
+    fn uncut_end(&self) -> f64 {
+        match self {
+            Dense::Hermite(d) => d.uncut_end(),
+            Dense::DormandPrince(d) => d.t0 + d.h,
+        }
+    }
+
+    fn eval_derivative(&self, t: f64, out: &mut Y) -> bool {
+        match self {
+            Dense::Hermite(d) => d.eval_derivative(t, out),
+            Dense::DormandPrince(d) => {
+                d.eval_derivative(t, out);
+                true
+            }
+        }
+    }
 }
 
 impl<Y> Truncate for Dense<Y> {
@@ -413,12 +430,99 @@ impl<Y: OdeVector> DormandPrince<Y> {
             ],
         );
     }
+
+    /// `dy/dt = (r1 + (1−2θ) r2 + θ(2−3θ) r3 + 2θ(1−θ)(1−2θ) r4) / h`,
+    /// the derivative of [`DormandPrince::eval`]'s polynomial.
+    fn eval_derivative(&self, t: f64, out: &mut Y) {
+        let theta = (t - self.t0) / self.h;
+        let (theta1, middle) = (1.0 - theta, 1.0 - 2.0 * theta);
+        let [_, r1, r2, r3, r4] = &self.r;
+        let per_h = 1.0 / self.h;
+        out.set_sum(&[
+            (per_h, r1),
+            (middle * per_h, r2),
+            (theta * (2.0 - 3.0 * theta) * per_h, r3),
+            (2.0 * theta * theta1 * middle * per_h, r4),
+        ]);
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ode::tableau::{DOPRI5, RK4};
+    use nalgebra::SVector;
+
+    /// `x'' = −x` as `y = (x, x')`: from `(1, 0)`, `x = cos t`.
+    struct Oscillator;
+
+    impl OdeProblem<SVector<f64, 2>> for Oscillator {
+        type Error = std::convert::Infallible;
+
+        fn rhs(
+            &mut self,
+            _t: f64,
+            y: &SVector<f64, 2>,
+            dy: &mut SVector<f64, 2>,
+        ) -> Result<(), Self::Error> {
+            *dy = SVector::from([y[1], -y[0]]);
+            Ok(())
+        }
+    }
+
+    /// The largest distance, over the steps of `tableau` through 0–10 s,
+    /// of the derivative of the dense output from `(−sin t, −cos t)`, at
+    /// seven points inside each step; checks that each step's ends give
+    /// `F` there, when the method offers the derivative.
+    fn derivative_error(tableau: &'static Tableau, options: &Options) -> Option<f64> {
+        let (mut worst, mut offered) = (0.0f64, true);
+        let y0 = SVector::from([1.0, 0.0]);
+        let mut check = |problem: &mut Oscillator, step: &dyn DenseStep<SVector<f64, 2>>| {
+            let (mut rate, mut y, mut f) = (SVector::zeros(), SVector::zeros(), SVector::zeros());
+            for t in [step.t0(), step.t1()] {
+                offered &= step.eval_derivative(t, &mut rate);
+                step.eval(t, &mut y);
+                problem.rhs(t, &y, &mut f).unwrap();
+                assert!(
+                    !offered || (rate - f).norm() < 1e-12,
+                    "t = {t}: {rate} vs {f}"
+                );
+            }
+            for k in 1..8 {
+                let t = step.t0() + k as f64 / 8.0 * (step.t1() - step.t0());
+                step.eval_derivative(t, &mut rate);
+                let exact = SVector::from([-t.sin(), -t.cos()]);
+                worst = worst.max((rate - exact).norm());
+            }
+        };
+        integrate(tableau, &mut Oscillator, 0.0, y0, 10.0, options, &mut check).unwrap();
+        offered.then_some(worst)
+    }
+
+    #[test]
+    fn dormand_prince_gives_the_derivative_of_its_dense_output() {
+        let options = Options {
+            rtol: 1e-8,
+            atol: 1e-10,
+            ..Options::default()
+        };
+        let error = derivative_error(&DOPRI5, &options).unwrap();
+        assert!(error < 1e-7, "{error}");
+        // Ten times the tolerance, ten times the error, about.
+        let loose = Options {
+            rtol: 1e-7,
+            atol: 1e-9,
+            ..options
+        };
+        let error_loose = derivative_error(&DOPRI5, &loose).unwrap();
+        assert!(error_loose > 3.0 * error, "{error_loose} vs {error}");
+        // The cubic Hermite of RK4 declines.
+        let fixed = Options {
+            fixed_step: Some(0.01),
+            ..options
+        };
+        assert_eq!(derivative_error(&RK4, &fixed), None);
+    }
 
     #[test]
     fn a_tableau_that_does_not_fit_its_stages_is_refused() {

@@ -45,6 +45,10 @@ impl<Y: OdeVector> DenseStep<Y> for Hermite<Y> {
         self.end
     }
 
+    fn uncut_end(&self) -> f64 {
+        self.t0 + self.h
+    }
+
     fn eval(&self, t: f64, out: &mut Y) {
         let [w0, w1, w2, w3] = hermite_weights((t - self.t0) / self.h, self.h);
         out.set_sum(&[

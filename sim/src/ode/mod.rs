@@ -224,6 +224,25 @@ pub trait DenseStep<Y> {
     fn t1(&self) -> f64;
     /// The solution at `t ∈ [t0, t1]`, written into `out`.
     fn eval(&self, t: f64, out: &mut Y);
+
+    /// The end of the step as the method took it: [`DenseStep::t1`], or
+    /// past it for a step cut at an event. The interpolant depends on `F`
+    /// over all of `[t0, uncut_end]`, so a kink of `F` there shows in it
+    /// even before `t1`.
+    fn uncut_end(&self) -> f64;
+
+    /// The time derivative of the interpolant at `t ∈ [t0, t1]`, written
+    /// into `out`, where the method's continuous extension gives one as
+    /// accurate as the solution needs: `true` then, `false` (the default,
+    /// `out` left as it is) otherwise. Dormand–Prince's gives one: exact at
+    /// both ends of the step (the stages `F(t0, y0)` and `F(t1, y1)`) and
+    /// within `O(h⁴)` between them where `F` is smooth over the step. The
+    /// derivative of a cubic Hermite interpolant (RK4, TR-BDF2) is a
+    /// quadratic, an order less accurate: it declines.
+    fn eval_derivative(&self, t: f64, out: &mut Y) -> bool {
+        let _ = (t, out);
+        false
+    }
 }
 
 /// What the integrators call with every accepted step: the problem and the

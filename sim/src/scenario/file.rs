@@ -57,6 +57,8 @@ pub(super) struct SimulationSection {
     pub(super) step: Option<f64>,
     pub(super) output_interval: f64,
     pub(super) max_steps: usize,
+    /// How the output samples get `q̈` (`SampleAccelerations::NAMES`).
+    pub(super) accelerations: String,
 }
 
 impl Default for SimulationSection {
@@ -70,6 +72,9 @@ impl Default for SimulationSection {
             step: None,
             output_interval: 1e-4,
             max_steps: 1_000_000,
+            accelerations: crate::simulate::SampleAccelerations::default()
+                .name()
+                .into(),
         }
     }
 }

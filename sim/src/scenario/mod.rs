@@ -61,6 +61,7 @@ mod signal;
 use crate::crash::BoundInputs;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
+use crate::simulate::SampleAccelerations;
 pub use base::BaseScenario;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
@@ -271,6 +272,8 @@ pub struct Scenario {
     /// Baumgarte's stabilization of the model's constraints (`[constraints]
     /// alpha`, `beta`); unused for a model without constraints.
     pub stabilization: lagrangian_model::constrained::Baumgarte,
+    /// How the output samples get `q̈` (`simulation.accelerations`).
+    pub accelerations: SampleAccelerations,
 }
 
 impl Scenario {

@@ -8,6 +8,7 @@ use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
+use crate::simulate::SampleAccelerations;
 use lagrangian_model::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -98,6 +99,7 @@ pub(super) fn resolve(
 ) -> Result<Scenario, String> {
     let s = &file.simulation;
     let (method, options) = solver_settings(s)?;
+    let accelerations = sample_accelerations(&s.accelerations)?;
 
     let parameters = parameter_overrides(&file.parameters, names)?;
     let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
@@ -159,6 +161,17 @@ pub(super) fn resolve(
         contact: file.metrics.contact.clone(),
         inputs,
         stabilization: stabilization(&file.constraints)?,
+        accelerations,
+    })
+}
+
+/// `[simulation] accelerations`: one of [`SampleAccelerations::NAMES`].
+fn sample_accelerations(name: &str) -> Result<SampleAccelerations, String> {
+    SampleAccelerations::parse(name).ok_or_else(|| {
+        format!(
+            "simulation.accelerations = `{name}`; use {}",
+            SampleAccelerations::NAMES.join(", ")
+        )
     })
 }
 

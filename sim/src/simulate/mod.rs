@@ -7,6 +7,7 @@ mod equilibrium;
 mod metrics;
 mod needs;
 mod problem;
+mod rates;
 pub mod stepwise;
 mod stops;
 mod summary;
@@ -18,6 +19,7 @@ pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
 pub use metrics::{Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
+pub use rates::SampleAccelerations;
 pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
@@ -41,7 +43,9 @@ pub struct Sample {
     pub q: Vec<f64>,
     /// Velocities `q̇` ([m/s] or [rad/s]).
     pub v: Vec<f64>,
-    /// Accelerations `q̈` ([m/s²] or [rad/s²]).
+    /// Accelerations `q̈` ([m/s²] or [rad/s²]): solved, or the derivative
+    /// of the step's dense output where that is as accurate (see
+    /// [`SampleAccelerations`]).
     pub a: Vec<f64>,
     /// Kinetic energy `T` \[J\].
     pub kinetic: f64,
@@ -328,7 +332,8 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
     let needs = needs::Needs::of(scenario, keep, problem.system.constraint_count());
     let outputs = model.output_names().len();
-    let mut sampler = Sampler::new(scenario, metrics, (needs, outputs));
+    let dense = rates::DenseAccelerations::of(&problem, scenario.accelerations);
+    let mut sampler = Sampler::new(scenario, metrics, (needs, outputs, dense));
     sampler.start(&mut problem, &y0);
     let outcome = ode::integrate(
         scenario.method,
@@ -473,12 +478,19 @@ struct Sampler<const N: usize> {
     reached: Option<(f64, PhaseState<N>)>,
     /// `max |g_k|` over the samples so far, by constraint.
     drift: Vec<f64>,
+    /// Which steps' samples take `q̈` from the dense output.
+    dense: rates::DenseAccelerations,
 }
 
 impl<const N: usize> Sampler<N> {
     /// The sampler of `scenario`'s output times, evaluating what `needs`
-    /// asks of a model with `outputs` outputs.
-    fn new(scenario: &Scenario, metrics: Metrics, (needs, outputs): (needs::Needs, usize)) -> Self {
+    /// asks of a model with `outputs` outputs, with `q̈` from the dense
+    /// output of the steps `dense` says.
+    fn new(
+        scenario: &Scenario,
+        metrics: Metrics,
+        (needs, outputs, dense): (needs::Needs, usize, rates::DenseAccelerations),
+    ) -> Self {
         let interval = scenario.output_interval;
         let bound = (scenario.t_end / interval + 1.0).ceil();
         let last = if bound >= 0.0 {
@@ -498,6 +510,7 @@ impl<const N: usize> Sampler<N> {
             last,
             reached: None,
             drift: Vec::new(),
+            dense,
         }
     }
 
@@ -507,7 +520,7 @@ impl<const N: usize> Sampler<N> {
         problem: &mut CrashProblem<N, S>,
         y0: &PhaseState<N>,
     ) {
-        self.record(problem, 0.0, y0);
+        self.record(problem, 0.0, y0, None);
         self.next = 1;
     }
 
@@ -520,6 +533,7 @@ impl<const N: usize> Sampler<N> {
         let mut y = PhaseState::zeros();
         step.eval(step.t1(), &mut y);
         self.reached = Some((step.t1(), y));
+        let dense = self.needs.accelerations && self.dense.smooth(step);
         while self.next <= self.last {
             let t = (self.next as f64 * self.interval).min(self.t_end);
             if t > step.t1() || self.next as f64 * self.interval > self.t_end + 0.5 * self.interval
@@ -527,20 +541,22 @@ impl<const N: usize> Sampler<N> {
                 break;
             }
             step.eval(t, &mut y);
-            self.record(problem, t, &y);
+            let a = dense.then(|| rates::interpolated(step, t)).flatten();
+            self.record(problem, t, &y, a);
             self.next += 1;
         }
     }
 
     /// Adds the sample at `(t, y)` to the metrics (and to the samples, when
-    /// kept), or keeps the first error.
+    /// kept), or keeps the first error; `q̈` is `interpolated` if given.
     fn record<S: LagrangianSystem<N>>(
         &mut self,
         problem: &mut CrashProblem<N, S>,
         t: f64,
         y: &PhaseState<N>,
+        interpolated: Option<SVector<f64, N>>,
     ) {
-        match sample(problem, t, y, &self.needs, self.outputs) {
+        match sample(problem, t, y, &self.needs, self.outputs, interpolated) {
             Ok((view, columns)) => {
                 self.drift.resize(view.residual.len(), 0.0);
                 for (d, g) in self.drift.iter_mut().zip(&view.residual) {
@@ -631,16 +647,17 @@ impl<const N: usize> SampleValues<N> {
 }
 
 /// Evaluates a sample: its energies, and what `needs` asks for of the
-/// accelerations (with the constraints' multipliers and residuals), the
-/// `outputs` outputs (at those accelerations), the components' columns and,
-/// for a kept sample, the input values; a quantity not asked for is left
-/// NaN (or empty).
+/// accelerations (`interpolated` if given, else solved, with the
+/// constraints' multipliers and residuals), the `outputs` outputs (at
+/// those accelerations), the components' columns and, for a kept sample,
+/// the input values; a quantity not asked for is left NaN (or empty).
 fn sample<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
     y: &PhaseState<N>,
     needs: &needs::Needs,
     outputs: usize,
+    interpolated: Option<SVector<f64, N>>,
 ) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
     problem.inputs.load(&y.z);
@@ -649,7 +666,14 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         multipliers,
         residual,
     } = match needs.accelerations {
-        true => (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?,
+        true => match interpolated {
+            Some(a) => problem::Accelerations {
+                a,
+                multipliers: Vec::new(),
+                residual: Vec::new(),
+            },
+            None => (problem.accelerations_and_multipliers(t, &y.q, &y.v)).map_err(fault)?,
+        },
         false => problem::Accelerations::not_evaluated(),
     };
     // T and V only: the dissipation and the powers are integrated in `y`.

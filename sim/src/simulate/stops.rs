@@ -59,6 +59,18 @@ fn time_components<const N: usize, S: LagrangianSystem<N>>(
     system: &S,
     inputs: &BoundInputs,
 ) -> Vec<usize> {
+    let mut components = Vec::new();
+    for (&(input, _), is_time) in system.input_sites().iter().zip(time_sites(system)) {
+        if let (true, Some(Some(binding))) = (is_time, inputs.bindings.get(input)) {
+            components.push(binding.component);
+        }
+    }
+    components
+}
+
+/// For each input site of the dynamics, in order: whether its input takes
+/// one argument, the time.
+pub(super) fn time_sites<const N: usize, S: LagrangianSystem<N>>(system: &S) -> Vec<bool> {
     let count = system.input_sites().iter().map(|s| s.1).sum();
     let zero = SVector::<f64, N>::zeros();
     let arguments = PROBES.map(|t| {
@@ -66,16 +78,13 @@ fn time_components<const N: usize, S: LagrangianSystem<N>>(
         system.input_arguments(t, &zero, &zero, &mut out);
         out
     });
-    let mut components = Vec::new();
     let mut offset = 0;
-    for &(input, arity) in system.input_sites() {
-        let is_time = arity == 1 && (0..2).all(|k| arguments[k][offset] == PROBES[k]);
-        if let (true, Some(Some(binding))) = (is_time, inputs.bindings.get(input)) {
-            components.push(binding.component);
-        }
+    let mut sites = Vec::with_capacity(system.input_sites().len());
+    for &(_, arity) in system.input_sites() {
+        sites.push(arity == 1 && (0..2).all(|k| arguments[k][offset] == PROBES[k]));
         offset += arity;
     }
-    components
+    sites
 }
 
 #[cfg(test)]
