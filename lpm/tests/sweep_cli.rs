@@ -215,7 +215,7 @@ fn bad_sweeps_are_refused_before_any_run() {
         ),
         (
             &["--grid", "simulation.rtool=1e-6,1e-8"],
-            "unknown field `rtool`, expected one of `t_end`, `method`, `rtol`, `atol`, `max_step`, `step`, `output_interval`, `max_steps`, `accelerations` (did you mean `rtol`?)",
+            "unknown field `rtool`, expected one of `t_end`, `method`, `rtol`, `atol`, `max_step`, `step`, `output_interval`, `max_steps`, `accelerations`, `time_kinks` (did you mean `rtol`?)",
         ),
     ];
     for (args, expected) in cases {

@@ -3,6 +3,7 @@
 //! the trajectory.
 
 use super::curve::OutOfRange;
+use super::stand_in::StandIn;
 use super::states::StateLayout;
 use super::{Component, Contact, Port};
 use crate::fault::Fault;
@@ -75,6 +76,11 @@ pub struct BoundInputs {
     /// The elastic energy each component stored when the run started
     /// ([`Component::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
+    /// By input index: the smooth stand-in an input of time takes within
+    /// the step being tried ([`BoundInputs::stand_in`]).
+    stand_ins: Vec<Option<StandIn>>,
+    /// Some of `stand_ins` are set.
+    standing_in: bool,
 }
 
 impl BoundInputs {
@@ -109,11 +115,32 @@ impl BoundInputs {
             loaded: Internal::EMPTY,
             event_count: 0,
             stored_at_start: Vec::new(),
+            stand_ins: Vec::new(),
+            standing_in: false,
         };
         inputs.event_count = (0..inputs.components.len())
             .map(|c| inputs.events_of(c))
             .sum();
         inputs
+    }
+
+    /// Has input `input` take the value of `cubic` instead of its own until
+    /// [`BoundInputs::end_stand_ins`]: the smooth stand-in for an input of
+    /// time over the step being tried.
+    pub fn stand_in(&mut self, input: usize, cubic: StandIn) {
+        if self.stand_ins.len() <= input {
+            self.stand_ins.resize(input + 1, None);
+        }
+        self.stand_ins[input] = Some(cubic);
+        self.standing_in = true;
+    }
+
+    /// Every input takes its own value again.
+    pub fn end_stand_ins(&mut self) {
+        if self.standing_in {
+            self.stand_ins.fill(None);
+            self.standing_in = false;
+        }
     }
 
     /// The first failure since the last call, which clears it.
@@ -402,6 +429,11 @@ impl BoundInputs {
 
 impl InputFunctions for BoundInputs {
     fn value(&self, input: usize, args: &[f64]) -> f64 {
+        if self.standing_in
+            && let Some(Some(cubic)) = self.stand_ins.get(input)
+        {
+            return cubic.at(args[0]);
+        }
         if let Some(Some(r)) = self.resolved.get(input)
             && r.arity.is_none_or(|needed| needed == args.len())
         {

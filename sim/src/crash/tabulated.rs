@@ -2,13 +2,15 @@
 //! its time column (a barrier force history, say), interpolated linearly,
 //! or by a monotone cubic (`interpolation = "pchip"`: C¹, no kinks).
 //!
-//! The slope of a table interpolated linearly jumps at its points. With
-//! `stop_at_kinks = true` the integrator ends a step at each of them
-//! (where the slope changes) rather than stepping across: worth it for a
-//! table of few points (a pulse of straight segments), at a tight
-//! tolerance. For a finely sampled smooth history it makes every step as
-//! short as the rows are apart, and the monotone cubic is the better
-//! choice.
+//! The slope of a table interpolated linearly jumps at its points. A step
+//! of an adaptive explicit method across such a kink reads, by default, the
+//! table's smooth stand-in over the step (`[simulation] time_kinks`,
+//! [`crate::simulate::TimeKinks`]), which keeps a finely sampled history
+//! from cutting every step short. With `stop_at_kinks = true` the
+//! integrator ends a step at each kink instead: a choice for a table of
+//! few points with sharp corners (a pulse of straight segments), where the
+//! corners themselves matter; for a finely sampled history it makes every
+//! step as short as the rows are apart.
 //!
 //! Its scenario section is `type = "table"` (`TableSection`): one file,
 //! and one component per column it binds, named `NAME.INPUT`.

@@ -264,6 +264,36 @@ fn gather<'a, Y>(
     row.len()
 }
 
+impl<Y: OdeVector> ExplicitRk<Y> {
+    /// The stages of a step of size `h` from `(t, y, f)` and its end `y1`
+    /// (and `f1 = F(t + h, y1)` for a method that is not FSAL). `Ok(false)`
+    /// when a stage is not finite and a controlled step can shrink.
+    fn stages<P: OdeProblem<Y>>(
+        &mut self,
+        problem: &mut P,
+        (t, y, f): (f64, &Y, &Y),
+        h: f64,
+        stats: &mut Stats,
+    ) -> Result<bool, SolverError<P::Error>> {
+        let tableau = self.tableau;
+        for i in 1..tableau.stages() {
+            let stage = self.stage(problem, (t, y, f), (i, h), stats);
+            if let Err(SolverError::NonFinite { .. }) = stage
+                && self.fixed.is_none()
+                && h * MIN_FACTOR >= self.options.min_step
+            {
+                return Ok(false);
+            }
+            stage?;
+        }
+        if !tableau.fsal {
+            Self::weighted(&self.k, f, &self.rows.solution, h, Some(y), &mut self.y1);
+            evaluate(problem, t + h, &self.y1, &mut self.f1, stats)?;
+        }
+        Ok(true)
+    }
+}
+
 impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
     type Dense = Dense<Y>;
 
@@ -274,25 +304,23 @@ impl<Y: OdeVector, P: OdeProblem<Y>> Stepper<Y, P> for ExplicitRk<Y> {
         h: f64,
         stats: &mut Stats,
     ) -> Result<Attempt<Dense<Y>>, SolverError<P::Error>> {
-        let tableau = self.tableau;
-        for i in 1..tableau.stages() {
-            let stage = self.stage(problem, (t, y, f), (i, h), stats);
-            if let Err(SolverError::NonFinite { .. }) = stage
-                && self.fixed.is_none()
-                && h * MIN_FACTOR >= self.options.min_step
-            {
-                // A step so long that its stages leave the region where F
-                // is finite (a stiff internal state that grows without
-                // bound once the method is unstable): rejected, like an
-                // error estimate that is NaN.
-                self.rejected_last = true;
-                return Ok(Attempt::Rejected(h * MIN_FACTOR));
-            }
-            stage?;
+        // Controlled steps see the problem's smooth stand-ins for kinks in
+        // time inside the step (`OdeProblem::step_window`).
+        let controlled = self.fixed.is_none();
+        if controlled {
+            problem.step_window(Some((t, h)));
         }
-        if !tableau.fsal {
-            Self::weighted(&self.k, f, &self.rows.solution, h, Some(y), &mut self.y1);
-            evaluate(problem, t + h, &self.y1, &mut self.f1, stats)?;
+        let stages = self.stages(problem, (t, y, f), h, stats);
+        if controlled {
+            problem.step_window(None);
+        }
+        if !stages? {
+            // A step so long that its stages leave the region where F is
+            // finite (a stiff internal state that grows without bound once
+            // the method is unstable): rejected, like an error estimate
+            // that is NaN.
+            self.rejected_last = true;
+            return Ok(Attempt::Rejected(h * MIN_FACTOR));
         }
         let norm = match (self.fixed, &self.rows.error) {
             (None, Some(e)) => {

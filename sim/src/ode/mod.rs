@@ -79,6 +79,18 @@ pub trait OdeProblem<Y: OdeVector> {
         let _ = t;
         None
     }
+
+    /// The step an adaptive explicit method is about to try, `[t0, t0 + h]`
+    /// (`Some((t0, h))`), or that it is done trying (`None`). In between, a
+    /// problem whose `F` has kinks in time inside the step may evaluate a
+    /// stand-in that is smooth over the step, equals `F` at both ends of it
+    /// and has the same effect on the step's end to the method's order (the
+    /// crash problem's time tables: [`crate::crash::StandIn`]), so that
+    /// the method's error estimate is not ruined by the kink. Ignored by
+    /// default.
+    fn step_window(&mut self, window: Option<(f64, f64)>) {
+        let _ = window;
+    }
 }
 
 /// Step-size control and limits.

@@ -59,6 +59,9 @@ pub(super) struct SimulationSection {
     pub(super) max_steps: usize,
     /// How the output samples get `q̈` (`SampleAccelerations::NAMES`).
     pub(super) accelerations: String,
+    /// What a step's stages see of a kink of a time table inside it
+    /// (`TimeKinks::NAMES`).
+    pub(super) time_kinks: String,
 }
 
 impl Default for SimulationSection {
@@ -75,6 +78,7 @@ impl Default for SimulationSection {
             accelerations: crate::simulate::SampleAccelerations::default()
                 .name()
                 .into(),
+            time_kinks: crate::simulate::TimeKinks::default().name().into(),
         }
     }
 }

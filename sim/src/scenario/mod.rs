@@ -61,7 +61,7 @@ mod signal;
 use crate::crash::BoundInputs;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
-use crate::simulate::SampleAccelerations;
+use crate::simulate::{SampleAccelerations, TimeKinks};
 pub use base::BaseScenario;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
@@ -274,6 +274,9 @@ pub struct Scenario {
     pub stabilization: lagrangian_model::constrained::Baumgarte,
     /// How the output samples get `q̈` (`simulation.accelerations`).
     pub accelerations: SampleAccelerations,
+    /// What a step's stages see of a kink of an input of time inside it
+    /// (`simulation.time_kinks`).
+    pub time_kinks: TimeKinks,
 }
 
 impl Scenario {

@@ -8,7 +8,7 @@ use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
-use crate::simulate::SampleAccelerations;
+use crate::simulate::{SampleAccelerations, TimeKinks};
 use lagrangian_model::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -100,6 +100,7 @@ pub(super) fn resolve(
     let s = &file.simulation;
     let (method, options) = solver_settings(s)?;
     let accelerations = sample_accelerations(&s.accelerations)?;
+    let time_kinks = time_kinks(&s.time_kinks)?;
 
     let parameters = parameter_overrides(&file.parameters, names)?;
     let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
@@ -162,6 +163,17 @@ pub(super) fn resolve(
         inputs,
         stabilization: stabilization(&file.constraints)?,
         accelerations,
+        time_kinks,
+    })
+}
+
+/// `[simulation] time_kinks`: one of [`TimeKinks::NAMES`].
+fn time_kinks(name: &str) -> Result<TimeKinks, String> {
+    TimeKinks::parse(name).ok_or_else(|| {
+        format!(
+            "simulation.time_kinks = `{name}`; use {}",
+            TimeKinks::NAMES.join(", ")
+        )
     })
 }
 

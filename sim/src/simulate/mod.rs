@@ -4,6 +4,7 @@
 mod channels;
 pub mod constrained;
 mod equilibrium;
+mod kinks;
 mod metrics;
 mod needs;
 mod problem;
@@ -17,6 +18,7 @@ mod tests;
 pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channels, metric_names};
 pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
+pub use kinks::TimeKinks;
 pub use metrics::{Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
 pub use rates::SampleAccelerations;
@@ -327,6 +329,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let model = with_parameters(system, scenario)?;
     let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
     problem.stabilization = scenario.stabilization;
+    problem.time_kinks(scenario.time_kinks);
     let (y0, projection) = initial_state(&mut problem, scenario)?;
     let g = gravity(&model);
     let metrics = Metrics::new(scenario, y0.q.as_slice(), g);

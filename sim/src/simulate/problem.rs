@@ -2,6 +2,7 @@
 
 use super::SolverError;
 use super::constrained::Workspace;
+use super::kinks::{KinkedInputs, TimeKinks};
 use crate::crash::BoundInputs;
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
@@ -72,6 +73,10 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// side allocates nothing.
     workspace: RefCell<Workspace<N>>,
     stops: super::stops::TimeStops,
+    /// The inputs of time with kinks.
+    kinked: KinkedInputs,
+    /// What the stages of a step see of their kinks inside it.
+    time_kinks: TimeKinks,
 }
 
 impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
@@ -81,6 +86,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
         let constraint_count = system.constraint_count();
         let stops = super::stops::TimeStops::of(system, &inputs);
+        let kinked = KinkedInputs::of(system, &inputs);
         CrashProblem {
             system,
             inputs,
@@ -91,7 +97,16 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             constraint_count,
             workspace: RefCell::new(Workspace::new(constraint_count)),
             stops,
+            kinked,
+            time_kinks: TimeKinks::default(),
         }
+    }
+
+    /// What the stages of a step see of a kink of an input of time inside
+    /// it: by default ([`TimeKinks::Smoothed`]) the input's smooth
+    /// stand-in.
+    pub fn time_kinks(&mut self, choice: TimeKinks) {
+        self.time_kinks = choice;
     }
 
     /// Puts the crash components in the state a run from `(t, y)` starts
@@ -394,6 +409,15 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
     /// The next point of a time table interpolated linearly.
     fn next_stop(&mut self, t: f64) -> Option<f64> {
         self.stops.after(t)
+    }
+
+    /// The inputs of time with a kink inside the step take their smooth
+    /// stand-ins over it.
+    fn step_window(&mut self, window: Option<(f64, f64)>) {
+        self.inputs.end_stand_ins();
+        if let (Some((t0, h)), TimeKinks::Smoothed) = (window, self.time_kinks) {
+            self.kinked.stand_in(&mut self.inputs, t0, h);
+        }
     }
 
     fn event_direction(&self, k: usize) -> Direction {

@@ -1,9 +1,8 @@
 //! The kinks of the inputs that are functions of time: the points of a
 //! time table interpolated linearly where the force's slope jumps, for the
 //! tables that ask for steps to end there (`stop_at_kinks`). The
-//! integrator ends a step at each of them instead of stepping across (a
-//! step across a kink has a large error and is rejected, again and again,
-//! until it is tiny).
+//! integrator ends a step at each of them instead of stepping across (the
+//! other tables' kinks are stepped across: see [`super::kinks`]).
 //!
 //! Which inputs are functions of time is found once per run: an input whose
 //! argument equals the time at two probe times (at the zero state) is one —
@@ -156,7 +155,8 @@ mod tests {
             );
         }
         assert!(stats.rejected_steps <= 1, "{stats:?}");
-        // By default the method's control steps across, with rejections.
+        // By default the steps cross them (reading the table's smooth
+        // stand-in); corners this sharp still cost rejections.
         let (ends, across) = pushed("");
         assert!(!ends.iter().any(|t| (t - 0.02).abs() < 1e-15), "{ends:?}");
         assert!(across.rejected_steps > 3, "{across:?}");
