@@ -25,14 +25,6 @@ pub struct SampleView<'a> {
     pub v: &'a [f64],
     /// Accelerations ([m/s²] or [rad/s²]).
     pub a: &'a [f64],
-    /// Kinetic energy `T` \[J\].
-    pub kinetic: f64,
-    /// Potential energy `V` \[J\].
-    pub potential: f64,
-    /// Energy dissipated by `D` since the start \[J\].
-    pub dissipated: f64,
-    /// Work of the generalized forces since the start \[J\].
-    pub external_work: f64,
     /// The model's outputs, in the order of
     /// [`SimulationResult::output_columns`](super::SimulationResult::output_columns).
     pub outputs: &'a [f64],
@@ -51,16 +43,26 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             q: &s.q,
             v: &s.v,
             a: &s.a,
-            kinetic: s.kinetic,
-            potential: s.potential,
-            dissipated: s.dissipated,
-            external_work: s.external_work,
             outputs: &s.outputs,
             components: &s.components,
             multipliers: &s.multipliers,
             residuals: &s.residuals,
         }
     }
+}
+
+/// The energies of a run at one point of its integration: the start, or
+/// the end of an accepted step.
+#[derive(Clone, Copy, Debug)]
+pub struct EnergyPoint {
+    /// Kinetic energy `T` \[J\].
+    pub kinetic: f64,
+    /// Potential energy `V` \[J\].
+    pub potential: f64,
+    /// Energy dissipated by `D` since the start \[J\].
+    pub dissipated: f64,
+    /// Work of the generalized forces since the start \[J\].
+    pub external_work: f64,
 }
 
 /// Time, crush and crush rate of one sample.
@@ -143,16 +145,23 @@ impl Metrics {
         }
     }
 
-    /// Takes the next sample (in time order).
-    pub fn push(&mut self, s: SampleView) {
+    /// Takes a point of the energy balance `T + V + D − W = (T + V)(0)`:
+    /// the start of the run first, then the end of every accepted step (in
+    /// time order). The balance is measured where the integration put the
+    /// state, not between the ends of a step where the samples interpolate.
+    pub fn energy_at(&mut self, e: EnergyPoint) {
         let (e0, scale) = *self.energy.get_or_insert_with(|| {
             (
-                s.kinetic + s.potential,
-                (s.kinetic + s.potential.abs()).max(f64::MIN_POSITIVE),
+                e.kinetic + e.potential,
+                (e.kinetic + e.potential.abs()).max(f64::MIN_POSITIVE),
             )
         });
-        let balance = (s.kinetic + s.potential + s.dissipated - s.external_work - e0).abs() / scale;
+        let balance = (e.kinetic + e.potential + e.dissipated - e.external_work - e0).abs() / scale;
         self.energy_error = self.energy_error.max(balance);
+    }
+
+    /// Takes the next sample (in time order).
+    pub fn push(&mut self, s: SampleView) {
         if !self.pitch.is_empty() {
             let mut deviations = [0.0; 2];
             for (d, (k, q0)) in deviations.iter_mut().zip(&self.pitch) {

@@ -19,7 +19,7 @@ pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channe
 pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
 pub use kinks::TimeKinks;
-pub use metrics::{Metrics, SampleView};
+pub use metrics::{EnergyPoint, Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
 pub use rates::SampleAccelerations;
 pub use summary::{Field, Metric, Summary, Text, Value};
@@ -524,7 +524,26 @@ impl<const N: usize> Sampler<N> {
         y0: &PhaseState<N>,
     ) {
         self.record(problem, 0.0, y0, None);
+        self.balance(problem, 0.0, y0);
         self.next = 1;
+    }
+
+    /// Adds the energies at `(t, y)`, the start or the end of a step, to
+    /// the energy balance.
+    fn balance<S: LagrangianSystem<N>>(
+        &mut self,
+        problem: &mut CrashProblem<N, S>,
+        t: f64,
+        y: &PhaseState<N>,
+    ) {
+        problem.inputs.load(&y.z);
+        let energy = (problem.system).mechanical_energy(t, &y.q, &y.v, &problem.inputs);
+        self.metrics.energy_at(EnergyPoint {
+            kinetic: energy.kinetic,
+            potential: energy.potential,
+            dissipated: y.work[0],
+            external_work: y.work[1],
+        });
     }
 
     /// Takes the samples that fall within an accepted step.
@@ -535,6 +554,7 @@ impl<const N: usize> Sampler<N> {
     ) {
         let mut y = PhaseState::zeros();
         step.eval(step.t1(), &mut y);
+        self.balance(problem, step.t1(), &y);
         self.reached = Some((step.t1(), y));
         let dense = self.needs.accelerations && self.dense.smooth(step);
         while self.next <= self.last {
@@ -619,10 +639,6 @@ impl<const N: usize> SampleValues<N> {
             q: self.y.q.as_slice(),
             v: self.y.v.as_slice(),
             a: self.a.as_slice(),
-            kinetic: self.kinetic,
-            potential: self.potential,
-            dissipated: self.y.work[0],
-            external_work: self.y.work[1],
             outputs: &self.outputs,
             components: &self.components,
             multipliers: &self.multipliers,
@@ -680,7 +696,15 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         false => problem::Accelerations::not_evaluated(),
     };
     // T and V only: the dissipation and the powers are integrated in `y`.
-    let energy = (problem.system).mechanical_energy(t, &y.q, &y.v, &problem.inputs);
+    // The summary's energy balance takes them at the steps' ends
+    // (`Sampler::balance`): only a kept sample needs them.
+    let (kinetic, potential) = match needs.kept {
+        true => {
+            let energy = (problem.system).mechanical_energy(t, &y.q, &y.v, &problem.inputs);
+            (energy.kinetic, energy.potential)
+        }
+        false => (f64::NAN, f64::NAN),
+    };
     let outputs = match needs.outputs {
         true => {
             let mut values = vec![0.0; outputs];
@@ -701,8 +725,8 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
         t,
         y: *y,
         a,
-        kinetic: energy.kinetic,
-        potential: energy.potential,
+        kinetic,
+        potential,
         outputs,
         components,
         multipliers,

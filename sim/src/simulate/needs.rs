@@ -1,15 +1,14 @@
 //! What a run's output samples must evaluate: only what the summary, the
 //! scenario's channels or the kept samples read.
 //!
-//! A sample always has its state (interpolated from the dense output) and
-//! its energies (the summary's energy balance reads them); the model's
-//! other quantities cost an evaluation each and are computed only when
-//! something reads them.
+//! A sample always has its state (interpolated from the dense output); the
+//! model's other quantities cost an evaluation each and are computed only
+//! when something reads them — the energies only for a kept sample (the
+//! summary's energy balance takes them at the ends of the steps).
 
 use crate::scenario::{Column, Scenario};
 
-/// The quantities the samples of one run evaluate beyond the state and
-/// the energies.
+/// The quantities the samples of one run evaluate beyond the state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Needs {
     /// `q̈` (with the constraints' `λ` and `g`): read by the crush
@@ -20,8 +19,8 @@ pub(crate) struct Needs {
     pub outputs: bool,
     /// The components' columns: read by a channel, or kept.
     pub components: bool,
-    /// The samples are kept: everything is evaluated, the values of the
-    /// input calls too.
+    /// The samples are kept: everything is evaluated, the energies and the
+    /// values of the input calls too.
     pub kept: bool,
 }
 

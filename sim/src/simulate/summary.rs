@@ -275,7 +275,8 @@ summary! {
     rejected_steps: usize => None,
     /// Evaluations of the right-hand side.
     rhs_evaluations: usize => None,
-    /// `max |(T + V + dissipated − external work)(t) − (T + V)(0)| / (T(0) + |V(0)|)`.
+    /// `max |(T + V + dissipated − external work)(t) − (T + V)(0)| / (T(0) + |V(0)|)`
+    /// over the start and the ends of the integration's steps.
     energy_balance_error_rel: f64 =>
         Some(Text::line("energy balance error", "", 1).scientific().note(" (relative)")),
 }

@@ -383,11 +383,16 @@ fn a_summary_only_run_evaluates_what_is_read() {
         (none.accelerations, none.outputs, none.components),
         (false, false, false)
     );
-    // With nothing read the accelerations stay NaN, the energies do not.
+    // With nothing read the accelerations and the energies (the energy
+    // balance takes them at the steps' ends) stay NaN; a kept sample has
+    // them.
     let mut problem = CrashProblem::new(&system, bare.inputs.clone());
     let y = PhaseState::new(SVector::from([0.5, 0.0]), SVector::zeros());
     let (values, _) = sample(&mut problem, 0.0, &y, &none, 3, None).unwrap();
     assert!(values.a.iter().all(|a| a.is_nan()) && values.outputs.is_empty());
+    assert!(values.potential.is_nan() && values.kinetic.is_nan());
+    let kept = needs::Needs::of(&bare, true, 0);
+    let (values, _) = sample(&mut problem, 0.0, &y, &kept, 3, None).unwrap();
     assert!(values.potential.is_finite() && values.potential != 0.0);
     let with = |setting: &str| Scenario::parse(text, None, &names, &[setting.into()]).unwrap();
     let accelerations = with("metrics.acceleration=[\"theta1_ddot\"]");
