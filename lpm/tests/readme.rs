@@ -297,3 +297,32 @@ fn every_excerpt_is_in_the_file_it_names() {
     }
     assert!(count >= 2, "{count} excerpts");
 }
+
+#[test]
+fn the_scenario_section_list_names_every_simulation_key() {
+    // The keys as the scenario reader knows them: a misspelt key lists them.
+    let dir = workspace("simulation-keys");
+    let out = run(
+        "lpm simulate specs/yaris_double_pendulum.lpm --set simulation.no_such_key=1 --out o",
+        &dir,
+    );
+    let message = stderr(&out);
+    let list = message
+        .split_once("expected one of ")
+        .unwrap_or_else(|| panic!("{message}"))
+        .1;
+    let keys: Vec<&str> = list.lines().next().unwrap().split(", ").collect();
+    assert!(keys.len() >= 10, "{keys:?}");
+    let readme = readme();
+    let bullet = readme
+        .split_once("* `[simulation]`: ")
+        .and_then(|(_, rest)| rest.split_once("\n* "))
+        .expect("the README's `[simulation]` bullet")
+        .0;
+    for key in keys {
+        assert!(
+            bullet.contains(key),
+            "the README's [simulation] list lacks {key}"
+        );
+    }
+}

@@ -18,6 +18,11 @@
 //! stop there, or restart the step sequence from the event after changing
 //! its mode, parameters or state.
 //!
+//! A problem whose `F` has kinks in time (a time table interpolated
+//! linearly) may end steps at them ([`OdeProblem::next_stop`]) or, in a
+//! step of an adaptive explicit method, stand in a smooth `F` across them
+//! ([`OdeProblem::step_window`]).
+//!
 //! Adding a method: a stepper in its own file (or, for an explicit method, a
 //! tableau in [`tableau`]) and one variant of [`Method`].
 
