@@ -406,6 +406,21 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.inputs.events(&self.arguments, components)
     }
 
+    /// A component's event function without the others or the switching
+    /// functions; a switching function without the components' events.
+    fn event(&mut self, k: usize, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<f64, Fault> {
+        self.inputs.load(&y.z);
+        let Some(switch) = k.checked_sub(self.inputs.event_count()) else {
+            self.system
+                .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+            return self.inputs.event_value(k, &self.arguments, g);
+        };
+        let switching = &mut g[self.inputs.event_count()..];
+        self.system
+            .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
+        Ok(switching[switch])
+    }
+
     /// The next point of a time table interpolated linearly.
     fn next_stop(&mut self, t: f64) -> Option<f64> {
         self.stops.after(t)
