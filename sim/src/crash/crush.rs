@@ -413,9 +413,10 @@ impl Component for CrushElement {
     /// 6. 7. the same of `|δ̇|` and the damping curve (stopping at kinks).
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
         let state = self.crush(args);
-        for (k, value) in g[..EVENTS.len()].iter_mut().enumerate() {
-            *value = self.event_at(k, state)?;
-        }
+        let each = |k| self.event_at(k, state);
+        let values = [each(0)?, each(1)?, each(2)?, each(3)?];
+        g[..4].copy_from_slice(&values);
+        g[4..8].copy_from_slice(&[each(4)?, each(5)?, each(6)?, each(7)?]);
         Ok(())
     }
 

@@ -401,8 +401,11 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         let (components, switching) = g.split_at_mut(self.inputs.event_count());
-        self.system
-            .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
+        // A smooth model has none, and writes nothing.
+        if !switching.is_empty() {
+            self.system
+                .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
+        }
         self.inputs.events(&self.arguments, components)
     }
 
