@@ -69,10 +69,11 @@ pub struct BoundInputs {
     layout: StateLayout,
     /// The `z` last given to the components ([`BoundInputs::load`]).
     loaded: Internal,
-    /// The number of event functions of all components together, counted
-    /// when the inputs are made: the integrator asks for it with every
-    /// event function of every step.
-    event_count: usize,
+    /// By global event: its component and its index among the component's
+    /// events, listed when the inputs are made (their number is the number
+    /// of event functions of all components together): the integrator asks
+    /// for them with every event function of every step.
+    event_owners: Vec<(usize, usize)>,
     /// The elastic energy each component stored when the run started
     /// ([`Component::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
@@ -113,14 +114,14 @@ impl BoundInputs {
             failure: RefCell::new(None),
             layout,
             loaded: Internal::EMPTY,
-            event_count: 0,
+            event_owners: Vec::new(),
             stored_at_start: Vec::new(),
             stand_ins: Vec::new(),
             standing_in: false,
         };
-        inputs.event_count = (0..inputs.components.len())
-            .map(|c| inputs.events_of(c))
-            .sum();
+        inputs.event_owners = (0..inputs.components.len())
+            .flat_map(|c| (0..inputs.events_of(c)).map(move |local| (c, local)))
+            .collect();
         inputs
     }
 
@@ -206,20 +207,12 @@ impl BoundInputs {
 
     /// `(component, local event)` of global event `k`.
     pub fn event(&self, k: usize) -> Option<(usize, usize)> {
-        let mut k = k;
-        for c in 0..self.components.len() {
-            let n = self.events_of(c);
-            if k < n {
-                return Some((c, k));
-            }
-            k -= n;
-        }
-        None
+        self.event_owners.get(k).copied()
     }
 
     /// The number of event functions of all components together.
     pub fn event_count(&self) -> usize {
-        self.event_count
+        self.event_owners.len()
     }
 
     /// The direction of crossing that triggers global event `k`.
@@ -245,6 +238,25 @@ impl BoundInputs {
             offset += n;
         }
         Ok(())
+    }
+
+    /// Global event function `k` alone, given the model's input arguments
+    /// at one state ([`Component::event_value`]); `scratch` holds one value
+    /// per event of its component.
+    pub fn event_value(
+        &self,
+        k: usize,
+        arguments: &[f64],
+        scratch: &mut [f64],
+    ) -> Result<f64, Fault> {
+        let Some((c, local)) = self.event(k) else {
+            return Err(Fault::Component(format!("no event {k}")));
+        };
+        let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+        let component = &self.components[c].component;
+        let scratch = &mut scratch[..component.events().len()];
+        let result = component.event_value(local, args, scratch);
+        result.map_err(|e| self.out_of_range(c, None, e))
     }
 
     /// Applies global event `k` at time `t`; returns `(component, description)`.

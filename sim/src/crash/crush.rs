@@ -281,16 +281,36 @@ impl CrushElement {
         }
     }
 
-    /// The event functions of the held segments' ends (events 4–7).
-    fn kink_values(&self, delta: f64, rate: f64, g: &mut [f64]) {
+    /// Event function `k` at `(δ, δ̇)` (see [`CrushElement::event_values`]).
+    fn event_at(&self, k: usize, (delta, rate): (f64, f64)) -> Result<f64, OutOfRange> {
+        let plastic = matches!(self.unloading, Unloading::Plastic { .. });
+        let (touching, separated) = (self.in_contact, !self.in_contact);
+        Ok(match k {
+            0 => match self.phase {
+                Phase::Loading if plastic => rate,
+                _ => 1.0,
+            },
+            1 => match self.phase {
+                Phase::Unloading { peak_crush, .. } => delta - peak_crush,
+                Phase::Loading => -1.0,
+            },
+            2 if self.contact_only && touching => self.total(delta, rate)?,
+            2 => 1.0,
+            3 if self.contact_only && separated => self.closing(delta, rate)?,
+            3 => -1.0,
+            4 | 5 => self.spring_kink_values(delta)[k - 4],
+            k => (self.damping_piece).event_values(self.damping.curve(), rate.abs(), 0.0)[k - 6],
+        })
+    }
+
+    /// The event functions of the ends of the loading curve's held segment
+    /// (events 4 and 5), on the loading curve.
+    fn spring_kink_values(&self, delta: f64) -> [f64; 2] {
         let spring = match self.on_loading_curve() {
             true => self.loading_piece,
             false => Held::NONE,
         };
-        let loading = spring.event_values(self.loading.curve(), delta.abs(), 0.0);
-        let damping = (self.damping_piece).event_values(self.damping.curve(), rate.abs(), 0.0);
-        g[..2].copy_from_slice(&loading);
-        g[2..].copy_from_slice(&damping);
+        spring.event_values(self.loading.curve(), delta.abs(), 0.0)
     }
 
     /// Applies kink event `k` (4–7) at `(δ, δ̇)`: the next segment of the
@@ -392,28 +412,17 @@ impl Component for CrushElement {
     /// 5. kink above (likewise): `|δ|` less the breakpoint above it, rising;
     /// 6. 7. the same of `|δ̇|` and the damping curve (stopping at kinks).
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
-        let (delta, rate) = self.crush(args);
-        let plastic = matches!(self.unloading, Unloading::Plastic { .. });
-        g[0] = match self.phase {
-            Phase::Loading if plastic => rate,
-            _ => 1.0,
-        };
-        g[1] = match self.phase {
-            Phase::Unloading { peak_crush, .. } => delta - peak_crush,
-            Phase::Loading => -1.0,
-        };
-        g[2] = if self.contact_only && self.in_contact {
-            self.total(delta, rate)?
-        } else {
-            1.0
-        };
-        g[3] = if self.contact_only && !self.in_contact {
-            self.closing(delta, rate)?
-        } else {
-            -1.0
-        };
-        self.kink_values(delta, rate, &mut g[4..8]);
+        let state = self.crush(args);
+        let each = |k| self.event_at(k, state);
+        let values = [each(0)?, each(1)?, each(2)?, each(3)?];
+        g[..4].copy_from_slice(&values);
+        g[4..8].copy_from_slice(&[each(4)?, each(5)?, each(6)?, each(7)?]);
         Ok(())
+    }
+
+    /// The one asked for of [`CrushElement::event_values`].
+    fn event_value(&self, k: usize, args: &[f64], _: &mut [f64]) -> Result<f64, OutOfRange> {
+        self.event_at(k, self.crush(args))
     }
 
     /// Applies event `k`; the description gives the crush (the deflection
@@ -806,6 +815,34 @@ mod tests {
         let note = e.on_event(0, 0.0, &[0.35, 0.0]).unwrap();
         assert_eq!(note, "peak crush 0.3500 m at 175.0 kN; unloading");
         assert!((e.permanent_set().unwrap() - 0.2825).abs() < 1e-12);
+    }
+
+    #[test]
+    fn each_event_function_alone_is_the_one_of_all() {
+        let mut plastic = element(Unloading::Plastic { stiffness: 1.0e8 });
+        let mut gapped = tested(0.05, Unloading::Plastic { stiffness: 1.0e7 });
+        gapped.start(Some(&[0.02, 10.0])).unwrap();
+        let crushes = [-0.6, -0.3, -0.12, -0.05, 0.0, 0.02, 0.07, 0.2, 0.45];
+        let rates = [-16.0, -2.0, 0.0, 0.5, 3.0, 12.0];
+        let check = |e: &CrushElement| {
+            for x in crushes {
+                for v in rates {
+                    crate::crash::assert_event_value_is_event_values(e, &[x, v]);
+                }
+            }
+        };
+        // Loading, in contact, then unloading from a peak, then separated.
+        check(&plastic);
+        plastic.on_event(0, 0.0, &[-0.3, 0.0]).unwrap();
+        check(&plastic);
+        plastic.on_event(2, 0.0, &[-0.29, 1.0]).unwrap();
+        check(&plastic);
+        // A gap still open, then closed past a kink of the curve.
+        check(&gapped);
+        gapped.on_event(3, 0.0, &[0.05, 10.0]).unwrap();
+        gapped.on_event(5, 0.0, &[0.15, 1.0]).unwrap();
+        check(&gapped);
+        check(&element(Unloading::Elastic).with_stop_at_kinks(false));
     }
 
     /// The section's element, or its message.

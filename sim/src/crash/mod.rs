@@ -237,6 +237,15 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// it.
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
 
+    /// Event function `k` alone at `args`, the same value as
+    /// [`Component::event_values`] gives it: what locating a crossing of
+    /// it evaluates. `scratch` holds one value per event; by default every
+    /// event function, into `scratch`.
+    fn event_value(&self, k: usize, args: &[f64], scratch: &mut [f64]) -> Result<f64, OutOfRange> {
+        self.event_values(args, scratch)?;
+        Ok(scratch[k])
+    }
+
     /// Applies event `k` at time `t` and its value input's arguments `args`;
     /// returns a description of the change, or an empty one for an event
     /// that changes no regime (a kink of a curve crossed, see
@@ -474,5 +483,19 @@ impl ComponentSection {
             self.kind()
         );
         Ok(())
+    }
+}
+
+/// Asserts that [`Component::event_value`] gives each event function of
+/// `component` at `args` bit for bit as [`Component::event_values`] does.
+#[cfg(test)]
+pub(crate) fn assert_event_value_is_event_values(component: &dyn Component, args: &[f64]) {
+    let n = component.events().len();
+    let mut all = vec![0.0; n];
+    component.event_values(args, &mut all).unwrap();
+    for (k, value) in all.iter().enumerate() {
+        let mut scratch = vec![f64::NAN; n];
+        let alone = component.event_value(k, args, &mut scratch).unwrap();
+        assert_eq!(alone.to_bits(), value.to_bits(), "event {k} at {args:?}");
     }
 }

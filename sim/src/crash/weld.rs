@@ -127,6 +127,25 @@ impl Weld {
         self.held.eval(&self.intact, angle)
     }
 
+    /// Event function `k` at angle `angle` (see [`Weld::event_values`]).
+    fn event_at(&self, k: usize, angle: f64) -> Result<f64, OutOfRange> {
+        let intact = self.failed_at.is_none();
+        Ok(match k {
+            0 => match self.failure_moment {
+                Some(limit) if intact => self.intact_moment(angle)?.0.abs() - limit,
+                _ => -1.0,
+            },
+            1 => match self.failure_angle {
+                Some(limit) if intact => angle.abs() - limit,
+                _ => -1.0,
+            },
+            k => {
+                let curve = self.curve().unwrap_or(&self.intact);
+                self.held.event_values(curve, angle, f64::NEG_INFINITY)[k - 2]
+            }
+        })
+    }
+
     /// Fails at time `t` and angle `angle`; holds the post-failure curve's
     /// segment there.
     fn fail(&mut self, t: f64, angle: f64) -> Result<String, OutOfRange> {
@@ -204,19 +223,15 @@ impl Component for Weld {
     /// then (stopping at kinks) `θ` less the kinks below (falling) and above
     /// (rising) the held segment of the curve in use.
     fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange> {
-        let intact = self.failed_at.is_none();
-        g[0] = match self.failure_moment {
-            Some(limit) if intact => self.intact_moment(args[0])?.0.abs() - limit,
-            _ => -1.0,
-        };
-        g[1] = match self.failure_angle {
-            Some(limit) if intact => args[0].abs() - limit,
-            _ => -1.0,
-        };
-        let curve = self.curve().unwrap_or(&self.intact);
-        let kinks = self.held.event_values(curve, args[0], f64::NEG_INFINITY);
-        g[2..4].copy_from_slice(&kinks);
+        for (k, value) in g[..EVENTS.len()].iter_mut().enumerate() {
+            *value = self.event_at(k, args[0])?;
+        }
         Ok(())
+    }
+
+    /// The one asked for of [`Weld::event_values`].
+    fn event_value(&self, k: usize, args: &[f64], _: &mut [f64]) -> Result<f64, OutOfRange> {
+        self.event_at(k, args[0])
     }
 
     /// Events 0 and 1 are the failure; 2 and 3 a kink of the curve crossed
@@ -403,6 +418,25 @@ mod tests {
         );
         Weld::new(intact, 0.0, Some(1.1e4), None, Some(post.unwrap()), 0.0)
             .with_stop_at_kinks(stop_at_kinks)
+    }
+
+    #[test]
+    fn each_event_function_alone_is_the_one_of_all() {
+        let mut weld = kinked(true);
+        weld.start(Some(&[0.01, 0.0])).unwrap();
+        let angles = [-0.2, -0.05, 0.0, 0.01, 0.049, 0.06, 0.075, 0.2];
+        let check = |weld: &Weld| {
+            for angle in angles {
+                crate::crash::assert_event_value_is_event_values(weld, &[angle, 1.0]);
+            }
+        };
+        // Intact, intact on the next segment, failed, and without holding.
+        check(&weld);
+        weld.on_event(3, 0.0, &[0.05, 0.0]).unwrap();
+        check(&weld);
+        weld.on_event(0, 0.01, &[0.075, 0.0]).unwrap();
+        check(&weld);
+        check(&kinked(false));
     }
 
     #[test]

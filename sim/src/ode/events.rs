@@ -117,11 +117,18 @@ impl EventTracker {
         check_finite(&self.middle, tm)?;
         let mut earliest: Option<(usize, f64)> = None;
         for k in 0..self.start.len() {
+            // Any crossing is a change of sign: the direction is asked
+            // only then.
+            let (start, middle, end) = (self.start[k], self.middle[k], self.end[k]);
+            let either = Direction::Either;
+            if !either.crosses(start, middle) && !either.crosses(middle, end) {
+                continue;
+            }
             let direction = problem.event_direction(k);
-            let bracket = if direction.crosses(self.start[k], self.middle[k]) {
-                ((t0, self.start[k]), (tm, self.middle[k]))
-            } else if direction.crosses(self.middle[k], self.end[k]) {
-                ((tm, self.middle[k]), (t1, self.end[k]))
+            let bracket = if direction.crosses(start, middle) {
+                ((t0, start), (tm, middle))
+            } else if direction.crosses(middle, end) {
+                ((tm, middle), (t1, end))
             } else {
                 continue;
             };
@@ -167,8 +174,9 @@ impl EventTracker {
                 c = 0.5 * (a + b);
             }
             dense.eval(c, scratch);
-            events_at(problem, c, scratch, &mut self.probe)?;
-            let gc = self.probe[k];
+            let gc = problem
+                .event(k, c, scratch, &mut self.probe)
+                .map_err(|error| SolverError::Rhs { t: c, error })?;
             if !gc.is_finite() {
                 return Err(SolverError::NonFinite {
                     t: c,

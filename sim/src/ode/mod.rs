@@ -64,6 +64,15 @@ pub trait OdeProblem<Y: OdeVector> {
         Ok(())
     }
 
+    /// `g_k(t, y)` alone, what locating a crossing of event `k` reads at
+    /// each point it tries; `g` (one entry per event) is scratch. By
+    /// default every event function, into `g`; a problem whose functions
+    /// cost something each evaluates only `g_k`, to the same bits.
+    fn event(&mut self, k: usize, t: f64, y: &Y, g: &mut [f64]) -> Result<f64, Self::Error> {
+        self.events(t, y, g)?;
+        Ok(g[k])
+    }
+
     /// Which crossings of `g_k` count.
     fn event_direction(&self, k: usize) -> Direction {
         let _ = k;

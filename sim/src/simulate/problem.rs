@@ -401,9 +401,27 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.system
             .input_arguments(t, &y.q, &y.v, &mut self.arguments);
         let (components, switching) = g.split_at_mut(self.inputs.event_count());
+        // A smooth model has none, and writes nothing.
+        if !switching.is_empty() {
+            self.system
+                .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
+        }
+        self.inputs.events(&self.arguments, components)
+    }
+
+    /// A component's event function without the others or the switching
+    /// functions; a switching function without the components' events.
+    fn event(&mut self, k: usize, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<f64, Fault> {
+        self.inputs.load(&y.z);
+        let Some(switch) = k.checked_sub(self.inputs.event_count()) else {
+            self.system
+                .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+            return self.inputs.event_value(k, &self.arguments, g);
+        };
+        let switching = &mut g[self.inputs.event_count()..];
         self.system
             .switching_functions(t, &y.q, &y.v, &self.inputs, switching);
-        self.inputs.events(&self.arguments, components)
+        Ok(switching[switch])
     }
 
     /// The next point of a time table interpolated linearly.

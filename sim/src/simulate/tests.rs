@@ -416,3 +416,36 @@ fn a_summary_only_run_evaluates_what_is_read() {
     );
     assert!(needs::Needs::of(&bare, false, 1).accelerations);
 }
+
+#[test]
+fn each_event_function_alone_is_the_one_of_all() {
+    use crate::ode::OdeProblem;
+    // The impact model with a switching function: a spring on x > 0 only.
+    let source = (IMPACT.replace("jacobians;", "potential = 0.25 * k * pow(x + abs(x), 2);"))
+        .replace("m [kg] = 860.0,", "m [kg] = 860.0, k [N/m] = 100.0,");
+    let model = lagrangian_core::interpret(&source).unwrap();
+    assert_eq!(model.switching_count(), 1);
+    let names = ModelNames::of_interpreted(&model);
+    let scenario = Scenario::parse(WALL, None, &names, &[]).unwrap();
+    let system = Interpreted::<1>::new(model).unwrap();
+    let mut problem = CrashProblem::new(&system, scenario.inputs.clone());
+    let start = PhaseState::new(SVector::from([0.0]), SVector::from([10.0]));
+    problem.start(0.0, &start).unwrap();
+    let n = problem.event_count();
+    let (mut all, mut scratch) = (vec![0.0_f64; n], vec![f64::NAN; n]);
+    // Crushes before and behind the gap, each side of the curve's kink.
+    for (x, v) in [
+        (-0.01, 10.0),
+        (0.01, 5.0),
+        (0.05, 2.0),
+        (0.2, -1.0),
+        (0.4, 0.0),
+    ] {
+        let y = PhaseState::new(SVector::from([x]), SVector::from([v]));
+        problem.events(0.0, &y, &mut all).unwrap();
+        for (k, value) in all.iter().enumerate() {
+            let alone = problem.event(k, 0.0, &y, &mut scratch).unwrap();
+            assert_eq!(alone.to_bits(), value.to_bits(), "event {k} at {x}, {v}");
+        }
+    }
+}
