@@ -159,6 +159,7 @@ impl EventTracker {
     ) -> Result<f64, SolverError<P::Error>> {
         let before_sign = ga.signum();
         let mut side = 0i8;
+        let (mut halved_at, mut since) = (b - a, 0);
         for _ in 0..200 {
             if b - a <= time_tolerance(b) {
                 return Ok(b);
@@ -167,11 +168,19 @@ impl EventTracker {
             if !(c > a && c < b) {
                 c = 0.5 * (a + b);
             }
-            // Guard against slow one-sided convergence: bisect when the new
-            // point sits within 1% of an end of a wide bracket.
+            // Illinois converges superlinearly, with its new point close to
+            // an end of the bracket; where it stalls (one end stuck, the
+            // bracket shrinking slowly), bisect: whenever the bracket has
+            // not halved in three iterations.
             let width = b - a;
-            if (c - a) < 0.01 * width || (b - c) < 0.01 * width {
+            if width <= 0.5 * halved_at {
+                (halved_at, since) = (width, 0);
+            } else {
+                since += 1;
+            }
+            if since >= 3 {
                 c = 0.5 * (a + b);
+                (halved_at, since) = (width, 0);
             }
             dense.eval(c, scratch);
             let gc = problem
@@ -230,17 +239,18 @@ mod tests {
     use super::*;
     use crate::ode::PhaseState;
 
-    /// A step from 0 to 1 ms whose dense output is irrelevant.
-    struct Step;
+    /// A step from 0 to its end (1 ms unless said) whose dense output is
+    /// irrelevant.
+    struct Step(f64);
     impl DenseStep<PhaseState<1>> for Step {
         fn t0(&self) -> f64 {
             0.0
         }
         fn t1(&self) -> f64 {
-            1e-3
+            self.0
         }
         fn uncut_end(&self) -> f64 {
-            1e-3
+            self.0
         }
         fn eval(&self, _t: f64, out: &mut PhaseState<1>) {
             *out = PhaseState::zeros();
@@ -278,34 +288,70 @@ mod tests {
     fn locate_in_step<G: FnMut(f64, usize) -> f64>(
         problem: &mut OneEvent<G>,
     ) -> Result<Option<(usize, f64)>, SolverError<std::convert::Infallible>> {
+        locate_in(problem, &Step(1e-3))
+    }
+
+    /// Resets a tracker at t = 0 and locates the crossing in `step`.
+    fn locate_in<G: FnMut(f64, usize) -> f64>(
+        problem: &mut OneEvent<G>,
+        step: &Step,
+    ) -> Result<Option<(usize, f64)>, SolverError<std::convert::Infallible>> {
         let mut tracker = EventTracker::new(1);
         let y = PhaseState::<1>::zeros();
         tracker.reset(problem, 0.0, &y, &y)?;
         let mut scratch = y;
-        tracker.locate(problem, &Step, &y, &mut scratch)
+        tracker.locate(problem, step, &y, &mut scratch)
     }
 
-    /// An event function that defeats the root finder: negative at the start
+    /// An event function that stalls regula falsi: negative at the start
     /// and the midpoint, positive at the end, and at every probe negative and
     /// just small enough that the next regula falsi point lands 3% into the
-    /// bracket (Illinois halves the stale end's value each time), so the
-    /// bracket shrinks by 3% per iteration and never reaches 1e-12 s.
+    /// bracket (Illinois halves the stale end's value each time), so that
+    /// regula falsi alone would shrink the bracket by 3% per iteration.
+    fn stalling(call: usize) -> f64 {
+        let r: f64 = 0.03;
+        match call {
+            1 => -1.0, // start (reset)
+            2 => 1.0,  // end of the step
+            3 => -1.0, // midpoint: the crossing is in the second half
+            k => -r / (1.0 - r) * 0.5f64.powi(k as i32 - 4),
+        }
+    }
+
+    /// The root finder bisects when the bracket has not halved in three
+    /// iterations: the crossing of [`stalling`] (at the step's end, where it
+    /// turns positive) is found to 1e-12 s within four iterations per halving
+    /// of the 0.5 ms bracket (three of regula falsi, one of bisection),
+    /// 4 · 29.
+    #[test]
+    fn an_event_that_stalls_regula_falsi_is_located() {
+        let mut problem = OneEvent {
+            g: |_t, call| stalling(call),
+            calls: 0,
+        };
+        assert_eq!(locate_in_step(&mut problem), Ok(Some((0, 1e-3))));
+        // Start, end, midpoint and the iterations.
+        assert!(problem.calls <= 3 + 4 * 29, "{} calls", problem.calls);
+    }
+
+    /// [`stalling`] mirrored (positive at the midpoint and every probe, so
+    /// the bracket closes in on the start) over a step of 1e9 s: 200
+    /// iterations, 50 halvings, cannot narrow 5e8 s to 1e-12 s. An error,
+    /// not a loop.
     #[test]
     fn an_event_that_cannot_be_bracketed_is_an_error_not_a_loop() {
-        let r: f64 = 0.03;
         let mut problem = OneEvent {
             g: |_t, call| match call {
-                1 => -1.0, // start (reset)
-                2 => 1.0,  // end of the step
-                3 => -1.0, // midpoint: the crossing is in the second half
-                k => -r / (1.0 - r) * 0.5f64.powi(k as i32 - 4),
+                1 => -1.0,
+                2 | 3 => 1.0,
+                k => -stalling(k),
             },
             calls: 0,
         };
-        let result = locate_in_step(&mut problem);
-        assert_eq!(
-            result,
-            Err(SolverError::EventNotLocated { t: 1e-3, event: 0 })
+        let result = locate_in(&mut problem, &Step(1e9));
+        assert!(
+            matches!(result, Err(SolverError::EventNotLocated { event: 0, .. })),
+            "{result:?}"
         );
         // Start, end, midpoint and the 200 iterations.
         assert_eq!(problem.calls, 203);
