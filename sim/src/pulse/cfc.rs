@@ -75,7 +75,7 @@ pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {
 /// of the signal as there is), so that the filter starts and ends settled on
 /// the signal's level and slope instead of on zero.
 pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcError> {
-    let [a0, a1, a2, b1, b2] = coefficients(cfc, dt)?;
+    let coefficients = coefficients(cfc, dt)?;
     let n = signal.len();
     if n < 2 {
         return Ok(signal.to_vec());
@@ -86,23 +86,28 @@ pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcErro
     x.extend((1..=pad).rev().map(|k| 2.0 * first - signal[k]));
     x.extend_from_slice(signal);
     x.extend((1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]));
-    let pass = |x: &mut Vec<f64>| {
-        // Start at rest on the first value: y = x for a constant input.
-        let (mut x1, mut x2, mut y1, mut y2) = (x[0], x[0], x[0], x[0]);
-        for v in x.iter_mut() {
-            let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
-            x2 = x1;
-            x1 = *v;
-            y2 = y1;
-            y1 = y;
-            *v = y;
-        }
-    };
-    pass(&mut x);
-    x.reverse();
-    pass(&mut x);
-    x.reverse();
-    Ok(x[pad..pad + n].to_vec())
+    pass(coefficients, x[0], x.iter_mut());
+    // Backward, from the end of the padding; the leading padding's outputs
+    // are dropped, so the pass stops where the signal starts.
+    let start = x[x.len() - 1];
+    pass(coefficients, start, x[pad..].iter_mut().rev());
+    x.truncate(pad + n);
+    x.drain(..pad);
+    Ok(x)
+}
+
+/// One pass of the filter over `x` in the order given, in place, starting
+/// at rest on `start` (y = x for a constant input).
+fn pass<'a>([a0, a1, a2, b1, b2]: [f64; 5], start: f64, x: impl Iterator<Item = &'a mut f64>) {
+    let (mut x1, mut x2, mut y1, mut y2) = (start, start, start, start);
+    for v in x {
+        let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
+        x2 = x1;
+        x1 = *v;
+        y2 = y1;
+        y1 = y;
+        *v = y;
+    }
 }
 
 #[cfg(test)]
@@ -216,5 +221,47 @@ mod tests {
             cfc_filter(&[0.0; 10], 0.0, 60.0),
             Err(CfcError::SamplePeriod(_))
         ));
+    }
+
+    /// The filter as J211 draws it: pad, filter, reverse, filter, reverse,
+    /// cut the padding off.
+    fn reference(signal: &[f64], dt: f64, cfc: f64) -> Vec<f64> {
+        let [a0, a1, a2, b1, b2] = coefficients(cfc, dt).unwrap();
+        let n = signal.len();
+        let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
+        let mut x: Vec<f64> = (1..=pad)
+            .rev()
+            .map(|k| 2.0 * signal[0] - signal[k])
+            .collect();
+        x.extend_from_slice(signal);
+        x.extend((1..=pad).map(|k| 2.0 * signal[n - 1] - signal[n - 1 - k]));
+        for _ in 0..2 {
+            let (mut x1, mut x2, mut y1, mut y2) = (x[0], x[0], x[0], x[0]);
+            for v in x.iter_mut() {
+                let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
+                (x2, x1, y2, y1, *v) = (x1, *v, y1, y, y);
+            }
+            x.reverse();
+        }
+        x[pad..pad + n].to_vec()
+    }
+
+    #[test]
+    fn the_filter_is_the_reference_pass_by_pass_bit_for_bit() {
+        let dt = 1e-4;
+        for n in [2, 3, 40, 1501] {
+            let x: Vec<f64> = (0..n)
+                .map(|k| {
+                    let t = k as f64 * dt;
+                    -200.0 * (60.0 * t).sin() + 30.0 * (1700.0 * t).cos() + 5.0 * t
+                })
+                .collect();
+            for cfc in [60.0, 180.0] {
+                let got = cfc_filter(&x, dt, cfc).unwrap();
+                let expected = reference(&x, dt, cfc);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&expected), "n = {n}, CFC {cfc}");
+            }
+        }
     }
 }

@@ -122,9 +122,16 @@ impl Pulse {
             .fold(f64::INFINITY, f64::min);
         let count = ((t[t.len() - 1] - t[0]) / period * (1.0 + 1e-12)).floor() as usize + 1;
         let grid: Vec<f64> = (0..count).map(|k| t[0] + k as f64 * period).collect();
+        let (acceleration, crush) = match crush {
+            Some(crush) => {
+                let [a, c] = interpolate_all(t, [acceleration, crush], &grid);
+                (a, Some(c))
+            }
+            None => (interpolate(t, acceleration, &grid), None),
+        };
         Ok(Pulse {
-            acceleration: interpolate(t, acceleration, &grid),
-            crush: crush.map(|c| interpolate(t, c, &grid)),
+            acceleration,
+            crush,
             t: grid,
             v0,
         })
@@ -163,9 +170,13 @@ impl Pulse {
         let cfc60 = cfc_filter(&self.acceleration, dt, 60.0).map_err(PulseError::Filter)?;
         let cfc180 = cfc_filter(&self.acceleration, dt, 180.0).map_err(PulseError::Filter)?;
         let velocity = integrate(t, &cfc180, self.v0);
+        let integrated;
         let crush = match &self.crush {
-            Some(c) => c.clone(),
-            None => integrate(t, &velocity, 0.0),
+            Some(c) => c,
+            None => {
+                integrated = integrate(t, &velocity, 0.0);
+                &integrated
+            }
         };
         let (peak_index, max_crush) =
             crush
@@ -223,16 +234,25 @@ fn check_times(t: &[f64]) -> Result<(), PulseError> {
 
 /// `y(x)` at `at` by linear interpolation (`x` increasing, `at` inside).
 pub fn interpolate(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
+    let [y] = interpolate_all(x, [y], at);
+    y
+}
+
+/// [`interpolate`] of several `ys` on the same `x`, finding each point's
+/// interval and fraction once.
+fn interpolate_all<const M: usize>(x: &[f64], ys: [&[f64]; M], at: &[f64]) -> [Vec<f64>; M] {
+    let mut out = ys.map(|_| Vec::with_capacity(at.len()));
     let mut k = 0;
-    at.iter()
-        .map(|&a| {
-            while k + 2 < x.len() && x[k + 1] < a {
-                k += 1;
-            }
-            let f = (a - x[k]) / (x[k + 1] - x[k]);
-            y[k] + f.clamp(0.0, 1.0) * (y[k + 1] - y[k])
-        })
-        .collect()
+    for &a in at {
+        while k + 2 < x.len() && x[k + 1] < a {
+            k += 1;
+        }
+        let f = ((a - x[k]) / (x[k + 1] - x[k])).clamp(0.0, 1.0);
+        for (out, y) in out.iter_mut().zip(ys) {
+            out.push(y[k] + f * (y[k + 1] - y[k]));
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -310,5 +330,18 @@ mod tests {
             Pulse::resampled(&[0.0, 2e-3, 1e-3], &a[..3], 1.0, None),
             Err(PulseError::NotIncreasing { index: 2 })
         );
+    }
+
+    #[test]
+    fn interpolating_two_columns_at_once_is_interpolating_each() {
+        let x = [0.0, 1e-3, 1.7e-3, 3.5e-3, 4e-3];
+        let a = [0.0, -1.0, -2.5, -3.0, 7.0];
+        let c = [0.0, 0.1, 0.2, 0.35, 0.3];
+        let at: Vec<f64> = (0..=9).map(|k| k as f64 * 4.5e-4).collect();
+        let [ia, ic] = interpolate_all(&x, [&a, &c], &at);
+        assert_eq!(ia, interpolate(&x, &a, &at));
+        assert_eq!(ic, interpolate(&x, &c, &at));
+        // Linear between the samples: 0.1 + (0.2 − 0.1)·(1.35 − 1)/0.7 at 1.35 ms.
+        assert!((ic[3] - 0.15).abs() < 1e-12, "{}", ic[3]);
     }
 }

@@ -28,6 +28,7 @@ pub enum Column {
 
 impl Column {
     /// The column's value in a sample.
+    #[inline]
     pub fn value(self, s: &Columns) -> f64 {
         let at = |values: &[f64], k: usize| values.get(k).copied().unwrap_or(f64::NAN);
         match self {
@@ -92,6 +93,7 @@ pub struct Signal {
 impl Signal {
     /// The value in a sample; the first term's product starts the sum, so
     /// that `-r` is exactly `−1·r`.
+    #[inline]
     pub fn value(&self, s: &Columns) -> f64 {
         let mut terms = self.terms.iter();
         let Some(&(c, first)) = terms.next() else {
@@ -139,6 +141,46 @@ impl Signal {
     /// acceleration for `q̈`.
     pub fn of_coordinates(&self, values: &[f64]) -> f64 {
         self.value(&Columns::coordinates(values))
+    }
+
+    /// [`Signal::of_coordinates`] with the columns resolved once, for a
+    /// signal read at every sample.
+    pub fn coordinate_combination(&self) -> CoordinateCombination {
+        let index = |column: Column| match column {
+            Column::Coordinate(k) | Column::Velocity(k) | Column::Acceleration(k) => Some(k),
+            Column::Output(_)
+            | Column::Component(_)
+            | Column::Multiplier(_)
+            | Column::Residual(_) => None,
+        };
+        CoordinateCombination {
+            terms: (self.terms.iter())
+                .map(|&(c, column)| (c, index(column)))
+                .collect(),
+        }
+    }
+}
+
+/// A signal's combination of coordinates, as
+/// [`Signal::coordinate_combination`] resolves it: `(factor, index)` per
+/// term, `None` for a column that is not a coordinate's (it reads NaN, as
+/// in [`Signal::of_coordinates`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CoordinateCombination {
+    terms: Vec<(f64, Option<usize>)>,
+}
+
+impl CoordinateCombination {
+    /// The combination applied to `values`, one per coordinate, bit for bit
+    /// [`Signal::of_coordinates`]: the first term's product starts the sum.
+    #[inline]
+    pub fn of(&self, values: &[f64]) -> f64 {
+        let at = |k: Option<usize>| k.and_then(|k| values.get(k)).copied().unwrap_or(f64::NAN);
+        let Some((&(c, first), rest)) = self.terms.split_first() else {
+            return f64::NAN;
+        };
+        rest.iter()
+            .fold(c * at(first), |sum, &(c, k)| sum + c * at(k))
     }
 }
 
@@ -307,4 +349,46 @@ fn known_columns(names: &ModelNames) -> Vec<String> {
         known.extend([format!("{c}.lambda"), format!("{c}.residual")]);
     }
     known
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn signal(terms: Vec<(f64, Column)>) -> Signal {
+        Signal {
+            name: "s".into(),
+            terms,
+            unit: None,
+        }
+    }
+
+    /// The resolved combination reads what `of_coordinates` reads, bit for
+    /// bit: sums in the written order, NaN for columns that are not a
+    /// coordinate's or lie beyond the values.
+    #[test]
+    fn a_coordinate_combination_is_of_coordinates_bit_for_bit() {
+        let values = [0.1, -2.5e-3, 7.0, -0.0];
+        let signals = [
+            signal(vec![]),
+            signal(vec![(-1.0, Column::Coordinate(3))]),
+            signal(vec![
+                (1.0, Column::Coordinate(0)),
+                (-1.0, Column::Coordinate(1)),
+            ]),
+            signal(vec![
+                (0.3, Column::Coordinate(2)),
+                (1e-3, Column::Velocity(1)),
+                (-2.0, Column::Acceleration(0)),
+            ]),
+            signal(vec![(1.0, Column::Coordinate(9))]),
+            signal(vec![(1.0, Column::Coordinate(0)), (1.0, Column::Output(0))]),
+            signal(vec![(2.0, Column::Multiplier(0))]),
+        ];
+        for s in &signals {
+            let expected = s.of_coordinates(&values);
+            let got = s.coordinate_combination().of(&values);
+            assert_eq!(got.to_bits(), expected.to_bits(), "{:?}", s.terms);
+        }
+    }
 }

@@ -11,7 +11,7 @@ use super::Summary;
 use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
-use crate::scenario::{Columns, Scenario, Signal};
+use crate::scenario::{Columns, CoordinateCombination, Scenario};
 use crate::warning::{self, ChannelPoint, Warning};
 
 /// One output sample as the metrics see it.
@@ -75,7 +75,7 @@ struct CrushPoint {
 /// not keep its samples (a sweep does not).
 #[derive(Clone, Debug)]
 pub struct Metrics {
-    crush: Option<Signal>,
+    crush: Option<CoordinateCombination>,
     pitch: Vec<(usize, f64)>,
     g: f64,
     samples: usize,
@@ -119,10 +119,13 @@ impl Metrics {
             .take(2)
             .map(|&k| (k, initial_q[k]))
             .collect();
+        let samples = expected_samples(scenario);
+        let crush = scenario.crush.as_ref();
+        let history = |wanted: bool| if wanted { samples } else { 0 };
         Metrics {
-            crush: scenario.crush.clone(),
-            pitch_history: Vec::new(),
-            crush_history: Vec::new(),
+            crush: crush.map(|c| c.coordinate_combination()),
+            pitch_history: Vec::with_capacity(history(!pitch.is_empty())),
+            crush_history: Vec::with_capacity(history(crush.is_some())),
             pitch,
             g,
             samples: 0,
@@ -136,9 +139,9 @@ impl Metrics {
             first_rate: None,
             deceleration: f64::NEG_INFINITY,
             rebound: 0.0,
-            crush_acceleration: Vec::new(),
+            crush_acceleration: Vec::with_capacity(history(crush.is_some())),
             channels: (scenario.channels.iter().cloned())
-                .map(ChannelRecord::new)
+                .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
         }
     }
@@ -163,10 +166,10 @@ impl Metrics {
         if let Some(crush) = &self.crush {
             let point = CrushPoint {
                 t: s.t,
-                crush: crush.of_coordinates(s.q),
-                rate: crush.of_coordinates(s.v),
+                crush: crush.of(s.q),
+                rate: crush.of(s.v),
             };
-            let acceleration = crush.of_coordinates(s.a);
+            let acceleration = crush.of(s.a);
             let index = self.samples;
             self.first_rate.get_or_insert(point.rate);
             if let Some((_, _, after)) = &mut self.peak
@@ -318,6 +321,21 @@ impl Metrics {
             .ok()
     }
 }
+
+/// The number of output samples `scenario` asks for (the sampler's bound),
+/// to reserve the records for; at most [`RESERVED_SAMPLES`], beyond which the
+/// records grow as they fill.
+fn expected_samples(scenario: &Scenario) -> usize {
+    let bound = (scenario.t_end / scenario.output_interval + 1.0).ceil();
+    if bound >= 0.0 {
+        bound.min(RESERVED_SAMPLES as f64) as usize
+    } else {
+        0 // NaN
+    }
+}
+
+/// The most samples a record reserves room for at the start of a run.
+const RESERVED_SAMPLES: usize = 1 << 16;
 
 /// `(t, c)` of the crush maximum: the zero of the crush rate next to the
 /// largest sample, by cubic Hermite interpolation of the crush.
