@@ -149,6 +149,7 @@ impl ChannelRecord {
     }
 
     /// Adds the channel's value at time `t` (in time order).
+    #[inline]
     pub fn push(&mut self, t: f64, columns: &Columns) {
         self.t.push(t);
         self.values.push(self.channel.signal.value(columns));
@@ -177,20 +178,20 @@ impl ChannelRecord {
     /// The indices of the largest and the smallest finite sample, the
     /// first of equals.
     fn extremes(&self) -> (Option<usize>, Option<usize>) {
-        let mut max: Option<(usize, f64)> = None;
-        let mut min: Option<(usize, f64)> = None;
-        for (k, &x) in self.values.iter().enumerate() {
-            if !x.is_finite() {
-                continue;
+        let mut finite = (self.values.iter().enumerate()).filter(|(_, x)| x.is_finite());
+        let Some((first, &x)) = finite.next() else {
+            return (None, None);
+        };
+        let (mut max, mut min) = ((first, x), (first, x));
+        for (k, &x) in finite {
+            if x > max.1 {
+                max = (k, x);
             }
-            if max.is_none_or(|(_, m)| x > m) {
-                max = Some((k, x));
-            }
-            if min.is_none_or(|(_, m)| x < m) {
-                min = Some((k, x));
+            if x < min.1 {
+                min = (k, x);
             }
         }
-        (max.map(|(k, _)| k), min.map(|(k, _)| k))
+        (Some(max.0), Some(min.0))
     }
 
     /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, clip3ms_g]`:

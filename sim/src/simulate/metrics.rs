@@ -10,7 +10,7 @@ use super::Sample;
 use super::Summary;
 use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
-use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
+use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY};
 use crate::scenario::{Columns, CoordinateCombination, Scenario};
 use crate::warning::{self, ChannelPoint, Warning};
 
@@ -252,14 +252,14 @@ impl Metrics {
             summary.time_to_zero_velocity_s = self.first_zero;
             summary.peak_deceleration_g = Some(self.deceleration);
             summary.rebound_velocity_mps = Some(self.rebound);
-            if let Some(pulse) = self.pulse_metrics() {
+            if let Some((v0, pulse)) = self.pulse_metrics() {
                 summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
                 summary.equivalent_square_wave_g = summary
                     .max_crush_m
                     .filter(|&c| c > 0.0)
-                    .map(|c| pulse.impact_velocity_mps.powi(2) / (2.0 * STANDARD_GRAVITY * c));
-                summary.olc_g = pulse.olc_g;
-                summary.asi = pulse.asi;
+                    .map(|c| v0.powi(2) / (2.0 * STANDARD_GRAVITY * c));
+                summary.olc_g = pulse.olc.map(|o| o.deceleration / STANDARD_GRAVITY);
+                summary.asi = pulse.asi.map(|(asi, _)| asi);
             }
         }
         summary
@@ -308,17 +308,23 @@ impl Metrics {
         away.into_iter().chain(flat).collect()
     }
 
-    /// The pulse metrics of the crush coordinate's samples (resampled onto
-    /// an even grid when events added samples between the output times);
-    /// `None` for fewer than 3 samples or a record the CFC 60 filter cannot
-    /// take (sampled slower than 250 Hz).
-    fn pulse_metrics(&self) -> Option<PulseMetrics> {
+    /// The impact velocity and the pulse metrics of the crush coordinate's
+    /// acceleration (resampled onto an even grid when events added samples
+    /// between the output times); `None` for fewer than 3 samples, a
+    /// record the CFC 60 filter cannot take (sampled slower than 250 Hz), or
+    /// samples that are not finite. No metric read takes the crush itself:
+    /// it goes along only where its resampled values could fail the pulse's
+    /// check (crush beyond [`CRUSH_BOUND`]: they cannot when every sample
+    /// is within it).
+    fn pulse_metrics(&self) -> Option<(f64, FilteredMetrics)> {
         let t: Vec<f64> = self.crush_history.iter().map(|p| p.t).collect();
-        let crush: Vec<f64> = self.crush_history.iter().map(|p| p.crush).collect();
         let v0 = self.first_rate?;
-        Pulse::resampled(&t, &self.crush_acceleration, v0, Some(&crush))
-            .and_then(|p| p.metrics())
-            .ok()
+        let bounded = (self.crush_history.iter()).all(|p| p.crush.abs() <= CRUSH_BOUND);
+        let crush: Option<Vec<f64>> =
+            (!bounded).then(|| self.crush_history.iter().map(|p| p.crush).collect());
+        let pulse = Pulse::resampled(&t, &self.crush_acceleration, v0, crush.as_deref());
+        let metrics = pulse.and_then(|p| p.filtered_metrics()).ok()?;
+        Some((v0, metrics))
     }
 }
 
@@ -333,6 +339,10 @@ fn expected_samples(scenario: &Scenario) -> usize {
         0 // NaN
     }
 }
+
+/// A crush within which linear interpolation between samples stays finite
+/// \[m\].
+const CRUSH_BOUND: f64 = 1e300;
 
 /// The most samples a record reserves room for at the start of a run.
 const RESERVED_SAMPLES: usize = 1 << 16;
