@@ -82,31 +82,55 @@ pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcErro
     }
     let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
     let (first, last) = (signal[0], signal[n - 1]);
-    let mut x: Vec<f64> = Vec::with_capacity(n + 2 * pad);
-    x.extend((1..=pad).rev().map(|k| 2.0 * first - signal[k]));
-    x.extend_from_slice(signal);
-    x.extend((1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]));
-    pass(coefficients, x[0], x.iter_mut());
-    // Backward, from the end of the padding; the leading padding's outputs
-    // are dropped, so the pass stops where the signal starts.
-    let start = x[x.len() - 1];
-    pass(coefficients, start, x[pad..].iter_mut().rev());
-    x.truncate(pad + n);
-    x.drain(..pad);
-    Ok(x)
+    let lead = (1..=pad).rev().map(|k| 2.0 * first - signal[k]);
+    let tail = (1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]);
+    // Forward over the padded signal; the leading padding's outputs only
+    // settle the filter (the backward pass drops them), the rest are kept.
+    let mut forward = Pass::at_rest(coefficients, lead.clone().next().unwrap_or(first));
+    lead.for_each(|x| {
+        forward.step(x);
+    });
+    let mut y: Vec<f64> = Vec::with_capacity(n + pad);
+    y.extend((signal.iter().copied().chain(tail)).map(|x| forward.step(x)));
+    // Backward from the end of the trailing padding.
+    let mut backward = Pass::at_rest(coefficients, y[y.len() - 1]);
+    for v in y.iter_mut().rev() {
+        *v = backward.step(*v);
+    }
+    y.truncate(n);
+    Ok(y)
 }
 
-/// One pass of the filter over `x` in the order given, in place, starting
-/// at rest on `start` (y = x for a constant input).
-fn pass<'a>([a0, a1, a2, b1, b2]: [f64; 5], start: f64, x: impl Iterator<Item = &'a mut f64>) {
-    let (mut x1, mut x2, mut y1, mut y2) = (start, start, start, start);
-    for v in x {
-        let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
-        x2 = x1;
-        x1 = *v;
-        y2 = y1;
-        y1 = y;
-        *v = y;
+/// One pass of the filter: its coefficients and its last two inputs and
+/// outputs.
+struct Pass {
+    coefficients: [f64; 5],
+    x1: f64,
+    x2: f64,
+    y1: f64,
+    y2: f64,
+}
+
+impl Pass {
+    /// A pass at rest on `x` (y = x for a constant input).
+    fn at_rest(coefficients: [f64; 5], x: f64) -> Pass {
+        Pass {
+            coefficients,
+            x1: x,
+            x2: x,
+            y1: x,
+            y2: x,
+        }
+    }
+
+    /// The output for the next input `x`.
+    #[inline]
+    fn step(&mut self, x: f64) -> f64 {
+        let [a0, a1, a2, b1, b2] = self.coefficients;
+        let y = a0 * x + a1 * self.x1 + a2 * self.x2 + b1 * self.y1 + b2 * self.y2;
+        (self.x2, self.x1) = (self.x1, x);
+        (self.y2, self.y1) = (self.y1, y);
+        y
     }
 }
 
