@@ -4,12 +4,14 @@
 /// The running integral `x0 + ∫ x dt` by the trapezoidal rule (exact for the
 /// piecewise-linear interpolant of the samples).
 pub fn integrate(t: &[f64], x: &[f64], x0: f64) -> Vec<f64> {
+    let t = &t[..x.len()];
     let mut out = Vec::with_capacity(x.len());
     let mut sum = x0;
-    for k in 0..x.len() {
-        if k > 0 {
-            sum += 0.5 * (x[k] + x[k - 1]) * (t[k] - t[k - 1]);
-        }
+    if !x.is_empty() {
+        out.push(sum);
+    }
+    for (t, x) in t.windows(2).zip(x.windows(2)) {
+        sum += 0.5 * (x[1] + x[0]) * (t[1] - t[0]);
         out.push(sum);
     }
     out
@@ -347,5 +349,21 @@ mod tests {
         assert_eq!(first_crossing(x.len(), at, 1.5), Some((4, 1.0 / 1.5)));
         assert_eq!(first_crossing(x.len(), at, 3.5), None);
         assert_eq!(first_crossing(1, at, -1.0), None);
+    }
+
+    #[test]
+    fn the_running_integral_is_the_trapezoids_summed_in_order() {
+        let t = [0.0, 0.1, 0.25, 0.3, 0.7];
+        let x = [1.0, -2.0, 0.5, 3.0, 1e-3];
+        let mut expected = vec![2.0];
+        for k in 1..x.len() {
+            let trapezoid = 0.5 * (x[k] + x[k - 1]) * (t[k] - t[k - 1]);
+            expected.push(expected[k - 1] + trapezoid);
+        }
+        assert_eq!(integrate(&t, &x, 2.0), expected);
+        assert_eq!(integrate(&t, &x[..1], 2.0), [2.0]);
+        assert!(integrate(&t, &[], 2.0).is_empty());
+        // 2 + ∫ of the linear interpolant over [0, 0.1]: 2 + 0.1·(1 − 2)/2.
+        assert!((expected[1] - 1.95).abs() < 1e-15);
     }
 }
