@@ -171,16 +171,24 @@ pub struct CoordinateCombination {
 }
 
 impl CoordinateCombination {
-    /// The combination applied to `values`, one per coordinate, bit for bit
-    /// [`Signal::of_coordinates`]: the first term's product starts the sum.
+    /// The combination applied to each of `values` (`q`, `q̇`, `q̈`: one
+    /// value per coordinate each), bit for bit [`Signal::of_coordinates`]:
+    /// the first term's product starts each sum.
     #[inline]
-    pub fn of(&self, values: &[f64]) -> f64 {
-        let at = |k: Option<usize>| k.and_then(|k| values.get(k)).copied().unwrap_or(f64::NAN);
-        let Some((&(c, first), rest)) = self.terms.split_first() else {
-            return f64::NAN;
+    pub fn of<const M: usize>(&self, values: [&[f64]; M]) -> [f64; M] {
+        let at = |values: &[f64], k: Option<usize>| {
+            (k.and_then(|k| values.get(k)).copied()).unwrap_or(f64::NAN)
         };
-        rest.iter()
-            .fold(c * at(first), |sum, &(c, k)| sum + c * at(k))
+        let Some((&(c, first), rest)) = self.terms.split_first() else {
+            return [f64::NAN; M];
+        };
+        let mut sums = values.map(|v| c * at(v, first));
+        for &(c, k) in rest {
+            for (sum, v) in sums.iter_mut().zip(values) {
+                *sum += c * at(v, k);
+            }
+        }
+        sums
     }
 }
 
@@ -385,10 +393,16 @@ mod tests {
             signal(vec![(1.0, Column::Coordinate(0)), (1.0, Column::Output(0))]),
             signal(vec![(2.0, Column::Multiplier(0))]),
         ];
+        let rates = [-15.5, 0.25, 1e-9, 3.0];
         for s in &signals {
-            let expected = s.of_coordinates(&values);
-            let got = s.coordinate_combination().of(&values);
-            assert_eq!(got.to_bits(), expected.to_bits(), "{:?}", s.terms);
+            let expected = [s.of_coordinates(&values), s.of_coordinates(&rates)];
+            let got = s.coordinate_combination().of([&values, &rates]);
+            assert_eq!(
+                got.map(f64::to_bits),
+                expected.map(f64::to_bits),
+                "{:?}",
+                s.terms
+            );
         }
     }
 }

@@ -164,12 +164,12 @@ impl Metrics {
             self.pitch_history.push((s.t, deviations));
         }
         if let Some(crush) = &self.crush {
+            let [value, rate, acceleration] = crush.of([s.q, s.v, s.a]);
             let point = CrushPoint {
                 t: s.t,
-                crush: crush.of(s.q),
-                rate: crush.of(s.v),
+                crush: value,
+                rate,
             };
-            let acceleration = crush.of(s.a);
             let index = self.samples;
             self.first_rate.get_or_insert(point.rate);
             if let Some((_, _, after)) = &mut self.peak
