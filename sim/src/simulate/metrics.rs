@@ -367,3 +367,28 @@ fn refine_peak(
     }
     (peak.t, peak.crush)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Why the crush may stay out of the pulse within the bound: its
+    /// resampled values are finite, so the pulse's check passes them.
+    #[test]
+    fn crush_within_the_bound_resamples_to_finite_values() {
+        let t = [0.0, 1e-4, 1.5e-4, 2.5e-4, 4e-4, 4.5e-4];
+        let crush = t.map(|t| if t < 2e-4 { CRUSH_BOUND } else { -CRUSH_BOUND });
+        let pulse = Pulse::resampled(&t, &[0.0; 6], 1.0, Some(&crush)).unwrap();
+        let resampled = pulse.crush.unwrap();
+        assert!(resampled.iter().all(|c| c.is_finite()), "{resampled:?}");
+        assert!(
+            resampled
+                .iter()
+                .any(|&c| c != CRUSH_BOUND && c != -CRUSH_BOUND)
+        );
+        // Beyond it they may not be: the run's pulse takes the crush along.
+        let far = t.map(|t| if t < 2e-4 { f64::MAX } else { -f64::MAX });
+        let pulse = Pulse::resampled(&t, &[0.0; 6], 1.0, Some(&far)).unwrap();
+        assert!(pulse.crush.unwrap().iter().any(|c| !c.is_finite()));
+    }
+}
