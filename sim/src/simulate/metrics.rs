@@ -222,8 +222,7 @@ impl Metrics {
         weld_failure: Option<f64>,
         end_of_contact: Option<f64>,
     ) -> Summary {
-        let over_run = self.pitch_extremes_until(f64::INFINITY);
-        let in_pulse = end_of_contact.map(|end| self.pitch_extremes_until(end));
+        let (over_run, in_pulse) = self.pitch_extremes(end_of_contact);
         let in_pulse = |k: usize| {
             in_pulse
                 .as_ref()
@@ -265,17 +264,23 @@ impl Metrics {
         summary
     }
 
-    /// The pitch deviations of largest magnitude up to time `end`.
-    fn pitch_extremes_until(&self, end: f64) -> Vec<f64> {
+    /// The pitch deviations of largest magnitude over the run and, given
+    /// the end of the pulse, up to it: one scan, the run's continuing from
+    /// the pulse's.
+    fn pitch_extremes(&self, end_of_pulse: Option<f64>) -> (Vec<f64>, Option<Vec<f64>>) {
         let mut extremes = vec![0.0f64; self.pitch.len()];
-        for (_, deviations) in self.pitch_history.iter().take_while(|(t, _)| *t <= end) {
-            for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
-                if d.abs() > extreme.abs() {
-                    *extreme = d;
-                }
-            }
-        }
-        extremes
+        let mut history = self.pitch_history.as_slice();
+        let in_pulse = end_of_pulse.map(|end| {
+            let within = history.iter().take_while(|(t, _)| *t <= end).count();
+            let (pulse, rest) = history.split_at(within);
+            widen_extremes(&mut extremes, pulse);
+            history = rest;
+            extremes.clone()
+        });
+        // Up to the first time that is not a number, if any.
+        let until_end = history.iter().take_while(|(t, _)| *t <= f64::INFINITY);
+        widen_extremes(&mut extremes, until_end);
+        (extremes, in_pulse)
     }
 
     /// The crush at time `t`, by cubic Hermite interpolation of the samples
@@ -325,6 +330,21 @@ impl Metrics {
         let pulse = Pulse::resampled(&t, &self.crush_acceleration, v0, crush.as_deref());
         let metrics = pulse.and_then(|p| p.filtered_metrics()).ok()?;
         Some((v0, metrics))
+    }
+}
+
+/// Widens `extremes` to the pitch deviations of larger magnitude among
+/// `history`'s, the first of equals.
+fn widen_extremes<'a>(
+    extremes: &mut [f64],
+    history: impl IntoIterator<Item = &'a (f64, [f64; 2])>,
+) {
+    for (_, deviations) in history {
+        for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
+            if d.abs() > extreme.abs() {
+                *extreme = d;
+            }
+        }
     }
 }
 
@@ -390,5 +410,23 @@ mod tests {
         let far = t.map(|t| if t < 2e-4 { f64::MAX } else { -f64::MAX });
         let pulse = Pulse::resampled(&t, &[0.0; 6], 1.0, Some(&far)).unwrap();
         assert!(pulse.crush.unwrap().iter().any(|c| !c.is_finite()));
+    }
+
+    #[test]
+    fn extremes_widen_to_the_first_deviation_of_larger_magnitude() {
+        let history = [
+            (0.0, [0.1, -0.2]),
+            (1.0, [-0.3, 0.2]),
+            (2.0, [0.3, -0.5]),
+            (3.0, [0.05, 0.0]),
+        ];
+        let mut extremes = [0.0; 2];
+        widen_extremes(&mut extremes, &history[..2]);
+        assert_eq!(extremes, [-0.3, -0.2]);
+        widen_extremes(&mut extremes, &history[2..]);
+        assert_eq!(extremes, [-0.3, -0.5]);
+        let mut one = [0.0];
+        widen_extremes(&mut one, &history);
+        assert_eq!(one, [-0.3]);
     }
 }
