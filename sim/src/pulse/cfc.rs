@@ -75,34 +75,63 @@ pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {
 /// of the signal as there is), so that the filter starts and ends settled on
 /// the signal's level and slope instead of on zero.
 pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcError> {
-    let [a0, a1, a2, b1, b2] = coefficients(cfc, dt)?;
+    let coefficients = coefficients(cfc, dt)?;
     let n = signal.len();
     if n < 2 {
         return Ok(signal.to_vec());
     }
     let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
     let (first, last) = (signal[0], signal[n - 1]);
-    let mut x: Vec<f64> = Vec::with_capacity(n + 2 * pad);
-    x.extend((1..=pad).rev().map(|k| 2.0 * first - signal[k]));
-    x.extend_from_slice(signal);
-    x.extend((1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]));
-    let pass = |x: &mut Vec<f64>| {
-        // Start at rest on the first value: y = x for a constant input.
-        let (mut x1, mut x2, mut y1, mut y2) = (x[0], x[0], x[0], x[0]);
-        for v in x.iter_mut() {
-            let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
-            x2 = x1;
-            x1 = *v;
-            y2 = y1;
-            y1 = y;
-            *v = y;
+    let lead = (1..=pad).rev().map(|k| 2.0 * first - signal[k]);
+    let tail = (1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]);
+    // Forward over the padded signal; the leading padding's outputs only
+    // settle the filter (the backward pass drops them), the rest are kept.
+    let mut forward = Pass::at_rest(coefficients, lead.clone().next().unwrap_or(first));
+    lead.for_each(|x| {
+        forward.step(x);
+    });
+    let mut y: Vec<f64> = Vec::with_capacity(n + pad);
+    y.extend((signal.iter().copied().chain(tail)).map(|x| forward.step(x)));
+    // Backward from the end of the trailing padding.
+    let mut backward = Pass::at_rest(coefficients, y[y.len() - 1]);
+    for v in y.iter_mut().rev() {
+        *v = backward.step(*v);
+    }
+    y.truncate(n);
+    Ok(y)
+}
+
+/// One pass of the filter: its coefficients and its last two inputs and
+/// outputs.
+struct Pass {
+    coefficients: [f64; 5],
+    x1: f64,
+    x2: f64,
+    y1: f64,
+    y2: f64,
+}
+
+impl Pass {
+    /// A pass at rest on `x` (y = x for a constant input).
+    fn at_rest(coefficients: [f64; 5], x: f64) -> Pass {
+        Pass {
+            coefficients,
+            x1: x,
+            x2: x,
+            y1: x,
+            y2: x,
         }
-    };
-    pass(&mut x);
-    x.reverse();
-    pass(&mut x);
-    x.reverse();
-    Ok(x[pad..pad + n].to_vec())
+    }
+
+    /// The output for the next input `x`.
+    #[inline]
+    fn step(&mut self, x: f64) -> f64 {
+        let [a0, a1, a2, b1, b2] = self.coefficients;
+        let y = a0 * x + a1 * self.x1 + a2 * self.x2 + b1 * self.y1 + b2 * self.y2;
+        (self.x2, self.x1) = (self.x1, x);
+        (self.y2, self.y1) = (self.y1, y);
+        y
+    }
 }
 
 #[cfg(test)]
@@ -216,5 +245,47 @@ mod tests {
             cfc_filter(&[0.0; 10], 0.0, 60.0),
             Err(CfcError::SamplePeriod(_))
         ));
+    }
+
+    /// The filter as J211 draws it: pad, filter, reverse, filter, reverse,
+    /// cut the padding off.
+    fn reference(signal: &[f64], dt: f64, cfc: f64) -> Vec<f64> {
+        let [a0, a1, a2, b1, b2] = coefficients(cfc, dt).unwrap();
+        let n = signal.len();
+        let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
+        let mut x: Vec<f64> = (1..=pad)
+            .rev()
+            .map(|k| 2.0 * signal[0] - signal[k])
+            .collect();
+        x.extend_from_slice(signal);
+        x.extend((1..=pad).map(|k| 2.0 * signal[n - 1] - signal[n - 1 - k]));
+        for _ in 0..2 {
+            let (mut x1, mut x2, mut y1, mut y2) = (x[0], x[0], x[0], x[0]);
+            for v in x.iter_mut() {
+                let y = a0 * *v + a1 * x1 + a2 * x2 + b1 * y1 + b2 * y2;
+                (x2, x1, y2, y1, *v) = (x1, *v, y1, y, y);
+            }
+            x.reverse();
+        }
+        x[pad..pad + n].to_vec()
+    }
+
+    #[test]
+    fn the_filter_is_the_reference_pass_by_pass_bit_for_bit() {
+        let dt = 1e-4;
+        for n in [2, 3, 40, 1501] {
+            let x: Vec<f64> = (0..n)
+                .map(|k| {
+                    let t = k as f64 * dt;
+                    -200.0 * (60.0 * t).sin() + 30.0 * (1700.0 * t).cos() + 5.0 * t
+                })
+                .collect();
+            for cfc in [60.0, 180.0] {
+                let got = cfc_filter(&x, dt, cfc).unwrap();
+                let expected = reference(&x, dt, cfc);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&expected), "n = {n}, CFC {cfc}");
+            }
+        }
     }
 }

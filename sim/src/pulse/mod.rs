@@ -122,9 +122,16 @@ impl Pulse {
             .fold(f64::INFINITY, f64::min);
         let count = ((t[t.len() - 1] - t[0]) / period * (1.0 + 1e-12)).floor() as usize + 1;
         let grid: Vec<f64> = (0..count).map(|k| t[0] + k as f64 * period).collect();
+        let (acceleration, crush) = match crush {
+            Some(crush) => {
+                let [a, c] = interpolate_all(t, [acceleration, crush], &grid);
+                (a, Some(c))
+            }
+            None => (interpolate(t, acceleration, &grid), None),
+        };
         Ok(Pulse {
-            acceleration: interpolate(t, acceleration, &grid),
-            crush: crush.map(|c| interpolate(t, c, &grid)),
+            acceleration,
+            crush,
             t: grid,
             v0,
         })
@@ -155,17 +162,42 @@ impl Pulse {
         Ok((self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64)
     }
 
+    /// The CFC 60 and CFC 180 accelerations and the velocity of the
+    /// latter, of a checked pulse sampled every `dt`.
+    fn filtered(&self, dt: f64) -> Result<Filtered, PulseError> {
+        let cfc60 = cfc_filter(&self.acceleration, dt, 60.0).map_err(PulseError::Filter)?;
+        let cfc180 = cfc_filter(&self.acceleration, dt, 180.0).map_err(PulseError::Filter)?;
+        let velocity = integrate(&self.t, &cfc180, self.v0);
+        Ok(Filtered {
+            cfc60,
+            cfc180,
+            velocity,
+        })
+    }
+
+    /// The metrics of the pulse's filtered acceleration alone, as
+    /// [`Pulse::metrics`] has them, without those of its crush and its
+    /// raw acceleration.
+    pub fn filtered_metrics(&self) -> Result<FilteredMetrics, PulseError> {
+        let dt = self.check()?;
+        let f = self.filtered(dt)?;
+        Ok(FilteredMetrics::of(&self.t, &f))
+    }
+
     /// The metrics of the pulse.
     pub fn metrics(&self) -> Result<PulseMetrics, PulseError> {
         let dt = self.check()?;
         let g = STANDARD_GRAVITY;
         let t = &self.t;
-        let cfc60 = cfc_filter(&self.acceleration, dt, 60.0).map_err(PulseError::Filter)?;
-        let cfc180 = cfc_filter(&self.acceleration, dt, 180.0).map_err(PulseError::Filter)?;
-        let velocity = integrate(t, &cfc180, self.v0);
+        let filtered = self.filtered(dt)?;
+        let velocity = &filtered.velocity;
+        let integrated;
         let crush = match &self.crush {
-            Some(c) => c.clone(),
-            None => integrate(t, &velocity, 0.0),
+            Some(c) => c,
+            None => {
+                integrated = integrate(t, velocity, 0.0);
+                &integrated
+            }
         };
         let (peak_index, max_crush) =
             crush
@@ -183,9 +215,11 @@ impl Pulse {
                 (k, t[k - 1] + f * (t[k] - t[k - 1]))
             });
         let rebound = zero.map(|(k, _)| velocity[k..].iter().fold(0.0f64, |m, &v| m.max(-v)));
-        let peak = |a: &[f64]| a.iter().fold(0.0f64, |m, &x| m.max(-x)) / g;
-        let olc = olc(t, &velocity);
-        let asi = asi(t, &[(&cfc180, 12.0 * g)]);
+        let FilteredMetrics {
+            peak_deceleration_cfc60_g,
+            olc,
+            asi,
+        } = FilteredMetrics::of(t, &filtered);
         let crushed = max_crush > 0.0;
         Ok(PulseMetrics {
             impact_velocity_mps: self.v0,
@@ -193,8 +227,8 @@ impl Pulse {
             time_of_max_crush_s: crushed.then_some(t[peak_index]),
             time_to_zero_velocity_s: zero.map(|(_, t)| t),
             rebound_velocity_mps: rebound,
-            peak_deceleration_g: peak(&self.acceleration),
-            peak_deceleration_cfc60_g: peak(&cfc60),
+            peak_deceleration_g: peak_deceleration(&self.acceleration),
+            peak_deceleration_cfc60_g,
             equivalent_square_wave_g: crushed.then(|| self.v0 * self.v0 / (2.0 * g * max_crush)),
             olc_g: olc.map(|o| o.deceleration / g),
             olc_t1_s: olc.map(|o| o.t1),
@@ -203,6 +237,41 @@ impl Pulse {
             asi_time_s: asi.map(|(_, t)| t),
         })
     }
+}
+
+/// The filtered signals of a pulse.
+struct Filtered {
+    cfc60: Vec<f64>,
+    cfc180: Vec<f64>,
+    velocity: Vec<f64>,
+}
+
+/// The metrics of a pulse's filtered acceleration (the part of
+/// [`PulseMetrics`] that its crush does not enter).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilteredMetrics {
+    /// Largest deceleration of the CFC 60 filtered acceleration \[g\].
+    pub peak_deceleration_cfc60_g: f64,
+    /// The occupant load criterion of the CFC 180 velocity.
+    pub olc: Option<Olc>,
+    /// The acceleration severity index of the CFC 180 acceleration and
+    /// when it is reached \[s\].
+    pub asi: Option<(f64, f64)>,
+}
+
+impl FilteredMetrics {
+    fn of(t: &[f64], f: &Filtered) -> FilteredMetrics {
+        FilteredMetrics {
+            peak_deceleration_cfc60_g: peak_deceleration(&f.cfc60),
+            olc: olc(t, &f.velocity),
+            asi: asi(t, &[(&f.cfc180, 12.0 * STANDARD_GRAVITY)]),
+        }
+    }
+}
+
+/// The largest deceleration of `a` \[g\]; 0 when it never decelerates.
+fn peak_deceleration(a: &[f64]) -> f64 {
+    a.iter().fold(0.0f64, |m, &x| m.max(-x)) / STANDARD_GRAVITY
 }
 
 fn check_times(t: &[f64]) -> Result<(), PulseError> {
@@ -223,16 +292,25 @@ fn check_times(t: &[f64]) -> Result<(), PulseError> {
 
 /// `y(x)` at `at` by linear interpolation (`x` increasing, `at` inside).
 pub fn interpolate(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
+    let [y] = interpolate_all(x, [y], at);
+    y
+}
+
+/// [`interpolate`] of several `ys` on the same `x`, finding each point's
+/// interval and fraction once.
+fn interpolate_all<const M: usize>(x: &[f64], ys: [&[f64]; M], at: &[f64]) -> [Vec<f64>; M] {
+    let mut out = ys.map(|_| vec![0.0; at.len()]);
     let mut k = 0;
-    at.iter()
-        .map(|&a| {
-            while k + 2 < x.len() && x[k + 1] < a {
-                k += 1;
-            }
-            let f = (a - x[k]) / (x[k + 1] - x[k]);
-            y[k] + f.clamp(0.0, 1.0) * (y[k + 1] - y[k])
-        })
-        .collect()
+    for (j, &a) in at.iter().enumerate() {
+        while k + 2 < x.len() && x[k + 1] < a {
+            k += 1;
+        }
+        let f = ((a - x[k]) / (x[k + 1] - x[k])).clamp(0.0, 1.0);
+        for (out, y) in out.iter_mut().zip(ys) {
+            out[j] = y[k] + f * (y[k + 1] - y[k]);
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -310,5 +388,55 @@ mod tests {
             Pulse::resampled(&[0.0, 2e-3, 1e-3], &a[..3], 1.0, None),
             Err(PulseError::NotIncreasing { index: 2 })
         );
+    }
+
+    #[test]
+    fn interpolating_two_columns_at_once_is_interpolating_each() {
+        let x = [0.0, 1e-3, 1.7e-3, 3.5e-3, 4e-3];
+        let a = [0.0, -1.0, -2.5, -3.0, 7.0];
+        let c = [0.0, 0.1, 0.2, 0.35, 0.3];
+        let at: Vec<f64> = (0..=9).map(|k| k as f64 * 4.5e-4).collect();
+        let [ia, ic] = interpolate_all(&x, [&a, &c], &at);
+        assert_eq!(ia, interpolate(&x, &a, &at));
+        assert_eq!(ic, interpolate(&x, &c, &at));
+        // Linear between the samples: 0.1 + (0.2 − 0.1)·(1.35 − 1)/0.7 at 1.35 ms.
+        assert!((ic[3] - 0.15).abs() < 1e-12, "{}", ic[3]);
+    }
+
+    /// The filtered metrics alone are those of the whole set, with or
+    /// without a crush channel.
+    #[test]
+    fn the_filtered_metrics_are_those_of_the_full_metrics() {
+        let t: Vec<f64> = (0..=1500).map(|k| k as f64 * 1e-4).collect();
+        let acc: Vec<f64> = (t.iter())
+            .map(|&t| -30.0 * G * (std::f64::consts::PI * t / 0.08).sin().max(0.0))
+            .collect();
+        let crush: Vec<f64> = t.iter().map(|&t| 15.0 * t - 90.0 * t * t).collect();
+        for crush in [None, Some(crush)] {
+            let pulse = Pulse {
+                t: t.clone(),
+                acceleration: acc.clone(),
+                v0: 15.5556,
+                crush,
+            };
+            let all = pulse.metrics().unwrap();
+            let f = pulse.filtered_metrics().unwrap();
+            assert_eq!(f.peak_deceleration_cfc60_g, all.peak_deceleration_cfc60_g);
+            assert_eq!(f.olc.map(|o| o.deceleration / G), all.olc_g);
+            assert_eq!(f.olc.map(|o| (o.t1, o.t2)), all.olc_t1_s.zip(all.olc_t2_s));
+            assert_eq!(f.asi, all.asi.zip(all.asi_time_s));
+            assert!(f.olc.is_some() && f.asi.is_some(), "{f:?}");
+        }
+        let bad = Pulse {
+            t: t.clone(),
+            acceleration: acc.clone(),
+            v0: 15.5556,
+            crush: Some(vec![f64::NAN; t.len()]),
+        };
+        let refused = Err(PulseError::NotFinite {
+            what: "crush",
+            index: 0,
+        });
+        assert_eq!(bad.filtered_metrics(), refused);
     }
 }

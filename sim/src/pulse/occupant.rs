@@ -4,12 +4,14 @@
 /// The running integral `x0 + ∫ x dt` by the trapezoidal rule (exact for the
 /// piecewise-linear interpolant of the samples).
 pub fn integrate(t: &[f64], x: &[f64], x0: f64) -> Vec<f64> {
+    let t = &t[..x.len()];
     let mut out = Vec::with_capacity(x.len());
     let mut sum = x0;
-    for k in 0..x.len() {
-        if k > 0 {
-            sum += 0.5 * (x[k] + x[k - 1]) * (t[k] - t[k - 1]);
-        }
+    if !x.is_empty() {
+        out.push(sum);
+    }
+    for (t, x) in t.windows(2).zip(x.windows(2)) {
+        sum += 0.5 * (x[1] + x[0]) * (t[1] - t[0]);
         out.push(sum);
     }
     out
@@ -47,21 +49,19 @@ pub fn olc(t: &[f64], v: &[f64]) -> Option<Olc> {
     }
     let s = integrate(t, v, 0.0);
     let (t0, v0) = (t[0], v[0]);
-    let d: Vec<f64> = (0..t.len()).map(|k| v0 * (t[k] - t0) - s[k]).collect();
-    let (k1, f1) = first_crossing(&d, OLC_FREE_FLIGHT)?;
+    let d = |k: usize| v0 * (t[k] - t0) - s[k];
+    let (k1, f1) = first_crossing(t.len(), d, OLC_FREE_FLIGHT)?;
     let t1 = lerp(t[k1 - 1], t[k1], f1);
     let s1 = lerp(s[k1 - 1], s[k1], f1);
     let rest = OLC_TOTAL_TRAVEL - OLC_FREE_FLIGHT;
-    let g: Vec<f64> = (0..t.len())
-        .map(|k| {
-            if t[k] <= t1 {
-                -rest
-            } else {
-                0.5 * (v0 + v[k]) * (t[k] - t1) - (s[k] - s1) - rest
-            }
-        })
-        .collect();
-    let (k2, f2) = first_crossing(&g, 0.0)?;
+    let g = |k: usize| {
+        if t[k] <= t1 {
+            -rest
+        } else {
+            0.5 * (v0 + v[k]) * (t[k] - t1) - (s[k] - s1) - rest
+        }
+    };
+    let (k2, f2) = first_crossing(t.len(), g, 0.0)?;
     let t2 = lerp(t[k2 - 1], t[k2], f2);
     let v2 = lerp(v[k2 - 1], v[k2], f2);
     Some(Olc {
@@ -71,12 +71,22 @@ pub fn olc(t: &[f64], v: &[f64]) -> Option<Olc> {
     })
 }
 
-/// The first `k` with `x[k − 1] < level ≤ x[k]`, and the fraction of the way
-/// from `k − 1` to `k` at which the linear interpolant reaches `level`.
-fn first_crossing(x: &[f64], level: f64) -> Option<(usize, f64)> {
-    (1..x.len())
-        .find(|&k| x[k - 1] < level && x[k] >= level)
-        .map(|k| (k, (level - x[k - 1]) / (x[k] - x[k - 1])))
+/// The first `k < n` with `x(k − 1) < level ≤ x(k)`, and the fraction of
+/// the way from `k − 1` to `k` at which the linear interpolant reaches
+/// `level`; `x(k)` is evaluated only up to the crossing.
+fn first_crossing(n: usize, x: impl Fn(usize) -> f64, level: f64) -> Option<(usize, f64)> {
+    if n < 2 {
+        return None;
+    }
+    let mut before = x(0);
+    for k in 1..n {
+        let at = x(k);
+        if before < level && at >= level {
+            return Some((k, (level - before) / (at - before)));
+        }
+        before = at;
+    }
+    None
 }
 
 fn lerp(a: f64, b: f64, f: f64) -> f64 {
@@ -142,8 +152,9 @@ pub fn clip_3ms(acceleration: &[f64], dt: f64) -> Option<f64> {
         return None;
     }
     let mut magnitudes: Vec<f64> = acceleration.iter().map(|a| a.abs()).collect();
-    magnitudes.sort_by(|a, b| b.total_cmp(a));
-    Some(magnitudes[samples - 1])
+    // The `samples`-th largest: where a descending sort would put it.
+    let (_, clip, _) = magnitudes.select_nth_unstable_by(samples - 1, |a, b| b.total_cmp(a));
+    Some(*clip)
 }
 
 #[cfg(test)]
@@ -315,5 +326,44 @@ mod tests {
         let clip = clip_3ms(&a, dt).unwrap();
         assert!((clip - expected).abs() < 0.2, "{clip} vs {expected}");
         assert_eq!(clip_3ms(&a[..200], dt), None);
+    }
+
+    #[test]
+    fn the_3ms_clip_is_the_magnitude_a_full_sort_puts_there() {
+        let a: Vec<f64> = (0..997)
+            .map(|k| ((k * 37 % 101) as f64 - 50.0) * if k % 3 == 0 { -1.0 } else { 1.0 })
+            .collect();
+        for dt in [1e-5f64, 1e-4, 3e-4, 1e-3] {
+            let samples = (0.003 / dt * (1.0 - 1e-9)).ceil() as usize;
+            let mut sorted: Vec<f64> = a.iter().map(|x| x.abs()).collect();
+            sorted.sort_by(|a, b| b.total_cmp(a));
+            assert_eq!(clip_3ms(&a, dt), Some(sorted[samples - 1]), "dt = {dt}");
+        }
+    }
+
+    #[test]
+    fn a_crossing_is_the_first_rise_through_the_level() {
+        let x = [0.0, 1.0, 1.0, 0.5, 2.0, 3.0, f64::NAN, 4.0];
+        let at = |k: usize| x[k];
+        assert_eq!(first_crossing(x.len(), at, 1.0), Some((1, 1.0)));
+        assert_eq!(first_crossing(x.len(), at, 1.5), Some((4, 1.0 / 1.5)));
+        assert_eq!(first_crossing(x.len(), at, 3.5), None);
+        assert_eq!(first_crossing(1, at, -1.0), None);
+    }
+
+    #[test]
+    fn the_running_integral_is_the_trapezoids_summed_in_order() {
+        let t = [0.0, 0.1, 0.25, 0.3, 0.7];
+        let x = [1.0, -2.0, 0.5, 3.0, 1e-3];
+        let mut expected = vec![2.0];
+        for k in 1..x.len() {
+            let trapezoid = 0.5 * (x[k] + x[k - 1]) * (t[k] - t[k - 1]);
+            expected.push(expected[k - 1] + trapezoid);
+        }
+        assert_eq!(integrate(&t, &x, 2.0), expected);
+        assert_eq!(integrate(&t, &x[..1], 2.0), [2.0]);
+        assert!(integrate(&t, &[], 2.0).is_empty());
+        // 2 + ∫ of the linear interpolant over [0, 0.1]: 2 + 0.1·(1 − 2)/2.
+        assert!((expected[1] - 1.95).abs() < 1e-15);
     }
 }

@@ -72,7 +72,7 @@ pub(crate) use overrides::split_setting;
 use overrides::with_settings;
 pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
-pub use signal::{Channel, Column, Columns, Role, Signal};
+pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -28,6 +28,7 @@ pub enum Column {
 
 impl Column {
     /// The column's value in a sample.
+    #[inline]
     pub fn value(self, s: &Columns) -> f64 {
         let at = |values: &[f64], k: usize| values.get(k).copied().unwrap_or(f64::NAN);
         match self {
@@ -92,6 +93,7 @@ pub struct Signal {
 impl Signal {
     /// The value in a sample; the first term's product starts the sum, so
     /// that `-r` is exactly `−1·r`.
+    #[inline]
     pub fn value(&self, s: &Columns) -> f64 {
         let mut terms = self.terms.iter();
         let Some(&(c, first)) = terms.next() else {
@@ -139,6 +141,54 @@ impl Signal {
     /// acceleration for `q̈`.
     pub fn of_coordinates(&self, values: &[f64]) -> f64 {
         self.value(&Columns::coordinates(values))
+    }
+
+    /// [`Signal::of_coordinates`] with the columns resolved once, for a
+    /// signal read at every sample.
+    pub fn coordinate_combination(&self) -> CoordinateCombination {
+        let index = |column: Column| match column {
+            Column::Coordinate(k) | Column::Velocity(k) | Column::Acceleration(k) => Some(k),
+            Column::Output(_)
+            | Column::Component(_)
+            | Column::Multiplier(_)
+            | Column::Residual(_) => None,
+        };
+        CoordinateCombination {
+            terms: (self.terms.iter())
+                .map(|&(c, column)| (c, index(column)))
+                .collect(),
+        }
+    }
+}
+
+/// A signal's combination of coordinates, as
+/// [`Signal::coordinate_combination`] resolves it: `(factor, index)` per
+/// term, `None` for a column that is not a coordinate's (it reads NaN, as
+/// in [`Signal::of_coordinates`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CoordinateCombination {
+    terms: Vec<(f64, Option<usize>)>,
+}
+
+impl CoordinateCombination {
+    /// The combination applied to each of `values` (`q`, `q̇`, `q̈`: one
+    /// value per coordinate each), bit for bit [`Signal::of_coordinates`]:
+    /// the first term's product starts each sum.
+    #[inline]
+    pub fn of<const M: usize>(&self, values: [&[f64]; M]) -> [f64; M] {
+        let at = |values: &[f64], k: Option<usize>| {
+            (k.and_then(|k| values.get(k)).copied()).unwrap_or(f64::NAN)
+        };
+        let Some((&(c, first), rest)) = self.terms.split_first() else {
+            return [f64::NAN; M];
+        };
+        let mut sums = values.map(|v| c * at(v, first));
+        for &(c, k) in rest {
+            for (sum, v) in sums.iter_mut().zip(values) {
+                *sum += c * at(v, k);
+            }
+        }
+        sums
     }
 }
 
@@ -307,4 +357,52 @@ fn known_columns(names: &ModelNames) -> Vec<String> {
         known.extend([format!("{c}.lambda"), format!("{c}.residual")]);
     }
     known
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn signal(terms: Vec<(f64, Column)>) -> Signal {
+        Signal {
+            name: "s".into(),
+            terms,
+            unit: None,
+        }
+    }
+
+    /// The resolved combination reads what `of_coordinates` reads, bit for
+    /// bit: sums in the written order, NaN for columns that are not a
+    /// coordinate's or lie beyond the values.
+    #[test]
+    fn a_coordinate_combination_is_of_coordinates_bit_for_bit() {
+        let values = [0.1, -2.5e-3, 7.0, -0.0];
+        let signals = [
+            signal(vec![]),
+            signal(vec![(-1.0, Column::Coordinate(3))]),
+            signal(vec![
+                (1.0, Column::Coordinate(0)),
+                (-1.0, Column::Coordinate(1)),
+            ]),
+            signal(vec![
+                (0.3, Column::Coordinate(2)),
+                (1e-3, Column::Velocity(1)),
+                (-2.0, Column::Acceleration(0)),
+            ]),
+            signal(vec![(1.0, Column::Coordinate(9))]),
+            signal(vec![(1.0, Column::Coordinate(0)), (1.0, Column::Output(0))]),
+            signal(vec![(2.0, Column::Multiplier(0))]),
+        ];
+        let rates = [-15.5, 0.25, 1e-9, 3.0];
+        for s in &signals {
+            let expected = [s.of_coordinates(&values), s.of_coordinates(&rates)];
+            let got = s.coordinate_combination().of([&values, &rates]);
+            assert_eq!(
+                got.map(f64::to_bits),
+                expected.map(f64::to_bits),
+                "{:?}",
+                s.terms
+            );
+        }
+    }
 }

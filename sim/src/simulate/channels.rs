@@ -139,16 +139,17 @@ pub struct ChannelRecord {
 }
 
 impl ChannelRecord {
-    /// An empty record of `channel`.
-    pub fn new(channel: Channel) -> ChannelRecord {
+    /// An empty record of `channel`, with room for `samples` samples.
+    pub fn new(channel: Channel, samples: usize) -> ChannelRecord {
         ChannelRecord {
             channel,
-            t: Vec::new(),
-            values: Vec::new(),
+            t: Vec::with_capacity(samples),
+            values: Vec::with_capacity(samples),
         }
     }
 
     /// Adds the channel's value at time `t` (in time order).
+    #[inline]
     pub fn push(&mut self, t: f64, columns: &Columns) {
         self.t.push(t);
         self.values.push(self.channel.signal.value(columns));
@@ -156,10 +157,7 @@ impl ChannelRecord {
 
     /// The channel's metrics; accelerations in units of `g`.
     pub fn summary(&self, g: f64) -> ChannelSummary {
-        let (max, min) = (
-            self.extreme(|x, best| x > best),
-            self.extreme(|x, best| x < best),
-        );
+        let (max, min) = self.extremes();
         let at = |k: Option<usize>| k.map(|k| self.values[k]);
         let time = |k: Option<usize>| k.map(|k| self.t[k]);
         let mut values = vec![at(max), time(max), at(min), time(min)];
@@ -177,15 +175,23 @@ impl ChannelRecord {
         }
     }
 
-    /// The index of the first sample that no other beats by `better`.
-    fn extreme(&self, better: impl Fn(f64, f64) -> bool) -> Option<usize> {
-        let mut best: Option<usize> = None;
-        for (k, &x) in self.values.iter().enumerate() {
-            if x.is_finite() && best.is_none_or(|b| better(x, self.values[b])) {
-                best = Some(k);
+    /// The indices of the largest and the smallest finite sample, the
+    /// first of equals.
+    fn extremes(&self) -> (Option<usize>, Option<usize>) {
+        let mut finite = (self.values.iter().enumerate()).filter(|(_, x)| x.is_finite());
+        let Some((first, &x)) = finite.next() else {
+            return (None, None);
+        };
+        let (mut max, mut min) = ((first, x), (first, x));
+        for (k, &x) in finite {
+            if x > max.1 {
+                max = (k, x);
+            }
+            if x < min.1 {
+                min = (k, x);
             }
         }
-        best
+        (Some(max.0), Some(min.0))
     }
 
     /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, clip3ms_g]`:
@@ -215,5 +221,53 @@ impl ChannelRecord {
             cfc180.as_deref().map(magnitude),
             cfc180.and_then(|a| clip_3ms(&a, dt)).map(|c| c / g),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::{Column, Signal};
+
+    fn record(values: &[f64]) -> ChannelRecord {
+        let signal = Signal {
+            name: "x".into(),
+            terms: vec![(1.0, Column::Coordinate(0))],
+            unit: None,
+        };
+        let channel = Channel {
+            role: Role::Displacement,
+            signal,
+        };
+        let mut record = ChannelRecord::new(channel, 0);
+        for (k, x) in values.iter().enumerate() {
+            record.push(k as f64, &Columns::coordinates(std::slice::from_ref(x)));
+        }
+        record
+    }
+
+    #[test]
+    fn extremes_are_the_first_of_equal_finite_samples() {
+        let nan = f64::NAN;
+        type Extremes = (Option<usize>, Option<usize>);
+        let cases: [(&[f64], Extremes); 5] = [
+            (&[], (None, None)),
+            (&[nan, f64::INFINITY], (None, None)),
+            (&[nan, 2.0, -1.0, 2.0, -1.0], (Some(1), Some(2))),
+            (&[3.0, 3.0, 3.0], (Some(0), Some(0))),
+            (
+                &[0.0, f64::NEG_INFINITY, 5.0, nan, -4.0, 5.0],
+                (Some(2), Some(4)),
+            ),
+        ];
+        for (values, expected) in cases {
+            assert_eq!(record(values).extremes(), expected, "{values:?}");
+        }
+        let summary = record(&[1.0, 4.0, -2.0, 0.5]).summary(9.81);
+        assert_eq!(
+            summary.values,
+            [Some(4.0), Some(1.0), Some(-2.0), Some(2.0)]
+        );
+        assert!(!summary.extreme_at_end);
     }
 }

@@ -10,8 +10,8 @@ use super::Sample;
 use super::Summary;
 use super::channels::{ChannelRecord, Channels};
 use crate::ode::{Stats, hermite_weights};
-use crate::pulse::{Pulse, PulseMetrics, STANDARD_GRAVITY};
-use crate::scenario::{Columns, Scenario, Signal};
+use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY};
+use crate::scenario::{Columns, CoordinateCombination, Scenario};
 use crate::warning::{self, ChannelPoint, Warning};
 
 /// One output sample as the metrics see it.
@@ -77,7 +77,7 @@ struct CrushPoint {
 /// not keep its samples (a sweep does not).
 #[derive(Clone, Debug)]
 pub struct Metrics {
-    crush: Option<Signal>,
+    crush: Option<CoordinateCombination>,
     pitch: Vec<(usize, f64)>,
     g: f64,
     samples: usize,
@@ -121,10 +121,13 @@ impl Metrics {
             .take(2)
             .map(|&k| (k, initial_q[k]))
             .collect();
+        let samples = expected_samples(scenario);
+        let crush = scenario.crush.as_ref();
+        let history = |wanted: bool| if wanted { samples } else { 0 };
         Metrics {
-            crush: scenario.crush.clone(),
-            pitch_history: Vec::new(),
-            crush_history: Vec::new(),
+            crush: crush.map(|c| c.coordinate_combination()),
+            pitch_history: Vec::with_capacity(history(!pitch.is_empty())),
+            crush_history: Vec::with_capacity(history(crush.is_some())),
             pitch,
             g,
             samples: 0,
@@ -138,9 +141,9 @@ impl Metrics {
             first_rate: None,
             deceleration: f64::NEG_INFINITY,
             rebound: 0.0,
-            crush_acceleration: Vec::new(),
+            crush_acceleration: Vec::with_capacity(history(crush.is_some())),
             channels: (scenario.channels.iter().cloned())
-                .map(ChannelRecord::new)
+                .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
         }
     }
@@ -170,12 +173,12 @@ impl Metrics {
             self.pitch_history.push((s.t, deviations));
         }
         if let Some(crush) = &self.crush {
+            let [value, rate, acceleration] = crush.of([s.q, s.v, s.a]);
             let point = CrushPoint {
                 t: s.t,
-                crush: crush.of_coordinates(s.q),
-                rate: crush.of_coordinates(s.v),
+                crush: value,
+                rate,
             };
-            let acceleration = crush.of_coordinates(s.a);
             let index = self.samples;
             self.first_rate.get_or_insert(point.rate);
             if let Some((_, _, after)) = &mut self.peak
@@ -228,8 +231,7 @@ impl Metrics {
         weld_failure: Option<f64>,
         end_of_contact: Option<f64>,
     ) -> Summary {
-        let over_run = self.pitch_extremes_until(f64::INFINITY);
-        let in_pulse = end_of_contact.map(|end| self.pitch_extremes_until(end));
+        let (over_run, in_pulse) = self.pitch_extremes(end_of_contact);
         let in_pulse = |k: usize| {
             in_pulse
                 .as_ref()
@@ -258,30 +260,36 @@ impl Metrics {
             summary.time_to_zero_velocity_s = self.first_zero;
             summary.peak_deceleration_g = Some(self.deceleration);
             summary.rebound_velocity_mps = Some(self.rebound);
-            if let Some(pulse) = self.pulse_metrics() {
+            if let Some((v0, pulse)) = self.pulse_metrics() {
                 summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
                 summary.equivalent_square_wave_g = summary
                     .max_crush_m
                     .filter(|&c| c > 0.0)
-                    .map(|c| pulse.impact_velocity_mps.powi(2) / (2.0 * STANDARD_GRAVITY * c));
-                summary.olc_g = pulse.olc_g;
-                summary.asi = pulse.asi;
+                    .map(|c| v0.powi(2) / (2.0 * STANDARD_GRAVITY * c));
+                summary.olc_g = pulse.olc.map(|o| o.deceleration / STANDARD_GRAVITY);
+                summary.asi = pulse.asi.map(|(asi, _)| asi);
             }
         }
         summary
     }
 
-    /// The pitch deviations of largest magnitude up to time `end`.
-    fn pitch_extremes_until(&self, end: f64) -> Vec<f64> {
+    /// The pitch deviations of largest magnitude over the run and, given
+    /// the end of the pulse, up to it: one scan, the run's continuing from
+    /// the pulse's.
+    fn pitch_extremes(&self, end_of_pulse: Option<f64>) -> (Vec<f64>, Option<Vec<f64>>) {
         let mut extremes = vec![0.0f64; self.pitch.len()];
-        for (_, deviations) in self.pitch_history.iter().take_while(|(t, _)| *t <= end) {
-            for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
-                if d.abs() > extreme.abs() {
-                    *extreme = d;
-                }
-            }
-        }
-        extremes
+        let mut history = self.pitch_history.as_slice();
+        let in_pulse = end_of_pulse.map(|end| {
+            let within = history.iter().take_while(|(t, _)| *t <= end).count();
+            let (pulse, rest) = history.split_at(within);
+            widen_extremes(&mut extremes, pulse);
+            history = rest;
+            extremes.clone()
+        });
+        // Up to the first time that is not a number, if any.
+        let until_end = history.iter().take_while(|(t, _)| *t <= f64::INFINITY);
+        widen_extremes(&mut extremes, until_end);
+        (extremes, in_pulse)
     }
 
     /// The crush at time `t`, by cubic Hermite interpolation of the samples
@@ -314,19 +322,59 @@ impl Metrics {
         away.into_iter().chain(flat).collect()
     }
 
-    /// The pulse metrics of the crush coordinate's samples (resampled onto
-    /// an even grid when events added samples between the output times);
-    /// `None` for fewer than 3 samples or a record the CFC 60 filter cannot
-    /// take (sampled slower than 250 Hz).
-    fn pulse_metrics(&self) -> Option<PulseMetrics> {
+    /// The impact velocity and the pulse metrics of the crush coordinate's
+    /// acceleration (resampled onto an even grid when events added samples
+    /// between the output times); `None` for fewer than 3 samples, a
+    /// record the CFC 60 filter cannot take (sampled slower than 250 Hz), or
+    /// samples that are not finite. No metric read takes the crush itself:
+    /// it goes along only where its resampled values could fail the pulse's
+    /// check (crush beyond [`CRUSH_BOUND`]: they cannot when every sample
+    /// is within it).
+    fn pulse_metrics(&self) -> Option<(f64, FilteredMetrics)> {
         let t: Vec<f64> = self.crush_history.iter().map(|p| p.t).collect();
-        let crush: Vec<f64> = self.crush_history.iter().map(|p| p.crush).collect();
         let v0 = self.first_rate?;
-        Pulse::resampled(&t, &self.crush_acceleration, v0, Some(&crush))
-            .and_then(|p| p.metrics())
-            .ok()
+        let bounded = (self.crush_history.iter()).all(|p| p.crush.abs() <= CRUSH_BOUND);
+        let crush: Option<Vec<f64>> =
+            (!bounded).then(|| self.crush_history.iter().map(|p| p.crush).collect());
+        let pulse = Pulse::resampled(&t, &self.crush_acceleration, v0, crush.as_deref());
+        let metrics = pulse.and_then(|p| p.filtered_metrics()).ok()?;
+        Some((v0, metrics))
     }
 }
+
+/// Widens `extremes` to the pitch deviations of larger magnitude among
+/// `history`'s, the first of equals.
+fn widen_extremes<'a>(
+    extremes: &mut [f64],
+    history: impl IntoIterator<Item = &'a (f64, [f64; 2])>,
+) {
+    for (_, deviations) in history {
+        for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
+            if d.abs() > extreme.abs() {
+                *extreme = d;
+            }
+        }
+    }
+}
+
+/// The number of output samples `scenario` asks for (the sampler's bound),
+/// to reserve the records for; at most [`RESERVED_SAMPLES`], beyond which the
+/// records grow as they fill.
+fn expected_samples(scenario: &Scenario) -> usize {
+    let bound = (scenario.t_end / scenario.output_interval + 1.0).ceil();
+    if bound >= 0.0 {
+        bound.min(RESERVED_SAMPLES as f64) as usize
+    } else {
+        0 // NaN
+    }
+}
+
+/// A crush within which linear interpolation between samples stays finite
+/// \[m\].
+const CRUSH_BOUND: f64 = 1e300;
+
+/// The most samples a record reserves room for at the start of a run.
+const RESERVED_SAMPLES: usize = 1 << 16;
 
 /// `(t, c)` of the crush maximum: the zero of the crush rate next to the
 /// largest sample, by cubic Hermite interpolation of the crush.
@@ -347,4 +395,47 @@ fn refine_peak(
         }
     }
     (peak.t, peak.crush)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Why the crush may stay out of the pulse within the bound: its
+    /// resampled values are finite, so the pulse's check passes them.
+    #[test]
+    fn crush_within_the_bound_resamples_to_finite_values() {
+        let t = [0.0, 1e-4, 1.5e-4, 2.5e-4, 4e-4, 4.5e-4];
+        let crush = t.map(|t| if t < 2e-4 { CRUSH_BOUND } else { -CRUSH_BOUND });
+        let pulse = Pulse::resampled(&t, &[0.0; 6], 1.0, Some(&crush)).unwrap();
+        let resampled = pulse.crush.unwrap();
+        assert!(resampled.iter().all(|c| c.is_finite()), "{resampled:?}");
+        assert!(
+            resampled
+                .iter()
+                .any(|&c| c != CRUSH_BOUND && c != -CRUSH_BOUND)
+        );
+        // Beyond it they may not be: the run's pulse takes the crush along.
+        let far = t.map(|t| if t < 2e-4 { f64::MAX } else { -f64::MAX });
+        let pulse = Pulse::resampled(&t, &[0.0; 6], 1.0, Some(&far)).unwrap();
+        assert!(pulse.crush.unwrap().iter().any(|c| !c.is_finite()));
+    }
+
+    #[test]
+    fn extremes_widen_to_the_first_deviation_of_larger_magnitude() {
+        let history = [
+            (0.0, [0.1, -0.2]),
+            (1.0, [-0.3, 0.2]),
+            (2.0, [0.3, -0.5]),
+            (3.0, [0.05, 0.0]),
+        ];
+        let mut extremes = [0.0; 2];
+        widen_extremes(&mut extremes, &history[..2]);
+        assert_eq!(extremes, [-0.3, -0.2]);
+        widen_extremes(&mut extremes, &history[2..]);
+        assert_eq!(extremes, [-0.3, -0.5]);
+        let mut one = [0.0];
+        widen_extremes(&mut one, &history);
+        assert_eq!(one, [-0.3]);
+    }
 }
