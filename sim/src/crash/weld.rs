@@ -283,7 +283,11 @@ impl Component for Weld {
             Some(_) => self.post_failure.as_ref(),
         };
         match curve {
-            Some(curve) => integral(|x| curve.eval(x).map(|(m, _)| m), 0.0, args[0]),
+            Some(curve) => {
+                let moment = |x| curve.eval(x).map(|(m, _)| m);
+                let breaks = curve.xs().iter().flat_map(|&x| [x, -x]);
+                integral(moment, 0.0, args[0], breaks)
+            }
             None => Ok(0.0),
         }
     }

@@ -56,7 +56,15 @@ impl CrushElement {
             }
             (Phase::Loading, Unloading::Plastic { .. })
             | (Phase::Loading | Phase::Unloading { .. }, Unloading::Elastic) => {
-                integral(|x| self.loading.force(x).map(|(s, _)| s), 0.0, delta)
+                // The curve is one in |δ|: its points on both sides.
+                let xs = self.loading.curve().xs();
+                let breaks = xs.iter().flat_map(|&x| [x, -x]);
+                integral(
+                    |x| self.loading.force(x).map(|(s, _)| s),
+                    0.0,
+                    delta,
+                    breaks,
+                )
             }
         }
     }
