@@ -86,7 +86,7 @@ mod tests {
             calls.set(calls.get() + 1);
             Ok::<f64, ()>(-1e5 + (x + 1.0) * 1e5)
         };
-        let theta = -4.6548636328952853e-6;
+        let theta = -4.654_863_632_895_285e-6;
         let value = integral(line, 0.0, theta, [-1.0, 0.0, 1.0]).unwrap();
         assert!(
             (value / (5e4 * theta * theta) - 1.0).abs() < 1e-9,
