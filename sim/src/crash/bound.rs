@@ -77,8 +77,8 @@ pub struct BoundInputs {
     /// The elastic energy each component stored when the run started
     /// ([`Component::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
-    /// By input index: the smooth stand-in an input of time takes within
-    /// the step being tried ([`BoundInputs::stand_in`]).
+    /// By input index (one per binding): the smooth stand-in an input of
+    /// time takes within the step being tried ([`BoundInputs::stand_in`]).
     stand_ins: Vec<Option<StandIn>>,
     /// Some of `stand_ins` are set.
     standing_in: bool,
@@ -105,6 +105,7 @@ impl BoundInputs {
                 })
             })
             .collect();
+        let stand_ins = vec![None; bindings.len()];
         let mut inputs = BoundInputs {
             components,
             bindings,
@@ -116,7 +117,7 @@ impl BoundInputs {
             loaded: Internal::EMPTY,
             event_owners: Vec::new(),
             stored_at_start: Vec::new(),
-            stand_ins: Vec::new(),
+            stand_ins,
             standing_in: false,
         };
         inputs.event_owners = (0..inputs.components.len())
@@ -125,15 +126,14 @@ impl BoundInputs {
         inputs
     }
 
-    /// Has input `input` take the value of `cubic` instead of its own until
-    /// [`BoundInputs::end_stand_ins`]: the smooth stand-in for an input of
-    /// time over the step being tried.
+    /// Has input `input` (one of [`BoundInputs::bindings`]) take the value
+    /// of `cubic` instead of its own until [`BoundInputs::end_stand_ins`]:
+    /// the smooth stand-in for an input of time over the step being tried.
     pub fn stand_in(&mut self, input: usize, cubic: StandIn) {
-        if self.stand_ins.len() <= input {
-            self.stand_ins.resize(input + 1, None);
+        if let Some(slot) = self.stand_ins.get_mut(input) {
+            *slot = Some(cubic);
+            self.standing_in = true;
         }
-        self.stand_ins[input] = Some(cubic);
-        self.standing_in = true;
     }
 
     /// Every input takes its own value again.

@@ -2,6 +2,7 @@
 //! Each kind of component has its own section, in its file of
 //! [`crate::crash`].
 
+use super::Choice;
 use crate::crash::ComponentSection;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -57,10 +58,10 @@ pub(super) struct SimulationSection {
     pub(super) step: Option<f64>,
     pub(super) output_interval: f64,
     pub(super) max_steps: usize,
-    /// How the output samples get `q̈` (`SampleAccelerations::NAMES`).
+    /// How the output samples get `q̈` (a `SampleAccelerations`).
     pub(super) accelerations: String,
     /// What a step's stages see of a kink of a time table inside it
-    /// (`TimeKinks::NAMES`).
+    /// (a `TimeKinks`).
     pub(super) time_kinks: String,
 }
 

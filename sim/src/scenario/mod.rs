@@ -51,6 +51,7 @@
 
 mod base;
 pub(crate) mod bind;
+mod choice;
 mod discover;
 mod file;
 mod locate;
@@ -63,6 +64,7 @@ use crate::crash::table::Table;
 use crate::ode::{Method, Options};
 use crate::simulate::{SampleAccelerations, TimeKinks};
 pub use base::BaseScenario;
+pub use choice::Choice;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};

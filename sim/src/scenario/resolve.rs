@@ -2,6 +2,7 @@
 //! entries, and resolving names to indices.
 
 use super::bind::bind_components;
+use super::choice::parse_choice;
 use super::file::{File, InitialSection, MetricsSection};
 use super::{Channel, ModelNames, Role, Scenario, Signal};
 use crate::crash::ComponentSection;
@@ -99,8 +100,9 @@ pub(super) fn resolve(
 ) -> Result<Scenario, String> {
     let s = &file.simulation;
     let (method, options) = solver_settings(s)?;
-    let accelerations = sample_accelerations(&s.accelerations)?;
-    let time_kinks = time_kinks(&s.time_kinks)?;
+    let accelerations: SampleAccelerations =
+        parse_choice("simulation.accelerations", &s.accelerations)?;
+    let time_kinks: TimeKinks = parse_choice("simulation.time_kinks", &s.time_kinks)?;
 
     let parameters = parameter_overrides(&file.parameters, names)?;
     let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
@@ -164,26 +166,6 @@ pub(super) fn resolve(
         stabilization: stabilization(&file.constraints)?,
         accelerations,
         time_kinks,
-    })
-}
-
-/// `[simulation] time_kinks`: one of [`TimeKinks::NAMES`].
-fn time_kinks(name: &str) -> Result<TimeKinks, String> {
-    TimeKinks::parse(name).ok_or_else(|| {
-        format!(
-            "simulation.time_kinks = `{name}`; use {}",
-            TimeKinks::NAMES.join(", ")
-        )
-    })
-}
-
-/// `[simulation] accelerations`: one of [`SampleAccelerations::NAMES`].
-fn sample_accelerations(name: &str) -> Result<SampleAccelerations, String> {
-    SampleAccelerations::parse(name).ok_or_else(|| {
-        format!(
-            "simulation.accelerations = `{name}`; use {}",
-            SampleAccelerations::NAMES.join(", ")
-        )
     })
 }
 

@@ -15,6 +15,7 @@
 //! end; the output samples read every input as it is.
 
 use crate::crash::{BoundInputs, Port, Smoothness, StandIn};
+use crate::scenario::Choice;
 use lagrangian_model::{InputFunctions, LagrangianSystem};
 
 /// What the stages of a step see of a kink of an input of time inside it
@@ -28,24 +29,14 @@ pub enum TimeKinks {
     Exact,
 }
 
-impl TimeKinks {
-    /// Every choice, in the order of [`TimeKinks::NAMES`].
-    pub const ALL: [TimeKinks; 2] = [TimeKinks::Smoothed, TimeKinks::Exact];
+impl Choice for TimeKinks {
+    const ALL: &'static [TimeKinks] = &[TimeKinks::Smoothed, TimeKinks::Exact];
 
-    /// The name of each of [`TimeKinks::ALL`], as scenarios write it.
-    pub const NAMES: [&'static str; 2] = ["smoothed", "exact"];
-
-    /// The choice's name.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
-            TimeKinks::Smoothed => Self::NAMES[0],
-            TimeKinks::Exact => Self::NAMES[1],
+            TimeKinks::Smoothed => "smoothed",
+            TimeKinks::Exact => "exact",
         }
-    }
-
-    /// The choice named `text`, if any.
-    pub fn parse(text: &str) -> Option<TimeKinks> {
-        Self::ALL.into_iter().find(|choice| choice.name() == text)
     }
 }
 
@@ -58,13 +49,14 @@ pub(crate) struct KinkedInputs {
 impl KinkedInputs {
     /// The inputs of `system` that every call site passes the time alone,
     /// bound to the value of a component with kinks ([`Smoothness::Kinks`]).
+    /// `time_sites`: [`super::stops::time_sites`] of `system`.
     pub(crate) fn of<const N: usize, S: LagrangianSystem<N>>(
         system: &S,
         inputs: &BoundInputs,
+        time_sites: &[bool],
     ) -> KinkedInputs {
-        let time = super::stops::time_sites(system);
         let sites: Vec<(usize, bool)> = (system.input_sites().iter().map(|s| s.0))
-            .zip(time)
+            .zip(time_sites.iter().copied())
             .collect();
         let mut kinked = Vec::new();
         for (input, binding) in inputs.bindings.iter().enumerate() {
@@ -185,7 +177,8 @@ mod tests {
     #[test]
     fn smoothed_kinks_are_as_accurate_as_exact_ones_in_fewer_steps() {
         for rtol in [1e-6, 1e-8, 1e-10] {
-            let [smoothed, exact] = TimeKinks::ALL.map(|choice| pushed(choice, rtol));
+            let [smoothed, exact] =
+                [TimeKinks::Smoothed, TimeKinks::Exact].map(|c| pushed(c, rtol));
             let (s, e) = (&smoothed.stats, &exact.stats);
             // |x| ≤ 0.5 m: both within a few tolerances of the closed form
             // (at 1e-6, 1e-8, 1e-10: smoothed 1.6e-7, 7.9e-10, 1.3e-11;
@@ -244,7 +237,7 @@ mod tests {
 
     #[test]
     fn the_choice_is_read_by_name() {
-        for choice in TimeKinks::ALL {
+        for &choice in TimeKinks::ALL {
             assert_eq!(TimeKinks::parse(choice.name()), Some(choice));
         }
         assert_eq!(TimeKinks::parse("stop"), None);

@@ -665,8 +665,8 @@ impl<const N: usize> SampleValues<N> {
     }
 }
 
-/// Evaluates a sample: its energies, and what `needs` asks for of the
-/// accelerations (`interpolated` if given, else solved, with the
+/// Evaluates a sample: what `needs` asks for of the energies (a kept
+/// sample's), the accelerations (`interpolated` if given, else solved, with the
 /// constraints' multipliers and residuals), the `outputs` outputs (at
 /// those accelerations), the components' columns and, for a kept sample,
 /// the input values; a quantity not asked for is left NaN (or empty).

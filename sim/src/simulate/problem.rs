@@ -73,6 +73,9 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     /// side allocates nothing.
     workspace: RefCell<Workspace<N>>,
     stops: super::stops::TimeStops,
+    /// For each input site of the dynamics: whether it passes the time
+    /// alone ([`super::stops::time_sites`]), probed once.
+    time_sites: Vec<bool>,
     /// The inputs of time with kinks.
     kinked: KinkedInputs,
     /// What the stages of a step see of their kinks inside it.
@@ -85,8 +88,9 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     pub fn new(system: &'a S, inputs: BoundInputs) -> Self {
         let arguments = vec![0.0; system.input_sites().iter().map(|s| s.1).sum()];
         let constraint_count = system.constraint_count();
-        let stops = super::stops::TimeStops::of(system, &inputs);
-        let kinked = KinkedInputs::of(system, &inputs);
+        let time_sites = super::stops::time_sites(system);
+        let stops = super::stops::TimeStops::of(system, &inputs, &time_sites);
+        let kinked = KinkedInputs::of(system, &inputs, &time_sites);
         CrashProblem {
             system,
             inputs,
@@ -97,9 +101,16 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             constraint_count,
             workspace: RefCell::new(Workspace::new(constraint_count)),
             stops,
+            time_sites,
             kinked,
             time_kinks: TimeKinks::default(),
         }
+    }
+
+    /// For each input site of the dynamics: whether it passes the time
+    /// alone.
+    pub(super) fn time_sites(&self) -> &[bool] {
+        &self.time_sites
     }
 
     /// What the stages of a step see of a kink of an input of time inside

@@ -36,6 +36,7 @@
 use super::CrashProblem;
 use crate::crash::{BoundInputs, Smoothness};
 use crate::ode::{DenseStep, PhaseState};
+use crate::scenario::Choice;
 use lagrangian_model::LagrangianSystem;
 use nalgebra::SVector;
 
@@ -51,28 +52,17 @@ pub enum SampleAccelerations {
     Exact,
 }
 
-impl SampleAccelerations {
-    /// Every choice, in the order of [`SampleAccelerations::NAMES`].
-    pub const ALL: [SampleAccelerations; 2] = [
+impl Choice for SampleAccelerations {
+    const ALL: &'static [SampleAccelerations] = &[
         SampleAccelerations::Interpolated,
         SampleAccelerations::Exact,
     ];
 
-    /// The name of each of [`SampleAccelerations::ALL`], as scenarios
-    /// write it.
-    pub const NAMES: [&'static str; 2] = ["interpolated", "exact"];
-
-    /// The choice's name.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
-            SampleAccelerations::Interpolated => Self::NAMES[0],
-            SampleAccelerations::Exact => Self::NAMES[1],
+            SampleAccelerations::Interpolated => "interpolated",
+            SampleAccelerations::Exact => "exact",
         }
-    }
-
-    /// The choice named `text`, if any.
-    pub fn parse(text: &str) -> Option<SampleAccelerations> {
-        Self::ALL.into_iter().find(|choice| choice.name() == text)
     }
 }
 
@@ -96,7 +86,9 @@ impl DenseAccelerations {
     ) -> DenseAccelerations {
         let system = problem.system;
         let time_kinks = match (choice, system.constraint_count()) {
-            (SampleAccelerations::Interpolated, 0) => time_kinks(system, &problem.inputs),
+            (SampleAccelerations::Interpolated, 0) => {
+                time_kinks(system, &problem.inputs, problem.time_sites())
+            }
             _ => None,
         };
         DenseAccelerations {
@@ -135,14 +127,14 @@ pub(super) fn interpolated<const N: usize>(
 /// The kinks in time of the inputs the dynamics of `system` calls, in
 /// increasing order; `None` when one of them is not known to be smooth
 /// within a step: unbound, of [`Smoothness::Unknown`], or with kinks in an
-/// argument other than the time.
+/// argument other than the time (`time_sites`: [`super::stops::time_sites`]).
 fn time_kinks<const N: usize, S: LagrangianSystem<N>>(
     system: &S,
     inputs: &BoundInputs,
+    time_sites: &[bool],
 ) -> Option<Vec<f64>> {
-    let time = super::stops::time_sites(system);
     let mut kinks = Vec::new();
-    for (&(input, _), is_time) in system.input_sites().iter().zip(time) {
+    for (&(input, _), &is_time) in system.input_sites().iter().zip(time_sites) {
         let binding = (*inputs.bindings.get(input)?)?;
         let component = &inputs.components.get(binding.component)?.component;
         match component.smoothness() {
@@ -313,7 +305,7 @@ mod tests {
 
     #[test]
     fn the_choice_is_read_by_name() {
-        for choice in SampleAccelerations::ALL {
+        for &choice in SampleAccelerations::ALL {
             assert_eq!(SampleAccelerations::parse(choice.name()), Some(choice));
         }
         assert_eq!(SampleAccelerations::parse("dense"), None);

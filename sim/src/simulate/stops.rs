@@ -26,12 +26,14 @@ pub(crate) struct TimeStops {
 impl TimeStops {
     /// The breakpoints of the components bound to inputs whose argument is
     /// the time.
+    /// `time_sites`: [`time_sites`] of `system`.
     pub(crate) fn of<const N: usize, S: LagrangianSystem<N>>(
         system: &S,
         inputs: &BoundInputs,
+        time_sites: &[bool],
     ) -> TimeStops {
         let mut points = Vec::new();
-        for component in time_components(system, inputs) {
+        for component in time_components(system, inputs, time_sites) {
             points.extend_from_slice(inputs.components[component].component.breakpoints());
         }
         points.sort_by(f64::total_cmp);
@@ -57,9 +59,10 @@ impl TimeStops {
 fn time_components<const N: usize, S: LagrangianSystem<N>>(
     system: &S,
     inputs: &BoundInputs,
+    time_sites: &[bool],
 ) -> Vec<usize> {
     let mut components = Vec::new();
-    for (&(input, _), is_time) in system.input_sites().iter().zip(time_sites(system)) {
+    for (&(input, _), &is_time) in system.input_sites().iter().zip(time_sites) {
         if let (true, Some(Some(binding))) = (is_time, inputs.bindings.get(input)) {
             components.push(binding.component);
         }
