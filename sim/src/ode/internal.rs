@@ -92,20 +92,28 @@ impl Internal {
     }
 
     /// `self ← other`, copying only the values in use.
+    #[inline]
     pub fn assign(&mut self, other: &Internal) {
-        self.values[..other.len].copy_from_slice(other.as_slice());
-        self.values[other.len..self.len.max(other.len)].fill(0.0);
+        // Element by element: the states are short, and a call of `memcpy`
+        // would cost more than the copy.
+        for i in 0..other.len {
+            self.values[i] = other.values[i];
+        }
+        for i in other.len..self.len {
+            self.values[i] = 0.0;
+        }
         (self.len, self.quadratures) = (other.len, other.quadratures);
     }
 
     /// `self ← self + c·x`, taking `x`'s length (and quadratures) where it
     /// is longer.
-    pub(crate) fn axpy(&mut self, c: f64, x: &Internal) {
+    #[inline]
+    pub(crate) fn add(&mut self, c: f64, x: &Internal) {
         if x.len > self.len {
             (self.len, self.quadratures) = (x.len, x.quadratures);
         }
-        for (value, xi) in self.values.iter_mut().zip(x.as_slice()) {
-            *value += c * xi;
+        for i in 0..x.len {
+            self.values[i] += c * x.values[i];
         }
     }
 }
@@ -119,7 +127,7 @@ mod tests {
         let mut a = Internal::zeros(2).unwrap();
         a.as_mut_slice().copy_from_slice(&[1.0, 2.0]);
         let mut b = Internal::EMPTY;
-        b.axpy(2.0, &a);
+        b.add(2.0, &a);
         assert_eq!(b.as_slice(), &[2.0, 4.0]);
         b.assign(&Internal::EMPTY);
         assert_eq!(b, Internal::EMPTY);
@@ -131,7 +139,7 @@ mod tests {
         let a = Internal::zeros(3).unwrap().with_quadratures(1);
         assert_eq!((a.quadratures(), a.controlled_len()), (1, 2));
         let mut b = Internal::EMPTY;
-        b.axpy(1.0, &a);
+        b.add(1.0, &a);
         assert_eq!(b.controlled_len(), 2);
         let mut c = Internal::zeros(1).unwrap();
         c.assign(&a);

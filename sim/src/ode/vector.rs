@@ -150,16 +150,16 @@ impl<const N: usize> OdeVector for PhaseState<N> {
     fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
         (self.q, self.v, self.work) = (base.q, base.v, base.work);
         self.z.assign(&base.z);
-        for (c, x) in terms {
-            self.add(*c, x);
+        for &(c, x) in terms {
+            self.add(c, x);
         }
     }
 
     fn set_sum(&mut self, terms: &[(f64, &Self)]) {
         (self.q, self.v, self.work) = (SVector::zeros(), SVector::zeros(), [0.0; 2]);
         self.z.assign(&Internal::EMPTY);
-        for (c, x) in terms {
-            self.add(*c, x);
+        for &(c, x) in terms {
+            self.add(c, x);
         }
     }
 }
@@ -168,13 +168,13 @@ impl<const N: usize> PhaseState<N> {
     /// `self ← self + c·x`.
     #[inline]
     fn add(&mut self, c: f64, x: &Self) {
-        self.q.axpy(c, &x.q, 1.0);
-        self.v.axpy(c, &x.v, 1.0);
+        for i in 0..N {
+            self.q[i] += c * x.q[i];
+            self.v[i] += c * x.v[i];
+        }
         self.work[0] += c * x.work[0];
         self.work[1] += c * x.work[1];
-        if !x.z.is_empty() {
-            self.z.axpy(c, &x.z);
-        }
+        self.z.add(c, &x.z);
     }
 }
 
