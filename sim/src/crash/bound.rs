@@ -136,6 +136,30 @@ impl BoundInputs {
         }
     }
 
+    /// The inputs that take a stand-in, with it.
+    pub fn stand_ins(&self) -> impl Iterator<Item = (usize, StandIn)> + '_ {
+        let set = self
+            .standing_in
+            .then_some(&self.stand_ins[..])
+            .unwrap_or(&[]);
+        (set.iter().enumerate()).filter_map(|(input, cubic)| Some((input, (*cubic)?)))
+    }
+
+    /// The value of input `input` at time `t` as it is, not its stand-in;
+    /// `None` where it has no value there (unresolved, or a component that
+    /// fails).
+    pub fn own_value_of_time(&self, input: usize, t: f64) -> Option<f64> {
+        let r = (*self.resolved.get(input)?)?;
+        (r.arity.is_none_or(|needed| needed == 1))
+            .then(|| {
+                self.components[r.component]
+                    .component
+                    .value(r.port, &[t])
+                    .ok()
+            })
+            .flatten()
+    }
+
     /// Every input takes its own value again.
     pub fn end_stand_ins(&mut self) {
         if self.standing_in {

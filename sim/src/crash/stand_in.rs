@@ -83,6 +83,15 @@ impl StandIn {
         let [c0, c1, c2, c3] = self.c;
         c0 + x * (c1 + x * (c2 + x * c3))
     }
+
+    /// `P + by`: the same cubic moved by a constant.
+    pub fn shifted(self, by: f64) -> StandIn {
+        let [c0, c1, c2, c3] = self.c;
+        StandIn {
+            c: [c0 + by, c1, c2, c3],
+            ..self
+        }
+    }
 }
 
 #[cfg(test)]

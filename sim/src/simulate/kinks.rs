@@ -77,6 +77,16 @@ impl KinkedInputs {
         KinkedInputs { inputs: kinked }
     }
 
+    /// The kinks of all the inputs, in increasing order.
+    pub(crate) fn kinks(&self) -> Vec<f64> {
+        let mut kinks: Vec<f64> = (self.inputs.iter())
+            .flat_map(|(_, k)| k.iter().copied())
+            .collect();
+        kinks.sort_by(f64::total_cmp);
+        kinks.dedup();
+        kinks
+    }
+
     /// Gives each input with a kink strictly inside `[t0, t0 + h]` its
     /// stand-in over that step.
     pub(crate) fn stand_in(&self, inputs: &mut BoundInputs, t0: f64, h: f64) {
@@ -109,6 +119,11 @@ mod tests {
     /// particular `A + B τ` (`B = β/k`, `A = (α − c B)/k`) plus
     /// `e^(−στ)(C cos ωτ + D sin ωτ)` matching `x` and `ẋ` at `ti`.
     fn closed_form(t: f64) -> f64 {
+        closed_form_state(t).0
+    }
+
+    /// `(x, ẋ)` of [`closed_form`].
+    fn closed_form_state(t: f64) -> (f64, f64) {
         let (k, c) = (100.0f64, 0.5f64);
         let (sigma, omega) = (c / 2.0, (k - c * c / 4.0).sqrt());
         let (mut x, mut v) = (0.0, 0.0);
@@ -125,7 +140,7 @@ mod tests {
                 (x, v)
             };
             if t <= tj {
-                return at(t - ti).0;
+                return at(t - ti);
             }
             (x, v) = at(tj - ti);
         }
@@ -144,19 +159,27 @@ mod tests {
     /// The spring's run pushed by [`PUSH`], its stages seeing the kinks
     /// `choice`, at rtol `rtol`.
     fn pushed(choice: TimeKinks, rtol: f64) -> SimulationResult {
+        pushed_with(choice, rtol, "interpolated")
+    }
+
+    /// [`pushed`], its samples' accelerations taken as `accelerations`
+    /// says.
+    fn pushed_with(choice: TimeKinks, rtol: f64, accelerations: &str) -> SimulationResult {
         let model =
             lagrangian_core::interpret(include_str!("../../../specs/spring_mass_damper.lpm"))
                 .unwrap();
         let names = ModelNames::of_interpreted(&model);
         let system = Interpreted::<1>::new(model).unwrap();
+        static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let run = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let dir =
-            std::env::temp_dir().join(format!("lagrangian-kinks-{}-{rtol}", std::process::id()));
+            std::env::temp_dir().join(format!("lagrangian-kinks-{}-{run}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let rows: String = PUSH.iter().map(|(t, f)| format!("{t},{f}\n")).collect();
         std::fs::write(dir.join("push.csv"), format!("t,F\n{rows}")).unwrap();
         let text = format!(
             "[simulation]\nt_end = 0.05\nrtol = {rtol}\natol = {}\noutput_interval = 1e-4\n\
-             time_kinks = \"{}\"\n[components.table]\ntype = \"table\"\nfile = \"push.csv\"\n\
+             time_kinks = \"{}\"\naccelerations = \"{accelerations}\"\n[components.table]\ntype = \"table\"\nfile = \"push.csv\"\n\
              columns = {{ push = \"F\" }}\n",
             rtol * 1e-2,
             choice.name()
@@ -195,6 +218,38 @@ mod tests {
                 "rtol {rtol}: smoothed {s:?}, exact {e:?}"
             );
         }
+    }
+
+    /// The push at `t`: [`PUSH`] interpolated linearly.
+    fn push(t: f64) -> f64 {
+        let k = PUSH.partition_point(|p| p.0 <= t).clamp(1, PUSH.len() - 1);
+        let ((t0, f0), (t1, f1)) = (PUSH[k - 1], PUSH[k]);
+        f0 + (f1 - f0) * (t - t0) / (t1 - t0)
+    }
+
+    /// The largest difference of the run's `ẍ` from the closed form's
+    /// `F − c ẋ − k x` (m = 1 kg).
+    fn acceleration_error(run: &SimulationResult) -> f64 {
+        let closed = |t: f64| {
+            let (x, v) = closed_form_state(t);
+            push(t) - 0.5 * v - 100.0 * x
+        };
+        (run.samples.iter())
+            .map(|s| (s.a[0] - closed(s.t)).abs())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn the_samples_of_smoothed_steps_keep_the_kinks_of_the_push() {
+        // The stages of a step across a kink see the push's smooth
+        // stand-in, and so does the dense output; the samples add back
+        // what the push's kinks change (`kink_rates`). |ẍ| ≤ 50 m/s².
+        let smoothed = pushed(TimeKinks::Smoothed, 1e-8);
+        let solved = pushed_with(TimeKinks::Smoothed, 1e-8, "exact");
+        let (corrected, exact) = (acceleration_error(&smoothed), acceleration_error(&solved));
+        // Measured: corrected 1.7e-6, solved at every sample 1.9e-6, the
+        // interpolated stand-in's alone 0.16.
+        assert!(corrected < 4e-6 && exact < 4e-6, "{corrected:e}, {exact:e}");
     }
 
     /// The paper's scenario with its barrier table as given, at rtol 1e-8.

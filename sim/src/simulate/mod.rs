@@ -4,6 +4,7 @@
 mod channels;
 pub mod constrained;
 mod equilibrium;
+mod kink_rates;
 mod kinks;
 mod metrics;
 mod needs;
@@ -483,6 +484,8 @@ struct Sampler<const N: usize> {
     drift: Vec<f64>,
     /// Which steps' samples take `q̈` from the dense output.
     dense: rates::DenseAccelerations,
+    /// The times of the samples within the step being observed.
+    times: Vec<f64>,
 }
 
 impl<const N: usize> Sampler<N> {
@@ -514,6 +517,7 @@ impl<const N: usize> Sampler<N> {
             reached: None,
             drift: Vec::new(),
             dense,
+            times: Vec::new(),
         }
     }
 
@@ -556,18 +560,40 @@ impl<const N: usize> Sampler<N> {
         step.eval(step.t1(), &mut y);
         self.balance(problem, step.t1(), &y);
         self.reached = Some((step.t1(), y));
-        let dense = self.needs.accelerations && self.dense.smooth(step);
+        let mut times = std::mem::take(&mut self.times);
+        times.clear();
         while self.next <= self.last {
             let t = (self.next as f64 * self.interval).min(self.t_end);
             if t > step.t1() || self.next as f64 * self.interval > self.t_end + 0.5 * self.interval
             {
                 break;
             }
-            step.eval(t, &mut y);
-            let a = dense.then(|| rates::interpolated(step, t)).flatten();
-            self.record(problem, t, &y, a);
+            times.push(t);
             self.next += 1;
         }
+        let rates = match self.needs.accelerations {
+            true => self.dense.of_step(step),
+            false => rates::StepRates::Solved,
+        };
+        let correction = match rates {
+            rates::StepRates::Corrected if !times.is_empty() => {
+                kink_rates::KinkCorrection::of(problem, step, &times)
+            }
+            _ => None,
+        };
+        let mut rate = PhaseState::zeros();
+        for (k, &t) in times.iter().enumerate() {
+            step.eval(t, &mut y);
+            let a = match (rates, &correction) {
+                (rates::StepRates::Interpolated, _) => rates::interpolated(step, t, &mut rate),
+                (rates::StepRates::Corrected, Some(correction)) => {
+                    rates::interpolated(step, t, &mut rate).map(|a| a + correction.at(k))
+                }
+                _ => None,
+            };
+            self.record(problem, t, &y, a);
+        }
+        self.times = times;
     }
 
     /// Adds the sample at `(t, y)` to the metrics (and to the samples, when
@@ -618,9 +644,9 @@ fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
 }
 
 /// The state, accelerations, energies and outputs at one output time.
-struct SampleValues<const N: usize> {
+struct SampleValues<'a, const N: usize> {
     t: f64,
-    y: PhaseState<N>,
+    y: &'a PhaseState<N>,
     a: SVector<f64, N>,
     kinetic: f64,
     potential: f64,
@@ -632,7 +658,7 @@ struct SampleValues<const N: usize> {
     residual: Vec<f64>,
 }
 
-impl<const N: usize> SampleValues<N> {
+impl<const N: usize> SampleValues<'_, N> {
     fn as_view(&self) -> SampleView<'_> {
         SampleView {
             t: self.t,
@@ -670,16 +696,19 @@ impl<const N: usize> SampleValues<N> {
 /// constraints' multipliers and residuals), the `outputs` outputs (at
 /// those accelerations), the components' columns and, for a kept sample,
 /// the input values; a quantity not asked for is left NaN (or empty).
-fn sample<const N: usize, S: LagrangianSystem<N>>(
+fn sample<'a, const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     t: f64,
-    y: &PhaseState<N>,
+    y: &'a PhaseState<N>,
     needs: &needs::Needs,
     outputs: usize,
     interpolated: Option<SVector<f64, N>>,
-) -> Result<(SampleValues<N>, Vec<f64>), SolverError> {
+) -> Result<(SampleValues<'a, N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
-    problem.inputs.load(&y.z);
+    let solves = needs.accelerations && interpolated.is_none();
+    if solves || needs.kept || needs.outputs || needs.components {
+        problem.inputs.load(&y.z);
+    }
     let problem::Accelerations {
         a,
         multipliers,
@@ -723,7 +752,7 @@ fn sample<const N: usize, S: LagrangianSystem<N>>(
     };
     let sample = SampleValues {
         t,
-        y: *y,
+        y,
         a,
         kinetic,
         potential,

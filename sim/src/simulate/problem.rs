@@ -3,7 +3,7 @@
 use super::SolverError;
 use super::constrained::Workspace;
 use super::kinks::{KinkedInputs, TimeKinks};
-use crate::crash::BoundInputs;
+use crate::crash::{BoundInputs, StandIn};
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, Internal, OdeProblem, PhaseState};
@@ -80,6 +80,10 @@ pub struct CrashProblem<'a, const N: usize, S: LagrangianSystem<N>> {
     kinked: KinkedInputs,
     /// What the stages of a step see of their kinks inside it.
     time_kinks: TimeKinks,
+    /// Where the stages of the last attempt took the stand-ins of
+    /// [`CrashProblem::kinked`], under [`TimeKinks::Smoothed`]: the start
+    /// of its step, and the stand-ins by input.
+    smoothed: (f64, Vec<(usize, StandIn)>),
 }
 
 impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
@@ -104,7 +108,27 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             time_sites,
             kinked,
             time_kinks: TimeKinks::default(),
+            smoothed: (f64::NAN, Vec::new()),
         }
+    }
+
+    /// The inputs of time with kinks.
+    pub(super) fn kinked(&self) -> &KinkedInputs {
+        &self.kinked
+    }
+
+    /// Has the inputs take the stand-ins the stages of the last attempt
+    /// took, if that attempt was the step from `t0` and took some; `false`
+    /// if not. [`BoundInputs::end_stand_ins`] ends them.
+    pub(super) fn retake_stand_ins(&mut self, t0: f64) -> bool {
+        let (start, stand_ins) = &self.smoothed;
+        if *start != t0 || stand_ins.is_empty() {
+            return false;
+        }
+        for &(input, cubic) in stand_ins {
+            self.inputs.stand_in(input, cubic);
+        }
+        true
     }
 
     /// For each input site of the dynamics: whether it passes the time
@@ -446,6 +470,9 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.inputs.end_stand_ins();
         if let (Some((t0, h)), TimeKinks::Smoothed) = (window, self.time_kinks) {
             self.kinked.stand_in(&mut self.inputs, t0, h);
+            self.smoothed.0 = t0;
+            self.smoothed.1.clear();
+            self.smoothed.1.extend(self.inputs.stand_ins());
         }
     }
 

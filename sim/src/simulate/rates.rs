@@ -27,6 +27,11 @@
 //!   applied, so a step cut at one is smooth; a switching function of the
 //!   model is not continued, so with one a step cut at an event is not.
 //!
+//! A step whose only kinks inside are those of inputs of time whose
+//! smooth stand-ins its stages took ([`super::kinks`]) has a dense output
+//! that follows the stand-ins: its samples take the derivative and add
+//! what the kinks change ([`super::kink_rates`]).
+//!
 //! Otherwise the sample solves exactly. The choice depends on the step
 //! alone, not on whether the samples are kept: a run's summary is the same
 //! either way.
@@ -76,6 +81,23 @@ pub(super) struct DenseAccelerations {
     /// The model has switching functions, whose kinks a step cut at an
     /// event may have stepped across.
     switching: bool,
+    /// Every kink of `time_kinks` is one the stages of a step may take a
+    /// stand-in for ([`super::kinks`]): a step across one is corrected
+    /// ([`super::kink_rates`]) instead of solved.
+    smoothed: bool,
+}
+
+/// Where the samples of a step take `q̈` from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum StepRates {
+    /// The derivative of the step's dense output.
+    Interpolated,
+    /// The derivative of the dense output of a step whose stages took the
+    /// stand-ins of time tables, corrected for their kinks
+    /// ([`super::kink_rates`]).
+    Corrected,
+    /// `M q̈ = f` at each sample.
+    Solved,
 }
 
 impl DenseAccelerations {
@@ -91,37 +113,45 @@ impl DenseAccelerations {
             }
             _ => None,
         };
+        let smoothed = time_kinks.as_ref() == Some(&problem.kinked().kinks());
         DenseAccelerations {
             time_kinks,
             switching: system.switching_count() > 0,
+            smoothed,
         }
     }
 
-    /// Whether the samples within `step` may take `q̈` from its dense
-    /// output: every input smooth over the step as the method took it.
-    pub(super) fn smooth<Y>(&self, step: &dyn DenseStep<Y>) -> bool {
+    /// Where the samples within `step` take `q̈` from: its dense output
+    /// when every input is smooth over the step as the method took it, or
+    /// when the only kinks inside are those of inputs of time that may
+    /// have taken stand-ins.
+    pub(super) fn of_step<Y>(&self, step: &dyn DenseStep<Y>) -> StepRates {
         let Some(kinks) = &self.time_kinks else {
-            return false;
+            return StepRates::Solved;
         };
         let (start, end) = (step.t0(), step.uncut_end());
         if self.switching && step.t1() < end {
-            return false;
+            return StepRates::Solved;
         }
         // A step ended at a kink (`stop_at_kinks`) ends there to rounding.
         let slack = 64.0 * f64::EPSILON * start.abs().max(end.abs());
         let first = kinks.partition_point(|&kink| kink <= start + slack);
-        kinks.get(first).is_none_or(|&kink| kink >= end - slack)
+        match kinks.get(first).is_none_or(|&kink| kink >= end - slack) {
+            true => StepRates::Interpolated,
+            false if self.smoothed => StepRates::Corrected,
+            false => StepRates::Solved,
+        }
     }
 }
 
-/// `q̈` at `t` from the derivative of `step`'s dense output, if its method
-/// gives one.
+/// `q̈` at `t` from the derivative of `step`'s dense output (the whole
+/// derivative written into `rate`), if its method gives one.
 pub(super) fn interpolated<const N: usize>(
     step: &dyn DenseStep<PhaseState<N>>,
     t: f64,
+    rate: &mut PhaseState<N>,
 ) -> Option<SVector<f64, N>> {
-    let mut rate = PhaseState::zeros();
-    step.eval_derivative(t, &mut rate).then_some(rate.v)
+    step.eval_derivative(t, rate).then_some(rate.v)
 }
 
 /// The kinks in time of the inputs the dynamics of `system` calls, in
@@ -218,6 +248,7 @@ mod tests {
         let (model, names) = spring();
         let scenario = Scenario::parse(text, Some(&dir.join("s.toml")), &names, &[]).unwrap();
         let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
+        problem.time_kinks(scenario.time_kinks);
         let y0 = PhaseState::zeros();
         problem.start(0.0, &y0).unwrap();
         let mut steps = Vec::new();
@@ -237,10 +268,11 @@ mod tests {
     fn the_samples_of_a_step_across_a_kink_of_a_time_table_are_solved() {
         let dir = std::env::temp_dir().join(format!("lagrangian-rates-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        // Kinks at 10, 20 and 30 ms, which steps straddle.
+        // Kinks at 10, 20 and 30 ms, which steps straddle, their stages
+        // seeing the kinks (smoothed ones: `kinks::tests`).
         let table = "t,F\n0,0\n0.01,50\n0.02,-20\n0.03,0\n0.05,0\n";
         std::fs::write(dir.join("push.csv"), table).unwrap();
-        let text = "[simulation]\nt_end = 0.05\noutput_interval = 1e-4\n\
+        let text = "[simulation]\nt_end = 0.05\noutput_interval = 1e-4\ntime_kinks = \"exact\"\n\
             [components.table]\ntype = \"table\"\nfile = \"push.csv\"\ncolumns = { push = \"F\" }\n";
         let [interpolated, exact] = runs(text, Some(&dir));
         let steps = steps(text, &dir);
