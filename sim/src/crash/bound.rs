@@ -138,10 +138,11 @@ impl BoundInputs {
 
     /// The inputs that take a stand-in, with it.
     pub fn stand_ins(&self) -> impl Iterator<Item = (usize, StandIn)> + '_ {
-        let set = self
-            .standing_in
-            .then_some(&self.stand_ins[..])
-            .unwrap_or(&[]);
+        let set: &[Option<StandIn>] = if self.standing_in {
+            &self.stand_ins
+        } else {
+            &[]
+        };
         (set.iter().enumerate()).filter_map(|(input, cubic)| Some((input, (*cubic)?)))
     }
 

@@ -78,11 +78,19 @@ impl<const N: usize> KinkCorrection<N> {
     }
 }
 
+/// An input that differs from its stand-in at a sample.
+#[derive(Clone, Copy)]
+struct Moved {
+    input: usize,
+    stand_in: StandIn,
+    /// The largest `|u − P|` at the samples.
+    by: f64,
+}
+
 /// The inputs that differ from their stand-ins at a sample of `times`,
-/// each with its stand-in and the largest difference, and the differences
-/// `u − P` by input and by sample; `None` where an input has no finite
-/// value.
-fn gaps(inputs: &BoundInputs, times: &[f64]) -> Option<(Vec<(usize, StandIn, f64)>, Vec<f64>)> {
+/// and the differences `u − P` by input and by sample; `None` where an
+/// input has no finite value.
+fn gaps(inputs: &BoundInputs, times: &[f64]) -> Option<(Vec<Moved>, Vec<f64>)> {
     let (mut moved, mut gaps) = (Vec::new(), Vec::new());
     for (input, cubic) in inputs.stand_ins() {
         let mut largest = 0.0f64;
@@ -95,7 +103,11 @@ fn gaps(inputs: &BoundInputs, times: &[f64]) -> Option<(Vec<(usize, StandIn, f64
             gaps.push(gap);
         }
         if largest > 0.0 {
-            moved.push((input, cubic, largest));
+            moved.push(Moved {
+                input,
+                stand_in: cubic,
+                by: largest,
+            });
         } else {
             gaps.truncate(gaps.len() - times.len());
         }
@@ -103,12 +115,12 @@ fn gaps(inputs: &BoundInputs, times: &[f64]) -> Option<(Vec<(usize, StandIn, f64
     Some((moved, gaps))
 }
 
-/// `∂q̈/∂u` of each of the `moved` inputs `(input, stand-in, by)` at the
-/// middle of `step`: the difference quotient with the stand-in moved `by`.
+/// `∂q̈/∂u` of each of the `moved` inputs at the middle of `step`: the
+/// difference quotient with its stand-in moved `by`.
 fn sensitivities<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     step: &dyn DenseStep<PhaseState<N>>,
-    moved: &[(usize, StandIn, f64)],
+    moved: &[Moved],
 ) -> Option<Vec<SVector<f64, N>>> {
     if moved.is_empty() {
         return Some(Vec::new());
@@ -119,10 +131,15 @@ fn sensitivities<const N: usize, S: LagrangianSystem<N>>(
     problem.inputs.load(&y.z);
     let base = problem.accelerations(t, &y.q, &y.v).ok()?;
     let mut sensitivities = Vec::with_capacity(moved.len());
-    for &(input, cubic, by) in moved {
-        problem.inputs.stand_in(input, cubic.shifted(by));
+    for &Moved {
+        input,
+        stand_in,
+        by,
+    } in moved
+    {
+        problem.inputs.stand_in(input, stand_in.shifted(by));
         let shifted = problem.accelerations(t, &y.q, &y.v);
-        problem.inputs.stand_in(input, cubic);
+        problem.inputs.stand_in(input, stand_in);
         sensitivities.push((shifted.ok()? - base) / by);
     }
     Some(sensitivities)

@@ -560,6 +560,23 @@ impl<const N: usize> Sampler<N> {
         step.eval(step.t1(), &mut y);
         self.balance(problem, step.t1(), &y);
         self.reached = Some((step.t1(), y));
+        let times = self.times_within(step);
+        let rates = match self.needs.accelerations {
+            true => rates::SampleRates::of(&self.dense, problem, step, &times),
+            false => rates::SampleRates::Solved,
+        };
+        let mut rate = PhaseState::zeros();
+        for (k, &t) in times.iter().enumerate() {
+            step.eval(t, &mut y);
+            let a = rates.at(step, (k, t), &mut rate);
+            self.record(problem, t, &y, a);
+        }
+        self.times = times;
+    }
+
+    /// The times of the samples that fall within `step`, from the next
+    /// (in a buffer to give back to `self.times`).
+    fn times_within(&mut self, step: &dyn DenseStep<PhaseState<N>>) -> Vec<f64> {
         let mut times = std::mem::take(&mut self.times);
         times.clear();
         while self.next <= self.last {
@@ -571,29 +588,7 @@ impl<const N: usize> Sampler<N> {
             times.push(t);
             self.next += 1;
         }
-        let rates = match self.needs.accelerations {
-            true => self.dense.of_step(step),
-            false => rates::StepRates::Solved,
-        };
-        let correction = match rates {
-            rates::StepRates::Corrected if !times.is_empty() => {
-                kink_rates::KinkCorrection::of(problem, step, &times)
-            }
-            _ => None,
-        };
-        let mut rate = PhaseState::zeros();
-        for (k, &t) in times.iter().enumerate() {
-            step.eval(t, &mut y);
-            let a = match (rates, &correction) {
-                (rates::StepRates::Interpolated, _) => rates::interpolated(step, t, &mut rate),
-                (rates::StepRates::Corrected, Some(correction)) => {
-                    rates::interpolated(step, t, &mut rate).map(|a| a + correction.at(k))
-                }
-                _ => None,
-            };
-            self.record(problem, t, &y, a);
-        }
-        self.times = times;
+        times
     }
 
     /// Adds the sample at `(t, y)` to the metrics (and to the samples, when

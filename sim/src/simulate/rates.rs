@@ -39,6 +39,7 @@
 //! [`Component::smoothness`]: crate::crash::Component::smoothness
 
 use super::CrashProblem;
+use super::kink_rates::KinkCorrection;
 use crate::crash::{BoundInputs, Smoothness};
 use crate::ode::{DenseStep, PhaseState};
 use crate::scenario::Choice;
@@ -89,7 +90,7 @@ pub(super) struct DenseAccelerations {
 
 /// Where the samples of a step take `q̈` from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum StepRates {
+enum StepRates {
     /// The derivative of the step's dense output.
     Interpolated,
     /// The derivative of the dense output of a step whose stages took the
@@ -125,7 +126,7 @@ impl DenseAccelerations {
     /// when every input is smooth over the step as the method took it, or
     /// when the only kinks inside are those of inputs of time that may
     /// have taken stand-ins.
-    pub(super) fn of_step<Y>(&self, step: &dyn DenseStep<Y>) -> StepRates {
+    fn of_step<Y>(&self, step: &dyn DenseStep<Y>) -> StepRates {
         let Some(kinks) = &self.time_kinks else {
             return StepRates::Solved;
         };
@@ -144,9 +145,56 @@ impl DenseAccelerations {
     }
 }
 
+/// Where the samples of one step take `q̈` from, made ready for them.
+pub(super) enum SampleRates<const N: usize> {
+    /// The derivative of the step's dense output.
+    Interpolated,
+    /// The derivative, corrected for the kinks of the time tables whose
+    /// stand-ins the step's stages took.
+    Corrected(KinkCorrection<N>),
+    /// `M q̈ = f` at each sample.
+    Solved,
+}
+
+impl<const N: usize> SampleRates<N> {
+    /// Where the samples at `times` within `step` take `q̈` from (`dense`
+    /// says), the kinks' correction made where they need one; solved
+    /// where it cannot be made.
+    pub(super) fn of<S: LagrangianSystem<N>>(
+        dense: &DenseAccelerations,
+        problem: &mut CrashProblem<N, S>,
+        step: &dyn DenseStep<PhaseState<N>>,
+        times: &[f64],
+    ) -> SampleRates<N> {
+        match dense.of_step(step) {
+            StepRates::Interpolated => SampleRates::Interpolated,
+            StepRates::Corrected if !times.is_empty() => KinkCorrection::of(problem, step, times)
+                .map_or(SampleRates::Solved, SampleRates::Corrected),
+            StepRates::Corrected | StepRates::Solved => SampleRates::Solved,
+        }
+    }
+
+    /// `q̈` of sample `k`, at `t`, of the step (the derivative of its dense
+    /// output written into `rate`); `None` where it is to be solved.
+    pub(super) fn at(
+        &self,
+        step: &dyn DenseStep<PhaseState<N>>,
+        (k, t): (usize, f64),
+        rate: &mut PhaseState<N>,
+    ) -> Option<SVector<f64, N>> {
+        match self {
+            SampleRates::Interpolated => interpolated(step, t, rate),
+            SampleRates::Corrected(correction) => {
+                interpolated(step, t, rate).map(|a| a + correction.at(k))
+            }
+            SampleRates::Solved => None,
+        }
+    }
+}
+
 /// `q̈` at `t` from the derivative of `step`'s dense output (the whole
 /// derivative written into `rate`), if its method gives one.
-pub(super) fn interpolated<const N: usize>(
+fn interpolated<const N: usize>(
     step: &dyn DenseStep<PhaseState<N>>,
     t: f64,
     rate: &mut PhaseState<N>,
