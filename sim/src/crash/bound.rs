@@ -150,15 +150,20 @@ impl BoundInputs {
     /// `None` where it has no value there (unresolved, or a component that
     /// fails).
     pub fn own_value_of_time(&self, input: usize, t: f64) -> Option<f64> {
+        self.own_value(input, &[t])?.1.ok()
+    }
+
+    /// What the component of a resolved input gives for `args` (not the
+    /// input's stand-in), with the component; `None` for an input not
+    /// resolved or called with a number of arguments its component does
+    /// not take.
+    #[inline]
+    fn own_value(&self, input: usize, args: &[f64]) -> Option<(usize, Result<f64, OutOfRange>)> {
         let r = (*self.resolved.get(input)?)?;
-        (r.arity.is_none_or(|needed| needed == 1))
-            .then(|| {
-                self.components[r.component]
-                    .component
-                    .value(r.port, &[t])
-                    .ok()
-            })
-            .flatten()
+        r.arity.is_none_or(|needed| needed == args.len()).then(|| {
+            let value = self.components[r.component].component.value(r.port, args);
+            (r.component, value)
+        })
     }
 
     /// Every input takes its own value again.
@@ -471,15 +476,11 @@ impl InputFunctions for BoundInputs {
         {
             return cubic.at(args[0]);
         }
-        if let Some(Some(r)) = self.resolved.get(input)
-            && r.arity.is_none_or(|needed| needed == args.len())
-        {
-            return match self.components[r.component].component.value(r.port, args) {
-                Ok(v) => v,
-                Err(e) => self.fail(self.out_of_range(r.component, Some(input), e)),
-            };
+        match self.own_value(input, args) {
+            Some((_, Ok(v))) => v,
+            Some((component, Err(e))) => self.fail(self.out_of_range(component, Some(input), e)),
+            None => self.unresolved_value(input, args),
         }
-        self.unresolved_value(input, args)
     }
 }
 
