@@ -15,8 +15,8 @@ use super::driver::{Attempt, Stepper, Truncate};
 use super::hermite::Hermite;
 use super::tableau::{DenseOutput, Tableau};
 use super::{
-    DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, SolverError, Stats, error_norm,
-    evaluate,
+    DenseStep, Observer, OdeProblem, OdeVector, Options, Outcome, Part, SolverError, Stats,
+    error_norm, evaluate,
 };
 
 const SAFETY: f64 = 0.9;
@@ -401,10 +401,7 @@ impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
     }
 
     fn eval(&self, t: f64, out: &mut Y) {
-        match self {
-            Dense::Hermite(d) => d.eval(t, out),
-            Dense::DormandPrince(d) => d.eval(t, out),
-        }
+        self.eval_part(t, Part::All, out);
     }
 
     fn uncut_end(&self) -> f64 {
@@ -415,10 +412,21 @@ impl<Y: OdeVector> DenseStep<Y> for Dense<Y> {
     }
 
     fn eval_derivative(&self, t: f64, out: &mut Y) -> bool {
+        self.eval_derivative_part(t, Part::All, out)
+    }
+
+    fn eval_part(&self, t: f64, part: Part, out: &mut Y) {
         match self {
-            Dense::Hermite(d) => d.eval_derivative(t, out),
+            Dense::Hermite(d) => d.eval_part(t, part, out),
+            Dense::DormandPrince(d) => d.eval(t, part, out),
+        }
+    }
+
+    fn eval_derivative_part(&self, t: f64, part: Part, out: &mut Y) -> bool {
+        match self {
+            Dense::Hermite(d) => d.eval_derivative_part(t, part, out),
             Dense::DormandPrince(d) => {
-                d.eval_derivative(t, out);
+                d.eval_derivative(t, part, out);
                 true
             }
         }
@@ -444,11 +452,13 @@ pub struct DormandPrince<Y> {
 }
 
 impl<Y: OdeVector> DormandPrince<Y> {
-    fn eval(&self, t: f64, out: &mut Y) {
+    /// The components of `part` at `t`, into `out`.
+    fn eval(&self, t: f64, part: Part, out: &mut Y) {
         let theta = (t - self.t0) / self.h;
         let theta1 = 1.0 - theta;
         let [r0, r1, r2, r3, r4] = &self.r;
-        out.set_combination(
+        out.set_part_combination(
+            part,
             r0,
             &[
                 (theta, r1),
@@ -460,18 +470,22 @@ impl<Y: OdeVector> DormandPrince<Y> {
     }
 
     /// `dy/dt = (r1 + (1−2θ) r2 + θ(2−3θ) r3 + 2θ(1−θ)(1−2θ) r4) / h`,
-    /// the derivative of [`DormandPrince::eval`]'s polynomial.
-    fn eval_derivative(&self, t: f64, out: &mut Y) {
+    /// the derivative of [`DormandPrince::eval`]'s polynomial (the
+    /// components of `part`).
+    fn eval_derivative(&self, t: f64, part: Part, out: &mut Y) {
         let theta = (t - self.t0) / self.h;
         let (theta1, middle) = (1.0 - theta, 1.0 - 2.0 * theta);
         let [_, r1, r2, r3, r4] = &self.r;
         let per_h = 1.0 / self.h;
-        out.set_sum(&[
-            (per_h, r1),
-            (middle * per_h, r2),
-            (theta * (2.0 - 3.0 * theta) * per_h, r3),
-            (2.0 * theta * theta1 * middle * per_h, r4),
-        ]);
+        out.set_part_sum(
+            part,
+            &[
+                (per_h, r1),
+                (middle * per_h, r2),
+                (theta * (2.0 - 3.0 * theta) * per_h, r3),
+                (2.0 * theta * theta1 * middle * per_h, r4),
+            ],
+        );
     }
 }
 

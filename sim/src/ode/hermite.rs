@@ -1,7 +1,7 @@
 //! Cubic Hermite interpolation: the dense output of RK4 and TR-BDF2, and the
 //! refinement of sampled extrema.
 
-use super::{DenseStep, OdeVector, driver::Truncate};
+use super::{DenseStep, OdeVector, Part, driver::Truncate};
 
 /// The weights of `(y0, f0, y1, f1)` in the cubic Hermite interpolant on a
 /// step of size `h`, at `s = (t − t0)/h`:
@@ -50,13 +50,20 @@ impl<Y: OdeVector> DenseStep<Y> for Hermite<Y> {
     }
 
     fn eval(&self, t: f64, out: &mut Y) {
+        self.eval_part(t, Part::All, out);
+    }
+
+    fn eval_part(&self, t: f64, part: Part, out: &mut Y) {
         let [w0, w1, w2, w3] = hermite_weights((t - self.t0) / self.h, self.h);
-        out.set_sum(&[
-            (w0, &self.y0),
-            (w1, &self.f0),
-            (w2, &self.y1),
-            (w3, &self.f1),
-        ]);
+        out.set_part_sum(
+            part,
+            &[
+                (w0, &self.y0),
+                (w1, &self.f0),
+                (w2, &self.y1),
+                (w3, &self.f1),
+            ],
+        );
     }
 }
 

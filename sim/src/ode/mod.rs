@@ -42,7 +42,7 @@ pub use events::{Direction, EventAction};
 pub use hermite::{Hermite, hermite_weights};
 pub use internal::{CAPACITY as INTERNAL_CAPACITY, Internal};
 pub use method::{Method, UnknownMethod, integrate};
-pub use vector::{OdeVector, PhaseState};
+pub use vector::{OdeVector, Part, PhaseState};
 
 /// The problem `y' = F(t, y)` with optional events.
 pub trait OdeProblem<Y: OdeVector> {
@@ -268,6 +268,20 @@ pub trait DenseStep<Y> {
     fn eval_derivative(&self, t: f64, out: &mut Y) -> bool {
         let _ = (t, out);
         false
+    }
+
+    /// [`DenseStep::eval`] of the components of `part` alone; the others of
+    /// `out` keep their values (all are written by default).
+    fn eval_part(&self, t: f64, part: Part, out: &mut Y) {
+        let _ = part;
+        self.eval(t, out);
+    }
+
+    /// [`DenseStep::eval_derivative`] of the components of `part` alone;
+    /// the others of `out` keep their values (all are written by default).
+    fn eval_derivative_part(&self, t: f64, part: Part, out: &mut Y) -> bool {
+        let _ = part;
+        self.eval_derivative(t, out)
     }
 }
 

@@ -3,6 +3,16 @@
 use super::internal::Internal;
 use nalgebra::{DVector, SVector};
 
+/// The components of a state that a reader of a dense output asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// Every component.
+    All,
+    /// The motion: a mechanical state's coordinates and velocities; every
+    /// component of a vector that holds nothing else.
+    Motion,
+}
+
 /// A state vector: fixed-size ones live on the stack, so integrating them
 /// does not allocate.
 pub trait OdeVector: Clone {
@@ -30,6 +40,20 @@ pub trait OdeVector: Clone {
 
     /// `self ← Σ_k c_k · x_k`.
     fn set_sum(&mut self, terms: &[(f64, &Self)]);
+
+    /// [`OdeVector::set_combination`] on the components of `part`; the
+    /// others keep their values.
+    fn set_part_combination(&mut self, part: Part, base: &Self, terms: &[(f64, &Self)]) {
+        let _ = part;
+        self.set_combination(base, terms);
+    }
+
+    /// [`OdeVector::set_sum`] on the components of `part`; the others keep
+    /// their values.
+    fn set_part_sum(&mut self, part: Part, terms: &[(f64, &Self)]) {
+        let _ = part;
+        self.set_sum(terms);
+    }
 
     /// `true` when no component is NaN or ±∞.
     fn all_finite(&self) -> bool {
@@ -162,19 +186,49 @@ impl<const N: usize> OdeVector for PhaseState<N> {
             self.add(c, x);
         }
     }
+
+    fn set_part_combination(&mut self, part: Part, base: &Self, terms: &[(f64, &Self)]) {
+        match part {
+            Part::All => self.set_combination(base, terms),
+            Part::Motion => {
+                (self.q, self.v) = (base.q, base.v);
+                for &(c, x) in terms {
+                    self.add_motion(c, x);
+                }
+            }
+        }
+    }
+
+    fn set_part_sum(&mut self, part: Part, terms: &[(f64, &Self)]) {
+        match part {
+            Part::All => self.set_sum(terms),
+            Part::Motion => {
+                (self.q, self.v) = (SVector::zeros(), SVector::zeros());
+                for &(c, x) in terms {
+                    self.add_motion(c, x);
+                }
+            }
+        }
+    }
 }
 
 impl<const N: usize> PhaseState<N> {
     /// `self ← self + c·x`.
     #[inline]
     fn add(&mut self, c: f64, x: &Self) {
+        self.add_motion(c, x);
+        self.work[0] += c * x.work[0];
+        self.work[1] += c * x.work[1];
+        self.z.add(c, &x.z);
+    }
+
+    /// `q ← q + c·x.q`, `v ← v + c·x.v`.
+    #[inline]
+    fn add_motion(&mut self, c: f64, x: &Self) {
         for i in 0..N {
             self.q[i] += c * x.q[i];
             self.v[i] += c * x.v[i];
         }
-        self.work[0] += c * x.work[0];
-        self.work[1] += c * x.work[1];
-        self.z.add(c, &x.z);
     }
 }
 
@@ -215,5 +269,34 @@ mod tests {
         let mut sum = PhaseState::zeros();
         sum.set_sum(&[(1.0, &y), (2.0, &err)]);
         assert_eq!(sum.controlled_len(), 5);
+    }
+
+    /// The motion alone is the whole combination's `q` and `q̇`, to the
+    /// bit, and leaves the work and the internal states as they were.
+    #[test]
+    fn a_combination_of_the_motion_leaves_the_rest_as_it_was() {
+        let (base, x, y) = (
+            state(0.3, &[1.0, 2.0], 1),
+            state(-1.7, &[4.0, 5.0], 1),
+            state(2.9, &[7.0, 8.0], 1),
+        );
+        let terms = [(0.25, &x), (-1.5, &y)];
+        let mut all = PhaseState::zeros();
+        all.set_combination(&base, &terms);
+        let before = state(9.0, &[9.0], 0);
+        let mut motion = before;
+        motion.set_part_combination(Part::Motion, &base, &terms);
+        assert_eq!((motion.q, motion.v), (all.q, all.v));
+        assert_eq!((motion.work, motion.z), (before.work, before.z));
+        assert_ne!(all.work, before.work);
+        let mut sum = PhaseState::zeros();
+        sum.set_sum(&terms);
+        let mut motion_sum = before;
+        motion_sum.set_part_sum(Part::Motion, &terms);
+        assert_eq!((motion_sum.q, motion_sum.v), (sum.q, sum.v));
+        assert_eq!((motion_sum.work, motion_sum.z), (before.work, before.z));
+        let mut every = before;
+        every.set_part_sum(Part::All, &terms);
+        assert_eq!(every, sum);
     }
 }

@@ -26,7 +26,7 @@ pub use rates::SampleAccelerations;
 pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
-use crate::ode::{self, DenseStep, Method, PhaseState, Stats};
+use crate::ode::{self, DenseStep, Method, Part, PhaseState, Stats};
 use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use crate::warning::{self, Warning};
@@ -567,8 +567,8 @@ impl<const N: usize> Sampler<N> {
         };
         let mut rate = PhaseState::zeros();
         for (k, &t) in times.iter().enumerate() {
-            step.eval(t, &mut y);
             let a = rates.at(step, (k, t), &mut rate);
+            step.eval_part(t, self.needs.state(a.is_some()), &mut y);
             self.record(problem, t, &y, a);
         }
         self.times = times;
@@ -700,8 +700,7 @@ fn sample<'a, const N: usize, S: LagrangianSystem<N>>(
     interpolated: Option<SVector<f64, N>>,
 ) -> Result<(SampleValues<'a, N>, Vec<f64>), SolverError> {
     let fault = |fault| SolverError::Rhs { t, error: fault };
-    let solves = needs.accelerations && interpolated.is_none();
-    if solves || needs.kept || needs.outputs || needs.components {
+    if needs.state(interpolated.is_some()) == Part::All {
         problem.inputs.load(&y.z);
     }
     let problem::Accelerations {

@@ -1,11 +1,13 @@
 //! What a run's output samples must evaluate: only what the summary, the
 //! scenario's channels or the kept samples read.
 //!
-//! A sample always has its state (interpolated from the dense output); the
+//! A sample always has its motion (`q`, `q̇` interpolated from the dense
+//! output), and the rest of its state where something reads it; the
 //! model's other quantities cost an evaluation each and are computed only
 //! when something reads them — the energies only for a kept sample (the
 //! summary's energy balance takes them at the ends of the steps).
 
+use crate::ode::Part;
 use crate::scenario::{Column, Scenario};
 
 /// The quantities the samples of one run evaluate beyond the state.
@@ -43,6 +45,19 @@ impl Needs {
             outputs,
             components: kept || read(|c| matches!(c, Column::Component(_))),
             kept,
+        }
+    }
+
+    /// The part of the state a sample reads, given whether its `q̈` was
+    /// interpolated: the motion alone, unless it solves `M q̈ = f`, or
+    /// evaluates the outputs, the components' columns or everything a kept
+    /// sample has (which read the components' internal states, or the
+    /// work integrals).
+    pub(crate) fn state(&self, interpolated: bool) -> Part {
+        let solves = self.accelerations && !interpolated;
+        match solves || self.outputs || self.components || self.kept {
+            true => Part::All,
+            false => Part::Motion,
         }
     }
 }

@@ -41,7 +41,7 @@
 use super::CrashProblem;
 use super::kink_rates::KinkCorrection;
 use crate::crash::{BoundInputs, Smoothness};
-use crate::ode::{DenseStep, PhaseState};
+use crate::ode::{DenseStep, Part, PhaseState};
 use crate::scenario::Choice;
 use lagrangian_model::LagrangianSystem;
 use nalgebra::SVector;
@@ -175,7 +175,8 @@ impl<const N: usize> SampleRates<N> {
     }
 
     /// `q̈` of sample `k`, at `t`, of the step (the derivative of its dense
-    /// output written into `rate`); `None` where it is to be solved.
+    /// output's motion written into `rate`); `None` where it is to be
+    /// solved.
     pub(super) fn at(
         &self,
         step: &dyn DenseStep<PhaseState<N>>,
@@ -192,14 +193,14 @@ impl<const N: usize> SampleRates<N> {
     }
 }
 
-/// `q̈` at `t` from the derivative of `step`'s dense output (the whole
-/// derivative written into `rate`), if its method gives one.
+/// `q̈` at `t` from the derivative of `step`'s dense output (the
+/// derivative of the motion written into `rate`), if its method gives one.
 fn interpolated<const N: usize>(
     step: &dyn DenseStep<PhaseState<N>>,
     t: f64,
     rate: &mut PhaseState<N>,
 ) -> Option<SVector<f64, N>> {
-    step.eval_derivative(t, rate).then_some(rate.v)
+    (step.eval_derivative_part(t, Part::Motion, rate)).then_some(rate.v)
 }
 
 /// The kinks in time of the inputs the dynamics of `system` calls, in
