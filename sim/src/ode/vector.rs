@@ -171,6 +171,19 @@ impl<const N: usize> OdeVector for PhaseState<N> {
         }
     }
 
+    /// `x − x` is 0 for a finite `x`, NaN otherwise: one sum, no branch
+    /// per component.
+    fn all_finite(&self) -> bool {
+        let mut sum = 0.0;
+        for i in 0..N {
+            sum += (self.q[i] - self.q[i]) + (self.v[i] - self.v[i]);
+        }
+        for &x in self.work.iter().chain(self.z.as_slice()) {
+            sum += x - x;
+        }
+        sum == 0.0
+    }
+
     fn set_combination(&mut self, base: &Self, terms: &[(f64, &Self)]) {
         (self.q, self.v, self.work) = (base.q, base.v, base.work);
         self.z.assign(&base.z);
@@ -298,5 +311,21 @@ mod tests {
         let mut every = before;
         every.set_part_sum(Part::All, &terms);
         assert_eq!(every, sum);
+    }
+
+    #[test]
+    fn a_state_is_finite_when_every_component_is() {
+        let finite = state(1.0e300, &[-1.0e300, 0.0], 1);
+        assert!(finite.all_finite());
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut each = vec![finite; 4];
+            each[0].q[0] = bad;
+            each[1].v[0] = bad;
+            each[2].work[1] = bad;
+            each[3].z.as_mut_slice()[1] = bad;
+            for (k, y) in each.iter().enumerate() {
+                assert!(!y.all_finite(), "{bad} in part {k}");
+            }
+        }
     }
 }

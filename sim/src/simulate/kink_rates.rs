@@ -94,6 +94,7 @@ fn gaps(inputs: &BoundInputs, times: &[f64]) -> Option<(Vec<Moved>, Vec<f64>)> {
     let (mut moved, mut gaps) = (Vec::new(), Vec::new());
     for (input, cubic) in inputs.stand_ins() {
         let mut largest = 0.0f64;
+        gaps.reserve(times.len());
         for &t in times {
             let gap = inputs.own_value_of_time(input, t)? - cubic.at(t);
             if !gap.is_finite() {
