@@ -17,6 +17,13 @@ use serde::Serialize;
 /// Standard gravity [m/s²], the unit `g` of the metrics.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
+/// How far apart, relative to the smallest, the periods of samples that
+/// [`Pulse::resampled`] takes as evenly spaced may be: far below what
+/// linear interpolation onto an even grid would change, far above the
+/// rounding of times computed as `k·dt` (a few `1e-13` relative for
+/// `k` in the thousands).
+pub const EVEN_PERIODS: f64 = 1e-9;
+
 /// A vehicle pulse sampled at a constant period.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pulse {
@@ -108,7 +115,10 @@ pub enum PulseError {
 
 impl Pulse {
     /// A pulse from samples at any increasing times, resampled by linear
-    /// interpolation onto the grid of the smallest period that occurs.
+    /// interpolation onto the grid of the smallest period that occurs;
+    /// samples already evenly spaced (every period within
+    /// [`EVEN_PERIODS`] of the smallest: `k·dt` in floating point) are
+    /// taken as they are.
     pub fn resampled(
         t: &[f64],
         acceleration: &[f64],
@@ -120,6 +130,15 @@ impl Pulse {
             .windows(2)
             .map(|w| w[1] - w[0])
             .fold(f64::INFINITY, f64::min);
+        let longest = period * (1.0 + EVEN_PERIODS);
+        if t.windows(2).all(|w| w[1] - w[0] <= longest) {
+            return Ok(Pulse {
+                t: t.to_vec(),
+                acceleration: acceleration[..t.len()].to_vec(),
+                v0,
+                crush: crush.map(|c| c[..t.len()].to_vec()),
+            });
+        }
         let count = ((t[t.len() - 1] - t[0]) / period * (1.0 + 1e-12)).floor() as usize + 1;
         let grid: Vec<f64> = (0..count).map(|k| t[0] + k as f64 * period).collect();
         let (acceleration, crush) = match crush {
@@ -387,6 +406,34 @@ mod tests {
         assert_eq!(
             Pulse::resampled(&[0.0, 2e-3, 1e-3], &a[..3], 1.0, None),
             Err(PulseError::NotIncreasing { index: 2 })
+        );
+    }
+
+    /// Times `k·dt` in floating point differ from an even grid in their
+    /// last bits: the samples stay as they are, not interpolated onto the
+    /// grid of the smallest period (which would move every value a little).
+    #[test]
+    fn samples_at_multiples_of_the_period_are_taken_as_they_are() {
+        let t: Vec<f64> = (0..=1500).map(|k| k as f64 * 1e-4).collect();
+        let periods = t.windows(2).map(|w| w[1] - w[0]);
+        let (shortest, longest) = periods.fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        });
+        assert!(shortest < longest, "the grid is not even in floating point");
+        let a: Vec<f64> = t.iter().map(|t| (t * 90.0).sin()).collect();
+        let c: Vec<f64> = t.iter().map(|t| t * t).collect();
+        let pulse = Pulse::resampled(&t, &a, 2.0, Some(&c)).unwrap();
+        assert_eq!((pulse.t, pulse.acceleration), (t.clone(), a.clone()));
+        assert_eq!(pulse.crush, Some(c));
+        // A sample between them (an event's) makes them uneven: resampled.
+        let mut uneven = t.clone();
+        uneven.insert(3, 2.5e-4);
+        let mut a_uneven = a.clone();
+        a_uneven.insert(3, 7.0);
+        let resampled = Pulse::resampled(&uneven, &a_uneven, 2.0, None).unwrap();
+        assert_eq!(
+            resampled.t.len(),
+            (1.5e-1 / 0.5e-4 * (1.0 + 1e-12)) as usize + 1
         );
     }
 
