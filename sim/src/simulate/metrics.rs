@@ -36,6 +36,23 @@ pub struct SampleView<'a> {
     pub residuals: &'a [f64],
 }
 
+impl<'a> SampleView<'a> {
+    /// A sample of the motion and its accelerations alone: no outputs,
+    /// component columns or constraints.
+    pub fn of_motion(t: f64, q: &'a [f64], v: &'a [f64], a: &'a [f64]) -> SampleView<'a> {
+        SampleView {
+            t,
+            q,
+            v,
+            a,
+            outputs: &[],
+            components: &[],
+            multipliers: &[],
+            residuals: &[],
+        }
+    }
+}
+
 impl<'a> From<&'a Sample> for SampleView<'a> {
     fn from(s: &'a Sample) -> Self {
         SampleView {

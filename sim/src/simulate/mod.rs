@@ -600,6 +600,15 @@ impl<const N: usize> Sampler<N> {
         y: &PhaseState<N>,
         interpolated: Option<SVector<f64, N>>,
     ) {
+        if self.needs.state(interpolated.is_some()) == Part::Motion {
+            // Nothing but the metrics reads the sample, and they read the
+            // motion and `q̈` (NaN where nothing reads it).
+            let a = interpolated.unwrap_or(SVector::repeat(f64::NAN));
+            let (q, v) = (y.q.as_slice(), y.v.as_slice());
+            self.metrics
+                .push(SampleView::of_motion(t, q, v, a.as_slice()));
+            return;
+        }
         match sample(problem, t, y, &self.needs, self.outputs, interpolated) {
             Ok((view, columns)) => {
                 self.drift.resize(view.residual.len(), 0.0);
