@@ -130,11 +130,11 @@ impl Serialize for Channels {
 }
 
 /// One channel's samples, kept until the end of the run (filtering needs
-/// the whole record).
+/// the whole record); their times are the run's, kept once for all
+/// channels.
 #[derive(Clone, Debug)]
 pub struct ChannelRecord {
     channel: Channel,
-    t: Vec<f64>,
     values: Vec<f64>,
 }
 
@@ -143,26 +143,26 @@ impl ChannelRecord {
     pub fn new(channel: Channel, samples: usize) -> ChannelRecord {
         ChannelRecord {
             channel,
-            t: Vec::with_capacity(samples),
             values: Vec::with_capacity(samples),
         }
     }
 
-    /// Adds the channel's value at time `t` (in time order).
+    /// Adds the channel's value at the next sample (in time order).
     #[inline]
-    pub fn push(&mut self, t: f64, columns: &Columns) {
-        self.t.push(t);
+    pub fn push(&mut self, columns: &Columns) {
         self.values.push(self.channel.signal.value(columns));
     }
 
-    /// The channel's metrics; accelerations in units of `g`.
-    pub fn summary(&self, g: f64) -> ChannelSummary {
+    /// The channel's metrics, its samples taken at `times` (one per
+    /// sample); accelerations in units of `g`.
+    pub fn summary(&self, times: &[f64], g: f64) -> ChannelSummary {
+        let t = &times[..self.values.len()];
         let (max, min) = self.extremes();
         let at = |k: Option<usize>| k.map(|k| self.values[k]);
-        let time = |k: Option<usize>| k.map(|k| self.t[k]);
+        let time = |k: Option<usize>| k.map(|k| t[k]);
         let mut values = vec![at(max), time(max), at(min), time(min)];
         if self.channel.role == Role::Acceleration {
-            values.extend(self.acceleration_metrics(g));
+            values.extend(self.acceleration_metrics(t, g));
         }
         let last = self.values.len().checked_sub(1);
         let moving_at_end = last.is_some_and(|k| k > 0 && self.values[k] != self.values[k - 1]);
@@ -197,7 +197,7 @@ impl ChannelRecord {
     /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, clip3ms_g]`:
     /// magnitudes, the filtered ones on the record resampled onto an even
     /// grid; the clip of the CFC 180 signal, as occupant criteria take it.
-    fn acceleration_metrics(&self, g: f64) -> [Option<f64>; 5] {
+    fn acceleration_metrics(&self, t: &[f64], g: f64) -> [Option<f64>; 5] {
         let peak = (self.values.iter().enumerate())
             .filter(|(_, x)| x.is_finite())
             .fold(None, |best: Option<(usize, f64)>, (k, &x)| match best {
@@ -205,8 +205,8 @@ impl ChannelRecord {
                 _ => Some((k, x.abs())),
             });
         let peak_g = peak.map(|(_, m)| m / g);
-        let time = peak.map(|(k, _)| self.t[k]);
-        let Ok(pulse) = Pulse::resampled(&self.t, &self.values, 0.0, None) else {
+        let time = peak.map(|(k, _)| t[k]);
+        let Ok(pulse) = Pulse::resampled(t, &self.values, 0.0, None) else {
             return [peak_g, time, None, None, None];
         };
         let dt = pulse.t[1] - pulse.t[0];
@@ -240,10 +240,15 @@ mod tests {
             signal,
         };
         let mut record = ChannelRecord::new(channel, 0);
-        for (k, x) in values.iter().enumerate() {
-            record.push(k as f64, &Columns::coordinates(std::slice::from_ref(x)));
+        for x in values {
+            record.push(&Columns::coordinates(std::slice::from_ref(x)));
         }
         record
+    }
+
+    /// The sample times of [`record`]: `k` seconds.
+    fn times(count: usize) -> Vec<f64> {
+        (0..count).map(|k| k as f64).collect()
     }
 
     #[test]
@@ -263,7 +268,7 @@ mod tests {
         for (values, expected) in cases {
             assert_eq!(record(values).extremes(), expected, "{values:?}");
         }
-        let summary = record(&[1.0, 4.0, -2.0, 0.5]).summary(9.81);
+        let summary = record(&[1.0, 4.0, -2.0, 0.5]).summary(&times(4), 9.81);
         assert_eq!(
             summary.values,
             [Some(4.0), Some(1.0), Some(-2.0), Some(2.0)]

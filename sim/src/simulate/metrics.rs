@@ -8,7 +8,7 @@
 
 use super::Sample;
 use super::Summary;
-use super::channels::{ChannelRecord, Channels};
+use super::channels::{ChannelRecord, ChannelSummary, Channels};
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY};
 use crate::scenario::{Columns, CoordinateCombination, Scenario};
@@ -91,36 +91,27 @@ struct CrushPoint {
 }
 
 /// The metrics of a run, accumulated sample by sample, so that a run need
-/// not keep its samples (a sweep does not).
+/// not keep its samples (a sweep does not): each sample adds what the
+/// metrics read of it to their records, and [`Metrics::finish`] reads them
+/// in one pass each.
 #[derive(Clone, Debug)]
 pub struct Metrics {
     crush: Option<CoordinateCombination>,
     pitch: Vec<(usize, f64)>,
     g: f64,
-    samples: usize,
     /// `(T + V)(0)` and the scale of the energy balance.
     energy: Option<(f64, f64)>,
     energy_error: f64,
-    previous: Option<CrushPoint>,
-    /// The crush rate of the first sample: the impact velocity.
-    first_rate: Option<f64>,
-    /// The largest crush so far (the first of equals), its neighbours, and
-    /// the value it was compared by (−∞ until a sample has a number).
-    peak: Option<(CrushPoint, Option<CrushPoint>, Option<CrushPoint>)>,
-    peak_value: f64,
-    peak_index: usize,
-    first_zero: Option<f64>,
-    deceleration: f64,
-    /// Largest speed away from the barrier since the peak.
-    rebound: f64,
-    /// Time and deviations from equilibrium of the pitch coordinates, for
-    /// their extremes over the run and within the pulse (whose end is
-    /// known at the end); as many deviations as pitch coordinates, the
-    /// rest 0.
-    pitch_history: Vec<(f64, [f64; 2])>,
-    /// Time, crush and crush rate of every sample, for the pulse metrics
-    /// (filtering needs the whole record) and the crush at the end of
-    /// contact.
+    /// The times of the samples.
+    times: Vec<f64>,
+    /// The deviations from equilibrium of the pitch coordinates, by
+    /// sample, for their extremes over the run and within the pulse (whose
+    /// end is known at the end); as many deviations as pitch coordinates,
+    /// the rest 0.
+    pitch_history: Vec<[f64; 2]>,
+    /// Time, crush and crush rate of every sample, for the crush metrics,
+    /// the pulse metrics (filtering needs the whole record) and the crush
+    /// at the end of contact.
     crush_history: Vec<CrushPoint>,
     /// The crush acceleration of every sample of `crush_history`.
     crush_acceleration: Vec<f64>,
@@ -143,22 +134,14 @@ impl Metrics {
         let history = |wanted: bool| if wanted { samples } else { 0 };
         Metrics {
             crush: crush.map(|c| c.coordinate_combination()),
+            times: Vec::with_capacity(samples),
             pitch_history: Vec::with_capacity(history(!pitch.is_empty())),
             crush_history: Vec::with_capacity(history(crush.is_some())),
+            crush_acceleration: Vec::with_capacity(history(crush.is_some())),
             pitch,
             g,
-            samples: 0,
             energy: None,
             energy_error: 0.0,
-            previous: None,
-            peak: None,
-            peak_value: f64::NEG_INFINITY,
-            peak_index: 0,
-            first_zero: None,
-            first_rate: None,
-            deceleration: f64::NEG_INFINITY,
-            rebound: 0.0,
-            crush_acceleration: Vec::with_capacity(history(crush.is_some())),
             channels: (scenario.channels.iter().cloned())
                 .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
@@ -182,62 +165,34 @@ impl Metrics {
 
     /// Takes the next sample (in time order).
     pub fn push(&mut self, s: SampleView) {
+        self.times.push(s.t);
         if !self.pitch.is_empty() {
             let mut deviations = [0.0; 2];
             for (d, (k, q0)) in deviations.iter_mut().zip(&self.pitch) {
                 *d = s.q[*k] - q0;
             }
-            self.pitch_history.push((s.t, deviations));
+            self.pitch_history.push(deviations);
         }
         if let Some(crush) = &self.crush {
-            let [value, rate, acceleration] = crush.of([s.q, s.v, s.a]);
-            let point = CrushPoint {
-                t: s.t,
-                crush: value,
-                rate,
-            };
-            let index = self.samples;
-            self.first_rate.get_or_insert(point.rate);
-            if let Some((_, _, after)) = &mut self.peak
-                && index == self.peak_index + 1
-            {
-                *after = Some(point);
-            }
-            if index == 0 || point.crush > self.peak_value {
-                self.peak = Some((point, self.previous, None));
-                self.peak_index = index;
-                self.rebound = 0.0;
-            }
-            if point.crush > self.peak_value {
-                self.peak_value = point.crush;
-            }
-            self.rebound = self.rebound.max(-point.rate);
-            if self.first_zero.is_none()
-                && let Some(p) = self.previous
-                && p.rate > 0.0
-                && point.rate <= 0.0
-            {
-                let f = p.rate / (p.rate - point.rate);
-                self.first_zero = Some(p.t + f * (point.t - p.t));
-            }
-            self.deceleration = self.deceleration.max(-acceleration / self.g);
+            let [crush, rate, acceleration] = crush.of([s.q, s.v, s.a]);
+            let t = s.t;
+            self.crush_history.push(CrushPoint { t, crush, rate });
             self.crush_acceleration.push(acceleration);
-            self.crush_history.push(point);
-            self.previous = Some(point);
         }
-        let columns = Columns {
-            q: s.q,
-            v: s.v,
-            a: s.a,
-            outputs: s.outputs,
-            components: s.components,
-            multipliers: s.multipliers,
-            residuals: s.residuals,
-        };
-        for channel in &mut self.channels {
-            channel.push(s.t, &columns);
+        if !self.channels.is_empty() {
+            let columns = Columns {
+                q: s.q,
+                v: s.v,
+                a: s.a,
+                outputs: s.outputs,
+                components: s.components,
+                multipliers: s.multipliers,
+                residuals: s.residuals,
+            };
+            for channel in &mut self.channels {
+                channel.push(&columns);
+            }
         }
-        self.samples += 1;
     }
 
     /// The summary, with the run's statistics, the weld's failure time and
@@ -267,16 +222,16 @@ impl Metrics {
             rejected_steps: stats.rejected_steps,
             rhs_evaluations: stats.rhs_evaluations,
             energy_balance_error_rel: self.energy_error,
-            channels: Channels(self.channels.iter().map(|c| c.summary(self.g)).collect()),
+            channels: Channels(self.channel_summaries()),
             ..Summary::EMPTY
         };
-        if let Some((peak, before, after)) = self.peak {
-            let (t, c) = refine_peak(peak, before, after);
+        if let Some(peak) = Peak::of(&self.crush_history) {
+            let (t, c) = peak.refined();
             summary.max_crush_m = Some(c);
             summary.time_of_max_crush_s = Some(t);
-            summary.time_to_zero_velocity_s = self.first_zero;
-            summary.peak_deceleration_g = Some(self.deceleration);
-            summary.rebound_velocity_mps = Some(self.rebound);
+            summary.time_to_zero_velocity_s = first_zero(&self.crush_history);
+            summary.peak_deceleration_g = Some(self.peak_deceleration());
+            summary.rebound_velocity_mps = Some(peak.rebound);
             if let Some((v0, pulse)) = self.pulse_metrics() {
                 summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
                 summary.equivalent_square_wave_g = summary
@@ -290,22 +245,35 @@ impl Metrics {
         summary
     }
 
+    /// The metrics of the scenario's channels.
+    fn channel_summaries(&self) -> Vec<ChannelSummary> {
+        let summary = |c: &ChannelRecord| c.summary(&self.times, self.g);
+        self.channels.iter().map(summary).collect()
+    }
+
+    /// The largest deceleration of the crush coordinate \[g\]: `−c̈ / g`
+    /// over the samples (−∞ when none is a number).
+    fn peak_deceleration(&self) -> f64 {
+        let decelerations = self.crush_acceleration.iter().map(|a| -a / self.g);
+        decelerations.fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// The pitch deviations of largest magnitude over the run and, given
     /// the end of the pulse, up to it: one scan, the run's continuing from
     /// the pulse's.
     fn pitch_extremes(&self, end_of_pulse: Option<f64>) -> (Vec<f64>, Option<Vec<f64>>) {
         let mut extremes = vec![0.0f64; self.pitch.len()];
+        let mut times = &self.times[..self.pitch_history.len()];
         let mut history = self.pitch_history.as_slice();
         let in_pulse = end_of_pulse.map(|end| {
-            let within = history.iter().take_while(|(t, _)| *t <= end).count();
-            let (pulse, rest) = history.split_at(within);
-            widen_extremes(&mut extremes, pulse);
-            history = rest;
+            let within = times.iter().take_while(|&&t| t <= end).count();
+            widen_extremes(&mut extremes, &history[..within]);
+            (times, history) = (&times[within..], &history[within..]);
             extremes.clone()
         });
         // Up to the first time that is not a number, if any.
-        let until_end = history.iter().take_while(|(t, _)| *t <= f64::INFINITY);
-        widen_extremes(&mut extremes, until_end);
+        let until_end = times.iter().take_while(|&&t| t <= f64::INFINITY).count();
+        widen_extremes(&mut extremes, &history[..until_end]);
         (extremes, in_pulse)
     }
 
@@ -326,16 +294,19 @@ impl Metrics {
     /// The sign-sanity warnings of the crush channel (named `channel` in
     /// them): moving away from the barrier at the start, never compressing.
     pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
-        let (Some(start), Some(rate)) = (self.crush_history.first(), self.first_rate) else {
+        let Some(start) = self.crush_history.first() else {
             return Vec::new();
         };
         let first = ChannelPoint {
             t: start.t,
             value: start.crush,
-            rate,
+            rate: start.rate,
         };
+        let largest = (self.crush_history.iter()).fold(f64::NEG_INFINITY, |largest, p| {
+            if p.crush > largest { p.crush } else { largest }
+        });
         let away = warning::moving_away(channel, first);
-        let flat = warning::never_compresses(channel, first, self.peak_value);
+        let flat = warning::never_compresses(channel, first, largest);
         away.into_iter().chain(flat).collect()
     }
 
@@ -348,12 +319,12 @@ impl Metrics {
     /// check (crush beyond [`CRUSH_BOUND`]: they cannot when every sample
     /// is within it).
     fn pulse_metrics(&self) -> Option<(f64, FilteredMetrics)> {
-        let t: Vec<f64> = self.crush_history.iter().map(|p| p.t).collect();
-        let v0 = self.first_rate?;
+        let v0 = self.crush_history.first()?.rate;
         let bounded = (self.crush_history.iter()).all(|p| p.crush.abs() <= CRUSH_BOUND);
         let crush: Option<Vec<f64>> =
             (!bounded).then(|| self.crush_history.iter().map(|p| p.crush).collect());
-        let pulse = Pulse::resampled(&t, &self.crush_acceleration, v0, crush.as_deref());
+        let t = &self.times[..self.crush_history.len()];
+        let pulse = Pulse::resampled(t, &self.crush_acceleration, v0, crush.as_deref());
         let metrics = pulse.and_then(|p| p.filtered_metrics()).ok()?;
         Some((v0, metrics))
     }
@@ -361,11 +332,8 @@ impl Metrics {
 
 /// Widens `extremes` to the pitch deviations of larger magnitude among
 /// `history`'s, the first of equals.
-fn widen_extremes<'a>(
-    extremes: &mut [f64],
-    history: impl IntoIterator<Item = &'a (f64, [f64; 2])>,
-) {
-    for (_, deviations) in history {
+fn widen_extremes(extremes: &mut [f64], history: &[[f64; 2]]) {
+    for deviations in history {
         for (extreme, &d) in extremes.iter_mut().zip(deviations.iter()) {
             if d.abs() > extreme.abs() {
                 *extreme = d;
@@ -393,25 +361,69 @@ const CRUSH_BOUND: f64 = 1e300;
 /// The most samples a record reserves room for at the start of a run.
 const RESERVED_SAMPLES: usize = 1 << 16;
 
-/// `(t, c)` of the crush maximum: the zero of the crush rate next to the
-/// largest sample, by cubic Hermite interpolation of the crush.
-fn refine_peak(
-    peak: CrushPoint,
+/// The largest crush of a run: its sample, with the samples before and
+/// after it, and the rebound that follows.
+#[derive(Clone, Copy, Debug)]
+struct Peak {
+    at: CrushPoint,
     before: Option<CrushPoint>,
     after: Option<CrushPoint>,
-) -> (f64, f64) {
-    let candidates = [before.map(|b| (b, peak)), after.map(|a| (peak, a))];
-    for (a, b) in candidates.into_iter().flatten() {
-        if a.rate >= 0.0 && b.rate <= 0.0 && a.rate != b.rate {
-            let h = b.t - a.t;
-            let s = a.rate / (a.rate - b.rate);
-            // Hermite on [a, b] evaluated at the linear estimate of the rate's zero.
-            let [w0, w1, w2, w3] = hermite_weights(s, h);
-            let c = w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate;
-            return (a.t + s * h, c.max(peak.crush));
+    /// The largest speed away from the barrier from the peak on (0 if
+    /// none).
+    rebound: f64,
+}
+
+impl Peak {
+    /// The peak of the crush `history`: the first sample of largest crush
+    /// (the first sample while none is a number); `None` without samples.
+    fn of(history: &[CrushPoint]) -> Option<Peak> {
+        let first = *history.first()?;
+        let (mut index, mut largest) = (0, first.crush.max(f64::NEG_INFINITY));
+        for (k, p) in history.iter().enumerate().skip(1) {
+            if p.crush > largest {
+                (index, largest) = (k, p.crush);
+            }
         }
+        let rebound = (history[index..].iter()).fold(0.0f64, |m, p| m.max(-p.rate));
+        Some(Peak {
+            at: history[index],
+            before: index.checked_sub(1).map(|k| history[k]),
+            after: history.get(index + 1).copied(),
+            rebound,
+        })
     }
-    (peak.t, peak.crush)
+
+    /// `(t, c)` of the crush maximum: the zero of the crush rate next to
+    /// the largest sample, by cubic Hermite interpolation of the crush.
+    fn refined(&self) -> (f64, f64) {
+        let peak = self.at;
+        let candidates = [
+            self.before.map(|b| (b, peak)),
+            self.after.map(|a| (peak, a)),
+        ];
+        for (a, b) in candidates.into_iter().flatten() {
+            if a.rate >= 0.0 && b.rate <= 0.0 && a.rate != b.rate {
+                let h = b.t - a.t;
+                let s = a.rate / (a.rate - b.rate);
+                // Hermite on [a, b] evaluated at the linear estimate of the rate's zero.
+                let [w0, w1, w2, w3] = hermite_weights(s, h);
+                let c = w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate;
+                return (a.t + s * h, c.max(peak.crush));
+            }
+        }
+        (peak.t, peak.crush)
+    }
+}
+
+/// The first time the crush rate falls from positive to zero or below,
+/// interpolated linearly between the two samples.
+fn first_zero(history: &[CrushPoint]) -> Option<f64> {
+    let w = history
+        .windows(2)
+        .find(|w| w[0].rate > 0.0 && w[1].rate <= 0.0)?;
+    let (p, point) = (w[0], w[1]);
+    let f = p.rate / (p.rate - point.rate);
+    Some(p.t + f * (point.t - p.t))
 }
 
 #[cfg(test)]
@@ -440,12 +452,7 @@ mod tests {
 
     #[test]
     fn extremes_widen_to_the_first_deviation_of_larger_magnitude() {
-        let history = [
-            (0.0, [0.1, -0.2]),
-            (1.0, [-0.3, 0.2]),
-            (2.0, [0.3, -0.5]),
-            (3.0, [0.05, 0.0]),
-        ];
+        let history = [[0.1, -0.2], [-0.3, 0.2], [0.3, -0.5], [0.05, 0.0]];
         let mut extremes = [0.0; 2];
         widen_extremes(&mut extremes, &history[..2]);
         assert_eq!(extremes, [-0.3, -0.2]);
@@ -454,5 +461,46 @@ mod tests {
         let mut one = [0.0];
         widen_extremes(&mut one, &history);
         assert_eq!(one, [-0.3]);
+    }
+
+    /// `(t, crush, rate)` points.
+    fn points(rows: &[(f64, f64, f64)]) -> Vec<CrushPoint> {
+        (rows.iter())
+            .map(|&(t, crush, rate)| CrushPoint { t, crush, rate })
+            .collect()
+    }
+
+    /// The peak is the first sample of largest crush (the first sample
+    /// while none is a number); the rebound the fastest retreat from it on;
+    /// the first zero of the rate interpolated between its samples.
+    #[test]
+    fn the_peak_is_the_first_largest_crush_and_the_rebound_follows_it() {
+        let nan = f64::NAN;
+        let history = points(&[
+            (0.0, nan, 3.0),
+            (1.0, 0.2, 2.0),
+            (2.0, 0.5, -1.0),
+            (3.0, 0.5, -4.0),
+            (4.0, 0.4, nan),
+            (5.0, 0.1, -2.0),
+        ]);
+        let peak = Peak::of(&history).unwrap();
+        assert_eq!(
+            (peak.at.t, peak.before.unwrap().t, peak.after.unwrap().t),
+            (2.0, 1.0, 3.0)
+        );
+        assert_eq!(peak.rebound, 4.0);
+        // Between (1, 2) and (2, −1) the rate is 0 a third of the way on.
+        assert_eq!(first_zero(&history), Some(1.0 + 2.0 / 3.0));
+        // All NaN: the first sample, no neighbour before it; a run that
+        // only retreats has no zero, and a rebound of its fastest retreat.
+        let lost = points(&[(0.0, nan, -1.0), (1.0, nan, -3.0)]);
+        let peak = Peak::of(&lost).unwrap();
+        assert_eq!(
+            (peak.at.t, peak.before.is_none(), peak.rebound),
+            (0.0, true, 3.0)
+        );
+        assert_eq!(first_zero(&lost), None);
+        assert!(Peak::of(&[]).is_none());
     }
 }
