@@ -171,15 +171,15 @@ impl<const N: usize> OdeVector for PhaseState<N> {
         }
     }
 
-    /// `x − x` is 0 for a finite `x`, NaN otherwise: one sum, no branch
-    /// per component.
+    /// `0·x` is 0 for a finite `x`, NaN otherwise: one sum, no branch per
+    /// component.
     fn all_finite(&self) -> bool {
         let mut sum = 0.0;
         for i in 0..N {
-            sum += (self.q[i] - self.q[i]) + (self.v[i] - self.v[i]);
+            sum += self.q[i] * 0.0 + self.v[i] * 0.0;
         }
         for &x in self.work.iter().chain(self.z.as_slice()) {
-            sum += x - x;
+            sum += x * 0.0;
         }
         sum == 0.0
     }
