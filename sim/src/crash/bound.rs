@@ -31,12 +31,14 @@ pub struct Binding {
 }
 
 /// A bound input as a call reads it: the binding, with the number of
-/// arguments its component takes (`None`: any), asked once.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// arguments its component takes (`None`: any) and its value where it is
+/// constant ([`Component::constant`]), asked once.
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Resolved {
     component: usize,
     port: Port,
     arity: Option<usize>,
+    constant: Option<f64>,
 }
 
 /// A model's inputs bound to components; implements [`InputFunctions`].
@@ -102,6 +104,7 @@ impl BoundInputs {
                     component: binding.component,
                     port: binding.port,
                     arity: named.component.arguments().map(|(needed, _)| needed),
+                    constant: named.component.constant(binding.port),
                 })
             })
             .collect();
@@ -161,7 +164,10 @@ impl BoundInputs {
     fn own_value(&self, input: usize, args: &[f64]) -> Option<(usize, Result<f64, OutOfRange>)> {
         let r = (*self.resolved.get(input)?)?;
         r.arity.is_none_or(|needed| needed == args.len()).then(|| {
-            let value = self.components[r.component].component.value(r.port, args);
+            let value = match r.constant {
+                Some(value) if args.iter().all(|x| x.is_finite()) => Ok(value),
+                _ => self.components[r.component].component.value(r.port, args),
+            };
             (r.component, value)
         })
     }
@@ -552,5 +558,47 @@ mod tests {
                     .to_string()
             ))
         );
+    }
+
+    /// A column of zeros answers 0 without its component at finite times,
+    /// and as its component does elsewhere: NaN at NaN when it extrapolates,
+    /// an error outside its rows under `error` (where it is not constant).
+    #[test]
+    fn a_column_of_zeros_answers_as_its_component_does() {
+        use crate::crash::curve::{Curve, Outside};
+        use crate::crash::tabulated::Tabulated;
+        let column = |outside| {
+            let curve = Curve::new(vec![0.0, 1.0], vec![0.0, 0.0], outside).unwrap();
+            NamedComponent {
+                name: format!("barrier.{outside:?}"),
+                component: Box::new(Tabulated {
+                    curve,
+                    stop_at_kinks: false,
+                }),
+            }
+        };
+        let value = |c| {
+            Some(Binding {
+                component: c,
+                port: Port::Value,
+            })
+        };
+        let inputs = BoundInputs::new(
+            vec![column(Outside::Extrapolate), column(Outside::Error)],
+            vec![value(0), value(1)],
+            vec![None, None],
+            vec!["fx".into(), "fz".into()],
+        );
+        assert_eq!(inputs.resolved[0].unwrap().constant, Some(0.0));
+        assert_eq!(inputs.resolved[1].unwrap().constant, None);
+        assert_eq!(inputs.value(0, &[7.0]).to_bits(), 0.0f64.to_bits());
+        assert!(inputs.value(0, &[f64::NAN]).is_nan());
+        assert_eq!(inputs.take_failure(), None);
+        assert_eq!(inputs.value(1, &[0.5]).to_bits(), 0.0f64.to_bits());
+        assert!(inputs.value(1, &[2.0]).is_nan());
+        assert!(matches!(
+            inputs.take_failure(),
+            Some(Fault::OutOfRange { x, .. }) if x == 2.0
+        ));
     }
 }

@@ -240,6 +240,13 @@ impl Curve {
         }
     }
 
+    /// Whether it is `(0, 0)` at every finite abscissa: all its values +0,
+    /// interpolated linearly, with a policy outside that has a value
+    /// there (not `error`). [`Curve::eval`] answers so, to the bit.
+    pub fn is_zero_everywhere(&self) -> bool {
+        self.zero && self.outside != Outside::Error
+    }
+
     /// Whether it is interpolated by a monotone cubic ([`Curve::smooth`]).
     pub fn is_smooth(&self) -> bool {
         self.tangents.is_some()

@@ -228,6 +228,14 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// `Damping` with respect to the second.
     fn value(&self, port: Port, args: &[f64]) -> Result<f64, OutOfRange>;
 
+    /// The value of `port` where it is the same at every finite argument
+    /// and in every state (a table column of zeros): the inputs bound to
+    /// it then answer without calling the component. `None` (the default)
+    /// otherwise. Asked once, when the inputs are bound.
+    fn constant(&self, _port: Port) -> Option<f64> {
+        None
+    }
+
     /// The component's events, in index order; empty if it has none.
     fn events(&self) -> &'static [Event];
 

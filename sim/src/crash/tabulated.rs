@@ -51,6 +51,15 @@ impl Component for Tabulated {
         }
     }
 
+    /// 0 for a column of zeros (with a value outside its rows), and for
+    /// the derivative by a second argument.
+    fn constant(&self, port: Port) -> Option<f64> {
+        match port {
+            Port::Value | Port::Stiffness => self.curve.is_zero_everywhere().then_some(0.0),
+            Port::Damping => Some(0.0),
+        }
+    }
+
     // None: it keeps no state.
     no_events!();
 
