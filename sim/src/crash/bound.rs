@@ -76,6 +76,9 @@ pub struct BoundInputs {
     /// of event functions of all components together): the integrator asks
     /// for them with every event function of every step.
     event_owners: Vec<(usize, usize)>,
+    /// The components with events the integrator watches, each with the
+    /// index of its first event among all and its number of events.
+    event_blocks: Vec<(usize, usize, usize)>,
     /// The elastic energy each component stored when the run started
     /// ([`Component::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
@@ -119,6 +122,7 @@ impl BoundInputs {
             layout,
             loaded: Internal::EMPTY,
             event_owners: Vec::new(),
+            event_blocks: Vec::new(),
             stored_at_start: Vec::new(),
             stand_ins,
             standing_in: false,
@@ -126,6 +130,14 @@ impl BoundInputs {
         inputs.event_owners = (0..inputs.components.len())
             .flat_map(|c| (0..inputs.events_of(c)).map(move |local| (c, local)))
             .collect();
+        let mut first = 0;
+        for c in 0..inputs.components.len() {
+            let count = inputs.events_of(c);
+            if count > 0 {
+                inputs.event_blocks.push((c, first, count));
+                first += count;
+            }
+        }
         inputs
     }
 
@@ -261,17 +273,11 @@ impl BoundInputs {
 
     /// All event functions, given the model's input arguments at one state.
     pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), Fault> {
-        let mut offset = 0;
-        for (c, named) in self.components.iter().enumerate() {
-            let Some(args) = self.arguments_of(c, arguments) else {
-                continue;
-            };
-            let n = named.component.events().len();
-            let result = named
-                .component
-                .event_values(args, &mut g[offset..offset + n]);
+        for &(c, first, count) in &self.event_blocks {
+            let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+            let component = &self.components[c].component;
+            let result = component.event_values(args, &mut g[first..first + count]);
             result.map_err(|e| self.out_of_range(c, None, e))?;
-            offset += n;
         }
         Ok(())
     }
