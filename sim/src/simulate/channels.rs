@@ -178,16 +178,18 @@ impl ChannelRecord {
     /// The indices of the largest and the smallest finite sample, the
     /// first of equals.
     fn extremes(&self) -> (Option<usize>, Option<usize>) {
-        let mut finite = (self.values.iter().enumerate()).filter(|(_, x)| x.is_finite());
-        let Some((first, &x)) = finite.next() else {
+        let values = &self.values;
+        let Some(first) = values.iter().position(|x| x.is_finite()) else {
             return (None, None);
         };
-        let (mut max, mut min) = ((first, x), (first, x));
-        for (k, &x) in finite {
-            if x > max.1 {
+        let (mut max, mut min) = ((first, values[first]), (first, values[first]));
+        // A NaN compares false; an infinity passes a comparison but is not
+        // finite.
+        for (k, &x) in values.iter().enumerate().skip(first + 1) {
+            if x > max.1 && x.is_finite() {
                 max = (k, x);
             }
-            if x < min.1 {
+            if x < min.1 && x.is_finite() {
                 min = (k, x);
             }
         }
