@@ -382,6 +382,22 @@ pub enum Smoothness {
     /// order, where a port's slope or value jumps: an input of time is
     /// smooth over a step with none of them inside.
     Kinks(Vec<f64>),
+    /// Continuous, and linear in its first argument between these values
+    /// of it, in increasing order (the points of a table interpolated
+    /// linearly): kinks as [`Smoothness::Kinks`], with straight lines
+    /// between them.
+    Linear(Vec<f64>),
+}
+
+impl Smoothness {
+    /// The values of the first argument where a port's slope or value may
+    /// jump, for [`Smoothness::Kinks`] and [`Smoothness::Linear`].
+    pub fn kinks(&self) -> Option<&[f64]> {
+        match self {
+            Smoothness::Kinks(points) | Smoothness::Linear(points) => Some(points),
+            Smoothness::Unknown | Smoothness::Smooth => None,
+        }
+    }
 }
 
 /// The state of a contact element's contact (see [`Component::contact`]).

@@ -76,9 +76,14 @@ impl Component for Tabulated {
         }
     }
 
-    /// Smooth between the curve's corners ([`Curve::corners`]).
+    /// Linear between the points of a table interpolated linearly (and
+    /// beyond its ends); a monotone cubic is smooth between its corners
+    /// ([`Curve::corners`]).
     fn smoothness(&self) -> Smoothness {
-        Smoothness::Kinks(self.curve.corners())
+        match self.curve.is_smooth() {
+            true => Smoothness::Kinks(self.curve.corners()),
+            false => Smoothness::Linear(self.curve.corners()),
+        }
     }
 }
 

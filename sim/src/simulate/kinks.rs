@@ -40,15 +40,25 @@ impl Choice for TimeKinks {
     }
 }
 
-/// The inputs of time with kinks, each with its kinks in increasing order.
+/// An input of time with kinks.
+#[derive(Clone, Debug, PartialEq)]
+struct Kinked {
+    input: usize,
+    /// Its kinks, in increasing order.
+    kinks: Vec<f64>,
+    /// Whether it is linear between them ([`Smoothness::Linear`]).
+    linear: bool,
+}
+
+/// The inputs of time with kinks.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct KinkedInputs {
-    inputs: Vec<(usize, Vec<f64>)>,
+    inputs: Vec<Kinked>,
 }
 
 impl KinkedInputs {
     /// The inputs of `system` that every call site passes the time alone,
-    /// bound to the value of a component with kinks ([`Smoothness::Kinks`]).
+    /// bound to the value of a component with kinks ([`Smoothness::kinks`]).
     /// `time_sites`: [`super::stops::time_sites`] of `system`.
     pub(crate) fn of<const N: usize, S: LagrangianSystem<N>>(
         system: &S,
@@ -67,11 +77,17 @@ impl KinkedInputs {
             if binding.port != Port::Value || calls.is_empty() || calls.contains(&false) {
                 continue;
             }
-            let component = &inputs.components[binding.component].component;
-            if let Smoothness::Kinks(points) = component.smoothness()
-                && !points.is_empty()
+            let smoothness = inputs.components[binding.component].component.smoothness();
+            if let Some(kinks) = smoothness.kinks()
+                && !kinks.is_empty()
             {
-                kinked.push((input, points));
+                let linear = matches!(smoothness, Smoothness::Linear(_));
+                let kinks = kinks.to_vec();
+                kinked.push(Kinked {
+                    input,
+                    kinks,
+                    linear,
+                });
             }
         }
         KinkedInputs { inputs: kinked }
@@ -80,7 +96,7 @@ impl KinkedInputs {
     /// The kinks of all the inputs, in increasing order.
     pub(crate) fn kinks(&self) -> Vec<f64> {
         let mut kinks: Vec<f64> = (self.inputs.iter())
-            .flat_map(|(_, k)| k.iter().copied())
+            .flat_map(|kinked| kinked.kinks.iter().copied())
             .collect();
         kinks.sort_by(f64::total_cmp);
         kinks.dedup();
@@ -93,12 +109,20 @@ impl KinkedInputs {
         let t1 = t0 + h;
         // A step ended at a kink (`stop_at_kinks`) ends there to rounding.
         let slack = 64.0 * f64::EPSILON * t0.abs().max(t1.abs());
-        for (input, kinks) in &self.inputs {
+        for Kinked {
+            input,
+            kinks,
+            linear,
+        } in &self.inputs
+        {
             let first = kinks.partition_point(|&k| k <= t0 + slack);
             let end = first + kinks[first..].partition_point(|&k| k < t1 - slack);
             if first < end {
-                let u = |t: f64| inputs.value(*input, &[t]);
-                let cubic = StandIn::of(t0, h, &kinks[first..end], u);
+                let (inside, u) = (&kinks[first..end], |t: f64| inputs.value(*input, &[t]));
+                let cubic = match linear {
+                    true => StandIn::of_linear(t0, h, inside, u),
+                    false => StandIn::of(t0, h, inside, u),
+                };
                 inputs.stand_in(*input, cubic);
             }
         }

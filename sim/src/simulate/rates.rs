@@ -216,10 +216,11 @@ fn time_kinks<const N: usize, S: LagrangianSystem<N>>(
     for (&(input, _), &is_time) in system.input_sites().iter().zip(time_sites) {
         let binding = (*inputs.bindings.get(input)?)?;
         let component = &inputs.components.get(binding.component)?.component;
-        match component.smoothness() {
-            Smoothness::Smooth => {}
-            Smoothness::Kinks(points) if points.is_empty() || is_time => kinks.extend(points),
-            Smoothness::Kinks(_) | Smoothness::Unknown => return None,
+        let smoothness = component.smoothness();
+        match (&smoothness, smoothness.kinks()) {
+            (Smoothness::Smooth, _) => {}
+            (_, Some(points)) if points.is_empty() || is_time => kinks.extend(points),
+            _ => return None,
         }
     }
     kinks.sort_by(f64::total_cmp);
