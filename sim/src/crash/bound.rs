@@ -45,9 +45,9 @@ struct Resolved {
 ///
 /// The bindings are resolved and the components' events counted when the
 /// inputs are made ([`BoundInputs::new`]), so that an input call is one
-/// indexed call of its component: a change of `bindings`, or a component
-/// replaced by one of another arity or with other events, goes through a
-/// new `BoundInputs`.
+/// indexed call of its component (or none, for a constant one): a change of
+/// `bindings`, or a component replaced by one of another arity, with other
+/// events or another constant value, goes through a new `BoundInputs`.
 ///
 /// A value that cannot be produced (a table read outside its range under the
 /// `error` policy) is returned as NaN and the reason kept, so the integrator
@@ -589,14 +589,24 @@ mod tests {
                 port: Port::Value,
             })
         };
+        let constant = NamedComponent {
+            name: "push".into(),
+            component: Box::new(crate::crash::constant::Constant { value: 3.5 }),
+        };
         let inputs = BoundInputs::new(
-            vec![column(Outside::Extrapolate), column(Outside::Error)],
-            vec![value(0), value(1)],
-            vec![None, None],
-            vec!["fx".into(), "fz".into()],
+            vec![
+                column(Outside::Extrapolate),
+                column(Outside::Error),
+                constant,
+            ],
+            vec![value(0), value(1), value(2)],
+            vec![None, None, None],
+            vec!["fx".into(), "fz".into(), "push".into()],
         );
         assert_eq!(inputs.resolved[0].unwrap().constant, Some(0.0));
         assert_eq!(inputs.resolved[1].unwrap().constant, None);
+        assert_eq!(inputs.resolved[2].unwrap().constant, Some(3.5));
+        assert_eq!(inputs.value(2, &[1.0, 2.0]), 3.5);
         assert_eq!(inputs.value(0, &[7.0]).to_bits(), 0.0f64.to_bits());
         assert!(inputs.value(0, &[f64::NAN]).is_nan());
         assert_eq!(inputs.take_failure(), None);
