@@ -5,8 +5,8 @@
 
 use crate::variables::Quantity;
 use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem, WithDimension};
+use lagrangian_sim::crash::BoundInputs;
 use lagrangian_sim::crash::constant::Constant;
-use lagrangian_sim::crash::{BoundInputs, Component};
 use lagrangian_sim::ode::{self, EventAction, OdeProblem, PhaseState};
 use lagrangian_sim::scenario::{Columns, Scenario};
 use lagrangian_sim::simulate::{CrashProblem, stepwise};
@@ -245,11 +245,13 @@ where
         }
     }
 
-    /// The component an FMU input is bound to.
-    fn input_component(&mut self, input: usize) -> Option<&mut Box<dyn Component>> {
+    /// Gives the constant an FMU input is bound to the value `value`;
+    /// `None` for an input bound to nothing.
+    fn set_input_constant(&mut self, input: usize, value: f64) -> Option<()> {
         let inputs = self.inputs.as_mut()?;
         let binding = inputs.bindings.get(input).copied().flatten()?;
-        Some(&mut inputs.components[binding.component].component)
+        let constant = Box::new(Constant { value });
+        inputs.replace(binding.component, constant).then_some(())
     }
 
     fn input_constant(&self, input: usize) -> Option<f64> {
@@ -404,12 +406,8 @@ where
                     .set_parameter(&name, value)
                     .map_err(|e| e.to_string())
             }
-            Quantity::Input(i) => {
-                let component = (self.input_component(i))
-                    .ok_or_else(|| format!("input {i} is not bound to a constant"))?;
-                *component = Box::new(Constant { value });
-                Ok(())
-            }
+            Quantity::Input(i) => (self.set_input_constant(i, value))
+                .ok_or_else(|| format!("input {i} is not bound to a constant")),
             other => Err(format!("{other:?} cannot be set")),
         }
     }

@@ -46,8 +46,9 @@ struct Resolved {
 /// The bindings are resolved and the components' events counted when the
 /// inputs are made ([`BoundInputs::new`]), so that an input call is one
 /// indexed call of its component (or none, for a constant one): a change of
-/// `bindings`, or a component replaced by one of another arity, with other
-/// events or another constant value, goes through a new `BoundInputs`.
+/// `bindings`, or a component replaced by one with other events, goes
+/// through a new `BoundInputs`; one of the same events, through
+/// [`BoundInputs::replace`].
 ///
 /// A value that cannot be produced (a table read outside its range under the
 /// `error` policy) is returned as NaN and the reason kept, so the integrator
@@ -89,7 +90,40 @@ pub struct BoundInputs {
     standing_in: bool,
 }
 
+impl Resolved {
+    /// `binding` as a call reads it; `None` for a component that is not
+    /// among `components`.
+    fn of(binding: Binding, components: &[NamedComponent]) -> Option<Resolved> {
+        let named = components.get(binding.component)?;
+        Some(Resolved {
+            component: binding.component,
+            port: binding.port,
+            arity: named.component.arguments().map(|(needed, _)| needed),
+            constant: named.component.constant(binding.port),
+        })
+    }
+}
+
 impl BoundInputs {
+    /// Puts `component` in place of component `c` (an FMU's input given a
+    /// new value), the inputs bound to it resolved again; it must have the
+    /// events of the one it replaces. `false` when there is no component
+    /// `c`.
+    pub fn replace(&mut self, c: usize, component: Box<dyn Component>) -> bool {
+        let Some(named) = self.components.get_mut(c) else {
+            return false;
+        };
+        named.component = component;
+        for (resolved, binding) in self.resolved.iter_mut().zip(&self.bindings) {
+            if let Some(binding) = binding
+                && binding.component == c
+            {
+                *resolved = Resolved::of(*binding, &self.components);
+            }
+        }
+        true
+    }
+
     /// Inputs bound to `components` by `bindings` (one per input), with the
     /// `event_arguments` of each component (one per component).
     pub fn new(
@@ -100,16 +134,7 @@ impl BoundInputs {
     ) -> BoundInputs {
         let layout = StateLayout::of(&components, &event_arguments);
         let resolved = (bindings.iter())
-            .map(|binding| {
-                let binding = (*binding)?;
-                let named = components.get(binding.component)?;
-                Some(Resolved {
-                    component: binding.component,
-                    port: binding.port,
-                    arity: named.component.arguments().map(|(needed, _)| needed),
-                    constant: named.component.constant(binding.port),
-                })
-            })
+            .map(|binding| Resolved::of((*binding)?, &components))
             .collect();
         let stand_ins = vec![None; bindings.len()];
         let mut inputs = BoundInputs {
@@ -607,6 +632,12 @@ mod tests {
         assert_eq!(inputs.resolved[1].unwrap().constant, None);
         assert_eq!(inputs.resolved[2].unwrap().constant, Some(3.5));
         assert_eq!(inputs.value(2, &[1.0, 2.0]), 3.5);
+        // A constant given a new value (an FMU's input) answers it.
+        let mut inputs = inputs;
+        let new_value = Box::new(crate::crash::constant::Constant { value: -1.0 });
+        assert!(inputs.replace(2, new_value));
+        assert_eq!(inputs.value(2, &[1.0, 2.0]), -1.0);
+        assert!(!inputs.replace(3, Box::new(crate::crash::constant::Constant { value: 0.0 })));
         assert_eq!(inputs.value(0, &[7.0]).to_bits(), 0.0f64.to_bits());
         assert!(inputs.value(0, &[f64::NAN]).is_nan());
         assert_eq!(inputs.take_failure(), None);
