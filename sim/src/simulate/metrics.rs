@@ -294,7 +294,8 @@ impl Metrics {
     /// The sign-sanity warnings of the crush channel (named `channel` in
     /// them): moving away from the barrier at the start, never compressing.
     pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
-        let Some(start) = self.crush_history.first() else {
+        let (Some(start), Some(peak)) = (self.crush_history.first(), Peak::of(&self.crush_history))
+        else {
             return Vec::new();
         };
         let first = ChannelPoint {
@@ -302,11 +303,8 @@ impl Metrics {
             value: start.crush,
             rate: start.rate,
         };
-        let largest = (self.crush_history.iter()).fold(f64::NEG_INFINITY, |largest, p| {
-            if p.crush > largest { p.crush } else { largest }
-        });
         let away = warning::moving_away(channel, first);
-        let flat = warning::never_compresses(channel, first, largest);
+        let flat = warning::never_compresses(channel, first, peak.largest);
         away.into_iter().chain(flat).collect()
     }
 
@@ -368,6 +366,8 @@ struct Peak {
     at: CrushPoint,
     before: Option<CrushPoint>,
     after: Option<CrushPoint>,
+    /// The largest crush that is a number (−∞ if none is).
+    largest: f64,
     /// The largest speed away from the barrier from the peak on (0 if
     /// none).
     rebound: f64,
@@ -389,6 +389,7 @@ impl Peak {
             at: history[index],
             before: index.checked_sub(1).map(|k| history[k]),
             after: history.get(index + 1).copied(),
+            largest,
             rebound,
         })
     }
