@@ -490,7 +490,7 @@ mod tests {
             (peak.at.t, peak.before.unwrap().t, peak.after.unwrap().t),
             (2.0, 1.0, 3.0)
         );
-        assert_eq!(peak.rebound, 4.0);
+        assert_eq!((peak.rebound, peak.largest), (4.0, 0.5));
         // Between (1, 2) and (2, −1) the rate is 0 a third of the way on.
         assert_eq!(first_zero(&history), Some(1.0 + 2.0 / 3.0));
         // All NaN: the first sample, no neighbour before it; a run that
@@ -501,6 +501,7 @@ mod tests {
             (peak.at.t, peak.before.is_none(), peak.rebound),
             (0.0, true, 3.0)
         );
+        assert_eq!(peak.largest, f64::NEG_INFINITY);
         assert_eq!(first_zero(&lost), None);
         assert!(Peak::of(&[]).is_none());
     }
