@@ -76,10 +76,12 @@ mod tests {
     fn each_shim_is_its_function() {
         for f in Func::ALL {
             for (a, b) in [(0.3, -1.2), (-0.7, 2.5), (0.0, 0.0), (f64::NAN, 1.0)] {
-                assert_eq!(
-                    function(f)(a, b).to_bits(),
-                    f.apply(a, b).to_bits(),
-                    "{f:?}"
+                let (shim, direct) = (function(f)(a, b), f.apply(a, b));
+                // A NaN's sign is not specified: `ln(-0.7)` from the C
+                // library and folded by the optimizer differ in it.
+                assert!(
+                    shim.to_bits() == direct.to_bits() || (shim.is_nan() && direct.is_nan()),
+                    "{f:?}({a}, {b}): {shim} against {direct}"
                 );
             }
         }
