@@ -77,6 +77,9 @@ struct Compiled {
 /// The native code of one tape's routines (see the crate documentation).
 pub struct NativeCode {
     compiled: Vec<Compiled>,
+    /// By [`RoutineKind::index`]: the position in `compiled` of the
+    /// routine of that kind (not a derived one), if it was compiled.
+    by_kind: [Option<usize>; RoutineKind::ALL.len()],
     /// The routines left to the tape, and why.
     declined: Vec<(RoutineKind, JitError)>,
     /// The size of the tape's register file.
@@ -172,7 +175,7 @@ impl NativeRoutines for NativeCode {
         out: &mut [f64],
         inputs: InputCall<'_>,
     ) -> bool {
-        let found = (self.compiled.iter()).find(|c| c.kind == kind && c.derived.is_none());
+        let found = self.by_kind[kind.index()].map(|k| &self.compiled[k]);
         found.is_some_and(|compiled| self.call(compiled, registers, out, inputs))
     }
 
@@ -235,9 +238,12 @@ pub fn compile(tape: &Tape, options: &Options) -> Result<NativeCode, JitError> {
             },
             outputs: routine.outputs.len(),
         })
-        .collect();
+        .collect::<Vec<_>>();
+    let by_kind = RoutineKind::ALL
+        .map(|kind| (compiled.iter()).position(|c| c.kind == kind && c.derived.is_none()));
     Ok(NativeCode {
         compiled,
+        by_kind,
         declined,
         registers: tape.layout().registers(),
         module: Some(module),

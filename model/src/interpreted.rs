@@ -282,6 +282,7 @@ impl InterpretedModel {
         }
     }
 
+    #[inline]
     pub(crate) fn check(&self, values: &[f64]) -> Result<(), ModelError> {
         if values.len() == self.dimension() {
             Ok(())
@@ -294,7 +295,7 @@ impl InterpretedModel {
     }
 
     /// Runs one routine and hands its outputs to `take`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn run<I: InputFunctions + ?Sized, R>(
         &self,
         kind: RoutineKind,
@@ -316,7 +317,7 @@ impl InterpretedModel {
     }
 
     /// Runs routine `kind` as native code; `false` when there is none for it.
-    #[inline]
+    #[inline(always)]
     fn run_native<I: InputFunctions + ?Sized>(
         &self,
         kind: RoutineKind,
@@ -403,6 +404,7 @@ impl InterpretedModel {
 
     /// The arguments of every input call at one state (see
     /// [`InterpretedModel::input_sites`]), concatenated into `out`.
+    #[inline]
     pub fn evaluate_input_arguments(
         &self,
         t: f64,

@@ -312,6 +312,12 @@ impl RoutineKind {
         RoutineKind::Constraints,
     ];
 
+    /// The routine's position in [`RoutineKind::ALL`]: a table by kind
+    /// finds a routine without a search.
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
     /// The number of outputs of the routine for a model with `n`
     /// coordinates; `None` for [`RoutineKind::InputArguments`],
     /// [`RoutineKind::Outputs`], [`RoutineKind::Switching`] and

@@ -124,6 +124,7 @@ impl RegisterLayout {
     }
 
     /// The register of coordinate `q_i`.
+    #[inline]
     pub fn coordinate(&self, i: usize) -> u32 {
         (self.q_base() + i) as u32
     }
@@ -139,6 +140,7 @@ impl RegisterLayout {
     }
 
     /// The register of the time `t`.
+    #[inline]
     pub fn time(&self) -> u32 {
         (self.q_base() + 3 * self.dimension) as u32
     }
@@ -153,6 +155,7 @@ impl RegisterLayout {
         self.time() as usize + 1 + self.temporaries
     }
 
+    #[inline]
     fn q_base(&self) -> usize {
         self.constants.len() + self.parameters
     }
@@ -184,6 +187,9 @@ pub struct Tape {
     steps: Vec<Vec<code::Step>>,
     /// The routines derived from those above (see `derived`), with their steps.
     derived: Vec<(DerivedRoutine, TapeRoutine, Vec<code::Step>)>,
+    /// By [`RoutineKind::index`]: the position of the routine of that kind
+    /// in `routines`, if the tape has one.
+    by_kind: [Option<usize>; RoutineKind::ALL.len()],
 }
 
 impl Tape {
@@ -233,12 +239,15 @@ impl Tape {
             .map(|routine| code::steps(routine, &layout, &arguments))
             .collect();
         let derived = derive(&layout, &routines, &arguments);
+        let by_kind =
+            RoutineKind::ALL.map(|kind| (routines.iter()).position(|routine| routine.kind == kind));
         Ok(Tape {
             layout,
             routines,
             arguments,
             steps,
             derived,
+            by_kind,
         })
     }
 
@@ -273,6 +282,7 @@ impl Tape {
     }
 
     /// Number of outputs of routine `kind` (0 when absent).
+    #[inline]
     pub fn output_count(&self, kind: RoutineKind) -> usize {
         self.routine(kind).map_or(0, |r| r.outputs.len())
     }
@@ -284,13 +294,14 @@ impl Tape {
         self.layout.constants.get(register as usize).copied()
     }
 
+    #[inline]
     fn routine(&self, kind: RoutineKind) -> Option<&TapeRoutine> {
-        self.routines.iter().find(|r| r.kind == kind)
+        Some(&self.routines[self.by_kind[kind.index()]?])
     }
 
     /// The routine `kind` and its steps.
     fn routine_and_steps(&self, kind: RoutineKind) -> Option<(&TapeRoutine, &[code::Step])> {
-        let k = self.routines.iter().position(|r| r.kind == kind)?;
+        let k = self.by_kind[kind.index()]?;
         Some((&self.routines[k], &self.steps[k]))
     }
 
@@ -320,12 +331,23 @@ impl Tape {
     /// Writes `(t, q, q̇, q̈)` into the state slots of `registers`, as
     /// [`Tape::run`] does first; `q̈` may be empty. `registers` must come
     /// from [`Tape::registers`].
+    ///
+    /// Inlined: a caller of a fixed dimension knows `q.len()`, and the
+    /// copies become a few moves instead of calls to `memcpy`.
+    #[inline(always)]
     pub fn load_state(&self, state: (f64, &[f64], &[f64], &[f64]), registers: &mut [f64]) {
         let (t, q, qd, qdd) = state;
-        let n = self.layout.dimension;
+        let n = q.len();
+        assert!(
+            n == self.layout.dimension && qd.len() == n,
+            "a state of dimension {}",
+            self.layout.dimension
+        );
         let base = self.layout.coordinate(0) as usize;
-        registers[base..base + n].copy_from_slice(q);
-        registers[base + n..base + 2 * n].copy_from_slice(qd);
+        let (coordinates, velocities) = registers[base..base + 2 * n].split_at_mut(n);
+        for k in 0..n {
+            (coordinates[k], velocities[k]) = (q[k], qd[k]);
+        }
         if qdd.len() == n {
             registers[base + 2 * n..base + 3 * n].copy_from_slice(qdd);
         }
