@@ -75,30 +75,55 @@ pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {
 /// of the signal as there is), so that the filter starts and ends settled on
 /// the signal's level and slope instead of on zero.
 pub fn cfc_filter(signal: &[f64], dt: f64, cfc: f64) -> Result<Vec<f64>, CfcError> {
-    let coefficients = coefficients(cfc, dt)?;
+    let [filtered] = cfc_filter_classes(signal, dt, [cfc])?;
+    Ok(filtered)
+}
+
+/// [`cfc_filter`] of `signal` to each of `classes`, bit for bit, with the
+/// filters run side by side: a pass is a chain of dependent multiply-adds,
+/// and the chains of different classes overlap in the processor.
+pub fn cfc_filter_classes<const M: usize>(
+    signal: &[f64],
+    dt: f64,
+    classes: [f64; M],
+) -> Result<[Vec<f64>; M], CfcError> {
+    let mut coefficients = [[0.0; 5]; M];
+    for (c, cfc) in coefficients.iter_mut().zip(classes) {
+        *c = self::coefficients(cfc, dt)?;
+    }
     let n = signal.len();
     if n < 2 {
-        return Ok(signal.to_vec());
+        return Ok(classes.map(|_| signal.to_vec()));
     }
     let pad = ((PADDING / dt).ceil() as usize).min(n - 1);
     let (first, last) = (signal[0], signal[n - 1]);
     let lead = (1..=pad).rev().map(|k| 2.0 * first - signal[k]);
     let tail = (1..=pad).map(|k| 2.0 * last - signal[n - 1 - k]);
     // Forward over the padded signal; the leading padding's outputs only
-    // settle the filter (the backward pass drops them), the rest are kept.
-    let mut forward = Pass::at_rest(coefficients, lead.clone().next().unwrap_or(first));
-    lead.for_each(|x| {
-        forward.step(x);
-    });
-    let mut y: Vec<f64> = Vec::with_capacity(n + pad);
-    y.extend((signal.iter().copied().chain(tail)).map(|x| forward.step(x)));
-    // Backward from the end of the trailing padding.
-    let mut backward = Pass::at_rest(coefficients, y[y.len() - 1]);
-    for v in y.iter_mut().rev() {
-        *v = backward.step(*v);
+    // settle the filters (the backward passes drop them), the rest are kept.
+    let at_rest = lead.clone().next().unwrap_or(first);
+    let mut forward = coefficients.map(|c| Pass::at_rest(c, at_rest));
+    for x in lead {
+        forward.iter_mut().for_each(|pass| _ = pass.step(x));
     }
-    y.truncate(n);
-    Ok(y)
+    let mut ys: [Vec<f64>; M] = std::array::from_fn(|_| vec![0.0; n + pad]);
+    for (k, x) in signal.iter().copied().chain(tail).enumerate() {
+        for (pass, y) in forward.iter_mut().zip(ys.iter_mut()) {
+            y[k] = pass.step(x);
+        }
+    }
+    // Backward from the end of the trailing padding.
+    let mut backward: [Pass; M] =
+        std::array::from_fn(|m| Pass::at_rest(coefficients[m], ys[m][n + pad - 1]));
+    for k in (0..n + pad).rev() {
+        for (pass, y) in backward.iter_mut().zip(ys.iter_mut()) {
+            y[k] = pass.step(y[k]);
+        }
+    }
+    for y in &mut ys {
+        y.truncate(n);
+    }
+    Ok(ys)
 }
 
 /// One pass of the filter: its coefficients and its last two inputs and
@@ -280,11 +305,17 @@ mod tests {
                     -200.0 * (60.0 * t).sin() + 30.0 * (1700.0 * t).cos() + 5.0 * t
                 })
                 .collect();
-            for cfc in [60.0, 180.0] {
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let side_by_side = cfc_filter_classes(&x, dt, [60.0, 180.0]).unwrap();
+            for (cfc, together) in [60.0, 180.0].into_iter().zip(side_by_side) {
                 let got = cfc_filter(&x, dt, cfc).unwrap();
                 let expected = reference(&x, dt, cfc);
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 assert_eq!(bits(&got), bits(&expected), "n = {n}, CFC {cfc}");
+                assert_eq!(
+                    bits(&together),
+                    bits(&expected),
+                    "n = {n}, CFC {cfc} beside another"
+                );
             }
         }
     }

@@ -10,7 +10,7 @@ pub mod cfc;
 pub mod channels;
 pub mod occupant;
 
-pub use cfc::{CfcError, cfc_filter};
+pub use cfc::{CfcError, cfc_filter, cfc_filter_classes};
 pub use occupant::{Olc, asi, clip_3ms, integrate, olc};
 use serde::Serialize;
 
@@ -184,8 +184,8 @@ impl Pulse {
     /// The CFC 60 and CFC 180 accelerations and the velocity of the
     /// latter, of a checked pulse sampled every `dt`.
     fn filtered(&self, dt: f64) -> Result<Filtered, PulseError> {
-        let cfc60 = cfc_filter(&self.acceleration, dt, 60.0).map_err(PulseError::Filter)?;
-        let cfc180 = cfc_filter(&self.acceleration, dt, 180.0).map_err(PulseError::Filter)?;
+        let [cfc60, cfc180] = cfc_filter_classes(&self.acceleration, dt, [60.0, 180.0])
+            .map_err(PulseError::Filter)?;
         let velocity = integrate(&self.t, &cfc180, self.v0);
         Ok(Filtered {
             cfc60,
