@@ -100,6 +100,16 @@ pub enum PulseError {
         /// The first period, `t[1] − t[0]` \[s\].
         first: f64,
     },
+    /// A channel has not one value per sample time.
+    #[error("{what} has {len} values for {samples} sample times")]
+    Length {
+        /// Which channel: `acceleration` or `crush`.
+        what: &'static str,
+        /// The number of its values.
+        len: usize,
+        /// The number of sample times.
+        samples: usize,
+    },
     /// A NaN or ±∞ among the samples.
     #[error("{what} at sample {index} is not a finite number")]
     NotFinite {
@@ -126,6 +136,10 @@ impl Pulse {
         crush: Option<&[f64]>,
     ) -> Result<Pulse, PulseError> {
         check_times(t)?;
+        check_lengths(
+            t.len(),
+            [("acceleration", Some(acceleration)), ("crush", crush)],
+        )?;
         let period = t
             .windows(2)
             .map(|w| w[1] - w[0])
@@ -134,9 +148,9 @@ impl Pulse {
         if t.windows(2).all(|w| w[1] - w[0] <= longest) {
             return Ok(Pulse {
                 t: t.to_vec(),
-                acceleration: acceleration[..t.len()].to_vec(),
+                acceleration: acceleration.to_vec(),
                 v0,
-                crush: crush.map(|c| c[..t.len()].to_vec()),
+                crush: crush.map(<[f64]>::to_vec),
             });
         }
         let count = ((t[t.len() - 1] - t[0]) / period * (1.0 + 1e-12)).floor() as usize + 1;
@@ -170,9 +184,10 @@ impl Pulse {
             }
         }
         let channels = [
-            ("acceleration", Some(&self.acceleration)),
-            ("crush", self.crush.as_ref()),
+            ("acceleration", Some(&self.acceleration[..])),
+            ("crush", self.crush.as_deref()),
         ];
+        check_lengths(self.t.len(), channels)?;
         for (what, values) in channels {
             if let Some(index) = values.and_then(|v| v.iter().position(|x| !x.is_finite())) {
                 return Err(PulseError::NotFinite { what, index });
@@ -307,6 +322,19 @@ fn check_times(t: &[f64]) -> Result<(), PulseError> {
         Some(index) => Err(PulseError::NotIncreasing { index }),
         None => Ok(()),
     }
+}
+
+/// Each channel given has one value per sample time.
+fn check_lengths(
+    samples: usize,
+    channels: [(&'static str, Option<&[f64]>); 2],
+) -> Result<(), PulseError> {
+    for (what, values) in channels {
+        if let Some(len) = values.map(<[f64]>::len).filter(|&len| len != samples) {
+            return Err(PulseError::Length { what, len, samples });
+        }
+    }
+    Ok(())
 }
 
 /// `y(x)` at `at` by linear interpolation (`x` increasing, `at` inside).
@@ -485,5 +513,50 @@ mod tests {
             index: 0,
         });
         assert_eq!(bad.filtered_metrics(), refused);
+    }
+
+    /// A channel without one value per sample time is refused, by the
+    /// checks of a pulse and by its resampling (even or not), instead of
+    /// read out of its bounds.
+    #[test]
+    fn a_channel_of_another_length_than_the_times_is_refused() {
+        let even = [0.0, 1e-3, 2e-3, 3e-3];
+        let uneven = [0.0, 1e-3, 1.5e-3, 3e-3];
+        let short = [-1.0, -2.0, -3.0];
+        for t in [even, uneven] {
+            assert_eq!(
+                Pulse::resampled(&t, &short, 1.0, None),
+                Err(PulseError::Length {
+                    what: "acceleration",
+                    len: 3,
+                    samples: 4
+                })
+            );
+            let crush = [0.0; 5];
+            let refused = Pulse::resampled(&t, &[0.0; 4], 1.0, Some(&crush));
+            let expected = PulseError::Length {
+                what: "crush",
+                len: 5,
+                samples: 4,
+            };
+            assert_eq!(refused, Err(expected.clone()));
+            assert_eq!(
+                expected.to_string(),
+                "crush has 5 values for 4 sample times"
+            );
+        }
+        let pulse = Pulse {
+            t: even.to_vec(),
+            acceleration: short.to_vec(),
+            v0: 1.0,
+            crush: None,
+        };
+        let refused = PulseError::Length {
+            what: "acceleration",
+            len: 3,
+            samples: 4,
+        };
+        assert_eq!(pulse.metrics(), Err(refused.clone()));
+        assert_eq!(pulse.filtered_metrics(), Err(refused));
     }
 }
