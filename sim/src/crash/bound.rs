@@ -386,7 +386,9 @@ impl BoundInputs {
     /// The values of the components' columns, given the model's input
     /// arguments at one state.
     pub fn column_values(&self, arguments: &[f64]) -> Result<Vec<f64>, Fault> {
-        let mut values = Vec::new();
+        let columns = |(c, _): (usize, usize)| self.components[c].component.columns().len();
+        let own: usize = self.with_columns().map(columns).sum();
+        let mut values = Vec::with_capacity(own + self.loaded.len());
         for (c, first) in self.with_columns() {
             let component = &self.components[c].component;
             let args = self.arguments_of(c, arguments).unwrap_or(&[]);
