@@ -1,6 +1,7 @@
 //! The corpus of bad inputs in `tests/bad_inputs/` (specs, scenarios, CSV
-//! files): each case of `cases.toml` must fail with its exit status and
-//! exactly its message, and write nothing.
+//! files): each case of `cases.toml` and of every other `cases_*.toml` there
+//! (one file a theme) must fail with its exit status and exactly its message,
+//! and write nothing.
 
 mod common;
 
@@ -10,10 +11,7 @@ use std::path::Path;
 
 #[test]
 fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
-    let text =
-        std::fs::read_to_string(Path::new(ROOT).join("tests/bad_inputs/cases.toml")).unwrap();
-    let cases: toml::Table = text.parse().unwrap();
-    let cases = cases["case"].as_array().unwrap();
+    let cases = corpus();
     assert!(cases.len() >= 15, "{} cases", cases.len());
     let mut failures = Vec::new();
     for (k, case) in cases.iter().enumerate() {
@@ -75,4 +73,30 @@ fn every_bad_input_gives_its_exact_error_and_writes_nothing() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+/// The cases of `cases.toml` and of each `cases_*.toml`, in file-name order.
+fn corpus() -> Vec<toml::Value> {
+    let folder = Path::new(ROOT).join("tests/bad_inputs");
+    let mut files: Vec<_> = std::fs::read_dir(&folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            let name = p.file_name().unwrap().to_string_lossy();
+            name == "cases.toml" || (name.starts_with("cases_") && name.ends_with(".toml"))
+        })
+        .collect();
+    files.sort();
+    let mut cases = Vec::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let table: toml::Table = text
+            .parse()
+            .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let list = table["case"]
+            .as_array()
+            .unwrap_or_else(|| panic!("{}: no [[case]]", file.display()));
+        cases.extend(list.iter().cloned());
+    }
+    cases
 }
