@@ -1,12 +1,39 @@
-//! `lpm eval`: `M` and `f` at one state, by the interpreter, as JSON.
+//! `lpm eval`: `M`, `f`, the accelerations `q̈` and, for a constrained
+//! spec, the multipliers `λ` at one state, by the interpreter, as JSON or
+//! text.
+//!
+//! `q̈` comes from the solve `simulate` uses: `M q̈ = f`, or with
+//! constraints `M q̈ = f + Gᵀλ`, `G q̈ = γ − 2α ġ − β² g`
+//! ([`lagrangian_sim::simulate::constrained::solve`]) with the scenario's
+//! Baumgarte stabilization (`[constraints] alpha`, `beta`; without
+//! `--scenario` the default a scenario has), so that it is what a run's
+//! right-hand side gives at the state: on the constraints (`g = 0`,
+//! `ġ = 0`) the stabilization's terms vanish. The residuals `g` and rates
+//! `ġ` are reported beside, so that a state off the constraints shows.
 
 use crate::failure::{Failure, Outcome};
 use crate::mass;
 use crate::spec::compile;
 use crate::status::ExitStatus;
-use lagrangian_model::{ConstantInputs, InputFunctions, InterpretedModel};
+use lagrangian_model::constrained::Baumgarte;
+use lagrangian_model::nalgebra::{SMatrix, SVector};
+use lagrangian_model::{
+    ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, WithDimension,
+};
+use lagrangian_sim::fault::Fault;
 use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
+use lagrangian_sim::simulate::constrained::{self, DEFAULT_STABILIZATION};
 use std::path::PathBuf;
+
+/// How `lpm eval` prints its result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// One JSON object: `mass_matrix`, `forcing`, `accelerations` and, with
+    /// constraints, `constraints` (names, multipliers, residuals, rates).
+    Json,
+    /// The accelerations and multipliers by name, with their units.
+    Text,
+}
 
 /// Options of `lpm eval`.
 #[derive(clap::Args)]
@@ -33,6 +60,9 @@ pub struct Args {
     /// name=value (with --scenario, anything `simulate --set` takes).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Json)]
+    format: Format,
 }
 
 /// Runs `lpm eval`.
@@ -42,9 +72,12 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     let mut model = crate::spec::interpreted(&compiled);
     let state = parse_state("--state", &args.state, model.coordinates())?;
     let (q, qd) = state.split_at(model.dimension());
-    let (inputs, set): (Box<dyn InputFunctions>, Vec<usize>) = match &args.scenario {
+    let (inputs, set, stabilization) = match &args.scenario {
         Some(path) => scenario_inputs(&mut model, path, &args.set, (args.time, q, qd))?,
-        None => apply_settings(&mut model, &args.set)?,
+        None => {
+            let (inputs, set) = apply_settings(&mut model, &args.set)?;
+            (inputs, set, DEFAULT_STABILIZATION)
+        }
     };
     let (mass, forcing) = evaluate(&model, (args.time, q, qd), &*inputs)?;
     if !mass::positive_definite(&model, (args.time, q, qd)) {
@@ -55,13 +88,196 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
             format!("the mass matrix is singular or not positive definite at this state{why}"),
         ));
     }
+    let state = (args.time, q, qd);
+    let solved = accelerations(&model, &[state], &*inputs, stabilization)?.remove(0);
+    let text = match args.format {
+        Format::Json => {
+            let json = as_json(&model, (&mass, &forcing), &solved);
+            format!(
+                "{}\n",
+                serde_json::to_string_pretty(&json).unwrap_or_default()
+            )
+        }
+        Format::Text => as_text(&model, args.time, &solved),
+    };
+    Ok(Outcome::success(text))
+}
+
+/// The JSON object `lpm eval` prints.
+fn as_json(
+    model: &InterpretedModel,
+    (mass, forcing): (&[f64], &[f64]),
+    solved: &Accelerations,
+) -> serde_json::Value {
     let n = model.dimension();
     let rows: Vec<Vec<f64>> = mass.chunks(n).map(<[f64]>::to_vec).collect();
-    let json = serde_json::json!({ "mass_matrix": rows, "forcing": forcing });
-    Ok(Outcome::success(format!(
-        "{}\n",
-        serde_json::to_string_pretty(&json).unwrap_or_default()
-    )))
+    let mut json = serde_json::json!({
+        "coordinates": model.coordinates(),
+        "mass_matrix": rows,
+        "forcing": forcing,
+        "accelerations": solved.qdd,
+    });
+    if !model.constraint_names().is_empty() {
+        json["constraints"] = serde_json::json!({
+            "names": model.constraint_names(),
+            "multipliers": solved.multipliers,
+            "residuals": solved.residuals,
+            "rates": solved.rates,
+        });
+    }
+    json
+}
+
+/// The accelerations and multipliers by name, with their units.
+fn as_text(model: &InterpretedModel, t: f64, solved: &Accelerations) -> String {
+    let unit = |u: &Option<String>, suffix: &str| match u.as_deref() {
+        Some(u) => format!("{u}{suffix}"),
+        None => String::new(),
+    };
+    let mut out = format!("accelerations at t = {t}:\n");
+    let units = model.coordinate_units();
+    for ((name, a), u) in model.coordinates().iter().zip(&solved.qdd).zip(units) {
+        out += &format!("  {name}_ddot = {a:.9e} {}\n", unit(u, "/s^2"));
+    }
+    let names = model.constraint_names();
+    if names.is_empty() {
+        return out;
+    }
+    out += "constraints (multiplier λ; residual g, rate ġ):\n";
+    let units = model.multiplier_units();
+    for (k, name) in names.iter().enumerate() {
+        let u = units.get(k).map_or(String::new(), |u| unit(u, ""));
+        out += &format!(
+            "  {name}: λ = {:.9e} {u}; g = {:.3e}, ġ = {:.3e}\n",
+            solved.multipliers[k], solved.residuals[k], solved.rates[k]
+        );
+    }
+    out
+}
+
+/// `q̈` at one state and, with constraints, the multipliers `λ` and the
+/// constraints' residuals `g` and rates `ġ` there (in the model's order of
+/// constraints; empty without).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accelerations {
+    /// `q̈`, one per coordinate.
+    pub qdd: Vec<f64>,
+    /// `λ`, one per constraint: `Gᵀλ` is the constraints' generalized force.
+    pub multipliers: Vec<f64>,
+    /// `g`, one per constraint.
+    pub residuals: Vec<f64>,
+    /// `ġ = G q̇ + g_t`, one per constraint.
+    pub rates: Vec<f64>,
+}
+
+/// [`Accelerations`] at each of `states`, by the solve `simulate` uses
+/// (see the module's doc): `M q̈ = f`, or with constraints
+/// `M q̈ = f + Gᵀλ`, `G q̈ = γ − 2α ġ − β² g` with `stabilization`'s `α`
+/// and `β` ([`DEFAULT_STABILIZATION`] is a scenario's default).
+pub fn accelerations(
+    model: &InterpretedModel,
+    states: &[mass::State],
+    inputs: &dyn InputFunctions,
+    stabilization: Baumgarte,
+) -> Result<Vec<Accelerations>, Failure> {
+    let mut dynamics = Vec::with_capacity(states.len());
+    for &state in states {
+        dynamics.push(evaluate(model, state, inputs)?);
+    }
+    let solve = Solve {
+        states,
+        dynamics: &dynamics,
+        inputs,
+        stabilization,
+        coordinates: model.coordinates(),
+    };
+    model
+        .clone()
+        .with_dimension(solve)
+        .map_err(Failure::model)?
+}
+
+/// The work of [`accelerations`] on the model as an `Interpreted<N>`.
+struct Solve<'a> {
+    states: &'a [mass::State<'a>],
+    /// `M` (row-major) and `f` at each state.
+    dynamics: &'a [(Vec<f64>, Vec<f64>)],
+    inputs: &'a dyn InputFunctions,
+    stabilization: Baumgarte,
+    coordinates: &'a [String],
+}
+
+impl WithDimension for Solve<'_> {
+    type Output = Result<Vec<Accelerations>, Failure>;
+
+    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+        let solve = |(&(t, q, qd), (mass, forcing)): (&mass::State, &(Vec<f64>, Vec<f64>))| {
+            let q = SVector::<f64, N>::from_column_slice(q);
+            let v = SVector::<f64, N>::from_column_slice(qd);
+            let mass = SMatrix::<f64, N, N>::from_row_slice(mass);
+            let forcing = SVector::<f64, N>::from_column_slice(forcing);
+            if system.constraint_count() == 0 {
+                let qdd = (system.solve_mass(&mass, &forcing))
+                    .filter(|a| a.iter().all(|x| x.is_finite()))
+                    .ok_or_else(|| singular(t, q.as_slice()))?;
+                return Ok(Accelerations {
+                    qdd: qdd.as_slice().to_vec(),
+                    multipliers: Vec::new(),
+                    residuals: Vec::new(),
+                    rates: Vec::new(),
+                });
+            }
+            let state = (t, &q, &v);
+            let solution = constrained::solve(
+                &system,
+                self.inputs,
+                self.stabilization,
+                state,
+                &mass,
+                &forcing,
+            )
+            .map_err(|fault| fault_failure(&fault, t, self.coordinates))?;
+            Ok(Accelerations {
+                qdd: solution.a.as_slice().to_vec(),
+                residuals: solution.values.residual().to_vec(),
+                rates: solution.values.rate(v.as_slice()),
+                multipliers: solution.lambda,
+            })
+        };
+        self.states.iter().zip(self.dynamics).map(solve).collect()
+    }
+}
+
+/// The failure of a singular or indefinite `M` at `q`.
+fn singular(t: f64, q: &[f64]) -> Failure {
+    Failure::new(
+        ExitStatus::SingularMassMatrix,
+        format!("the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"),
+    )
+}
+
+/// The failure of the constrained solve, with the exit status `simulate`
+/// gives the same fault.
+fn fault_failure(fault: &Fault, t: f64, coordinates: &[String]) -> Failure {
+    let status = match fault {
+        Fault::SingularMassMatrix { .. } | Fault::RedundantConstraints { .. } => {
+            ExitStatus::SingularMassMatrix
+        }
+        Fault::NonFinite { .. } => ExitStatus::NonFinite,
+        Fault::OutOfRange { .. } => ExitStatus::TableOutOfRange,
+        Fault::Component(_) => ExitStatus::Component,
+    };
+    // A non-finite value's message names no state; the others name `q`.
+    let at = match (fault, fault.state()) {
+        (Fault::NonFinite { .. }, Some((q, _))) => {
+            format!(", {}", lagrangian_sim::fault::named_values(coordinates, q))
+        }
+        _ => String::new(),
+    };
+    Failure::new(
+        status,
+        format!("the constrained solve at t = {t}{at}: {fault}"),
+    )
 }
 
 /// The state `Q1,…,QN,V1,…,VN` given to `flag`: two values per
@@ -105,16 +321,20 @@ pub fn evaluate(
     Ok((mass, forcing))
 }
 
+/// The inputs a state is evaluated with, the indices of the parameters set
+/// and the stabilization of the constraints.
+type Bound = (Box<dyn InputFunctions>, Vec<usize>, Baumgarte);
+
 /// The scenario at `path` (with `settings`) applied to `model`: its
 /// parameters set, its components bound to the inputs and put in the state
-/// a run from `state` starts in. Returns the inputs and the indices of the
-/// parameters it sets.
+/// a run from `state` starts in. Returns the inputs, the indices of the
+/// parameters it sets and its stabilization of the constraints.
 fn scenario_inputs(
     model: &mut InterpretedModel,
     path: &std::path::Path,
     settings: &[String],
     (t, q, qd): mass::State,
-) -> Result<(Box<dyn InputFunctions>, Vec<usize>), Failure> {
+) -> Result<Bound, Failure> {
     let names = ModelNames::of_interpreted(model);
     let scenario = Scenario::load(path, &names, settings).map_err(|e| Failure::scenario(&e))?;
     for &(i, value) in &scenario.parameters {
@@ -131,7 +351,7 @@ fn scenario_inputs(
         .start(&arguments)
         .map_err(|fault| Failure::evaluation(fault.to_string()))?;
     let set = scenario.parameters.iter().map(|&(i, _)| i).collect();
-    Ok((Box::new(inputs), set))
+    Ok((Box::new(inputs), set, scenario.stabilization))
 }
 
 /// Applies the `--set` settings: parameters to the model, input constants
