@@ -135,10 +135,30 @@ class Model:
         single, (_, forcing) = self._call(self._native.dynamics, t, q, qd, inputs)
         return forcing[0] if single else forcing
 
+    @property
+    def constraints(self) -> List[str]:
+        """The names of the spec's constraints (empty without)."""
+        return self._native.constraint_names
+
     def accelerations(self, t, q, qd, inputs: Optional[Mapping[str, float]] = None) -> np.ndarray:
-        """``q̈ = M⁻¹ f`` (n, or k × n for a batch)."""
-        single, a = self._call(self._native.accelerations, t, q, qd, inputs)
+        """``q̈`` (n, or k × n for a batch): ``M q̈ = f``, or for a spec with
+        constraints the constrained ``q̈`` of ``M q̈ = f + Gᵀλ``, ``G q̈ = γ``
+        (the solve ``lpm simulate`` and ``lpm eval`` use, asked for ``g̈ = 0``;
+        see ``multipliers`` for ``λ``)."""
+        single, (a, _) = self._call(self._native.accelerations, t, q, qd, inputs)
         return a[0] if single else a
+
+    def multipliers(self, t, q, qd, inputs: Optional[Mapping[str, float]] = None) -> Dict[str, Any]:
+        """The constraints' multipliers ``λ`` by name (numbers, or arrays of
+        k for a batch; empty without constraints): ``Gᵀλ`` is the
+        generalized force of the constraints, in the unit of each
+        constraint's multiplier (a rod's tension in N for a length
+        constraint written in metres)."""
+        single, (_, lam) = self._call(self._native.accelerations, t, q, qd, inputs)
+        names = self.constraints
+        if single:
+            return {name: float(v) for name, v in zip(names, lam[0])}
+        return {name: lam[:, k] for k, name in enumerate(names)}
 
     def energies(self, t, q, qd, inputs: Optional[Mapping[str, float]] = None) -> Dict[str, Any]:
         """``kinetic``, ``potential``, ``dissipation``, ``damping_power`` and

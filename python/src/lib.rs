@@ -62,6 +62,9 @@ fn register_errors(py: Python<'_>, classes: Bound<'_, PyDict>) -> PyResult<()> {
         .map_err(|_| PyRuntimeError::new_err("the error classes are registered already"))
 }
 
+/// `q̈` (k × n) and `λ` (k × m) of a batch.
+type AccelerationsAndMultipliers<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
+
 /// `M` (k × n × n) and `f` (k × n) of a batch.
 type MassAndForcing<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray2<f64>>);
 
@@ -219,6 +222,11 @@ impl NativeModel {
     }
 
     #[getter]
+    fn constraint_names(&self) -> Vec<String> {
+        self.model().constraint_names().to_vec()
+    }
+
+    #[getter]
     fn energy_names(&self) -> Vec<String> {
         Energies::FIELDS.iter().map(|s| s.to_string()).collect()
     }
@@ -253,7 +261,10 @@ impl NativeModel {
         Ok((mass, forcing))
     }
 
-    /// `q̈ = M⁻¹ f` (k × n) at each row of the batch.
+    /// `q̈` (k × n) and the constraints' multipliers `λ` (k × m) at each
+    /// row of the batch: `M q̈ = f`, or with constraints `M q̈ = f + Gᵀλ`,
+    /// `G q̈ = γ − 2α ġ − β² g` (a scenario's default stabilization), by
+    /// the solve `lpm simulate` and `lpm eval` use.
     fn accelerations<'py>(
         &self,
         py: Python<'py>,
@@ -261,22 +272,22 @@ impl NativeModel {
         q: PyReadonlyArray2<'py, f64>,
         qd: PyReadonlyArray2<'py, f64>,
         inputs: HashMap<String, f64>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let n = self.model().dimension();
-        let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, state| {
-            let (mass, forcing) = lpm::eval::evaluate(model, state, inputs)?;
-            let (t, q, _) = state;
-            solve(&mass, &forcing, n).ok_or_else(|| {
-                Failure::new(
-                    ExitStatus::SingularMassMatrix,
-                    format!(
-                        "the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"
-                    ),
-                )
-            })
-        })?;
-        let k = rows.len() / n.max(1);
-        rows.into_pyarray(py).reshape([k, n])
+    ) -> PyResult<AccelerationsAndMultipliers<'py>> {
+        let batch = self.batch(&t, &q, &qd).map_err(raise)?;
+        let (model, inputs) = self.inputs(inputs).map_err(raise)?;
+        let states: Vec<State> = (0..batch.rows()).map(|k| batch.row(k)).collect();
+        let stabilization = lagrangian_sim::simulate::constrained::DEFAULT_STABILIZATION;
+        let solved =
+            lpm::eval::accelerations(&model, &states, &*inputs, stabilization).map_err(raise)?;
+        let (n, m) = (model.dimension(), model.constraint_names().len());
+        let k = solved.len();
+        let qdd: Vec<f64> = solved.iter().flat_map(|s| s.qdd.iter().copied()).collect();
+        let lambda: Vec<f64> = (solved.iter())
+            .flat_map(|s| s.multipliers.iter().copied())
+            .collect();
+        let qdd = qdd.into_pyarray(py).reshape([k, n])?;
+        let lambda = lambda.into_pyarray(py).reshape([k, m])?;
+        Ok((qdd, lambda))
     }
 
     /// The energies and powers (k × 5, in the order of `energy_names`).
@@ -310,17 +321,6 @@ impl NativeModel {
             )))),
         }
     }
-}
-
-/// `M⁻¹ f` by Cholesky (`M` row-major `n × n`); `None` unless `M` is
-/// positive definite and the result finite.
-fn solve(mass: &[f64], forcing: &[f64], n: usize) -> Option<Vec<f64>> {
-    let mass = nalgebra::DMatrix::from_row_slice(n, n, mass);
-    let forcing = nalgebra::DVector::from_column_slice(forcing);
-    let a = mass.cholesky()?.solve(&forcing);
-    a.iter()
-        .all(|v| v.is_finite())
-        .then(|| a.iter().copied().collect())
 }
 
 /// summary.json, trajectory.csv and the events `(t, component, description)`.
