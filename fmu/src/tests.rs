@@ -47,7 +47,7 @@ fn reference_max_crush(settings: &[String]) -> f64 {
 }
 
 fn crush(instance: &mut Instance) -> f64 {
-    let vr = instance.variables.reference("crush").unwrap();
+    let vr = instance.variables.reference("metrics.crush").unwrap();
     let mut value = [0.0];
     instance.get_real(&[vr], &mut value).unwrap();
     value[0]
@@ -231,10 +231,10 @@ fn calls_out_of_order_and_bad_references_are_errors_that_say_why() {
         unknown.message.contains("unknown value reference 9999"),
         "{unknown:?}"
     );
-    let output = cs.variables.reference("crush").unwrap();
+    let output = cs.variables.reference("metrics.crush").unwrap();
     let set = cs.set_real(&[output], &[1.0]).unwrap_err();
     assert!(
-        set.message.contains("`crush`") && set.message.contains("output"),
+        set.message.contains("`metrics.crush`") && set.message.contains("output"),
         "{set:?}"
     );
     cs.enter_initialization().unwrap();

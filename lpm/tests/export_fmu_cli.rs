@@ -141,18 +141,25 @@ fn a_missing_runtime_is_named_with_what_to_build() {
 }
 
 #[test]
-fn a_spec_name_the_fmu_also_gives_its_crush_signal_is_an_error_not_a_second_variable() {
-    // car_to_car.lpm declares `output crush`, and its scenario a crush signal.
+fn specs_whose_names_are_those_the_fmu_adds_export_under_their_own_names() {
+    // car_to_car.lpm declares `output crush`, wall_impact.lpm `output
+    // deceleration`; the FMU's own are `metrics.crush` and
+    // `metrics.deceleration`.
     let dir = temporary("export-fmu-names");
-    let out = dir.join("c2c.fmu").display().to_string();
-    let run = export(&["specs/car_to_car.lpm", "--out", &out]);
-    assert_eq!(run.status.code(), Some(4), "{}", stderr(&run));
-    let message = stderr(&run);
-    assert!(
-        message.contains("two FMU variables would be called `crush`"),
-        "{message}"
-    );
-    assert!(!Path::new(&out).exists());
+    for (spec, own) in [
+        ("specs/car_to_car.lpm", "crush"),
+        ("specs/wall_impact.lpm", "deceleration"),
+    ] {
+        let out = dir.join("names.fmu");
+        let run = export(&[spec, "--out", &out.display().to_string()]);
+        assert!(run.status.success(), "{spec}: {}", stderr(&run));
+        let mut archive = zip::ZipArchive::new(std::fs::File::open(&out).unwrap()).unwrap();
+        let xml = String::from_utf8(entry(&mut archive, "modelDescription.xml")).unwrap();
+        for name in [own, "metrics.crush", "metrics.deceleration"] {
+            let attribute = format!("<ScalarVariable name=\"{name}\"");
+            assert_eq!(xml.matches(&attribute).count(), 1, "{spec}: {name}\n{xml}");
+        }
+    }
 }
 
 /// `lpm export-fmu --compiled` with the environment `variables` set.
