@@ -174,7 +174,8 @@ pub extern "C" fn fmi2SetupExperiment(
     let tolerance = (tolerance_defined != fmi2False).then_some(tolerance);
     let stop_time = (stop_time_defined != fmi2False).then_some(stop_time);
     guard(c, "fmi2SetupExperiment", |c| {
-        c.instance.setup_experiment(tolerance, start_time, stop_time)
+        c.instance
+            .setup_experiment(tolerance, start_time, stop_time)
     })
 }
 
@@ -351,8 +352,8 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUst
 /// Restores a state this instance saved.
 pub extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2SetFMUstate", |c| {
-        let snapshot = (c.states.get(&(state as usize)))
-            .ok_or_else(|| crate::guard::unknown_state(state))?;
+        let snapshot =
+            (c.states.get(&(state as usize))).ok_or_else(|| crate::guard::unknown_state(state))?;
         c.instance.restore(snapshot);
         Ok(())
     })

@@ -270,12 +270,13 @@ impl Instance {
 
     /// The quantity of `vr` if `value` may be set to it now.
     fn settable(&self, vr: u32, value: f64) -> Outcome<crate::variables::Quantity> {
-        let variable = (self.variables.get(vr)).ok_or_else(|| Failure::error(self.unknown(&[vr])))?;
+        let variable =
+            (self.variables.get(vr)).ok_or_else(|| Failure::error(self.unknown(&[vr])))?;
         let (name, causality) = (&variable.name, variable.causality());
         if !variable.settable() {
             return Err(Failure::error(format!(
-                "`{name}` (value reference {vr}) is a {}: it cannot be set",
-                causality.name()
+                "`{name}` (value reference {vr}) is {}: it cannot be set",
+                causality.with_article()
             )));
         }
         if !crate::machine::settable_in(causality, self.mode) {
@@ -287,8 +288,8 @@ impl Instance {
         }
         if !value.is_finite() {
             return Err(Failure::error(format!(
-                "`{name}` (value reference {vr}) = {value}: a {} is a finite number",
-                causality.name()
+                "`{name}` (value reference {vr}) = {value}: {} is a finite number",
+                causality.with_article()
             )));
         }
         Ok(variable.quantity)
@@ -319,7 +320,10 @@ impl Instance {
                 "communicationStepSize = {h:e} s: a step is a finite number ≥ 0"
             )));
         }
-        if let Some(stop) = self.stop_time.filter(|&stop| t + h > stop * (1.0 + 1e-12) + 1e-12) {
+        if let Some(stop) = self
+            .stop_time
+            .filter(|&stop| t + h > stop * (1.0 + 1e-12) + 1e-12)
+        {
             return Err(Failure::error(format!(
                 "a step from t = {t:e} s by {h:e} s ends past stopTime = {stop:e} s"
             )));
@@ -459,7 +463,9 @@ impl Instance {
 fn finite(name: &str, value: f64) -> Outcome {
     match value.is_finite() {
         true => Ok(()),
-        false => Err(Failure::error(format!("{name} = {value}: not a finite number"))),
+        false => Err(Failure::error(format!(
+            "{name} = {value}: not a finite number"
+        ))),
     }
 }
 

@@ -65,9 +65,7 @@ pub fn rule(call: &str) -> Option<(&'static [Mode], Option<Interface>)> {
         }
         "fmi2EnterEventMode" => (&[Event, ContinuousTime], Some(Me)),
         "fmi2NewDiscreteStates" | "fmi2EnterContinuousTimeMode" => (&[Event], Some(Me)),
-        "fmi2CompletedIntegratorStep" | "fmi2SetContinuousStates" => {
-            (&[ContinuousTime], Some(Me))
-        }
+        "fmi2CompletedIntegratorStep" | "fmi2SetContinuousStates" => (&[ContinuousTime], Some(Me)),
         "fmi2SetTime" => (&[Event, ContinuousTime], Some(Me)),
         "fmi2GetEventIndicators" | "fmi2GetContinuousStates" => (ME_READ, Some(Me)),
         "fmi2GetDerivatives" => (&ME_READ[1..], Some(Me)),
@@ -165,7 +163,11 @@ mod tests {
     #[test]
     fn the_calls_before_initialization_are_those_the_standard_allows() {
         let me = Interface::ModelExchange;
-        for call in ["fmi2SetupExperiment", "fmi2EnterInitializationMode", "fmi2SetReal"] {
+        for call in [
+            "fmi2SetupExperiment",
+            "fmi2EnterInitializationMode",
+            "fmi2SetReal",
+        ] {
             assert_eq!(check(call, me, Mode::Instantiated), Ok(()), "{call}");
         }
         let early = check("fmi2GetDerivatives", me, Mode::Instantiated).unwrap_err();
@@ -193,7 +195,12 @@ mod tests {
     #[test]
     fn after_a_failure_only_reading_resetting_and_restoring_are_allowed() {
         let cs = Interface::CoSimulation;
-        for call in ["fmi2GetReal", "fmi2Reset", "fmi2SetFMUstate", "fmi2FreeInstance"] {
+        for call in [
+            "fmi2GetReal",
+            "fmi2Reset",
+            "fmi2SetFMUstate",
+            "fmi2FreeInstance",
+        ] {
             assert_eq!(check(call, cs, Mode::Failed), Ok(()), "{call}");
         }
         let step = check("fmi2DoStep", cs, Mode::Failed).unwrap_err();
@@ -219,7 +226,10 @@ mod tests {
         ];
         let mut calls = 0;
         for text in source {
-            for (_, rest) in text.match_indices("guard(c, \"").map(|(i, _)| text.split_at(i + 10)) {
+            for (_, rest) in text
+                .match_indices("guard(c, \"")
+                .map(|(i, _)| text.split_at(i + 10))
+            {
                 let name = &rest[..rest.find('"').unwrap()];
                 assert!(rule(name).is_some(), "{name}");
                 calls += 1;

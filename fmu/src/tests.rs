@@ -226,7 +226,10 @@ fn calls_out_of_order_and_bad_references_are_errors_that_say_why() {
         "{early:?}"
     );
     let mut value = [0.0];
-    assert!(cs.get_real(&[0], &mut value).is_err(), "read before initialization");
+    assert!(
+        cs.get_real(&[0], &mut value).is_err(),
+        "read before initialization"
+    );
     let output = cs.variables.reference("metrics.crush").unwrap();
     let set = cs.set_real(&[output], &[1.0]).unwrap_err();
     assert!(

@@ -63,6 +63,16 @@ pub enum Causality {
 }
 
 impl Causality {
+    /// Its name after an article, for messages (`an output`).
+    pub fn with_article(self) -> &'static str {
+        match self {
+            Causality::Parameter => "a parameter",
+            Causality::Input => "an input",
+            Causality::Output => "an output",
+            Causality::Local => "a local variable",
+        }
+    }
+
     /// The attribute value in modelDescription.xml.
     pub fn name(self) -> &'static str {
         match self {
@@ -360,8 +370,16 @@ mod tests {
     fn a_spec_output_called_crush_or_deceleration_keeps_its_name_beside_the_fmus() {
         let car_to_car = names("car_to_car.lpm", "car_to_car.toml").unwrap();
         let wall = names("wall_impact.lpm", "wall_impact.toml").unwrap();
-        for name in ["crush", "metrics.crush", "metrics.deceleration", "front_a.force"] {
-            assert!(car_to_car.contains(&name.to_string()), "{name}: {car_to_car:?}");
+        for name in [
+            "crush",
+            "metrics.crush",
+            "metrics.deceleration",
+            "front_a.force",
+        ] {
+            assert!(
+                car_to_car.contains(&name.to_string()),
+                "{name}: {car_to_car:?}"
+            );
         }
         for name in ["deceleration", "metrics.crush", "metrics.deceleration"] {
             assert!(wall.contains(&name.to_string()), "{name}: {wall:?}");

@@ -43,7 +43,7 @@ def test_every_spec_of_a_scenario_is_listed():
     assert all(spec_of(s).is_file() for s in SCENARIOS)
 
 
-@pytest.mark.parametrize("scenario", cases())
+@pytest.mark.parametrize("scenario", list(cases()))
 def test_the_fmu_exports_validates_and_keeps_the_specs_names(scenario, tmp_path):
     spec, out = spec_of(scenario), tmp_path / f"{scenario.stem}.fmu"
     run_lpm("export-fmu", spec, "--scenario", scenario, "--out", out)
