@@ -9,8 +9,9 @@ cd "$(dirname "$0")/.."
 venv=target/python-venv
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 # pandas for DataFrames, dask.distributed for the Dask template's test, FMPy
-# to validate and run exported FMUs.
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy
+# to validate and run exported FMUs, maturin to build the wheel of
+# test_wheel.py without a build environment of its own.
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2"
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
 # lpm, and the FMU runtime that `lpm export-fmu` packs (python/tests/test_fmu.py).
 cargo build -q -p lpm -p lagrangian-fmu

@@ -94,20 +94,31 @@ fn a_host_runs_the_block_through_the_c_interface() {
     assert!((values[0] - 0.25).abs() < 1e-9, "{values:?}");
     assert_eq!(unsafe { fmi2FreeFMUstate(c, &mut saved) }, fmi2OK);
     assert!(saved.is_null());
+    assert_eq!(fmi2Terminate(c), fmi2OK);
     // Refusals are statuses, not crashes.
     assert_eq!(
         unsafe { fmi2GetReal(c, vrs.as_ptr(), 1, null_mut()) },
         fmi2Error
     );
-    assert_eq!(fmi2GetInteger(c, null(), 0, null_mut()), fmi2OK);
-    assert_eq!(fmi2GetInteger(c, vrs.as_ptr(), 1, null_mut()), fmi2Error);
+    assert_eq!(unsafe { fmi2GetInteger(c, null(), 0, null_mut()) }, fmi2OK);
+    assert_eq!(
+        unsafe { fmi2GetInteger(c, vrs.as_ptr(), 1, null_mut()) },
+        fmi2Error
+    );
     assert_eq!(fmi2DoStep(null_mut(), 0.0, 0.1, fmi2True), fmi2Error);
     assert_eq!(
         fmi2SerializeFMUstate(c, null_mut(), null_mut(), 0),
         fmi2Error
     );
-    assert_eq!(fmi2Terminate(c), fmi2OK);
+    // After an error, the instance is in the error state: only reading,
+    // resetting, restoring and freeing are left.
+    assert_eq!(fmi2DoStep(c, 1.0, 0.1, fmi2True), fmi2Error);
+    assert_eq!(fmi2Reset(c), fmi2OK);
     fmi2FreeInstance(c);
+    // A freed instance, freed again or called, is refused, not read.
+    fmi2FreeInstance(c);
+    assert_eq!(fmi2Reset(c), fmi2Error);
+    assert_eq!(fmi2DoStep(c, 0.0, 0.1, fmi2True), fmi2Error);
     std::fs::remove_dir_all(dir).unwrap();
 }
 

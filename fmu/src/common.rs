@@ -7,7 +7,7 @@
 
 use crate::ffi::*;
 use crate::guard::{Component, Logger, guard, shielded, slice, slice_mut, text};
-use crate::instance::{Failure, Instance, Interface, Outcome, Snapshot};
+use crate::instance::{Failure, Instance, Interface, Outcome};
 use crate::plant::PlantFactory;
 use crate::resources::{directory_of, load};
 use std::ffi::{c_char, c_int, c_void};
@@ -22,14 +22,34 @@ pub extern "C" fn fmi2GetVersion() -> *const c_char {
     fmi2Version.as_ptr()
 }
 
-/// Turns debug messages (the events handled) on or off.
-pub extern "C" fn fmi2SetDebugLogging(
+/// The log categories of modelDescription.xml's `<LogCategories>`.
+pub const LOG_CATEGORIES: [&str; 2] = ["logEvents", "logStatusError"];
+
+/// Turns debug messages (the events handled) on or off; the categories
+/// named must be this FMU's ([`LOG_CATEGORIES`]).
+///
+/// # Safety
+/// `categories` points to `n_categories` null or zero-terminated strings.
+pub unsafe extern "C" fn fmi2SetDebugLogging(
     c: fmi2Component,
     logging_on: fmi2Boolean,
-    _n_categories: usize,
-    _categories: *const fmi2String,
+    n_categories: usize,
+    categories: *const fmi2String,
 ) -> fmi2Status {
     guard(c, "fmi2SetDebugLogging", |c| {
+        // SAFETY: as documented.
+        let categories = unsafe { slice(categories, n_categories, "categories")? };
+        for (i, &category) in categories.iter().enumerate() {
+            // SAFETY: as documented.
+            let name = unsafe { text(category) };
+            if !name.as_deref().is_some_and(|n| LOG_CATEGORIES.contains(&n)) {
+                return Err(Failure::error(format!(
+                    "categories[{i}] = {}: not a log category of this FMU ({})",
+                    name.map_or("null".to_string(), |n| format!("`{n}`")),
+                    LOG_CATEGORIES.join(", ")
+                )));
+            }
+        }
         c.instance.logging = logging_on != fmi2False;
         Ok(())
     })
@@ -96,18 +116,17 @@ pub unsafe fn instantiate_with(
     let mut created = None;
     let report = |status, message: &str| logger.log(&name, status, "logStatusError", message);
     shielded("fmi2Instantiate", &report, || {
+        if instance_name.is_null() {
+            return Err(Failure::error("instanceName is null"));
+        }
         // SAFETY: as documented.
         let (guid, location) = unsafe { (text(guid), text(resource_location)) };
         let mut instance = instantiate(factory, &name, fmu_type, guid, location)?;
         instance.logging = logging_on != fmi2False;
-        created = Some(Box::new(Component {
-            instance,
-            logger,
-            broken: false,
-        }));
+        created = Some(Component::new(instance, logger));
         Ok(())
     });
-    created.map_or(std::ptr::null_mut(), |c| Box::into_raw(c) as fmi2Component)
+    created.map_or(std::ptr::null_mut(), crate::registry::register)
 }
 
 fn instantiate(
@@ -129,28 +148,34 @@ fn instantiate(
     Instance::with_plant(name, interface, &guid, loaded, factory)
 }
 
-/// Frees an instance.
+/// Frees an instance (and the states saved of it). Null is nothing to
+/// free; a handle that is no live instance (freed already) is said on
+/// the standard error and otherwise ignored.
 pub extern "C" fn fmi2FreeInstance(c: fmi2Component) {
     if c.is_null() {
         return;
     }
-    let _ = std::panic::catch_unwind(|| {
-        // SAFETY: a component fmi2Instantiate returned, freed once.
-        drop(unsafe { Box::from_raw(c as *mut Component) });
-    });
+    let freed = std::panic::catch_unwind(|| crate::registry::remove(c));
+    if matches!(freed, Ok(false)) {
+        eprintln!("{}", crate::guard::not_an_instance("fmi2FreeInstance", c));
+    }
 }
 
-/// Sets the start time (the tolerance and stop time are the scenario's).
+/// Sets the start time and the stop time (the tolerance is the
+/// scenario's; one given is checked).
 pub extern "C" fn fmi2SetupExperiment(
     c: fmi2Component,
-    _tolerance_defined: fmi2Boolean,
-    _tolerance: fmi2Real,
+    tolerance_defined: fmi2Boolean,
+    tolerance: fmi2Real,
     start_time: fmi2Real,
-    _stop_time_defined: fmi2Boolean,
-    _stop_time: fmi2Real,
+    stop_time_defined: fmi2Boolean,
+    stop_time: fmi2Real,
 ) -> fmi2Status {
+    let tolerance = (tolerance_defined != fmi2False).then_some(tolerance);
+    let stop_time = (stop_time_defined != fmi2False).then_some(stop_time);
     guard(c, "fmi2SetupExperiment", |c| {
-        c.instance.setup_experiment(start_time)
+        c.instance
+            .setup_experiment(tolerance, start_time, stop_time)
     })
 }
 
@@ -215,120 +240,141 @@ pub unsafe extern "C" fn fmi2SetReal(
     })
 }
 
-/// `Ok` for no variables, else the error that this FMU has none of `kind`.
-fn none_of(kind: &str, nvr: usize) -> Outcome {
-    match nvr {
-        0 => Ok(()),
-        _ => Err(Failure::error(format!("this FMU has no {kind} variables"))),
+/// `Ok` for no variables, else the error that this FMU has none of `kind`,
+/// naming the first value reference asked for.
+fn none_of(kind: &str, vr: *const fmi2ValueReference, nvr: usize) -> Outcome {
+    // SAFETY: the host's obligation: `vr` is null or points to `nvr` references.
+    match unsafe { slice(vr, nvr, "vr")? }.first() {
+        None => Ok(()),
+        Some(vr) => Err(Failure::error(format!(
+            "unknown value reference {vr}: this FMU has no {kind} variables"
+        ))),
     }
 }
 
 /// This FMU has no Integer variables.
-pub extern "C" fn fmi2GetInteger(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2GetInteger(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *mut fmi2Integer,
 ) -> fmi2Status {
-    guard(c, "fmi2GetInteger", |_| none_of("Integer", nvr))
+    guard(c, "fmi2GetInteger", |_| none_of("Integer", vr, nvr))
 }
 
 /// This FMU has no Boolean variables.
-pub extern "C" fn fmi2GetBoolean(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2GetBoolean(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    guard(c, "fmi2GetBoolean", |_| none_of("Boolean", nvr))
+    guard(c, "fmi2GetBoolean", |_| none_of("Boolean", vr, nvr))
 }
 
 /// This FMU has no String variables.
-pub extern "C" fn fmi2GetString(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2GetString(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *mut fmi2String,
 ) -> fmi2Status {
-    guard(c, "fmi2GetString", |_| none_of("String", nvr))
+    guard(c, "fmi2GetString", |_| none_of("String", vr, nvr))
 }
 
 /// This FMU has no Integer variables.
-pub extern "C" fn fmi2SetInteger(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2SetInteger(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *const fmi2Integer,
 ) -> fmi2Status {
-    guard(c, "fmi2SetInteger", |_| none_of("Integer", nvr))
+    guard(c, "fmi2SetInteger", |_| none_of("Integer", vr, nvr))
 }
 
 /// This FMU has no Boolean variables.
-pub extern "C" fn fmi2SetBoolean(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2SetBoolean(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *const fmi2Boolean,
 ) -> fmi2Status {
-    guard(c, "fmi2SetBoolean", |_| none_of("Boolean", nvr))
+    guard(c, "fmi2SetBoolean", |_| none_of("Boolean", vr, nvr))
 }
 
 /// This FMU has no String variables.
-pub extern "C" fn fmi2SetString(
+///
+/// # Safety
+/// `vr` is null or points to `nvr` value references.
+pub unsafe extern "C" fn fmi2SetString(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
+    vr: *const fmi2ValueReference,
     nvr: usize,
     _value: *const fmi2String,
 ) -> fmi2Status {
-    guard(c, "fmi2SetString", |_| none_of("String", nvr))
+    guard(c, "fmi2SetString", |_| none_of("String", vr, nvr))
 }
 
-/// Saves the instance's state (a copy, freed by `fmi2FreeFMUstate`).
+/// Saves the instance's state (a copy, freed by `fmi2FreeFMUstate`); a
+/// state of this instance's in `*state` is overwritten.
 ///
 /// # Safety
 /// `state` points to a writable `fmi2FMUstate`.
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2GetFMUstate", |c| {
         // SAFETY: as documented.
-        let state = unsafe { state.as_mut() }.ok_or_else(|| Failure::error("state is null"))?;
-        let snapshot = Box::new(c.instance.snapshot());
-        if !state.is_null() {
-            // SAFETY: a state this function returned earlier: reused.
-            drop(unsafe { Box::from_raw(*state as *mut Snapshot) });
-        }
-        *state = Box::into_raw(snapshot) as *mut c_void;
+        let state = unsafe { state.as_mut() }.ok_or_else(|| Failure::error("FMUstate is null"))?;
+        let handle = match state.is_null() {
+            true => crate::registry::new_handle(),
+            false => c.state(*state).map(|_| *state as usize)?,
+        };
+        c.states.insert(handle, c.instance.snapshot());
+        *state = handle as *mut c_void;
         Ok(())
     })
 }
 
-/// Restores a saved state.
+/// Restores a state this instance saved.
 pub extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2SetFMUstate", |c| {
-        // SAFETY: null or a state fmi2GetFMUstate returned.
-        let snapshot = unsafe { (state as *const Snapshot).as_ref() }
-            .ok_or_else(|| Failure::error("state is null"))?;
+        let snapshot =
+            (c.states.get(&(state as usize))).ok_or_else(|| crate::guard::unknown_state(state))?;
         c.instance.restore(snapshot);
         Ok(())
     })
 }
 
-/// Frees a saved state.
+/// Frees a saved state and sets `*state` to null (null: nothing to free).
 ///
 /// # Safety
-/// `state` points to null or a state `fmi2GetFMUstate` returned.
+/// `state` is null or points to an `fmi2FMUstate`.
 pub unsafe extern "C" fn fmi2FreeFMUstate(
     c: fmi2Component,
     state: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    guard(c, "fmi2FreeFMUstate", |_| {
+    guard(c, "fmi2FreeFMUstate", |c| {
         // SAFETY: as documented.
-        if let Some(state) = unsafe { state.as_mut() }
-            && !state.is_null()
-        {
-            // SAFETY: a state fmi2GetFMUstate returned, freed once.
-            drop(unsafe { Box::from_raw(*state as *mut Snapshot) });
-            *state = std::ptr::null_mut();
-        }
+        let Some(state) = (unsafe { state.as_mut() }).filter(|s| !s.is_null()) else {
+            return Ok(());
+        };
+        c.state(*state)?;
+        c.states.remove(&(*state as usize));
+        *state = std::ptr::null_mut();
         Ok(())
     })
 }

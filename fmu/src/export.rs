@@ -8,6 +8,56 @@
 //! makes its plant; the macro defines, for each entry point, an exported
 //! function that forwards to it.
 
+/// The 44 functions of the FMI 2.0 standard (`fmi2Functions.h`), which
+/// [`export_fmi2!`](crate::export_fmi2) exports: what `lpm export-fmu`
+/// checks an FMU binary for.
+pub const FMI2_FUNCTIONS: [&str; 44] = [
+    "fmi2GetTypesPlatform",
+    "fmi2GetVersion",
+    "fmi2SetDebugLogging",
+    "fmi2Instantiate",
+    "fmi2FreeInstance",
+    "fmi2SetupExperiment",
+    "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode",
+    "fmi2Terminate",
+    "fmi2Reset",
+    "fmi2GetReal",
+    "fmi2GetInteger",
+    "fmi2GetBoolean",
+    "fmi2GetString",
+    "fmi2SetReal",
+    "fmi2SetInteger",
+    "fmi2SetBoolean",
+    "fmi2SetString",
+    "fmi2GetFMUstate",
+    "fmi2SetFMUstate",
+    "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize",
+    "fmi2SerializeFMUstate",
+    "fmi2DeSerializeFMUstate",
+    "fmi2GetDirectionalDerivative",
+    "fmi2EnterEventMode",
+    "fmi2NewDiscreteStates",
+    "fmi2EnterContinuousTimeMode",
+    "fmi2CompletedIntegratorStep",
+    "fmi2SetTime",
+    "fmi2SetContinuousStates",
+    "fmi2GetDerivatives",
+    "fmi2GetEventIndicators",
+    "fmi2GetContinuousStates",
+    "fmi2GetNominalsOfContinuousStates",
+    "fmi2SetRealInputDerivatives",
+    "fmi2GetRealOutputDerivatives",
+    "fmi2DoStep",
+    "fmi2CancelStep",
+    "fmi2GetStatus",
+    "fmi2GetRealStatus",
+    "fmi2GetIntegerStatus",
+    "fmi2GetBooleanStatus",
+    "fmi2GetStringStatus",
+];
+
 /// Exports the FMI 2.0 entry points from the cdylib that invokes it, with
 /// `$factory` (a [`PlantFactory`](crate::plant::PlantFactory)) making the
 /// plant of each instance: [`plant`](crate::plant::plant) for the
@@ -111,4 +161,26 @@ macro_rules! __fmi2_forward {
             unsafe { $crate::$module::$name($($argument),*) }
         }
     )*};
+}
+
+#[cfg(test)]
+mod tests {
+    /// The names `export_fmi2!` exports, read from its text: the
+    /// hand-written `fmi2Instantiate` and each forwarded `module::name(`.
+    #[test]
+    fn the_macro_exports_every_function_of_the_standard_and_no_other() {
+        let text = include_str!("export.rs");
+        let body = &text[..text.find("#[cfg(test)]").unwrap()];
+        let mut exported = vec!["fmi2Instantiate".to_string()];
+        for module in ["common::", "cs::", "me::"] {
+            for (i, _) in body.match_indices(&format!("{module}fmi2")) {
+                let name = &body[i + module.len()..];
+                exported.push(name[..name.find('(').unwrap()].to_string());
+            }
+        }
+        exported.sort();
+        let mut standard: Vec<String> = super::FMI2_FUNCTIONS.map(String::from).to_vec();
+        standard.sort();
+        assert_eq!(exported, standard);
+    }
 }

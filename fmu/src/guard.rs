@@ -1,11 +1,15 @@
 //! What stands between the host and the Rust code: the instance behind an
-//! `fmi2Component`, the host's logger, and [`guard`], which every entry
-//! point runs its body in so that no panic unwinds into the host (it
-//! becomes `fmi2Fatal`) and every failure is logged and returned as its
-//! status.
+//! `fmi2Component` (found through [`crate::registry`]), the host's logger,
+//! and [`guard`], which every entry point runs its body in: it refuses a
+//! handle that is no live instance and a call the state machine
+//! ([`crate::machine`]) does not allow in the instance's state, lets no
+//! panic unwind into the host (it becomes `fmi2Fatal`), logs every failure
+//! and returns it as its status; after an `fmi2Error` the instance is in
+//! the standard's error state.
 
 use crate::ffi::{fmi2CallbackLogger, fmi2Component, fmi2ComponentEnvironment, fmi2Status};
-use crate::instance::{Instance, Outcome};
+use crate::instance::{Failure, Instance, Outcome, Snapshot};
+use std::collections::BTreeMap;
 use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -51,9 +55,28 @@ pub struct Component {
     /// Set when a call panicked: the instance may be inconsistent, so
     /// every later call is `fmi2Fatal`.
     pub broken: bool,
+    /// The states `fmi2GetFMUstate` saved and `fmi2FreeFMUstate` has not
+    /// freed, by handle ([`crate::registry::new_handle`]): a handle of a
+    /// freed state, or of another instance's, is refused.
+    pub states: BTreeMap<usize, Snapshot>,
 }
 
 impl Component {
+    /// A component of `instance` that logs to `logger`.
+    pub fn new(instance: Instance, logger: Logger) -> Component {
+        Component {
+            instance,
+            logger,
+            broken: false,
+            states: BTreeMap::new(),
+        }
+    }
+
+    /// The saved state of handle `state`.
+    pub fn state(&self, state: *mut std::ffi::c_void) -> Outcome<&Snapshot> {
+        (self.states.get(&(state as usize))).ok_or_else(|| unknown_state(state))
+    }
+
     /// Logs `message` with `status` under the category that goes with it.
     pub fn log(&self, status: fmi2Status, message: &str) {
         let category = match status {
@@ -92,30 +115,61 @@ pub fn shielded(
     }
 }
 
-/// Runs `body` on the component `c` (see [`shielded`]); a null `c`, or one
-/// broken by an earlier panic, is refused.
+/// Runs `body` on the component of handle `c` (see [`shielded`]) if the
+/// state machine allows `call` in its state. A handle that is no live
+/// instance (null, freed, never returned) is `fmi2Error`, said on the
+/// standard error (there is no logger to say it to); a component broken by
+/// an earlier panic is `fmi2Fatal`; after an `fmi2Error` the instance is
+/// in the error state.
 pub fn guard(
     c: fmi2Component,
     call: &str,
     body: impl FnOnce(&mut Component) -> Outcome,
 ) -> fmi2Status {
-    if c.is_null() {
+    let Some(entry) = crate::registry::find(c) else {
+        eprintln!("{}", not_an_instance(call, c));
         return fmi2Status::fmi2Error;
-    }
-    // SAFETY: a non-null component is one fmi2Instantiate returned and
-    // fmi2FreeInstance has not freed (the host's obligation).
-    let component = unsafe { &mut *(c as *mut Component) };
+    };
+    let (logger, name) = (entry.logger, entry.name.clone());
+    let report = |status, message: &str| logger.log(&name, status, "logStatusError", message);
+    let Some(mut component) = entry.try_lock() else {
+        let message = format!("{call}: called while another call on this instance runs");
+        report(fmi2Status::fmi2Error, &message);
+        return fmi2Status::fmi2Error;
+    };
     if component.broken {
         return fmi2Status::fmi2Fatal;
     }
-    let logger = component.logger;
-    let name = component.instance.name.clone();
-    let report = |status, message: &str| logger.log(&name, status, "logStatusError", message);
-    let status = shielded(call, &report, || body(&mut *component));
-    if status == fmi2Status::fmi2Fatal {
-        component.broken = true;
+    let status = shielded(call, &report, || {
+        let instance = &component.instance;
+        crate::machine::check(call, instance.interface, instance.mode()).map_err(Failure::error)?;
+        body(&mut component)
+    });
+    match status {
+        fmi2Status::fmi2Fatal => component.broken = true,
+        fmi2Status::fmi2Error => component.instance.fail(),
+        _ => {}
     }
     status
+}
+
+/// Why `c` is not an instance `call` can run on.
+pub fn not_an_instance(call: &str, c: fmi2Component) -> String {
+    match c.is_null() {
+        true => format!("lagrangian FMU: {call}: the instance is null"),
+        false => format!(
+            "lagrangian FMU: {call}: {c:p} is no live instance of this FMU \
+             (freed already, or not returned by its fmi2Instantiate)"
+        ),
+    }
+}
+
+/// The failure of a state handle this instance did not save.
+pub fn unknown_state(state: *mut std::ffi::c_void) -> Failure {
+    Failure::error(format!(
+        "FMU state {state:p} is not one this instance saved (freed already, or another \
+         instance's)"
+    ))
 }
 
 /// `n` values at `p` as a slice (empty for `n == 0`, whatever `p`);

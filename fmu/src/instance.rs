@@ -82,6 +82,11 @@ pub struct Instance {
     /// The plant as loaded, for `fmi2Reset`.
     fresh: Box<dyn Plant>,
     start_time: f64,
+    /// The stop time `fmi2SetupExperiment` defined, if any.
+    stop_time: Option<f64>,
+    /// The earliest time `fmi2SetTime` accepts: the start, then the time
+    /// continuous-time mode was last entered (the last event).
+    time_floor: f64,
     /// Handled events not yet reported to the host (Co-Simulation logs
     /// them after each step).
     pub pending_events: Vec<String>,
@@ -128,6 +133,8 @@ impl Instance {
             fresh: plant.clone_box(),
             plant,
             start_time: 0.0,
+            stop_time: None,
+            time_floor: 0.0,
             pending_events: Vec::new(),
             guid: guid.to_string(),
         })
@@ -143,15 +150,16 @@ impl Instance {
         self.mode
     }
 
-    /// `Err` unless the instance is in one of `modes` for `call`.
-    fn expect(&self, modes: &[Mode], call: &str) -> Outcome {
-        if modes.contains(&self.mode) {
-            return Ok(());
-        }
-        Err(Failure::error(format!(
-            "{call} is not allowed in mode {:?}",
-            self.mode
-        )))
+    /// `Err` unless the state machine allows `call` in the current mode
+    /// ([`crate::machine`]).
+    fn allow(&self, call: &str) -> Outcome {
+        crate::machine::check(call, self.interface, self.mode).map_err(Failure::error)
+    }
+
+    /// Into the standard's error state, after a call returned `fmi2Error`:
+    /// only reading, `fmi2Reset`, `fmi2SetFMUstate` and freeing remain.
+    pub fn fail(&mut self) {
+        self.mode = Mode::Failed;
     }
 
     /// Runs a plant operation; its failure puts the instance in [`Mode::Failed`].
@@ -162,18 +170,37 @@ impl Instance {
         })
     }
 
-    /// `fmi2SetupExperiment`: the start time (the stop time and tolerance
-    /// are the scenario's business).
-    pub fn setup_experiment(&mut self, start_time: f64) -> Outcome {
-        self.expect(&[Mode::Instantiated], "fmi2SetupExperiment")?;
+    /// `fmi2SetupExperiment`: the start time, and the stop time past
+    /// which no step goes (the scenario's tolerance stays: a tolerance
+    /// given is only checked).
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        stop_time: Option<f64>,
+    ) -> Outcome {
+        self.allow("fmi2SetupExperiment")?;
+        if let Some(tolerance) = tolerance.filter(|t| !(t.is_finite() && *t > 0.0)) {
+            return Err(Failure::error(format!(
+                "tolerance = {tolerance}: a defined tolerance is a positive number"
+            )));
+        }
+        finite("startTime", start_time)?;
+        if let Some(stop) = stop_time.filter(|&stop| !(stop >= start_time && stop.is_finite())) {
+            return Err(Failure::error(format!(
+                "stopTime = {stop} s is before startTime = {start_time} s"
+            )));
+        }
         self.start_time = start_time;
+        self.time_floor = start_time;
+        self.stop_time = stop_time;
         Ok(())
     }
 
     /// `fmi2EnterInitializationMode`: the initial state with the parameters
     /// set so far, for the outputs read during initialization.
     pub fn enter_initialization(&mut self) -> Outcome {
-        self.expect(&[Mode::Instantiated], "fmi2EnterInitializationMode")?;
+        self.allow("fmi2EnterInitializationMode")?;
         self.initialize()?;
         self.mode = Mode::Initialization;
         Ok(())
@@ -191,7 +218,7 @@ impl Instance {
     /// `fmi2ExitInitializationMode`: the initial state again (parameters
     /// may have changed during initialization).
     pub fn exit_initialization(&mut self) -> Outcome {
-        self.expect(&[Mode::Initialization], "fmi2ExitInitializationMode")?;
+        self.allow("fmi2ExitInitializationMode")?;
         self.initialize()?;
         self.mode = match self.interface {
             Interface::CoSimulation => Mode::StepComplete,
@@ -202,8 +229,7 @@ impl Instance {
 
     /// `fmi2Terminate`.
     pub fn terminate(&mut self) -> Outcome {
-        let running = [Mode::StepComplete, Mode::Event, Mode::ContinuousTime];
-        self.expect(&running, "fmi2Terminate")?;
+        self.allow("fmi2Terminate")?;
         self.mode = Mode::Terminated;
         Ok(())
     }
@@ -213,12 +239,14 @@ impl Instance {
         self.plant = self.fresh.clone_box();
         self.mode = Mode::Instantiated;
         self.start_time = 0.0;
+        self.stop_time = None;
+        self.time_floor = 0.0;
         self.pending_events.clear();
     }
 
     /// `fmi2GetReal`.
     pub fn get_real(&mut self, vrs: &[u32], values: &mut [f64]) -> Outcome {
-        self.expect(&READABLE, "fmi2GetReal")?;
+        self.allow("fmi2GetReal")?;
         let quantities = (vrs.iter())
             .map(|&vr| self.variables.get(vr).map(|v| v.quantity))
             .collect::<Option<Vec<_>>>()
@@ -226,25 +254,45 @@ impl Instance {
         self.run(|p| p.get(&quantities, values))
     }
 
-    /// `fmi2SetReal`: parameters and inputs.
+    /// `fmi2SetReal`: parameters and inputs, each a finite number. All are
+    /// checked before any is set: a refused call changes nothing.
     pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> Outcome {
-        self.expect(&READABLE, "fmi2SetReal")?;
+        self.allow("fmi2SetReal")?;
+        let mut quantities = Vec::with_capacity(vrs.len());
         for (&vr, &value) in vrs.iter().zip(values) {
-            let variable = self
-                .variables
-                .get(vr)
-                .ok_or_else(|| Failure::error(self.unknown(&[vr])))?;
-            if !variable.settable() {
-                let name = &variable.name;
-                return Err(Failure::error(format!(
-                    "`{name}` (value reference {vr}) is a {}: it cannot be set",
-                    variable.causality().name()
-                )));
-            }
-            let quantity = variable.quantity;
+            quantities.push(self.settable(vr, value)?);
+        }
+        for (quantity, &value) in quantities.into_iter().zip(values) {
             self.plant.set(quantity, value).map_err(Failure::error)?;
         }
         Ok(())
+    }
+
+    /// The quantity of `vr` if `value` may be set to it now.
+    fn settable(&self, vr: u32, value: f64) -> Outcome<crate::variables::Quantity> {
+        let variable =
+            (self.variables.get(vr)).ok_or_else(|| Failure::error(self.unknown(&[vr])))?;
+        let (name, causality) = (&variable.name, variable.causality());
+        if !variable.settable() {
+            return Err(Failure::error(format!(
+                "`{name}` (value reference {vr}) is {}: it cannot be set",
+                causality.with_article()
+            )));
+        }
+        if !crate::machine::settable_in(causality, self.mode) {
+            return Err(Failure::error(format!(
+                "`{name}` (value reference {vr}) is a tunable parameter: it cannot be set in \
+                 state {} (only in instantiated, initializationMode, eventMode, stepComplete)",
+                crate::machine::state_name(self.mode)
+            )));
+        }
+        if !value.is_finite() {
+            return Err(Failure::error(format!(
+                "`{name}` (value reference {vr}) = {value}: {} is a finite number",
+                causality.with_article()
+            )));
+        }
+        Ok(variable.quantity)
     }
 
     /// The message for value references of which one is unknown.
@@ -257,17 +305,28 @@ impl Instance {
         )
     }
 
-    /// `fmi2DoStep`: integrates from `t` to `t + h`.
+    /// `fmi2DoStep`: integrates from `t` (the FMU's time) to `t + h`,
+    /// `h ≥ 0`, not past the stop time.
     pub fn do_step(&mut self, t: f64, h: f64) -> Outcome {
-        self.expect(&[Mode::StepComplete], "fmi2DoStep")?;
+        self.allow("fmi2DoStep")?;
         let now = self.plant.time();
-        if (t - now).abs() > 1e-9 * now.abs().max(1.0) {
+        if !(t.is_finite() && (t - now).abs() <= 1e-9 * now.abs().max(1.0)) {
             return Err(Failure::error(format!(
-                "fmi2DoStep from t = {t:e} s, but the FMU is at t = {now:e} s"
+                "currentCommunicationPoint = {t:e} s, but the FMU is at t = {now:e} s"
             )));
         }
         if !(h >= 0.0 && h.is_finite()) {
-            return Err(Failure::error(format!("communication step {h:e} s")));
+            return Err(Failure::error(format!(
+                "communicationStepSize = {h:e} s: a step is a finite number ≥ 0"
+            )));
+        }
+        if let Some(stop) = self
+            .stop_time
+            .filter(|&stop| t + h > stop * (1.0 + 1e-12) + 1e-12)
+        {
+            return Err(Failure::error(format!(
+                "a step from t = {t:e} s by {h:e} s ends past stopTime = {stop:e} s"
+            )));
         }
         if h == 0.0 {
             return Ok(());
@@ -294,14 +353,14 @@ impl Instance {
 
     /// `fmi2EnterEventMode`.
     pub fn enter_event_mode(&mut self) -> Outcome {
-        self.expect(&[Mode::ContinuousTime, Mode::Event], "fmi2EnterEventMode")?;
+        self.allow("fmi2EnterEventMode")?;
         self.mode = Mode::Event;
         Ok(())
     }
 
     /// `fmi2NewDiscreteStates`: handles the events whose indicators crossed.
     pub fn new_discrete_states(&mut self) -> Outcome<EventUpdate> {
-        self.expect(&[Mode::Event], "fmi2NewDiscreteStates")?;
+        self.allow("fmi2NewDiscreteStates")?;
         let before = self.states();
         let events = self.run(|p| p.handle_events())?;
         Ok(EventUpdate {
@@ -312,15 +371,23 @@ impl Instance {
 
     /// `fmi2EnterContinuousTimeMode`.
     pub fn enter_continuous_time_mode(&mut self) -> Outcome {
-        self.expect(&[Mode::Event], "fmi2EnterContinuousTimeMode")?;
+        self.allow("fmi2EnterContinuousTimeMode")?;
         self.mode = Mode::ContinuousTime;
+        self.time_floor = self.plant.time();
         Ok(())
     }
 
-    /// `fmi2SetTime`.
+    /// `fmi2SetTime`: a finite time, not before the start nor the last
+    /// event (the time continuous-time mode was entered).
     pub fn set_time(&mut self, t: f64) -> Outcome {
-        let modes = [Mode::Event, Mode::ContinuousTime, Mode::Instantiated];
-        self.expect(&modes, "fmi2SetTime")?;
+        self.allow("fmi2SetTime")?;
+        if !(t.is_finite() && t >= self.time_floor) {
+            return Err(Failure::error(format!(
+                "time = {t:e} s: not a finite time at or after t = {:e} s (the start, or the \
+                 last event)",
+                self.time_floor
+            )));
+        }
         self.plant.set_time(t);
         Ok(())
     }
@@ -334,27 +401,36 @@ impl Instance {
 
     /// `fmi2SetContinuousStates`.
     pub fn set_states(&mut self, x: &[f64]) -> Outcome {
-        self.expect(
-            &[Mode::Event, Mode::ContinuousTime],
-            "fmi2SetContinuousStates",
-        )?;
+        self.allow("fmi2SetContinuousStates")?;
         self.check_length(x.len(), self.plant.state_count(), "states")?;
+        self.check_finite_states(x)?;
         self.plant.set_states(x);
         Ok(())
     }
 
     /// `fmi2GetDerivatives`.
     pub fn derivatives(&mut self, dx: &mut [f64]) -> Outcome {
-        self.expect(&READABLE, "fmi2GetDerivatives")?;
+        self.allow("fmi2GetDerivatives")?;
         self.check_length(dx.len(), self.plant.state_count(), "derivatives")?;
         self.run(|p| p.derivatives(dx))
     }
 
     /// `fmi2GetEventIndicators`.
     pub fn event_indicators(&mut self, g: &mut [f64]) -> Outcome {
-        self.expect(&READABLE, "fmi2GetEventIndicators")?;
+        self.allow("fmi2GetEventIndicators")?;
         self.check_length(g.len(), self.plant.event_count(), "event indicators")?;
         self.run(|p| p.event_indicators(g))
+    }
+
+    /// `Err` naming the first state of `x` that is not a finite number.
+    fn check_finite_states(&self, x: &[f64]) -> Outcome {
+        let Some((i, value)) = x.iter().enumerate().find(|(_, x)| !x.is_finite()) else {
+            return Ok(());
+        };
+        Err(Failure::error(format!(
+            "x[{i}] ({}) = {value}: a state is a finite number",
+            self.variables.state_name(i)
+        )))
     }
 
     fn check_length(&self, found: usize, expected: usize, what: &str) -> Outcome {
@@ -371,6 +447,7 @@ impl Instance {
         Snapshot {
             plant: self.plant.clone_box(),
             mode: self.mode,
+            time_floor: self.time_floor,
         }
     }
 
@@ -378,23 +455,25 @@ impl Instance {
     pub fn restore(&mut self, snapshot: &Snapshot) {
         self.plant = snapshot.plant.clone_box();
         self.mode = snapshot.mode;
+        self.time_floor = snapshot.time_floor;
     }
 }
 
-/// The modes in which variables can be read and set.
-const READABLE: [Mode; 6] = [
-    Mode::Instantiated,
-    Mode::Initialization,
-    Mode::StepComplete,
-    Mode::Event,
-    Mode::ContinuousTime,
-    Mode::Terminated,
-];
+/// `Err` unless `value` of the argument `name` is a finite number.
+fn finite(name: &str, value: f64) -> Outcome {
+    match value.is_finite() {
+        true => Ok(()),
+        false => Err(Failure::error(format!(
+            "{name} = {value}: not a finite number"
+        ))),
+    }
+}
 
 /// A saved instance state (`fmi2FMUstate`).
 pub struct Snapshot {
     plant: Box<dyn Plant>,
     mode: Mode,
+    time_floor: f64,
 }
 
 /// Model Exchange hands the host the states `(q, q̇)` only: a component

@@ -17,9 +17,12 @@
 //! Modules: the C types ([`ffi`]); the variables and their value references
 //! ([`variables`]), shared with `lpm export-fmu`; loading the resources
 //! ([`resources`]); the model at its dimension behind one trait
-//! ([`plant`]); the instance's state machine ([`instance`]); the 44 C
+//! ([`plant`]); the instance and its calls ([`instance`]), with the FMI
+//! 2.0 state machine's table of which call each state allows
+//! ([`machine`]); the live instances by handle ([`registry`]); the 44 C
 //! entry points ([`common`], [`cs`], [`me`]), each run inside [`guard`] so
-//! that no panic reaches the host; and [`export_fmi2!`], which exports them
+//! that no panic reaches the host, no freed or foreign handle is read and
+//! no call runs out of order; and [`export_fmi2!`], which exports them
 //! under their C names from an FMU binary ([`export`]).
 
 #![warn(missing_docs)]
@@ -30,8 +33,10 @@ pub mod export;
 pub mod ffi;
 pub mod guard;
 pub mod instance;
+pub mod machine;
 pub mod me;
 pub mod plant;
+pub mod registry;
 pub mod resources;
 pub mod variables;
 

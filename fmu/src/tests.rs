@@ -47,7 +47,7 @@ fn reference_max_crush(settings: &[String]) -> f64 {
 }
 
 fn crush(instance: &mut Instance) -> f64 {
-    let vr = instance.variables.reference("crush").unwrap();
+    let vr = instance.variables.reference("metrics.crush").unwrap();
     let mut value = [0.0];
     instance.get_real(&[vr], &mut value).unwrap();
     value[0]
@@ -222,23 +222,27 @@ fn calls_out_of_order_and_bad_references_are_errors_that_say_why() {
     let mut cs = instance(Interface::CoSimulation);
     let early = cs.do_step(0.0, 1e-3).unwrap_err();
     assert!(
-        early.message.contains("not allowed in mode Instantiated"),
+        early.message.contains("not allowed in state instantiated"),
         "{early:?}"
     );
     let mut value = [0.0];
+    assert!(
+        cs.get_real(&[0], &mut value).is_err(),
+        "read before initialization"
+    );
+    let output = cs.variables.reference("metrics.crush").unwrap();
+    let set = cs.set_real(&[output], &[1.0]).unwrap_err();
+    assert!(
+        set.message.contains("`metrics.crush`") && set.message.contains("output"),
+        "{set:?}"
+    );
+    cs.enter_initialization().unwrap();
+    cs.exit_initialization().unwrap();
     let unknown = cs.get_real(&[9999], &mut value).unwrap_err();
     assert!(
         unknown.message.contains("unknown value reference 9999"),
         "{unknown:?}"
     );
-    let output = cs.variables.reference("crush").unwrap();
-    let set = cs.set_real(&[output], &[1.0]).unwrap_err();
-    assert!(
-        set.message.contains("`crush`") && set.message.contains("output"),
-        "{set:?}"
-    );
-    cs.enter_initialization().unwrap();
-    cs.exit_initialization().unwrap();
     let wrong_time = cs.do_step(0.5, 1e-3).unwrap_err();
     assert!(
         wrong_time.message.contains("the FMU is at t = 0"),

@@ -8,6 +8,19 @@
 //! unbound, the spec's outputs, then the scenario's crush and deceleration
 //! and the components' columns (crush force, weld moment). The value
 //! reference of a variable is its position in the table.
+//!
+//! Names: the spec's own (coordinates, parameters, inputs, outputs) are
+//! identifiers, and what the FMU adds lives in a namespace of its own that
+//! no identifier can take: `der(q)` and `der(der(q))` for the rates and
+//! accelerations, [`METRICS`]`.crush` and `metrics.deceleration` for the
+//! scenario's crush signal, `COMPONENT.COLUMN` (`front_end.force`) for the
+//! components' columns. So every spec exports under its own names; a clash
+//! left (a component called `metrics` with a column `crush`, which no
+//! component has today) is an error naming both variables.
+
+/// The namespace of the variables the FMU adds from the scenario's
+/// `[metrics]` (`metrics.crush`, `metrics.deceleration`).
+pub const METRICS: &str = "metrics";
 
 use lagrangian_core::spec::Model;
 use lagrangian_sim::scenario::Scenario;
@@ -50,6 +63,16 @@ pub enum Causality {
 }
 
 impl Causality {
+    /// Its name after an article, for messages (`an output`).
+    pub fn with_article(self) -> &'static str {
+        match self {
+            Causality::Parameter => "a parameter",
+            Causality::Input => "an input",
+            Causality::Output => "an output",
+            Causality::Local => "a local variable",
+        }
+    }
+
     /// The attribute value in modelDescription.xml.
     pub fn name(self) -> &'static str {
         match self {
@@ -120,8 +143,8 @@ impl Variables {
     /// with `unbound` the inputs the host sets (see [`unbound_inputs`];
     /// the runtime binds them to constants before it builds this table).
     ///
-    /// Two variables of one name (a spec output called `crush` beside the
-    /// scenario's crush signal) are an error that names them.
+    /// Two variables of one name are an error that names them (see the
+    /// module's notes on names).
     pub fn new(model: &Model, scenario: &Scenario, unbound: &[usize]) -> Result<Variables, String> {
         let mut list = states(model);
         list.extend(parameters(model, scenario));
@@ -150,13 +173,7 @@ impl Variables {
         );
         list.extend(crush(scenario));
         list.extend(columns(scenario));
-        if let Some(name) = repeated_name(&list) {
-            return Err(format!(
-                "two FMU variables would be called `{name}`: rename the spec's `{name}` \
-                 (the FMU names the scenario's crush signal `crush` and its deceleration \
-                 `deceleration`)"
-            ));
-        }
+        unique(&list)?;
         Ok(Variables {
             list,
             dimension: model.coordinates.len(),
@@ -171,6 +188,21 @@ impl Variables {
     /// The value reference of the variable called `name`.
     pub fn reference(&self, name: &str) -> Option<u32> {
         (self.list.iter().position(|v| v.name == name)).map(|i| i as u32)
+    }
+
+    /// The name of the continuous state `i` (`q` then `q̇`: `theta1`,
+    /// `der(theta1)`), for messages; `state i` past them.
+    pub fn state_name(&self, i: usize) -> String {
+        let n = self.dimension;
+        let vr = match i < 2 * n {
+            true => self.list.iter().position(|v| match v.quantity {
+                Quantity::Coordinate(j) => j == i,
+                Quantity::Rate(j) => n + j == i,
+                _ => false,
+            }),
+            false => None,
+        };
+        vr.map_or_else(|| format!("state {i}"), |vr| self.list[vr].name.clone())
     }
 
     /// The 1-based index (in `<ModelVariables>`) of the state that the
@@ -247,12 +279,39 @@ fn parameters<'a>(model: &'a Model, scenario: &'a Scenario) -> impl Iterator<Ite
     })
 }
 
-/// The first name two variables of `list` share.
-fn repeated_name(list: &[Variable]) -> Option<&str> {
-    let mut seen = std::collections::HashSet::new();
-    (list.iter())
-        .find(|v| !seen.insert(v.name.as_str()))
-        .map(|v| v.name.as_str())
+/// `Err` naming the first two variables of `list` that share a name.
+fn unique(list: &[Variable]) -> Result<(), String> {
+    let Some((first, second)) = repeated_name(list) else {
+        return Ok(());
+    };
+    Err(format!(
+        "two FMU variables would be called `{}`: {} and {}; rename one of them",
+        list[first].name,
+        origin(&list[first]),
+        origin(&list[second])
+    ))
+}
+
+/// The positions of the first two variables of `list` that share a name.
+fn repeated_name(list: &[Variable]) -> Option<(usize, usize)> {
+    let mut seen = std::collections::HashMap::new();
+    (list.iter().enumerate()).find_map(|(i, v)| {
+        let first = *seen.entry(v.name.as_str()).or_insert(i);
+        (first != i).then_some((first, i))
+    })
+}
+
+/// Where a variable comes from, in words, for the clash message.
+fn origin(variable: &Variable) -> &'static str {
+    match variable.quantity {
+        Quantity::Coordinate(_) => "the spec's coordinate",
+        Quantity::Rate(_) | Quantity::Acceleration(_) => "the rate of a coordinate",
+        Quantity::Parameter(_) => "the spec's parameter",
+        Quantity::Input(_) => "the spec's input",
+        Quantity::Output(_) => "the spec's output",
+        Quantity::Crush | Quantity::Deceleration => "the scenario's crush signal",
+        Quantity::Column(_) => "a column of the scenario's components",
+    }
 }
 
 /// The crush signal and its deceleration, when the scenario names one.
@@ -262,14 +321,14 @@ fn crush(scenario: &Scenario) -> Vec<Variable> {
     };
     vec![
         Variable {
-            name: "crush".to_string(),
+            name: format!("{METRICS}.crush"),
             quantity: Quantity::Crush,
             unit: signal.unit.clone(),
             description: format!("crush `{}` (compression positive)", signal.name),
             start: None,
         },
         Variable {
-            name: "deceleration".to_string(),
+            name: format!("{METRICS}.deceleration"),
             quantity: Quantity::Deceleration,
             unit: signal.unit.as_ref().map(|u| format!("{u}/s^2")),
             description: format!("deceleration of the crush `{}`", signal.name),
@@ -288,4 +347,65 @@ fn columns(scenario: &Scenario) -> impl Iterator<Item = Variable> + '_ {
         unit,
         start: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::resources::load_texts;
+    use std::path::Path;
+
+    /// The variable names of the shipped spec `name` under its scenario.
+    fn names(spec: &str, scenario: &str) -> Result<Vec<String>, String> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specs");
+        let (spec_path, scenario_path) = (root.join(spec), root.join("scenarios").join(scenario));
+        let spec = std::fs::read_to_string(&spec_path).unwrap();
+        let scenario = std::fs::read_to_string(&scenario_path).unwrap();
+        let loaded = load_texts((&spec_path, &spec), Some((&scenario_path, &scenario)))?;
+        let model = &loaded.compiled.model;
+        let variables = super::Variables::new(model, &loaded.scenario, &loaded.unbound)?;
+        Ok(variables.list.into_iter().map(|v| v.name).collect())
+    }
+
+    #[test]
+    fn a_spec_output_called_crush_or_deceleration_keeps_its_name_beside_the_fmus() {
+        let car_to_car = names("car_to_car.lpm", "car_to_car.toml").unwrap();
+        let wall = names("wall_impact.lpm", "wall_impact.toml").unwrap();
+        for name in [
+            "crush",
+            "metrics.crush",
+            "metrics.deceleration",
+            "front_a.force",
+        ] {
+            assert!(
+                car_to_car.contains(&name.to_string()),
+                "{name}: {car_to_car:?}"
+            );
+        }
+        for name in ["deceleration", "metrics.crush", "metrics.deceleration"] {
+            assert!(wall.contains(&name.to_string()), "{name}: {wall:?}");
+        }
+    }
+
+    #[test]
+    fn two_variables_of_one_name_are_an_error_naming_where_each_comes_from() {
+        let variable = |name: &str, quantity| super::Variable {
+            name: name.to_string(),
+            quantity,
+            unit: None,
+            description: String::new(),
+            start: None,
+        };
+        let list = [
+            variable("x", super::Quantity::Coordinate(0)),
+            variable("metrics.crush", super::Quantity::Crush),
+            variable("metrics.crush", super::Quantity::Column(0)),
+        ];
+        let message = super::unique(&list).unwrap_err();
+        assert_eq!(
+            message,
+            "two FMU variables would be called `metrics.crush`: the scenario's crush signal \
+             and a column of the scenario's components; rename one of them"
+        );
+        assert_eq!(super::unique(&list[..2]), Ok(()));
+    }
 }

@@ -12,6 +12,7 @@
 mod archive;
 pub mod compiled;
 mod description;
+mod runtime;
 
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
@@ -129,12 +130,15 @@ pub fn export_with(
         crate::simulate::load_spec(spec, scenario, &[])?;
     model.with_dimension(Supported).map_err(Failure::model)?;
     let spec_bytes = read(spec)?;
-    let library = match binary {
+    let (library, whence) = match binary {
         Binary::Generic(runtime) => find_runtime(runtime)?,
-        Binary::Compiled(build) => {
-            compiled::build(spec, &String::from_utf8_lossy(&spec_bytes), build)?
-        }
+        Binary::Compiled(build) => (
+            compiled::build(spec, &String::from_utf8_lossy(&spec_bytes), build)?,
+            "built by --compiled",
+        ),
     };
+    let library_bytes = read(&library)?;
+    runtime::check(&library, whence, &library_bytes)?;
     let mut resources = vec![Entry {
         name: format!("resources/{SPEC_FILE}"),
         bytes: spec_bytes,
@@ -159,7 +163,7 @@ pub fn export_with(
                 "binaries/{platform}/{MODEL_IDENTIFIER}{}",
                 std::env::consts::DLL_SUFFIX
             ),
-            bytes: read(&library)?,
+            bytes: library_bytes,
             executable: true,
         },
     ];
@@ -221,24 +225,33 @@ fn platform() -> Result<&'static str, Failure> {
     }
 }
 
+/// The runtime library's file name on this platform (`liblagrangian_fmu.so`).
+pub fn runtime_file() -> String {
+    runtime::library_file()
+}
+
 /// The runtime library: `runtime` if given, else `$LPM_FMU_RUNTIME`, else
-/// `liblagrangian_fmu.so` (`.dll`, `.dylib`) beside the lpm executable.
-pub fn find_runtime(runtime: Option<&Path>) -> Result<PathBuf, Failure> {
-    let file = format!(
-        "{}{MODEL_IDENTIFIER}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    );
-    let candidate = match (runtime, std::env::var_os(RUNTIME_VARIABLE)) {
-        (Some(path), _) => path.to_path_buf(),
-        (None, Some(path)) => PathBuf::from(path),
+/// `liblagrangian_fmu.so` (`.dll`, `.dylib`) beside the lpm executable;
+/// with where it was named (for messages).
+pub fn find_runtime(runtime: Option<&Path>) -> Result<(PathBuf, &'static str), Failure> {
+    let file = runtime::library_file();
+    let (candidate, whence) = match (runtime, std::env::var_os(RUNTIME_VARIABLE)) {
+        (Some(path), _) => (path.to_path_buf(), "--runtime"),
+        (None, Some(path)) => (PathBuf::from(path), RUNTIME_VARIABLE),
         (None, None) => {
             let exe = std::env::current_exe().map_err(|e| Failure::io(e.to_string()))?;
-            built_beside(exe.parent().unwrap_or(Path::new(".")), &file)
+            let dir = exe.parent().unwrap_or(Path::new("."));
+            (built_beside(dir, &file), "beside lpm")
         }
     };
     if candidate.is_file() {
-        return Ok(candidate);
+        return Ok((candidate, whence));
+    }
+    if candidate.exists() {
+        return Err(Failure::usage(format!(
+            "the FMU runtime {} ({whence}) is not a file: name the library itself, {file}",
+            candidate.display()
+        )));
     }
     Err(Failure::usage(format!(
         "the FMU runtime {} does not exist: build it with `cargo build -p lagrangian-fmu` \

@@ -140,19 +140,75 @@ fn a_missing_runtime_is_named_with_what_to_build() {
     assert!(!Path::new(&out).exists());
 }
 
+/// A shared library that is no FMU binary: a proc-macro crate's, which
+/// cargo built in the same `deps/` folder.
+fn some_other_library() -> PathBuf {
+    let deps = runtime().parent().unwrap().to_path_buf();
+    let found = std::fs::read_dir(&deps).unwrap().map(|e| e.unwrap().path());
+    let mut libraries = found.filter(|p| {
+        let name = p.file_name().unwrap().to_string_lossy();
+        name.starts_with("liblagrangian_macro-") && name.ends_with(std::env::consts::DLL_SUFFIX)
+    });
+    libraries.next().expect("the proc-macro library beside lpm")
+}
+
 #[test]
-fn a_spec_name_the_fmu_also_gives_its_crush_signal_is_an_error_not_a_second_variable() {
-    // car_to_car.lpm declares `output crush`, and its scenario a crush signal.
+fn a_runtime_that_is_no_fmu_binary_is_refused_and_writes_nothing() {
+    let dir = temporary("export-fmu-not-a-runtime");
+    let out = dir.join("y.fmu").display().to_string();
+    let cases = [
+        (
+            some_other_library(),
+            "exports none of the 44 FMI 2.0 functions",
+        ),
+        (
+            PathBuf::from(env!("CARGO_BIN_EXE_lpm")),
+            "exports none of the 44",
+        ),
+    ];
+    for (library, why) in cases {
+        let library = library.display().to_string();
+        let run = export(&[YARIS, "--out", &out, "--runtime", &library]);
+        assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+        let message = stderr(&run);
+        assert!(
+            message.contains(&library) && message.contains(why),
+            "{message}"
+        );
+    }
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_lpm"));
+    command
+        .current_dir(ROOT)
+        .args(["export-fmu", YARIS, "--out", &out]);
+    let run = command
+        .env("LPM_FMU_RUNTIME", "/etc/passwd")
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("/etc/passwd (LPM_FMU_RUNTIME) is not a shared library"));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
+
+#[test]
+fn specs_whose_names_are_those_the_fmu_adds_export_under_their_own_names() {
+    // car_to_car.lpm declares `output crush`, wall_impact.lpm `output
+    // deceleration`; the FMU's own are `metrics.crush` and
+    // `metrics.deceleration`.
     let dir = temporary("export-fmu-names");
-    let out = dir.join("c2c.fmu").display().to_string();
-    let run = export(&["specs/car_to_car.lpm", "--out", &out]);
-    assert_eq!(run.status.code(), Some(4), "{}", stderr(&run));
-    let message = stderr(&run);
-    assert!(
-        message.contains("two FMU variables would be called `crush`"),
-        "{message}"
-    );
-    assert!(!Path::new(&out).exists());
+    for (spec, own) in [
+        ("specs/car_to_car.lpm", "crush"),
+        ("specs/wall_impact.lpm", "deceleration"),
+    ] {
+        let out = dir.join("names.fmu");
+        let run = export(&[spec, "--out", &out.display().to_string()]);
+        assert!(run.status.success(), "{spec}: {}", stderr(&run));
+        let mut archive = zip::ZipArchive::new(std::fs::File::open(&out).unwrap()).unwrap();
+        let xml = String::from_utf8(entry(&mut archive, "modelDescription.xml")).unwrap();
+        for name in [own, "metrics.crush", "metrics.deceleration"] {
+            let attribute = format!("<ScalarVariable name=\"{name}\"");
+            assert_eq!(xml.matches(&attribute).count(), 1, "{spec}: {name}\n{xml}");
+        }
+    }
 }
 
 /// `lpm export-fmu --compiled` with the environment `variables` set.

@@ -592,6 +592,13 @@ def fit(
         scenario=files["fitted.toml"],
         svg=files["fit.svg"],
     )
+def packaged_runtime() -> Optional[pathlib.Path]:
+    """The FMU runtime the installed package ships
+    (``lagrangian/liblagrangian_fmu.so`` on Linux), if it is there."""
+    path = pathlib.Path(__file__).parent / _lagrangian.fmu_runtime_file()
+    return path if path.is_file() else None
+
+
 def export_fmu(
     spec: Union[str, os.PathLike],
     scenario: Optional[Union[str, os.PathLike]] = None,
@@ -604,10 +611,13 @@ def export_fmu(
     default the scenario beside the spec that names it), and returns its
     path.
 
-    ``runtime`` is the FMU runtime library to pack
-    (``target/debug/liblagrangian_fmu.so`` after ``cargo build -p
-    lagrangian-fmu``); by default ``$LPM_FMU_RUNTIME``.
+    ``runtime`` is the FMU runtime library to pack; by default
+    ``$LPM_FMU_RUNTIME``, else the one the package ships (the wheel carries
+    it, built with the extension: no Rust toolchain is needed), else the
+    one ``cargo build -p lagrangian-fmu`` writes beside ``lpm``.
     """
+    if runtime is None and "LPM_FMU_RUNTIME" not in os.environ:
+        runtime = packaged_runtime()
     _lagrangian.export_fmu(
         os.fspath(spec),
         None if scenario is None else os.fspath(scenario),

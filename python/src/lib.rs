@@ -363,6 +363,13 @@ fn export_fmu(
     Ok(exported.bytes)
 }
 
+/// The FMU runtime's file name on this platform (`liblagrangian_fmu.so`),
+/// as the package ships it.
+#[pyfunction]
+fn fmu_runtime_file() -> String {
+    lpm::fmu::runtime_file()
+}
+
 /// The module `lagrangian._lagrangian`.
 #[pymodule]
 fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -377,6 +384,7 @@ fn _lagrangian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ensembles::sweep_envelope, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::fit, m)?)?;
     m.add_function(wrap_pyfunction!(export_fmu, m)?)?;
+    m.add_function(wrap_pyfunction!(fmu_runtime_file, m)?)?;
     m.add_function(wrap_pyfunction!(ensembles::sweep_merge_envelope, m)?)?;
     Ok(())
 }

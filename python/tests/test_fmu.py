@@ -50,22 +50,22 @@ def test_fmpy_finds_no_problem_in_the_fmu(fmu):
 
 
 def test_co_simulation_agrees_with_lpm_simulate(fmu):
-    result = simulate_fmu(str(fmu), fmi_type="CoSimulation", output=["crush", "front_end.force"])
+    result = simulate_fmu(str(fmu), fmi_type="CoSimulation", output=["metrics.crush", "front_end.force"])
     assert result["time"][-1] == pytest.approx(0.15)
-    assert relative(result["crush"].max(), max_crush_of_lpm_simulate()) < 0.005
+    assert relative(result["metrics.crush"].max(), max_crush_of_lpm_simulate()) < 0.005
     assert result["front_end.force"].max() > 1e5  # the crush force reaches hundreds of kN
 
 
 def test_model_exchange_with_cvode_agrees_with_lpm_simulate(fmu):
     result = simulate_fmu(str(fmu), fmi_type="ModelExchange", solver="CVode",
-                          relative_tolerance=1e-8, output=["crush"])
-    assert relative(result["crush"].max(), max_crush_of_lpm_simulate()) < 0.005
+                          relative_tolerance=1e-8, output=["metrics.crush"])
+    assert relative(result["metrics.crush"].max(), max_crush_of_lpm_simulate()) < 0.005
 
 
 def test_model_exchange_with_euler_agrees_with_lpm_simulate(fmu):
     result = simulate_fmu(str(fmu), fmi_type="ModelExchange", solver="Euler",
-                          step_size=1e-6, output_interval=1e-4, output=["crush"])
-    assert relative(result["crush"].max(), max_crush_of_lpm_simulate()) < 0.005
+                          step_size=1e-6, output_interval=1e-4, output=["metrics.crush"])
+    assert relative(result["metrics.crush"].max(), max_crush_of_lpm_simulate()) < 0.005
 
 
 def test_a_parameter_set_through_fmi_changes_the_run_as_set_does(fmu):
@@ -74,16 +74,16 @@ def test_a_parameter_set_through_fmi_changes_the_run_as_set_does(fmu):
     assert relative(heavier, default) > 0.01  # m1 matters
     for fmi_type in ["CoSimulation", "ModelExchange"]:
         result = simulate_fmu(str(fmu), fmi_type=fmi_type, start_values={"m1": 700.0},
-                              relative_tolerance=1e-8, output=["crush"])
-        assert relative(result["crush"].max(), heavier) < 0.005, fmi_type
+                              relative_tolerance=1e-8, output=["metrics.crush"])
+        assert relative(result["metrics.crush"].max(), heavier) < 0.005, fmi_type
 
 
 def test_export_fmu_from_python_writes_the_same_model(fmu, tmp_path):
     out = lagrangian.export_fmu(YARIS, out=tmp_path / "y.fmu", runtime=RUNTIME)
     assert out == tmp_path / "y.fmu"
     assert validate_fmu(str(out)) == []
-    result = simulate_fmu(str(out), fmi_type="CoSimulation", output=["crush"])
-    assert relative(result["crush"].max(), max_crush_of_lpm_simulate()) < 0.005
+    result = simulate_fmu(str(out), fmi_type="CoSimulation", output=["metrics.crush"])
+    assert relative(result["metrics.crush"].max(), max_crush_of_lpm_simulate()) < 0.005
 
 
 def test_a_bad_spec_fails_as_lpm_simulate_does(tmp_path):
