@@ -269,24 +269,36 @@ where
         Ok(g)
     }
 
-    /// Records the indicators as the reference for the next crossing; one
-    /// exactly zero takes its sign just after `t` (along `(q̇, q̈)`), so
-    /// that the crossing just handled is not seen again.
-    fn arm(&mut self) -> Result<(), String> {
-        self.armed = self.indicators_at(self.t, self.y)?;
-        if self.armed.contains(&0.0) {
+    /// The event indicators at the current state, each exactly zero given
+    /// the sign it takes just after `t` (along `(q̇, q̈)`), as the
+    /// simulator's event tracker does at the start of a step sequence
+    /// (`lagrangian_sim::ode::events`): an indicator that only touches zero
+    /// at a state (a contact that begins at zero force, a crush rate that
+    /// is zero at the start) has the sign of where it is going, so that a
+    /// crossing is a change of that sign, never a touch of zero.
+    fn signed_indicators(&mut self) -> Result<Vec<f64>, String> {
+        let mut g = self.indicators_at(self.t, self.y)?;
+        if g.contains(&0.0) {
             let delta = 1e-9 * self.t.abs().max(1.0);
             let a = self.accelerations()?;
             let mut ahead = self.y;
             ahead.q += delta * self.y.v;
             ahead.v += delta * a;
             let probe = self.indicators_at(self.t + delta, ahead)?;
-            for (g, p) in self.armed.iter_mut().zip(probe) {
+            for (g, p) in g.iter_mut().zip(probe) {
                 if *g == 0.0 {
                     *g = p;
                 }
             }
         }
+        Ok(g)
+    }
+
+    /// Records the indicators ([`Run::signed_indicators`]) as the reference
+    /// for the next crossing, so that the crossing just handled (or a zero
+    /// at the start) is not seen again.
+    fn arm(&mut self) -> Result<(), String> {
+        self.armed = self.signed_indicators()?;
         Ok(())
     }
 
@@ -354,7 +366,10 @@ where
     }
 
     fn handle_events(&mut self) -> Result<Vec<String>, String> {
-        let now = self.indicators_at(self.t, self.y)?;
+        // Signed as the reference was: an indicator that is zero at the
+        // state it was armed at (a crush element starting in contact at
+        // zero force) has not crossed.
+        let now = self.signed_indicators()?;
         let (t, mut y) = (self.t, self.y);
         let armed = std::mem::take(&mut self.armed);
         let handled = self.with_problem(|p| {
