@@ -391,8 +391,11 @@ where
         inputs + self.model.switching_count()
     }
 
+    /// Signed as [`Run::signed_indicators`] signs them: the host sees an
+    /// indicator cross zero where the FMU sees it cross, never one resting
+    /// at zero (a contact that begins at zero force, at the start).
     fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
-        let now = self.indicators_at(self.t, self.y)?;
+        let now = self.signed_indicators()?;
         g.copy_from_slice(&now);
         Ok(())
     }
