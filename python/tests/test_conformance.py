@@ -197,6 +197,25 @@ def test_a_contact_that_begins_at_zero_force_matches_its_closed_form(tmp_path):
         assert relative(maximum, closed_form, closed_form) < 1e-6, (surface, maximum)
 
 
+def test_a_block_that_slips_and_sticks_stops_where_coulomb_says(tmp_path):
+    """Block 1 of friction_blocks (1 kg on 100 N/m, released from 0.1 m
+    against mu_k = 0.3, mu_s = 0.4, N = 9.81 N) loses 2 mu_k N / k of
+    amplitude each half cycle and sticks after two, where the spring's
+    force is within mu_s N: at 0.1 - 4 mu_k N / k = -0.017720 m, in
+    every surface (stick and slip are events of Model Exchange too)."""
+    scenario = VARIANTS / "friction_blocks.toml"
+    closed_form = 0.1 - 4 * 0.3 * 9.81 / 100.0
+    channels, _ = simulated(scenario, tmp_path / "simulate")
+    fmu = tmp_path / "friction_blocks.fmu"
+    run_lpm("export-fmu", spec_of(scenario), "--scenario", scenario, "--out", fmu)
+    ends = {"lpm simulate": channels["x1"][-1]}
+    for kind, options in [("CoSimulation", {}),
+                          ("ModelExchange", {"solver": "CVode", "relative_tolerance": 1e-8})]:
+        ends[kind] = simulate_fmu(str(fmu), fmi_type=kind, output=["x1"], **options)["x1"][-1]
+    for surface, end in ends.items():
+        assert relative(end, closed_form, abs(closed_form)) < 1e-6, (surface, end)
+
+
 def format_cell(cell):
     if isinstance(cell, str):
         return cell
