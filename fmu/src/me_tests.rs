@@ -164,3 +164,43 @@ fn internal_states_are_continuous_states_of_model_exchange() {
         );
     }
 }
+
+/// `lpm simulate`'s coordinates at the end of the run of `loaded`.
+fn simulated_end(loaded: &Loaded) -> Vec<f64> {
+    use lagrangian_model::{Interpreted, WithDimension};
+    struct Run<'a>(&'a lagrangian_sim::scenario::Scenario);
+    impl WithDimension for Run<'_> {
+        type Output = Vec<f64>;
+        fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+            let result = lagrangian_sim::simulate::simulate(&system, self.0).unwrap();
+            result.samples.last().unwrap().q.clone()
+        }
+    }
+    let model = loaded.compiled.interpreted();
+    model.with_dimension(Run(&loaded.scenario)).unwrap()
+}
+
+/// The four-bar linkage's loop constraints: Model Exchange hands the host
+/// the constrained `q̈` (with the scenario's stabilization, as `lpm
+/// simulate` integrates it), so a host's RK4 at 0.1 ms ends 1 s of the
+/// linkage's swing where the simulator does, on the constraints.
+#[test]
+fn model_exchange_runs_the_constrained_accelerations() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specs");
+    let (spec, scenario) = (
+        root.join("four_bar_linkage.lpm"),
+        root.join("scenarios/four_bar_linkage.toml"),
+    );
+    let text = std::fs::read_to_string(&scenario).unwrap();
+    let text = text.replace("t_end = 5.0", "t_end = 1.0");
+    let reference = simulated_end(&load(&spec, &scenario, &text));
+    let mut me = model_exchange(load(&spec, &scenario, &text));
+    max_over_run(&mut me, "theta1", 1e-4, 1.0);
+    let end = &me.states()[..reference.len()];
+    for (host, simulated) in end.iter().zip(&reference) {
+        assert!(
+            (host - simulated).abs() < 1e-6,
+            "ME {end:?} vs {reference:?}"
+        );
+    }
+}

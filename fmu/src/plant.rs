@@ -300,7 +300,7 @@ where
     }
 
     /// The event indicators at the current state, each exactly zero given
-    /// the sign it takes just after `t` (along `(q̇, q̈)`), as the
+    /// the sign it takes just after `t` (along `(q̇, q̈, ż)`), as the
     /// simulator's event tracker does at the start of a step sequence
     /// (`lagrangian_sim::ode::events`): an indicator that only touches zero
     /// at a state (a contact that begins at zero force, a crush rate that
