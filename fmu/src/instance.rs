@@ -117,9 +117,6 @@ impl Instance {
                 loaded.guid
             )));
         }
-        if interface == Interface::ModelExchange {
-            refuse_internal_states(&loaded)?;
-        }
         let spec = &loaded.compiled.model;
         let variables =
             Variables::new(spec, &loaded.scenario, &loaded.unbound).map_err(Failure::error)?;
@@ -474,23 +471,4 @@ pub struct Snapshot {
     plant: Box<dyn Plant>,
     mode: Mode,
     time_floor: f64,
-}
-
-/// Model Exchange hands the host the states `(q, q̇)` only: a component
-/// with internal states of its own (a Bouc–Wen spring's `z`) would be held
-/// at its initial values, a silently wrong model, so such a scenario is
-/// refused by name. Co-Simulation integrates them.
-fn refuse_internal_states(loaded: &Loaded) -> Outcome {
-    let stateful: Vec<&str> = (loaded.scenario.inputs.components.iter())
-        .filter(|named| !named.component.states().is_empty())
-        .map(|named| named.name.as_str())
-        .collect();
-    if stateful.is_empty() {
-        return Ok(());
-    }
-    Err(Failure::error(format!(
-        "Model Exchange is not supported for a scenario whose components have internal states \
-         ({}): the FMU exposes only q and q̇ to the host; use Co-Simulation",
-        stateful.join(", ")
-    )))
 }

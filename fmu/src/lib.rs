@@ -45,4 +45,6 @@ mod c_api_tests;
 #[cfg(test)]
 mod compiled_tests;
 #[cfg(test)]
+mod me_tests;
+#[cfg(test)]
 mod tests;

@@ -1,5 +1,7 @@
 //! The simulated model behind an instance, at its dimension `N` but seen
-//! through one object-safe trait ([`Plant`]): its time and state `(q, q̇)`,
+//! through one object-safe trait ([`Plant`]): its time and state `(q, q̇, z)`
+//! (`z` the components' internal states: a Bouc–Wen spring's `z`, the
+//! energy each dissipative component has dissipated),
 //! the derivatives and event indicators Model Exchange asks for, the events
 //! it handles, and Co-Simulation's step with our integrator and events.
 
@@ -7,7 +9,8 @@ use crate::variables::Quantity;
 use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem, WithDimension};
 use lagrangian_sim::crash::BoundInputs;
 use lagrangian_sim::crash::constant::Constant;
-use lagrangian_sim::ode::{self, EventAction, OdeProblem, PhaseState};
+use lagrangian_sim::ode::tr_bdf2::AccelerationJacobians;
+use lagrangian_sim::ode::{self, EventAction, OdeProblem, OdeVector, PhaseState};
 use lagrangian_sim::scenario::{Columns, Scenario};
 use lagrangian_sim::simulate::{CrashProblem, stepwise};
 use nalgebra::SVector;
@@ -16,20 +19,21 @@ use nalgebra::SVector;
 pub trait Plant {
     /// A copy in the same state (for `fmi2GetFMUstate`).
     fn clone_box(&self) -> Box<dyn Plant>;
-    /// The number of continuous states, `2N`.
+    /// The number of continuous states, `2N` and the components' internal
+    /// states.
     fn state_count(&self) -> usize;
     /// The current time \[s\].
     fn time(&self) -> f64;
     /// Sets the time (Model Exchange).
     fn set_time(&mut self, t: f64);
-    /// The states `(q, q̇)` into `x`.
+    /// The states `(q, q̇, z)` into `x`.
     fn states(&self, x: &mut [f64]);
-    /// Sets the states `(q, q̇)` from `x`.
+    /// Sets the states `(q, q̇, z)` from `x`.
     fn set_states(&mut self, x: &[f64]);
     /// Puts the model in the scenario's initial state (static equilibrium,
     /// components' start) with the parameters as they are set now.
     fn initialize(&mut self) -> Result<(), String>;
-    /// `(q̇, q̈)` into `dx`.
+    /// `(q̇, q̈, ż)` into `dx`.
     fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String>;
     /// The number of event indicators: the components' events, then the
     /// model's switching functions.
@@ -137,12 +141,17 @@ where
     (scenario)
         .apply_parameters(&mut system)
         .map_err(|e| e.to_string())?;
+    let mut inputs = scenario.inputs.clone();
+    // The state has the internal states' length from the start, as the
+    // count of continuous states the description declares.
+    let mut y = PhaseState::zeros();
+    y.z = inputs.initial_internal().map_err(|e| e.to_string())?;
     Ok(Box::new(Run {
         model: system,
-        inputs: Some(scenario.inputs.clone()),
+        inputs: Some(inputs),
         scenario: scenario.clone(),
         t: 0.0,
-        y: PhaseState::zeros(),
+        y,
         armed: Vec::new(),
     }))
 }
@@ -179,15 +188,23 @@ struct Derived<const N: usize> {
     a: SVector<f64, N>,
     outputs: Vec<f64>,
     columns: Vec<f64>,
+    /// The multipliers `λ` and residuals of the model's constraints (empty
+    /// without constraints).
+    multipliers: Vec<f64>,
+    residuals: Vec<f64>,
+    /// `ż` (empty without internal states).
+    internal_rates: Vec<f64>,
 }
 
 impl<const N: usize, S> Run<N, S>
 where
     S: LagrangianSystem<N> + Clone + 'static,
 {
-    /// Runs `f` on the problem of the model with the current inputs.
+    /// Runs `f` on the problem of the model with the current inputs, the
+    /// components given the internal states of the current state.
     fn with_problem<R>(&mut self, f: impl FnOnce(&mut CrashProblem<N, S>) -> R) -> R {
-        let inputs = (self.inputs.take()).expect("the inputs are put back after every use");
+        let mut inputs = (self.inputs.take()).expect("the inputs are put back after every use");
+        inputs.load(&self.y.z);
         let mut problem = CrashProblem::new(&self.model, inputs);
         problem.stabilization = self.scenario.stabilization;
         let result = f(&mut problem);
@@ -195,25 +212,38 @@ where
         result
     }
 
-    fn accelerations(&mut self) -> Result<SVector<f64, N>, String> {
+    /// `(q̇, q̈, ż)` at the current state, as the simulator's right-hand
+    /// side gives them.
+    fn rates(&mut self) -> Result<PhaseState<N>, String> {
         let (t, y) = (self.t, self.y);
-        self.with_problem(|p| p.accelerations(t, &y.q, &y.v))
-            .map_err(|fault| format!("at t = {t:e} s: {fault}"))
+        let mut dy = y;
+        self.with_problem(|p| p.rhs(t, &y, &mut dy))
+            .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        Ok(dy)
     }
 
     fn derived(&mut self) -> Result<Derived<N>, String> {
         let (t, y) = (self.t, self.y);
-        let a = self.accelerations()?;
+        let solved = self.with_problem(|p| p.accelerations_and_multipliers(t, &y.q, &y.v));
+        let solved = solved.map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        let a = solved.a;
         let mut outputs = vec![0.0; self.model.output_names().len()];
         let columns = self.with_problem(|p| {
             (p.system).outputs(t, &y.q, &y.v, &a, &p.inputs, &mut outputs);
             p.component_values(t, &y.q, &y.v)
         });
         let columns = columns.map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        let internal_rates = match y.z.is_empty() {
+            true => Vec::new(),
+            false => self.rates()?.z.as_slice().to_vec(),
+        };
         Ok(Derived {
             a,
             outputs,
             columns,
+            internal_rates,
+            multipliers: solved.multipliers,
+            residuals: solved.residual,
         })
     }
 
@@ -225,9 +255,8 @@ where
             a: d.a.as_slice(),
             outputs: &d.outputs,
             components: &d.columns,
-            // Models with constraints are refused when the resources load.
-            multipliers: &[],
-            residuals: &[],
+            multipliers: &d.multipliers,
+            residuals: &d.residuals,
         };
         match quantity {
             Quantity::Coordinate(i) => self.y.q[i],
@@ -242,6 +271,7 @@ where
                 _ => f64::NAN,
             },
             Quantity::Column(i) => d.columns[i],
+            Quantity::InternalRate(i) => d.internal_rates[i],
         }
     }
 
@@ -269,24 +299,35 @@ where
         Ok(g)
     }
 
-    /// Records the indicators as the reference for the next crossing; one
-    /// exactly zero takes its sign just after `t` (along `(q̇, q̈)`), so
-    /// that the crossing just handled is not seen again.
-    fn arm(&mut self) -> Result<(), String> {
-        self.armed = self.indicators_at(self.t, self.y)?;
-        if self.armed.contains(&0.0) {
+    /// The event indicators at the current state, each exactly zero given
+    /// the sign it takes just after `t` (along `(q̇, q̈, ż)`), as the
+    /// simulator's event tracker does at the start of a step sequence
+    /// (`lagrangian_sim::ode::events`): an indicator that only touches zero
+    /// at a state (a contact that begins at zero force, a crush rate that
+    /// is zero at the start) has the sign of where it is going, so that a
+    /// crossing is a change of that sign, never a touch of zero.
+    fn signed_indicators(&mut self) -> Result<Vec<f64>, String> {
+        let mut g = self.indicators_at(self.t, self.y)?;
+        if g.contains(&0.0) {
             let delta = 1e-9 * self.t.abs().max(1.0);
-            let a = self.accelerations()?;
+            let rates = self.rates()?;
             let mut ahead = self.y;
-            ahead.q += delta * self.y.v;
-            ahead.v += delta * a;
+            ahead.set_combination(&self.y, &[(delta, &rates)]);
             let probe = self.indicators_at(self.t + delta, ahead)?;
-            for (g, p) in self.armed.iter_mut().zip(probe) {
+            for (g, p) in g.iter_mut().zip(probe) {
                 if *g == 0.0 {
                     *g = p;
                 }
             }
         }
+        Ok(g)
+    }
+
+    /// Records the indicators ([`Run::signed_indicators`]) as the reference
+    /// for the next crossing, so that the crossing just handled (or a zero
+    /// at the start) is not seen again.
+    fn arm(&mut self) -> Result<(), String> {
+        self.armed = self.signed_indicators()?;
         Ok(())
     }
 
@@ -307,7 +348,7 @@ where
     }
 
     fn state_count(&self) -> usize {
-        2 * N
+        2 * N + self.y.z.len()
     }
 
     fn time(&self) -> f64 {
@@ -321,11 +362,13 @@ where
     fn states(&self, x: &mut [f64]) {
         x[..N].copy_from_slice(self.y.q.as_slice());
         x[N..2 * N].copy_from_slice(self.y.v.as_slice());
+        x[2 * N..].copy_from_slice(self.y.z.as_slice());
     }
 
     fn set_states(&mut self, x: &[f64]) {
         self.y.q.copy_from_slice(&x[..N]);
         self.y.v.copy_from_slice(&x[N..2 * N]);
+        self.y.z.as_mut_slice().copy_from_slice(&x[2 * N..]);
     }
 
     fn initialize(&mut self) -> Result<(), String> {
@@ -336,9 +379,10 @@ where
     }
 
     fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
-        let a = self.accelerations()?;
-        dx[..N].copy_from_slice(self.y.v.as_slice());
-        dx[N..2 * N].copy_from_slice(a.as_slice());
+        let rates = self.rates()?;
+        dx[..N].copy_from_slice(rates.q.as_slice());
+        dx[N..2 * N].copy_from_slice(rates.v.as_slice());
+        dx[2 * N..].copy_from_slice(rates.z.as_slice());
         Ok(())
     }
 
@@ -347,14 +391,20 @@ where
         inputs + self.model.switching_count()
     }
 
+    /// Signed as [`Run::signed_indicators`] signs them: the host sees an
+    /// indicator cross zero where the FMU sees it cross, never one resting
+    /// at zero (a contact that begins at zero force, at the start).
     fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
-        let now = self.indicators_at(self.t, self.y)?;
+        let now = self.signed_indicators()?;
         g.copy_from_slice(&now);
         Ok(())
     }
 
     fn handle_events(&mut self) -> Result<Vec<String>, String> {
-        let now = self.indicators_at(self.t, self.y)?;
+        // Signed as the reference was: an indicator that is zero at the
+        // state it was armed at (a crush element starting in contact at
+        // zero force) has not crossed.
+        let now = self.signed_indicators()?;
         let (t, mut y) = (self.t, self.y);
         let armed = std::mem::take(&mut self.armed);
         let handled = self.with_problem(|p| {
@@ -366,6 +416,11 @@ where
                     return Err(format!("at t = {t:e} s: {fault}"));
                 }
             }
+            // The state after the events, back onto the model's
+            // constraints (if it has any) that the integration between
+            // events holds only up to the stabilization's drift.
+            p.project(t, &mut y)
+                .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
             Ok(Self::descriptions(&p.events))
         })?;
         self.y = y;

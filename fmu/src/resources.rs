@@ -106,13 +106,6 @@ pub fn load_texts(
     let file = spec_file.display().to_string();
     let compiled = Compiled::from_source(spec).map_err(|e| e.render(&file, spec))?;
     let model = compiled.interpreted();
-    if !model.constraint_names().is_empty() {
-        return Err(format!(
-            "{file}: an FMU of a model with constraints ({}) is not supported yet: \
-             its states would have to be projected onto them",
-            model.constraint_names().join(", ")
-        ));
-    }
     let names = ModelNames::of_interpreted(&model);
     let resolve = |settings: &[String]| match scenario {
         Some((path, text)) => Scenario::parse(text, Some(path), &names, settings),
@@ -202,17 +195,16 @@ mod tests {
         assert_eq!(g, guid("model A;", ""));
     }
 
+    /// A model with constraints loads: Co-Simulation and Model Exchange
+    /// run the constrained accelerations (see `crate::plant`).
     #[test]
-    fn a_model_with_constraints_is_refused_by_name() {
+    fn a_model_with_constraints_loads() {
         let path = Path::new(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/../specs/four_bar_linkage.lpm"
         ));
         let spec = std::fs::read_to_string(path).unwrap();
-        let error = load_texts((path, &spec), None).err().unwrap();
-        assert!(
-            error.contains("with constraints (loop_x, loop_y)"),
-            "{error}"
-        );
+        let loaded = load_texts((path, &spec), None).unwrap();
+        assert_eq!(loaded.model.constraint_names(), ["loop_x", "loop_y"]);
     }
 }

@@ -276,25 +276,3 @@ fn a_guid_of_another_export_is_refused() {
         .unwrap();
     assert!(wrong.message.contains("different exports"), "{wrong:?}");
 }
-
-/// The Pioneer car's Bouc–Wen springs carry a state each: Model Exchange
-/// refuses the scenario by their names, Co-Simulation runs it.
-#[test]
-fn model_exchange_refuses_components_with_internal_states() {
-    let spec_path = root().join("specs/pioneer_wagon.lpm");
-    let scenario_path = root().join("specs/scenarios/pioneer_wagon.toml");
-    let spec = std::fs::read_to_string(&spec_path).unwrap();
-    let scenario = std::fs::read_to_string(&scenario_path).unwrap();
-    let load = || load_texts((&spec_path, &spec), Some((&scenario_path, &scenario))).unwrap();
-    let loaded = load();
-    let guid = loaded.guid.clone();
-    let Err(failure) = Instance::new("me", Interface::ModelExchange, &guid, loaded) else {
-        panic!("Model Exchange accepted a scenario with internal states");
-    };
-    let message = format!("{failure:?}");
-    assert!(
-        message.contains("(spring1, spring2, spring3, spring4, spring5, spring6)"),
-        "{message}"
-    );
-    assert!(Instance::new("cs", Interface::CoSimulation, &guid, load()).is_ok());
-}

@@ -47,6 +47,10 @@ pub enum Quantity {
     Deceleration,
     /// Column `i` of the scenario's components (`front_end.force`).
     Column(usize),
+    /// The rate of the components' internal state `i` (a Bouc–Wen
+    /// spring's `z`, a dissipated energy; the last columns of the
+    /// components, in order): the derivative of a continuous state.
+    InternalRate(usize),
 }
 
 /// The FMI causality of a variable.
@@ -105,7 +109,7 @@ impl Variable {
         match self.quantity {
             Quantity::Parameter(_) => Causality::Parameter,
             Quantity::Input(_) => Causality::Input,
-            Quantity::Acceleration(_) => Causality::Local,
+            Quantity::Acceleration(_) | Quantity::InternalRate(_) => Causality::Local,
             Quantity::Coordinate(_)
             | Quantity::Rate(_)
             | Quantity::Output(_)
@@ -173,6 +177,7 @@ impl Variables {
         );
         list.extend(crush(scenario));
         list.extend(columns(scenario));
+        list.extend(internal_rates(scenario));
         unique(&list)?;
         Ok(Variables {
             list,
@@ -206,11 +211,21 @@ impl Variables {
     }
 
     /// The 1-based index (in `<ModelVariables>`) of the state that the
-    /// variable `vr` is the derivative of: `q_i` for `q̇_i`, `q̇_i` for `q̈_i`.
+    /// variable `vr` is the derivative of: `q_i` for `q̇_i`, `q̇_i` for
+    /// `q̈_i`, the column of internal state `z_i` for `ż_i`.
     pub fn derivative_of(&self, vr: usize) -> Option<usize> {
         match self.list[vr].quantity {
             Quantity::Rate(i) => Some(i + 1),
             Quantity::Acceleration(i) => Some(self.dimension + i + 1),
+            Quantity::InternalRate(i) => {
+                let is = |q: &Quantity| matches!(q, Quantity::InternalRate(_));
+                let states = self.list.iter().filter(|v| is(&v.quantity)).count();
+                let is_column = |q: &Quantity| matches!(q, Quantity::Column(_));
+                let columns = self.list.iter().filter(|v| is_column(&v.quantity)).count();
+                let column = Quantity::Column(columns - states + i);
+                let state = self.list.iter().position(|v| v.quantity == column)?;
+                Some(state + 1)
+            }
             _ => None,
         }
     }
@@ -345,6 +360,22 @@ fn columns(scenario: &Scenario) -> impl Iterator<Item = Variable> + '_ {
         name,
         quantity: Quantity::Column(i),
         unit,
+        start: None,
+    })
+}
+
+/// `der(NAME.QUANTITY)` of each of the components' internal states, the
+/// last columns of [`columns`]: with them the continuous states of Model
+/// Exchange are `(q, q̇, z)`.
+fn internal_rates(scenario: &Scenario) -> impl Iterator<Item = Variable> + '_ {
+    let columns = scenario.inputs.columns();
+    let states = scenario.inputs.internal_count();
+    let first = columns.len() - states;
+    (columns.into_iter().skip(first).enumerate()).map(|(i, (name, unit))| Variable {
+        description: format!("rate of {name}"),
+        name: format!("der({name})"),
+        quantity: Quantity::InternalRate(i),
+        unit: unit.map(|u| format!("{u}/s")),
         start: None,
     })
 }
