@@ -241,3 +241,60 @@ fn a_let_used_before_its_definition_says_where_it_is() {
     );
     assert!(text.contains("move `let w` up"), "{text}");
 }
+
+/// Each kind of hostile length is refused before `syn` parses it, at the
+/// token, in far less than a second (a 100 000-digit integer took syn over
+/// 20 s; a 50 000-character misspelt name, the suggestion search as long).
+#[test]
+fn a_huge_number_or_name_is_a_located_error_at_once() {
+    for (token, message) in [
+        (
+            format!("1{}", "0".repeat(99_999)),
+            "a number of 100000 characters: numbers are at most 256",
+        ),
+        (
+            format!("{}.5", "9".repeat(99_998)),
+            "a number of 100000 characters: numbers are at most 256",
+        ),
+        (
+            "k".repeat(50_000),
+            "a name of 50000 characters: names are at most 256",
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let text = error_of(&format!("potential = 0.5 * {token} * k * pow(x, 2);"));
+        let seconds = start.elapsed().as_secs_f64();
+        assert!(
+            text.starts_with(&format!("error: {message}\n --> spring.lpm:5:19\n")),
+            "{}",
+            &text[..200]
+        );
+        assert!(
+            text.len() < 1000,
+            "the snippet shows a window of the line: {} bytes",
+            text.len()
+        );
+        assert!(seconds < 2.0, "{seconds} s");
+    }
+}
+
+/// A misspelt name as long as names may be still gets its suggestion, in
+/// bounded time.
+#[test]
+fn a_long_misspelt_name_is_suggested_its_declaration() {
+    let name = "k".repeat(256);
+    let typo = format!("{}j", "k".repeat(255));
+    let source = format!(
+        "model Spring;
+coordinates {{ x }}
+parameters {{ m = 1.0, {name} = 100.0 }}
+kinetic = 0.5 * m * pow(dot(x), 2);
+potential = 0.5 * {typo} * pow(x, 2);
+"
+    );
+    let text = match Compiled::from_source(&source) {
+        Ok(_) => panic!("compiled"),
+        Err(e) => e.render("spring.lpm", &source),
+    };
+    assert!(text.contains(&format!("did you mean `{name}`?")), "{text}");
+}
