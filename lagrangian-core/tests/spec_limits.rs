@@ -298,3 +298,40 @@ potential = 0.5 * {typo} * pow(x, 2);
     };
     assert!(text.contains(&format!("did you mean `{name}`?")), "{text}");
 }
+
+/// An input's argument that calls another input, directly or through a
+/// `let`: the components bound to inputs read their arguments without
+/// evaluating inputs, so every run failed at t = 0 with a non-finite
+/// right-hand side; it is refused at the inner call until arguments are
+/// evaluated in dependency order.
+#[test]
+fn an_input_called_in_an_inputs_arguments_is_refused_at_the_call() {
+    let header = "model Rubbing;
+coordinates { x [m], y [m] }
+parameters { m [kg] = 1.0, w [N] = 10.0 }
+inputs { press(d [m], v [m/s]) [N], rub(v [m/s], n [N]) [N] }
+kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(y), 2));
+force y = press(y, dot(y));
+";
+    let message = "error: an argument of input `rub` calls input `press`: an input's arguments cannot call inputs (not supported yet)";
+    for (body, at) in [
+        ("force x = -rub(dot(x), press(y, dot(y)));", "7:24"),
+        (
+            "let n = press(y, dot(y));\nforce x = -rub(dot(x), 2.0 * n);",
+            "7:9",
+        ),
+    ] {
+        let source = format!("{header}{body}\n");
+        let text = match Compiled::from_source(&source) {
+            Ok(_) => panic!("compiled: {body}"),
+            Err(e) => e.render("rub.lpm", &source),
+        };
+        assert!(
+            text.starts_with(&format!("{message}\n --> rub.lpm:{at}\n")),
+            "{text}"
+        );
+    }
+    // The same inputs side by side, and one input's value scaling another's, compile.
+    let source = format!("{header}force x = -rub(dot(x), w) * press(y, dot(y)) / w;\n");
+    Compiled::from_source(&source).unwrap();
+}
