@@ -251,3 +251,22 @@ fn redundant_constraints_are_named() {
     assert!(message.contains("`rod_again`"), "{message}");
     assert!(!message.contains("`rod`"), "{message}");
 }
+
+/// A second rod of twice the length: its gradient is the first rod's, as
+/// for a redundant constraint, but its residual contradicts the first
+/// rod's (no point is at distance l and 2l from the origin), so it is
+/// unsatisfiable, not redundant, and named with its residual: x = 1.5,
+/// y = 0 is on the first rod (l = 1.5), where x² + y² − 4l² = 2.25 − 9 =
+/// −6.75.
+#[test]
+fn contradicting_constraints_are_unsatisfiable_not_redundant() {
+    let source = format!("{PENDULUM}constraint far = x * x + y * y - 4.0 * l * l;\n");
+    let scenario = "[initial.coordinates]\nx = 1.5\n";
+    let run = run(&model::<2>(&source), scenario, &[]);
+    let message = run.map(|r| r.constraints).unwrap_err().to_string();
+    assert!(
+        message.starts_with("the constraint `far` cannot be satisfied near the initial state: its residual is -6.75e0 at q = [1.5, 0.0]"),
+        "{message}"
+    );
+    assert!(!message.contains("redundant"), "{message}");
+}

@@ -24,7 +24,10 @@
 //!   method calls (each call nests its receiver);
 //! * more than [`MAX_OPERATOR_RUN`] operators in a row (`- - - x` nests a
 //!   unary expression per sign);
-//! * more than [`MAX_TOKENS`] tokens.
+//! * more than [`MAX_TOKENS`] tokens;
+//! * a name longer than [`MAX_NAME_LENGTH`] characters, or a number
+//!   longer than [`MAX_LITERAL_LENGTH`] (`syn` reads an integer's digits in
+//!   time quadratic in their number: 100 000 digits took over 20 s).
 //!
 //! A long sum or product is fine: its tree is as deep as it is long, but the
 //! compiler walks such chains with loops.
@@ -41,6 +44,14 @@ pub const MAX_OPERATOR_RUN: usize = 256;
 /// Most tokens in one spec: a sum of 50 000 terms, far more than any model
 /// needs; it bounds the stack [`with_stack_for_tokens`] reserves.
 pub const MAX_TOKENS: usize = 100_000;
+
+/// The longest name, in characters.
+pub const MAX_NAME_LENGTH: usize = 256;
+
+/// The longest number literal, in characters: 17 significant digits give
+/// any f64, and an exact coefficient has at most 39 (an `i128`), so 256
+/// leaves room for any zeros and separators a number needs.
+pub const MAX_LITERAL_LENGTH: usize = 256;
 
 /// The stack left below which [`with_large_stack`] switches stacks.
 const RED_ZONE: usize = 64 << 20;
@@ -111,6 +122,14 @@ pub fn check_tokens(tokens: &TokenStream) -> Result<usize, Diagnostic> {
                 }
                 stack.push((g.stream().into_iter(), 0));
             }
+            TokenTree::Ident(ident) => {
+                run = 0;
+                check_name(&ident)?;
+            }
+            TokenTree::Literal(literal) => {
+                run = 0;
+                check_literal(&literal)?;
+            }
             TokenTree::Punct(p) => {
                 run += 1;
                 if run > MAX_OPERATOR_RUN {
@@ -120,10 +139,36 @@ pub fn check_tokens(tokens: &TokenStream) -> Result<usize, Diagnostic> {
                     ));
                 }
             }
-            _ => run = 0,
         }
     }
     Ok(count)
+}
+
+/// A name of at most [`MAX_NAME_LENGTH`] characters.
+fn check_name(ident: &proc_macro2::Ident) -> Result<(), Diagnostic> {
+    let length = ident.to_string().chars().count();
+    if length <= MAX_NAME_LENGTH {
+        return Ok(());
+    }
+    Err(Diagnostic::new(
+        ident.span(),
+        format!("a name of {length} characters: names are at most {MAX_NAME_LENGTH}"),
+    ))
+}
+
+/// A number of at most [`MAX_LITERAL_LENGTH`] characters (strings, such as
+/// doc comments, may be longer).
+fn check_literal(literal: &proc_macro2::Literal) -> Result<(), Diagnostic> {
+    let text = literal.to_string();
+    let length = text.chars().count();
+    if length <= MAX_LITERAL_LENGTH || !text.starts_with(|c: char| c.is_ascii_digit()) {
+        return Ok(());
+    }
+    Err(Diagnostic::new(
+        literal.span(),
+        format!("a number of {length} characters: numbers are at most {MAX_LITERAL_LENGTH}"),
+    )
+    .with_help("write a large or small number with an exponent, e.g. `1.5e300` or `2e-12`"))
 }
 
 #[cfg(test)]
@@ -157,6 +202,24 @@ mod tests {
         );
         let long = format!("x = {};", vec!["a"; MAX_TOKENS / 2 + 1].join(" + "));
         assert!(check(&long).unwrap_err().contains("too long"));
+    }
+
+    #[test]
+    fn names_and_numbers_are_limited_in_length() {
+        let name = |n: usize| format!("x = {};", "a".repeat(n));
+        assert_eq!(check(&name(MAX_NAME_LENGTH)), Ok(()));
+        assert_eq!(
+            check(&name(50_000)),
+            Err("a name of 50000 characters: names are at most 256".to_string())
+        );
+        let number = |n: usize| format!("x = 1{};", "0".repeat(n - 1));
+        assert_eq!(check(&number(MAX_LITERAL_LENGTH)), Ok(()));
+        assert_eq!(
+            check(&number(MAX_LITERAL_LENGTH + 1)),
+            Err("a number of 257 characters: numbers are at most 256".to_string())
+        );
+        let doc = format!("/// {}\nx = 1;", "word ".repeat(1000));
+        assert_eq!(check(&doc), Ok(()));
     }
 
     #[test]

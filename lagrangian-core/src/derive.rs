@@ -15,6 +15,7 @@
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use crate::expr::{CoordinateSymbols, EngineError, Evaluator, ExprId, Store, SymbolId, SymbolKind};
 use crate::program::{EvalContext, Program, RoutineKind};
+use crate::random::Lcg;
 use crate::spec::{ForceStatement, Input, Model, Statement, engine_diagnostic};
 use proc_macro2::Span;
 
@@ -338,26 +339,80 @@ fn sample_coordinate(i: usize) -> f64 {
     0.31 + 0.17 * i as f64
 }
 
-/// The kinetic energy must be positive definite in the velocities: `M` must
-/// admit a Cholesky factorization at a sample state with default parameters.
-fn check_positive_definite(model: &Model, mass: &[ExprId]) -> Result<(), SpecErrors> {
-    let values = sample_symbol_values(model);
-    let mut evaluator = Evaluator::new(&model.store, values, &|_: usize, _: &[f64]| 1.0);
-    let m: Vec<f64> = mass.iter().map(|&e| evaluator.eval(e)).collect();
-    check_mass_values(model, &m)
+/// How many sample states the positive-definiteness check tries for one
+/// inside every function's domain before it says it could not check.
+const MASS_SAMPLES: u64 = 64;
+
+/// Sample state `k` for the positive-definiteness check: `k = 0` is
+/// [`sample_symbol_values`]; the others are drawn by [`Lcg`] (seeded with
+/// `k`), coordinates uniform in `±s` for a scale `s` of 1, 0.3, 0.1 or 3 in
+/// turn, velocities in `±1`.
+fn sample_state(model: &Model, k: u64) -> Vec<f64> {
+    let mut values = sample_symbol_values(model);
+    if k == 0 {
+        return values;
+    }
+    let scale = [1.0, 0.3, 0.1, 3.0][(k % 4) as usize];
+    let mut random = Lcg::new(k);
+    for c in &model.coordinates {
+        values[c.symbols.position.index()] = scale * random.symmetric();
+        values[c.symbols.velocity.index()] = random.symmetric();
+    }
+    values
 }
 
-/// [`check_positive_definite`] on the mass matrix that `program` computes
-/// (at the same sample state, input functions 1).
-pub(crate) fn check_program_mass(model: &Model, program: &Program) -> Result<(), SpecErrors> {
-    let n = model.dimension();
-    let values = sample_symbol_values(model);
-    let (q, qd): (Vec<f64>, Vec<f64>) = (model.coordinates.iter())
+/// Why sample state `values` cannot serve the check: a call outside its
+/// domain there (with the argument's value), or a mass matrix `m` that is
+/// not finite there.
+fn invalid_sample(model: &Model, values: &[f64], m: &[f64]) -> Option<(String, Option<SpanRange>)> {
+    let (q, qd) = state_of(model, values);
+    let parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
+    let t = values[model.time.index()];
+    if let Some((check, x)) = model.domain_violation(t, &q, &qd, &parameters) {
+        let what = match check.what.strip_suffix(" of") {
+            Some(what) => format!("{what} of the call noted below"),
+            None => format!("{} noted below", check.what),
+        };
+        let reason = format!(
+            "a function's argument is outside its domain (at the first, {what} is {x:.3} but {})",
+            check.domain.describe()
+        );
+        return Some((reason, Some(check.span)));
+    }
+    let infinite = m.iter().any(|x| !x.is_finite());
+    infinite.then(|| ("the mass matrix is not finite".to_string(), None))
+}
+
+/// The coordinates and velocities of sample state `values`.
+fn state_of(model: &Model, values: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    (model.coordinates.iter())
         .map(|c| {
             let s = &c.symbols;
             (values[s.position.index()], values[s.velocity.index()])
         })
-        .unzip();
+        .unzip()
+}
+
+/// The kinetic energy must be positive definite in the velocities: `M` must
+/// admit a Cholesky factorization at a sample state with default parameters.
+fn check_positive_definite(model: &mut Model, mass: &[ExprId]) -> Result<(), SpecErrors> {
+    check_mass_at_samples(model, |model, values| {
+        let mut evaluator =
+            Evaluator::new(&model.store, values.to_vec(), &|_: usize, _: &[f64]| 1.0);
+        mass.iter().map(|&e| evaluator.eval(e)).collect()
+    })
+}
+
+/// [`check_positive_definite`] on the mass matrix that `program` computes
+/// (at the same sample states, input functions 1).
+pub(crate) fn check_program_mass(model: &mut Model, program: &Program) -> Result<(), SpecErrors> {
+    check_mass_at_samples(model, |model, values| program_mass(model, program, values))
+}
+
+/// The row-major mass matrix that `program` computes at sample state `values`.
+fn program_mass(model: &Model, program: &Program, values: &[f64]) -> Vec<f64> {
+    let n = model.dimension();
+    let (q, qd) = state_of(model, values);
     let parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
     let ctx = EvalContext {
         t: values[model.time.index()],
@@ -377,23 +432,57 @@ pub(crate) fn check_program_mass(model: &Model, program: &Program) -> Result<(),
         m[i * n + j] = out[k];
         m[j * n + i] = out[k];
     }
-    check_mass_values(model, &m)
+    m
+}
+
+/// Checks the mass matrix `mass_at(model, state)` at the first sample state
+/// inside every function's domain where it is finite; when none of
+/// [`MASS_SAMPLES`] is, the model is not refused but warned that the check
+/// could not be made, and why.
+fn check_mass_at_samples(
+    model: &mut Model,
+    mass_at: impl Fn(&Model, &[f64]) -> Vec<f64>,
+) -> Result<(), SpecErrors> {
+    let mut first_reason = None;
+    for k in 0..MASS_SAMPLES {
+        let values = sample_state(model, k);
+        let m = mass_at(model, &values);
+        match invalid_sample(model, &values, &m) {
+            None => return check_mass_values(model, &m, &values),
+            Some(reason) => {
+                first_reason.get_or_insert(reason);
+            }
+        }
+    }
+    let (reason, at) = first_reason.expect("at least one sample was tried");
+    let mut warning = Diagnostic::new(
+        model.kinetic.span,
+        format!(
+            "the kinetic energy could not be checked for positive definiteness: at each of {MASS_SAMPLES} sample states {reason}"
+        ),
+    )
+    .with_help("check the domains of the functions the spec calls (`acos`, `ln`, `sqrt`, divisions) against the coordinates' ranges");
+    if let Some(span) = at {
+        warning = warning.with_note("the call at the first sample state", span);
+    }
+    if !model.warnings.iter().any(|w| w.message == warning.message) {
+        model.warnings.push(warning); // once, when the model is derived twice
+    }
+    Ok(())
 }
 
 /// The diagnostic of [`check_positive_definite`] for the mass matrix `m`
-/// (row-major) at the sample state, if its factorization fails.
-fn check_mass_values(model: &Model, m: &[f64]) -> Result<(), SpecErrors> {
+/// (row-major) at the sample state `values`, if its factorization fails.
+fn check_mass_values(model: &Model, m: &[f64], values: &[f64]) -> Result<(), SpecErrors> {
     let n = model.dimension();
     let failing = cholesky_failure(m, n);
     let Some(k) = failing else {
         return Ok(());
     };
     let name = &model.coordinates[k].name;
-    let state: Vec<String> = model
-        .coordinates
-        .iter()
-        .enumerate()
-        .map(|(i, c)| format!("{} = {:.2}", c.name, sample_coordinate(i)))
+    let (q, _) = state_of(model, values);
+    let state: Vec<String> = (model.coordinates.iter().zip(&q))
+        .map(|(c, x)| format!("{} = {x:.2}", c.name))
         .collect();
     let message = if (0..n).all(|j| m[k * n + j] == 0.0) {
         format!(

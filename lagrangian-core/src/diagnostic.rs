@@ -187,14 +187,46 @@ fn snippet(file: &str, source: &str, span: SpanRange) -> String {
             .saturating_sub(start.column)
             .max(1)
     };
+    let (shown, column, caret_len) = window(line_text, start.column, caret_len);
     out.push_str(&format!("{pad} |\n"));
-    out.push_str(&format!("{} | {}\n", start.line, line_text));
+    out.push_str(&format!("{} | {}\n", start.line, shown));
     out.push_str(&format!(
         "{pad} | {}{}\n",
-        " ".repeat(start.column),
+        " ".repeat(column),
         "^".repeat(caret_len)
     ));
     out
+}
+
+/// The most characters of a source line a snippet shows.
+const SHOWN_LINE: usize = 160;
+
+/// `line` as a snippet shows it, with the caret's column and length there:
+/// the whole line when it is short, else [`SHOWN_LINE`] characters from a
+/// little before `column`, cut ends marked `…` (so that a line of 100 000
+/// characters is not printed whole).
+fn window(line: &str, column: usize, caret_len: usize) -> (String, usize, usize) {
+    let length = line.chars().count();
+    if length <= SHOWN_LINE {
+        return (line.to_string(), column, caret_len);
+    }
+    let from = column
+        .saturating_sub(SHOWN_LINE / 4)
+        .min(length - SHOWN_LINE);
+    let to = from + SHOWN_LINE;
+    let mut shown: String = line.chars().skip(from).take(SHOWN_LINE).collect();
+    let mut column = column - from;
+    if from > 0 {
+        shown.insert(0, '…');
+        column += 1;
+    }
+    if to < length {
+        shown.push('…');
+    }
+    let caret_len = caret_len
+        .min(SHOWN_LINE + 1 - (column.min(SHOWN_LINE)))
+        .max(1);
+    (shown, column, caret_len)
 }
 
 /// All problems found in one spec (at least one).
@@ -304,5 +336,23 @@ mod tests {
         assert!(text.contains("2 | kinetic = thta1;"), "{text}");
         assert!(text.contains("          ^^^^^"), "{text}");
         assert!(text.contains("help: did you mean `theta1`?"), "{text}");
+    }
+
+    #[test]
+    fn a_long_line_is_shown_around_the_caret() {
+        let source = format!("model X;\nkinetic = {} + thta1;\n", "a + ".repeat(1000));
+        let tokens: proc_macro2::TokenStream = source.parse().unwrap();
+        let span = tokens.into_iter().last().unwrap().span(); // `;`
+        let text = Diagnostic::new(span, "here").render("x.lpm", &source);
+        let lines: Vec<&str> = text.lines().collect();
+        let shown = lines[3].strip_prefix("2 | ").unwrap();
+        assert_eq!(shown.chars().count(), SHOWN_LINE + 1, "{text}");
+        assert!(
+            shown.starts_with('…') && shown.ends_with("thta1;"),
+            "{text}"
+        );
+        let caret = lines[4].strip_prefix("  | ").unwrap();
+        assert_eq!(caret.chars().count(), SHOWN_LINE + 1, "{text}");
+        assert!(caret.ends_with(" ^"), "{text}");
     }
 }

@@ -91,7 +91,7 @@ impl Compiled {
             let derivation = graph::derive_graph(&mut model)?;
             let program =
                 optimize::build_program_from_graph(&mut model.store, &model.graph, &derivation);
-            derive::check_program_mass(&model, &program)?;
+            derive::check_program_mass(&mut model, &program)?;
             Ok(Compiled {
                 model,
                 derivation: None,

@@ -153,3 +153,27 @@ fn the_equations_and_the_audit_show_the_constraints() {
     let mut plain = Compiled::from_source(PENDULUM).unwrap();
     assert!(!render_equations(&mut plain, Notation::Text).contains("Constraints"));
 }
+
+#[test]
+fn a_constraint_on_no_coordinate_is_unsatisfiable_or_void_and_says_so() {
+    assert_error(
+        "constraint fixed = l;",
+        "error: the constraint `fixed` cannot be satisfied: it depends on no coordinate, and its residual is 1.5e0 with the default parameters whatever the state",
+        "6:20",
+    );
+    assert_error(
+        "constraint clock = t;",
+        "error: the constraint `clock` cannot be satisfied: it depends on time but on no coordinate, so no motion can hold it at 0 (its residual is 0e0 at t = 0 with the default parameters)",
+        "6:20",
+    );
+    assert_error(
+        "constraint void = l - 1.5 * l;",
+        "cannot be satisfied: it depends on no coordinate, and its residual is -7.5e-1",
+        "6:19",
+    );
+    assert_error(
+        "constraint void = l - l;",
+        "error: the constraint `void` depends on no coordinate: with the default parameters it is 0 for every state, so it constrains nothing",
+        "6:19",
+    );
+}

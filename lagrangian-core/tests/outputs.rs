@@ -202,3 +202,60 @@ fn outputs_add_a_routine_and_change_no_other() {
     }
     assert!(without.interpreted().output_names().is_empty());
 }
+
+#[test]
+fn an_output_named_as_a_built_in_trajectory_column_is_an_error_at_it() {
+    for (body, column) in [
+        (
+            "output theta_dot [rad/s] = dot(theta);",
+            "the velocity of the coordinate `theta`",
+        ),
+        (
+            "output theta_ddot [rad/s^2] = ddot(theta);",
+            "the acceleration of the coordinate `theta`",
+        ),
+        (
+            "output kinetic_energy [J] = 0.5 * m * pow(l * dot(theta), 2);",
+            "the energy column `kinetic_energy`",
+        ),
+        (
+            "output potential_energy [J] = m * g * l;",
+            "the energy column `potential_energy`",
+        ),
+        (
+            "output dissipated_energy [J] = m * g * l;",
+            "the energy column `dissipated_energy`",
+        ),
+        (
+            "output external_work [J] = m * g * l;",
+            "the energy column `external_work`",
+        ),
+    ] {
+        let name = body.split_whitespace().nth(1).unwrap();
+        let message =
+            format!("the output `{name}` has the name of a built-in trajectory column, {column}");
+        assert_error(body, &message, "8:8");
+    }
+    // Near names are fine: `theta_dotted`, `energy`.
+    let source = format!(
+        "{PENDULUM}output theta_dotted [rad/s] = dot(theta);\noutput energy [J] = m * g * l;\n"
+    );
+    Compiled::from_source(&source).unwrap();
+}
+
+#[test]
+fn a_coordinate_or_input_named_as_a_built_in_column_is_an_error_at_it() {
+    let source = "model Two;
+coordinates { x [m], x_dot [m] }
+parameters { m [kg] = 1.0 }
+inputs { external_work(s [m]) [N] }
+kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(x_dot), 2));
+force x = external_work(x);
+";
+    let error = match Compiled::from_source(source) {
+        Ok(_) => panic!("compiled"),
+        Err(e) => e.render("two.lpm", source),
+    };
+    assert!(error.contains("error: the coordinate `x_dot` has the name of a built-in trajectory column, the velocity of the coordinate `x`\n --> two.lpm:2:22\n"), "{error}");
+    assert!(error.contains("error: the input `external_work` has the name of a built-in trajectory column, the energy column `external_work`\n --> two.lpm:4:10\n"), "{error}");
+}

@@ -45,3 +45,48 @@ fn a_default_that_uses_a_parameter_declared_below_says_so() {
     );
     assert!(error.contains("move `m` up"), "{error}");
 }
+
+#[test]
+fn a_default_of_the_wrong_dimension_is_an_error_at_it() {
+    for (parameters, message, at) in [
+        (
+            "l [m] = 0.5, m [kg] = l * 2, k [N/m] = 1.0",
+            "the default of `m` has dimension m, but must have kg",
+            "3:36",
+        ),
+        (
+            "m [kg] = 1.0, k [N/m] = m * 4.0",
+            "the default of `k` has dimension kg, but must have kg·s^-2",
+            "3:38",
+        ),
+        (
+            "m [kg] = 1.0, k [N/m] = 3.0, c [N*s/m] = k / m",
+            "the default of `c` has dimension s^-2, but must have kg·s^-1",
+            "3:55",
+        ),
+    ] {
+        let source = spec(parameters);
+        let error = match Compiled::from_source(&source) {
+            Ok(_) => panic!("compiled: {parameters}"),
+            Err(e) => e.render("oscillator.lpm", &source),
+        };
+        assert!(
+            error.contains(&format!("error: {message}\n --> oscillator.lpm:{at}\n")),
+            "{error}"
+        );
+    }
+}
+
+#[test]
+fn a_default_of_numbers_is_in_the_declared_unit_and_pi_is_a_number() {
+    // k = m·(2π f)² is kg/s² through m and f; r = 0.5π is in m.
+    for parameters in [
+        "m [kg] = 2.0, k [N/m] = 2.0 * 3e4",
+        "m [kg] = 2.0, f [1/s] = 3.0, k [N/m] = m * pow(2.0 * pi * f, 2), r [m] = 0.5 * pi",
+        "m [kg] = 2.0, m2 [kg] = m, k [N/m] = 4.0",
+        "m [kg] = 2.0, k [N/m] = -4.0",
+    ] {
+        let source = spec(parameters);
+        Compiled::from_source(&source).unwrap_or_else(|e| panic!("{parameters}: {e}"));
+    }
+}

@@ -241,3 +241,97 @@ fn a_let_used_before_its_definition_says_where_it_is() {
     );
     assert!(text.contains("move `let w` up"), "{text}");
 }
+
+/// Each kind of hostile length is refused before `syn` parses it, at the
+/// token, in far less than a second (a 100 000-digit integer took syn over
+/// 20 s; a 50 000-character misspelt name, the suggestion search as long).
+#[test]
+fn a_huge_number_or_name_is_a_located_error_at_once() {
+    for (token, message) in [
+        (
+            format!("1{}", "0".repeat(99_999)),
+            "a number of 100000 characters: numbers are at most 256",
+        ),
+        (
+            format!("{}.5", "9".repeat(99_998)),
+            "a number of 100000 characters: numbers are at most 256",
+        ),
+        (
+            "k".repeat(50_000),
+            "a name of 50000 characters: names are at most 256",
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let text = error_of(&format!("potential = 0.5 * {token} * k * pow(x, 2);"));
+        let seconds = start.elapsed().as_secs_f64();
+        assert!(
+            text.starts_with(&format!("error: {message}\n --> spring.lpm:5:19\n")),
+            "{}",
+            &text[..200]
+        );
+        assert!(
+            text.len() < 1000,
+            "the snippet shows a window of the line: {} bytes",
+            text.len()
+        );
+        assert!(seconds < 2.0, "{seconds} s");
+    }
+}
+
+/// A misspelt name as long as names may be still gets its suggestion, in
+/// bounded time.
+#[test]
+fn a_long_misspelt_name_is_suggested_its_declaration() {
+    let name = "k".repeat(256);
+    let typo = format!("{}j", "k".repeat(255));
+    let source = format!(
+        "model Spring;
+coordinates {{ x }}
+parameters {{ m = 1.0, {name} = 100.0 }}
+kinetic = 0.5 * m * pow(dot(x), 2);
+potential = 0.5 * {typo} * pow(x, 2);
+"
+    );
+    let text = match Compiled::from_source(&source) {
+        Ok(_) => panic!("compiled"),
+        Err(e) => e.render("spring.lpm", &source),
+    };
+    assert!(text.contains(&format!("did you mean `{name}`?")), "{text}");
+}
+
+/// An input's argument that calls another input, directly or through a
+/// `let`: the components bound to inputs read their arguments without
+/// evaluating inputs, so every run failed at t = 0 with a non-finite
+/// right-hand side; it is refused at the inner call until arguments are
+/// evaluated in dependency order.
+#[test]
+fn an_input_called_in_an_inputs_arguments_is_refused_at_the_call() {
+    let header = "model Rubbing;
+coordinates { x [m], y [m] }
+parameters { m [kg] = 1.0, w [N] = 10.0 }
+inputs { press(d [m], v [m/s]) [N], rub(v [m/s], n [N]) [N] }
+kinetic = 0.5 * m * (pow(dot(x), 2) + pow(dot(y), 2));
+force y = press(y, dot(y));
+";
+    let message = "error: an argument of input `rub` calls input `press`: an input's arguments cannot call inputs (not supported yet)";
+    for (body, at) in [
+        ("force x = -rub(dot(x), press(y, dot(y)));", "7:24"),
+        (
+            "let n = press(y, dot(y));\nforce x = -rub(dot(x), 2.0 * n);",
+            "7:9",
+        ),
+    ] {
+        let source = format!("{header}{body}\n");
+        let text = match Compiled::from_source(&source) {
+            Ok(_) => panic!("compiled: {body}"),
+            Err(e) => e.render("rub.lpm", &source),
+        };
+        assert!(
+            text.starts_with(&format!("{message}\n --> rub.lpm:{at}\n")),
+            "{text}"
+        );
+    }
+    // The same inputs side by side, and one input's value scaling another's, compile.
+    let source = format!("{header}force x = -rub(dot(x), w) * press(y, dot(y)) / w;\n");
+    Compiled::from_source(&source).unwrap();
+}

@@ -100,3 +100,46 @@ fn corpus() -> Vec<toml::Value> {
     }
     cases
 }
+
+/// A 100 000-digit number and a 50 000-character misspelt name (each took
+/// over 20 s before the length limits): refused at the token, with a
+/// snippet of the line around it, in well under the time they took. The
+/// specs are made here rather than committed.
+#[test]
+fn hostile_lengths_are_refused_at_once() {
+    let folder = common::temporary("compiler-hostile-lengths");
+    let header = "model Hostile;\ncoordinates { x [m] }\nparameters { m [kg] = 1.0 }\n";
+    for (name, token, message) in [
+        (
+            "number",
+            format!("1{}", "0".repeat(99_999)),
+            "a number of 100000 characters: numbers are at most 256",
+        ),
+        (
+            "name",
+            "m".repeat(50_000),
+            "a name of 50000 characters: names are at most 256",
+        ),
+    ] {
+        let path = folder.join(format!("{name}.lpm"));
+        let spec = format!("{header}kinetic = 0.5 * {token} * pow(dot(x), 2);\n");
+        std::fs::write(&path, spec).unwrap();
+        let start = std::time::Instant::now();
+        let o = lpm(&["derive", path.to_str().unwrap()]);
+        let seconds = start.elapsed().as_secs_f64();
+        let stderr = common::stderr(&o);
+        assert_eq!(o.status.code(), Some(3), "{name}: {stderr}");
+        let located = format!("error: {message}\n --> {}:4:17\n", path.display());
+        assert!(
+            stderr.starts_with(&located),
+            "{name}: {}",
+            &stderr[..300.min(stderr.len())]
+        );
+        assert!(
+            stderr.len() < 1000,
+            "{name}: {} bytes of stderr",
+            stderr.len()
+        );
+        assert!(seconds < 5.0, "{name}: {seconds} s");
+    }
+}

@@ -3,6 +3,7 @@
 //! a half-written file.
 
 use crate::simulate::SimulationResult;
+use lagrangian_model::names::{ENERGY_COLUMNS, TIME_COLUMN, acceleration_column, velocity_column};
 use std::fmt::Write as _;
 use std::io;
 use std::path::Path;
@@ -49,7 +50,7 @@ fn with_unit(name: &str, unit: Option<&str>) -> String {
 /// component columns…, constraint multipliers…` per sample; the multiplier
 /// of constraint `NAME` is the column `NAME.lambda`.
 pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
-    let mut header = vec!["t [s]".to_string()];
+    let mut header = vec![format!("{TIME_COLUMN} [s]")];
     let unit = |i: usize, suffix: &str| {
         units
             .coordinates
@@ -62,17 +63,15 @@ pub fn trajectory_csv(result: &SimulationResult, units: &Units) -> String {
         header.push(with_unit(c, unit(i, "").as_deref()));
     }
     for (i, c) in result.coordinates.iter().enumerate() {
-        header.push(with_unit(&format!("{c}_dot"), unit(i, "/s").as_deref()));
+        header.push(with_unit(&velocity_column(c), unit(i, "/s").as_deref()));
     }
     for (i, c) in result.coordinates.iter().enumerate() {
-        header.push(with_unit(&format!("{c}_ddot"), unit(i, "/s^2").as_deref()));
+        header.push(with_unit(
+            &acceleration_column(c),
+            unit(i, "/s^2").as_deref(),
+        ));
     }
-    for name in [
-        "kinetic_energy",
-        "potential_energy",
-        "dissipated_energy",
-        "external_work",
-    ] {
+    for name in ENERGY_COLUMNS {
         header.push(format!("{name} [J]"));
     }
     for (k, name) in result.input_columns.iter().enumerate() {

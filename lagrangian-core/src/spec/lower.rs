@@ -15,7 +15,7 @@ mod outputs;
 mod statements;
 mod validate;
 
-use super::ast::{InputDecl, Item, SpecAst};
+use super::ast::{InputDecl, Item, ParameterDecl, SpecAst};
 use super::dimensions::DimensionScope;
 use super::expression::{Binding, ExpressionLowering, Lowered, Scope};
 use super::{Coordinate, HandDerived, Model, Statement};
@@ -81,11 +81,13 @@ pub(super) fn lower(ast: SpecAst) -> Result<Model, SpecErrors> {
     lowering.input_derivatives(&items.inputs, &mut declared.inputs);
     let definitions = lowering.definitions(&items.statements);
     lowering.declare_outputs(&items.statements);
+    lowering.column_clashes(&declared.coordinates, &items.inputs, &items.statements);
     lowering.declare_constraints(&items.statements);
     let dynamics = lowering.dynamics(&items.statements, &declared.coordinates);
     let outputs = lowering.outputs(&items.statements);
-    let mut constraints = lowering.constraints(&items.statements);
-    let mut dimensions = lowering.units(&items.statements, &items.inputs, &declared);
+    let mut constraints = lowering.constraints(&items.statements, &declared.parameters);
+    let declarations = (&items.inputs[..], &items.parameters[..]);
+    let mut dimensions = lowering.units(&items.statements, declarations, &declared);
     let checked = !super::unit_check::UnitCoverage::of(
         &declared.coordinates,
         &declared.parameters,
@@ -194,7 +196,7 @@ impl Lowering {
     fn units(
         &mut self,
         statements: &[Item],
-        inputs: &[InputDecl],
+        (inputs, parameter_decls): (&[InputDecl], &[ParameterDecl]),
         declared: &Declarations,
     ) -> DimensionScope {
         let (coordinates, parameters) = (&declared.coordinates, &declared.parameters);
@@ -207,7 +209,8 @@ impl Lowering {
         }
         self.warnings.extend(coverage.warning());
         let checked = super::unit_check::check(&mut dimensions, statements, inputs, coordinates);
-        for d in unit_problems.into_iter().chain(checked) {
+        let defaults = super::unit_check::defaults(&dimensions, parameter_decls);
+        for d in unit_problems.into_iter().chain(checked).chain(defaults) {
             self.problems.push(d);
         }
         dimensions

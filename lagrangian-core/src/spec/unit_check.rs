@@ -3,7 +3,7 @@
 //! times its point's displacement an energy, a declared derivative the
 //! input's value over its argument, an output its declared unit.
 
-use super::ast::{EnergyKind, InputDecl, Item, OutputDecl, UnitText};
+use super::ast::{EnergyKind, InputDecl, Item, OutputDecl, ParameterDecl, UnitText};
 use super::dimensions::{DimensionScope, InputDimensions};
 use super::{Coordinate, Parameter};
 use crate::diagnostic::Diagnostic;
@@ -130,6 +130,55 @@ impl UnitCoverage {
 /// unit such as `(m^-9223372036854775807)^9223372036854775807` twice over.
 fn per_unit_of(d: Dimension) -> Option<Dimension> {
     Dimension::ENERGY.checked_div(d)
+}
+
+/// Checks each parameter default that uses other names against the
+/// parameter's unit (`m [kg] = l * 2` with `l [m]` is wrong); returns the
+/// problems found. A default of numbers alone (`k [N/m] = 2.0 * 3e4`) is a
+/// value in the declared unit, and `pi` counts as a number.
+pub(super) fn defaults(scope: &DimensionScope, parameters: &[ParameterDecl]) -> Vec<Diagnostic> {
+    let mut problems = Vec::new();
+    for p in parameters {
+        let (Some(value), Some(unit)) = (&p.value, &p.decl.unit) else {
+            continue;
+        };
+        let Ok(expected) = Dimension::parse(&unit.text) else {
+            continue; // reported at the unit
+        };
+        if !uses_a_name(value) {
+            continue;
+        }
+        let what = format!("the default of `{}`", p.decl.name);
+        if let Err(d) = scope.check(value, Some(expected), &what) {
+            problems.push(d);
+        }
+    }
+    problems
+}
+
+/// Whether `expr` names anything but `pi` and the functions it calls (a
+/// name followed by its parenthesized arguments, or a method).
+fn uses_a_name(expr: &syn::Expr) -> bool {
+    use proc_macro2::{Delimiter, TokenTree};
+    use quote::ToTokens;
+    let mut stack = vec![expr.to_token_stream().into_iter().peekable()];
+    while let Some(tokens) = stack.last_mut() {
+        let Some(token) = tokens.next() else {
+            stack.pop();
+            continue;
+        };
+        match token {
+            TokenTree::Ident(name) => {
+                let called = matches!(tokens.peek(), Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis);
+                if !called && name != "pi" {
+                    return true;
+                }
+            }
+            TokenTree::Group(g) => stack.push(g.stream().into_iter().peekable()),
+            TokenTree::Punct(_) | TokenTree::Literal(_) => {}
+        }
+    }
+    false
 }
 
 /// Checks every statement; returns the problems found.

@@ -225,7 +225,8 @@ pub fn project<const N: usize, S: LagrangianSystem<N>, I: InputFunctions + ?Size
         if iterations == 50 || !finite {
             return Err(unsatisfiable(&names, first.residual(), current.residual()));
         }
-        let step = minimum_norm(&current, current.residual()).map_err(|k| redundant(&names, &k))?;
+        let step = minimum_norm(&current, current.residual())
+            .map_err(|k| dependent(&names, &current, q, &k, 1e-9 * scale))?;
         *q -= step;
         iterations += 1;
         if step.amax() <= 1e-15 * scale && iterations > 1 {
@@ -315,6 +316,63 @@ fn unsatisfiable(names: &[&str], before: &[f64], after: &[f64]) -> SimulationErr
         before[k],
         after[k]
     ))
+}
+
+/// Constraints `rows` whose gradients depend on those of the others at
+/// `q`: redundant when satisfying the others (to first order, by the
+/// minimum-norm step of their rows) satisfies them too; else unsatisfiable
+/// near `q` — a gradient that vanishes where the residual does not (`x² + 1`,
+/// a constant), or one that contradicts the others (`x` and `x − 1`) —
+/// named with its residual.
+fn dependent<const N: usize>(
+    names: &[&str],
+    values: &ConstraintValues,
+    q: &SVector<f64, N>,
+    rows: &[usize],
+    tolerance: f64,
+) -> SimulationError {
+    let independent: Vec<usize> = (0..values.layout.m).filter(|k| !rows.contains(k)).collect();
+    let step = minimum_norm_of_rows(values, &independent);
+    let residual = values.residual();
+    let contradicted = rows.iter().copied().find(|&k| {
+        let left = residual[k] - dot(values.jacobian_row(k), &step);
+        left.is_nan() || left.abs() > tolerance
+    });
+    let Some(k) = contradicted else {
+        return redundant(names, rows);
+    };
+    SimulationError::Constraints(format!(
+        "the constraint `{}` cannot be satisfied near the initial state: its residual is {:e} at \
+         q = {:?}, where no change of the coordinates reduces it (its gradient is zero there, or \
+         a combination of the other constraints' gradients, which it contradicts); check the \
+         constraint and the parameters it uses",
+        names.get(k).copied().unwrap_or("?"),
+        residual[k],
+        q.as_slice()
+    ))
+}
+
+/// The minimum-norm `x` with `G_k x = g_k` for the constraints `rows`
+/// alone (independent ones), as a vector over the coordinates; zero when
+/// even they are dependent.
+fn minimum_norm_of_rows(values: &ConstraintValues, rows: &[usize]) -> Vec<f64> {
+    let (m, n) = (rows.len(), values.layout.n);
+    let mut normal = vec![0.0; m * m];
+    for (a, &k) in rows.iter().enumerate() {
+        for (b, &l) in rows.iter().enumerate() {
+            normal[a * m + b] = dot(values.jacobian_row(k), values.jacobian_row(l));
+        }
+    }
+    let r: Vec<f64> = rows.iter().map(|&k| values.residual()[k]).collect();
+    let mut x = vec![0.0; n];
+    if let Ok(y) = solve_positive_definite(&normal, m, &r) {
+        for (&k, yk) in rows.iter().zip(&y) {
+            for (j, g) in values.jacobian_row(k).iter().enumerate() {
+                x[j] += g * yk;
+            }
+        }
+    }
+    x
 }
 
 fn redundant(names: &[&str], indices: &[usize]) -> SimulationError {

@@ -6,11 +6,11 @@
 //! forces, which cannot contain accelerations, so a `let` names a position
 //! and the output differentiates it (`output a = ddot(x_tip);`).
 
-use super::Lowering;
+use super::{Lowering, validate};
 use crate::diagnostic::SpanRange;
-use crate::spec::Output;
-use crate::spec::ast::{Item, OutputDecl};
+use crate::spec::ast::{Declaration, InputDecl, Item, OutputDecl};
 use crate::spec::expression::{Binding, ExpressionLowering};
+use crate::spec::{Coordinate, Output};
 
 impl Lowering {
     /// Declares every output's name, so that a clash with another name is
@@ -18,6 +18,29 @@ impl Lowering {
     pub(super) fn declare_outputs(&mut self, statements: &[Item]) {
         for output in output_declarations(statements) {
             self.declare(&output.decl.name, Binding::Output);
+        }
+    }
+
+    /// Refuses coordinates, inputs and outputs named as a built-in
+    /// trajectory column (`x_dot`, `kinetic_energy`, …): each is a column
+    /// of the trajectory too.
+    pub(super) fn column_clashes(
+        &mut self,
+        coordinates: &[Coordinate],
+        inputs: &[InputDecl],
+        statements: &[Item],
+    ) {
+        let names: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
+        let declared = |d: &Declaration| (d.name.to_string(), d.name.span());
+        let columns = (coordinates
+            .iter()
+            .map(|c| ((c.name.clone(), c.span), "coordinate")))
+        .chain(inputs.iter().map(|i| (declared(&i.decl), "input")))
+        .chain(output_declarations(statements).map(|o| (declared(&o.decl), "output")));
+        for ((name, span), what) in columns {
+            if let Some(d) = validate::builtin_column_name((&name, span), what, &names) {
+                self.problems.push(d);
+            }
         }
     }
 

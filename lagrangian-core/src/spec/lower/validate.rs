@@ -38,6 +38,28 @@ pub(super) fn duplicate_name(scope: &Scope, ident: &Ident) -> Option<Diagnostic>
     )
 }
 
+/// A name that becomes a trajectory column (a coordinate, an input, an
+/// output) and is one of the columns every trajectory has
+/// ([`lagrangian_model::names::builtin_column`]): the trajectory would have
+/// two columns of that name.
+pub(super) fn builtin_column_name(
+    (name, span): (&str, Span),
+    what: &str,
+    coordinates: &[&str],
+) -> Option<Diagnostic> {
+    if RESERVED_NAMES.contains(&name) {
+        return None; // refused as reserved
+    }
+    let column = lagrangian_model::names::builtin_column(name, coordinates.iter().copied())?;
+    Some(
+        Diagnostic::new(
+            span,
+            format!("the {what} `{name}` has the name of a built-in trajectory column, {column}"),
+        )
+        .with_help("every trajectory has the columns t, each coordinate q with q_dot and q_ddot, kinetic_energy, potential_energy, dissipated_energy and external_work: choose another name"),
+    )
+}
+
 /// Every formal argument of an input function declared again after its first
 /// declaration, in order.
 pub(super) fn duplicate_arguments(decl: &InputDecl) -> Vec<Diagnostic> {
