@@ -203,7 +203,10 @@ fn text_report(report: &FitReport) -> String {
     for p in &report.parameters {
         let error = match (p.identifiability.reason(), p.standard_error) {
             (Some(reason), _) => reason,
-            (None, Some(se)) => format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs()),
+            (None, Some(se)) if p.fitted != 0.0 => {
+                format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs())
+            }
+            (None, Some(se)) => format!("{se:.3e}"),
             (None, None) => "not determined".to_string(),
         };
         let _ = writeln!(
