@@ -3,7 +3,7 @@
 //! a fit to a pulse the model cannot reproduce exactly.
 
 use lagrangian::LagrangianSystem;
-use lagrangian::fit::{FitReport, FitSetup, Parameters, fit};
+use lagrangian::fit::{FitReport, FitSetup, Identifiability, Parameters, fit};
 use lagrangian::pulse::channels::{Channel, Quantity, TimeHistories};
 use lagrangian::scenario::BaseScenario;
 use lagrangian::scenario::{ModelNames, Scenario};
@@ -159,4 +159,48 @@ fn a_pulse_from_a_different_car_is_fitted_and_its_residual_reported() {
         channel.relative_rms_error > 0.0 && channel.relative_rms_error < 0.2,
         "{channel:?}"
     );
+}
+
+/// The largest crush of the scenario with `settings` [m].
+fn largest_crush(settings: &[String]) -> f64 {
+    let model = Yaris::default();
+    let names = ModelNames::of(&model);
+    let mut all = settings.to_vec();
+    all.push("simulation.t_end=0.1".into());
+    let scenario = Scenario::load(Path::new(SCENARIO), &names, &all).unwrap();
+    let crush = scenario.crush.clone().unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    (result.samples.iter())
+        .map(|s| crush.of_coordinates(&s.q))
+        .fold(f64::MIN, f64::max)
+}
+
+/// From a front 30 % softer, the crush reaches past x5 = 0.6 m, where k7
+/// acts, so k7 is fitted; at the optimum (the scenario's own values) the
+/// crush stops short of 0.6 m and k7 has no influence there: it must be
+/// reported unidentifiable, with no standard error — not the tiny one a
+/// pseudo-inverse would give it.
+#[test]
+fn a_stiffness_the_fitted_crush_does_not_reach_is_unidentifiable_at_the_optimum() {
+    let start = vec![stiffness_setting(&[0.7; 7])];
+    assert!(largest_crush(&start) > 0.6, "{}", largest_crush(&start));
+    assert!(largest_crush(&[]) < 0.6, "{}", largest_crush(&[]));
+    let report = run_fit(noisy_pulse(&[]), start, &["stiffness"]);
+    println!("{}", serde_json::to_string_pretty(&report).unwrap());
+    for (p, truth) in report.parameters.iter().zip(TRUE_K) {
+        if p.name == "front_end.k7" {
+            assert_eq!(
+                p.identifiability,
+                Identifiability::NoInfluenceAtOptimum,
+                "{p:?}"
+            );
+            assert!(!p.identifiable && p.standard_error.is_none(), "{p:?}");
+            assert!(p.relative_influence.unwrap() <= lagrangian::fit::NEGLIGIBLE_INFLUENCE);
+            continue;
+        }
+        assert_eq!(p.identifiability, Identifiability::Identifiable, "{p:?}");
+        assert!((p.fitted / truth - 1.0).abs() < 0.02, "{p:?}");
+        let se = p.standard_error.unwrap();
+        assert!((p.fitted - truth).abs() < 3.0 * se + 1e-3 * truth, "{p:?}");
+    }
 }

@@ -377,7 +377,15 @@ pub fn apply_settings(
                     inputs[k] = Some(value);
                 }
             }
-            Setting::Entry { key, .. } => {
+            Setting::Scale { key, factor } if !key.contains('.') => {
+                let k = names.parameters.iter().position(|p| *p == key);
+                let value = k.map(|k| model.parameters()[k] * factor);
+                model
+                    .set_parameter(&key, value.unwrap_or(f64::NAN))
+                    .map_err(|e| Failure::usage(e.to_string()))?;
+                set.extend(k);
+            }
+            Setting::Entry { key, .. } | Setting::Scale { key, .. } => {
                 return Err(Failure::usage(format!(
                     "--set {key}: eval takes parameters and input constants (scenario entries need --scenario)"
                 )));

@@ -7,7 +7,7 @@ use crate::spec::{compile, find_scenario, out_dir};
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
-use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, fit};
+use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
 use lagrangian_sim::plot::{Series, panels_svg};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_atomically;
@@ -26,8 +26,10 @@ pub struct Args {
     /// The scenario (TOML); by default the one beside the spec that names it.
     #[arg(long)]
     pub scenario: Option<PathBuf>,
-    /// What to fit, comma-separated: `stiffness`, `damping` (the crush
-    /// component's k1…k7, c1…c7), spec parameters, or dotted scenario
+    /// What to fit, comma-separated: a crush component's curve
+    /// `NAME.stiffness`, `NAME.damping` (its k1…k7, c1…c7) or `NAME.force`
+    /// (the forces of a force–deflection curve), the bare word where one
+    /// crush component has that curve; spec parameters; or dotted scenario
     /// entries holding numbers (default: stiffness,damping).
     #[arg(long, value_delimiter = ',')]
     pub fit: Vec<String>,
@@ -127,6 +129,12 @@ pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result
     // Check the scenario once, so that its errors read as such.
     Scenario::parse(&base.text, base.file.as_deref(), &names, &options.set)
         .map_err(|e| Failure::scenario(&e))?;
+    check_target_extent(&target, &base, parameters.entries.len()).map_err(|e| {
+        Failure::new(
+            ExitStatus::DataFile,
+            format!("{}: {e}", options.target.display()),
+        )
+    })?;
     let setup = FitSetup {
         base,
         target,
@@ -193,10 +201,13 @@ fn text_report(report: &FitReport) -> String {
         "parameter", "initial", "fitted", "standard error"
     );
     for p in &report.parameters {
-        let error = match (p.identifiable, p.standard_error) {
-            (false, _) => "held: no influence on the target".to_string(),
-            (true, Some(se)) => format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs()),
-            (true, None) => "not determined".to_string(),
+        let error = match (p.identifiability.reason(), p.standard_error) {
+            (Some(reason), _) => reason,
+            (None, Some(se)) if p.fitted != 0.0 => {
+                format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs())
+            }
+            (None, Some(se)) => format!("{se:.3e}"),
+            (None, None) => "not determined".to_string(),
         };
         let _ = writeln!(
             out,

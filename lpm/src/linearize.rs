@@ -6,7 +6,10 @@ use crate::spec::{compile, find_scenario};
 use lagrangian_core::{Compiled, Model};
 use lagrangian_model::names::closest;
 use lagrangian_model::{Interpreted, WithDimension};
-use lagrangian_sim::linearize::{At, Linearization, LinearizeError, json, linearize, markdown};
+use lagrangian_sim::linearize::{
+    At, Linearization, LinearizeError, json, linearize, markdown, projection_note,
+};
+use lagrangian_sim::report::write_atomically;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use std::path::{Path, PathBuf};
 
@@ -67,13 +70,21 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
         .map_err(Failure::model)?
         .map_err(|e| match e {
             LinearizeError::Model(e) => Failure::simulation(&e, &coordinates),
-            LinearizeError::Eigenvalues(_) => Failure::evaluation(e.to_string()),
+            LinearizeError::Eigenvalues(_) | LinearizeError::NoFreeCoordinates { .. } => {
+                Failure::evaluation(e.to_string())
+            }
         })?;
     let text = report(&linearization, &args, scenario_path.as_deref());
+    // The markdown on stdout says it; JSON and a file leave stdout to the
+    // report or say nothing of it.
+    let note = projection_note(&linearization);
+    if !note.is_empty() && (args.format == "json" || args.out.is_some()) {
+        eprintln!("note: {}", note.trim());
+    }
     match &args.out {
         None => Ok(Outcome::success(text)),
         Some(path) => {
-            std::fs::write(path, text)
+            write_atomically(path, text.as_bytes())
                 .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
             Ok(Outcome::success(format!("wrote {}\n", path.display())))
         }

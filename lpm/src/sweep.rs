@@ -7,6 +7,7 @@ use crate::spec::compile;
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
 use lagrangian_sim::sweep::{
     Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
@@ -14,6 +15,7 @@ use lagrangian_sim::sweep::{
     stream_sweep, write_csv, write_parquet,
 };
 use std::cell::RefCell;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -496,22 +498,24 @@ fn finish_output(
     }
 }
 
-/// Writes `out` through a temporary file beside it, renamed into place when
-/// `write` succeeds and removed when it fails: `out` is whole or absent.
+/// Writes `out` through a temporary file beside it
+/// ([`write_atomically_with`]), renamed into place when `write` succeeds
+/// and the bytes are on the disk, removed on any failure (a full disk
+/// included): `out` is whole or absent.
 fn write_beside(
     out: &Path,
-    write: impl FnOnce(std::io::BufWriter<std::fs::File>) -> Result<(), String>,
+    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> Result<(), String>,
 ) -> Result<(), String> {
-    let temporary = temporary_beside(out);
-    let file = std::fs::File::create(&temporary)
-        .map_err(|e| format!("cannot create {}: {e}", temporary.display()))?;
-    let written = write(std::io::BufWriter::new(file)).and_then(|()| {
-        std::fs::rename(&temporary, out).map_err(|e| format!("cannot write {}: {e}", out.display()))
-    });
-    if written.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    written
+    let mut failure = None;
+    write_atomically_with(out, |file| {
+        let mut buffered = std::io::BufWriter::new(file);
+        if let Err(e) = write(&mut buffered) {
+            failure = Some(e);
+            return Err(std::io::Error::other("not written"));
+        }
+        buffered.flush()
+    })
+    .map_err(|e| failure.unwrap_or_else(|| format!("cannot write {}: {e}", out.display())))
 }
 
 /// `rows` in groups of `size` (the last one shorter); an error ends them.
@@ -667,11 +671,6 @@ fn duration(seconds: f64) -> String {
 
 /// Rows per Parquet row group (about 14 MB of values with 30 columns).
 const PARQUET_GROUP_ROWS: usize = 1 << 16;
-
-fn temporary_beside(path: &Path) -> PathBuf {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
-}
 
 /// A flag set by the first SIGINT, SIGTERM or SIGHUP: the sweep takes no
 /// new run and stops once the runs under way are written. A second signal

@@ -136,3 +136,130 @@ fn fit_errors_name_the_problem() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The largest crush of the run in `summary.json` of `dir` [m].
+fn largest_crush(dir: &Path) -> f64 {
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    summary["max_crush_m"].as_f64().unwrap()
+}
+
+/// Fitting the breakpoints of the paper's stiffness curve to the pulse of
+/// a 10 % stiffer car: the fitted run's crush decides which breakpoints
+/// can matter. One beyond the segment the crush ends in (its predecessor
+/// above the largest crush) has no influence at the optimum and must be
+/// reported so, with no standard error, whatever it did at the start.
+#[test]
+fn breakpoints_beyond_the_fitted_crush_are_unidentifiable() {
+    let dir = temporary("breakpoints");
+    let out = dir.join("fit");
+    let run = lpm(&[
+        "fit",
+        "specs/yaris_double_pendulum.lpm",
+        "--target",
+        "specs/data/yaris_pulse.csv",
+        "--fit",
+        "components.front_end.stiffness_breakpoints",
+        "--starts",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    let rerun = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--scenario",
+        out.join("fitted.toml").to_str().unwrap(),
+        "--out",
+        dir.join("rerun").to_str().unwrap(),
+    ]);
+    assert!(rerun.status.success(), "{}", stderr(&rerun));
+    let crush = largest_crush(&dir.join("rerun"));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    let parameters = report["parameters"].as_array().unwrap();
+    let fitted: Vec<f64> = parameters
+        .iter()
+        .map(|p| p["fitted"].as_f64().unwrap())
+        .collect();
+    let mut beyond = 0;
+    for (k, p) in parameters.iter().enumerate() {
+        let kind = p["identifiability"]["kind"].as_str().unwrap();
+        if k > 0 && fitted[k - 1] > crush {
+            beyond += 1;
+            assert!(
+                ["no_influence_at_optimum", "held"].contains(&kind),
+                "breakpoint {k} beyond the crush {crush}: {p}\n{text}"
+            );
+            assert!(p["standard_error"].is_null(), "{p}");
+        } else if fitted[k] < crush {
+            assert_eq!(
+                kind, "identifiable",
+                "breakpoint {k} below the crush {crush}: {p}"
+            );
+        }
+    }
+    assert!(beyond >= 2, "{crush}: {fitted:?}");
+    assert!(
+        text.contains("unidentifiable: no influence on the target at the optimum"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Every crush curve the messages of `--fit` suggest is one `lpm fit`
+/// accepts (the Kamal model's crush components have force curves only,
+/// where `--fit stiffness` used to suggest `front.stiffness`).
+#[test]
+fn every_curve_the_fit_suggests_is_accepted() {
+    let dir = temporary("suggestions");
+    let fit = |name: &str| {
+        lpm(&[
+            "fit",
+            "specs/kamal_1970.lpm",
+            "--target",
+            "specs/data/yaris_pulse.csv",
+            "--fit",
+            name,
+            "--starts",
+            "1",
+            "--quiet",
+            "--out",
+            dir.join(name).to_str().unwrap(),
+        ])
+    };
+    let mut suggested = Vec::new();
+    for name in ["stiffness", "damping", "force", "rails.stiffness"] {
+        let run = fit(name);
+        assert_eq!(run.status.code(), Some(2), "{name}: {}", stderr(&run));
+        let message = stderr(&run);
+        let (_, list) = message
+            .trim_end()
+            .rsplit_once(": ")
+            .unwrap_or_else(|| panic!("{message}"));
+        suggested.extend(list.split(", ").map(|n| n.trim_matches('`').to_string()));
+    }
+    suggested.sort();
+    suggested.dedup();
+    assert_eq!(
+        suggested,
+        [
+            "front.damping",
+            "front.force",
+            "rails.damping",
+            "rails.force"
+        ]
+    );
+    for name in &suggested {
+        let run = fit(name);
+        assert!(
+            run.status.success(),
+            "{name} suggested, then: {}",
+            stderr(&run)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

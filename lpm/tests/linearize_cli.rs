@@ -278,3 +278,57 @@ fn the_parallelogram_four_bar_has_one_mode_on_its_loop() {
     close(q["theta2"].as_f64().unwrap(), 0.0, 1e-9, "θ2");
     assert_eq!(matrix(&report["A"]).len(), 6);
 }
+
+/// `--at` a state off the slider–crank's constraints (θ = 1, φ = x = 0):
+/// moved onto them as `simulate` moves its initial state, and reported.
+/// The residual before is the closed form `r cos 1 + l` of `rod_x`
+/// (r = 0.05 m, l = 0.2 m), and the state linearized about satisfies
+/// `r cos θ + l cos φ = x`, `r sin θ = l sin φ`.
+#[test]
+fn a_state_off_the_constraints_is_projected_and_reported() {
+    let report = linearize(&["specs/slider_crank.lpm", "--at", "theta=1"]);
+    let point = &report["operating_point"];
+    let projection = &point["projection"];
+    let (r, l) = (0.05_f64, 0.2_f64);
+    let before = (r * 1f64.cos() + l).max(r * 1f64.sin());
+    close(
+        projection["residual_before"].as_f64().unwrap(),
+        before,
+        1e-12,
+        "residual before",
+    );
+    assert_eq!(projection["given_q"]["theta"], 1.0);
+    let q = |name: &str| point["q"][name].as_f64().unwrap();
+    let (theta, phi, x) = (q("theta"), q("phi"), q("x"));
+    assert!((r * theta.cos() + l * phi.cos() - x).abs() < 1e-12, "rod_x");
+    assert!((r * theta.sin() - l * phi.sin()).abs() < 1e-12, "rod_y");
+    let moved = ((theta - 1.0).powi(2) + phi.powi(2) + x.powi(2)).sqrt();
+    close(
+        projection["coordinate_change"].as_f64().unwrap(),
+        moved,
+        1e-12,
+        "|Δq|",
+    );
+    // Given the projected state itself, nothing moves and the modes agree.
+    let at = format!("theta={theta:?},phi={phi:?},x={x:?}");
+    let again = linearize(&["specs/slider_crank.lpm", "--at", &at]);
+    let residual = again["operating_point"]["projection"]["residual_before"].as_f64();
+    assert!(residual.unwrap() < 1e-12, "{residual:?}");
+    close(
+        floats(&again["natural_frequencies_hz"])[0],
+        floats(&report["natural_frequencies_hz"])[0],
+        1e-9,
+        "frequency",
+    );
+    // The markdown says so; a model without constraints has no projection.
+    let out = lpm(&["linearize", "specs/slider_crank.lpm", "--at", "theta=1"]);
+    assert!(
+        stdout(&out).contains(
+            "The state given was projected onto the constraints (rod_x, rod_y): |g| was 2.3e-1"
+        ),
+        "{}",
+        stdout(&out)
+    );
+    let free = linearize(&["specs/simple_pendulum.lpm", "--at", "theta=0.1"]);
+    assert!(free["operating_point"]["projection"].is_null());
+}

@@ -5,20 +5,41 @@
 use crate::simulate::SimulationResult;
 use lagrangian_model::names::{ENERGY_COLUMNS, TIME_COLUMN, acceleration_column, velocity_column};
 use std::fmt::Write as _;
-use std::io;
+use std::io::{self, Write as _};
 use std::path::Path;
 
-/// Writes `contents` to `path` atomically (temporary file, then rename).
+/// Writes `contents` to `path` atomically: into a temporary file beside
+/// it, flushed to the disk, then renamed over `path`. On any failure — a
+/// full disk while writing or flushing included — the temporary is
+/// removed and `path` is as it was: whole, or absent.
 pub fn write_atomically(path: &Path, contents: &[u8]) -> io::Result<()> {
+    write_atomically_with(path, |file| file.write_all(contents))
+}
+
+/// [`write_atomically`] of what `write` writes into the file.
+pub fn write_atomically_with(
+    path: &Path,
+    write: impl FnOnce(&mut std::fs::File) -> io::Result<()>,
+) -> io::Result<()> {
+    let temporary = temporary_beside(path);
+    let written = std::fs::File::create(&temporary).and_then(|mut file| {
+        write(&mut file)?;
+        file.sync_all()
+    });
+    let renamed = written.and_then(|()| std::fs::rename(&temporary, path));
+    if renamed.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    renamed
+}
+
+/// The hidden temporary `.NAME.PID.tmp` beside `path`.
+pub fn temporary_beside(path: &Path) -> std::path::PathBuf {
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let temporary = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
-    std::fs::write(&temporary, contents)?;
-    std::fs::rename(&temporary, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&temporary);
-    })
+    path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()))
 }
 
 /// Units of the columns, where the spec declares them.

@@ -166,7 +166,7 @@ pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<St
     );
     if let Some(plot) = &request.plot {
         let svg = bands_svg("Envelopes over the runs", &bands(envelope)).map_err(Failure::io)?;
-        std::fs::write(plot, svg)
+        lagrangian_sim::report::write_atomically(plot, svg.as_bytes())
             .map_err(|e| Failure::io(format!("cannot write {}: {e}", plot.display())))?;
         line.push_str(&format!(" and {}", plot.display()));
     }

@@ -21,6 +21,8 @@ use lagrangian_model::LagrangianSystem;
 pub use parameters::Parameters;
 use problem::Problem;
 use serde::Serialize;
+use statistics::Determined;
+pub use statistics::{NEGLIGIBLE_INFLUENCE, RANK_TOLERANCE};
 
 /// What to fit and how.
 #[derive(Clone, Debug)]
@@ -54,9 +56,52 @@ pub struct FittedParameter {
     /// Standard error from `σ² (JᵀJ)⁻¹` at the optimum (`None` when the
     /// target does not determine it).
     pub standard_error: Option<f64>,
-    /// `false`: changing it does not change the simulated target at all
-    /// (e.g. a stiffness beyond the largest crush); it was held fixed.
+    /// `true` when the target determines it at the optimum (its standard
+    /// error is then given); see `identifiability` for why not.
     pub identifiable: bool,
+    /// How the target determines it, at the optimum.
+    pub identifiability: Identifiability,
+    /// The norm of its column of the Jacobian at the optimum over the
+    /// largest column's (`None` when it was held).
+    pub relative_influence: Option<f64>,
+}
+
+/// How the target determines a fitted entry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum Identifiability {
+    /// It has an influence at the optimum, and a finite standard error.
+    Identifiable,
+    /// Changing it did not change the simulated target at the start (e.g.
+    /// a stiffness beyond the largest crush): it was held at its value.
+    Held,
+    /// It changed the target at the start but has no influence at the
+    /// optimum (its column of the Jacobian there is zero or negligible,
+    /// [`NEGLIGIBLE_INFLUENCE`] of the largest): not identifiable.
+    NoInfluenceAtOptimum,
+    /// Only a combination of it with the entries `with` is determined (the
+    /// Jacobian at the optimum has a direction the target does not see).
+    Combination {
+        /// The names of the entries it is combined with.
+        with: Vec<String>,
+    },
+}
+
+impl Identifiability {
+    /// Why an entry has no standard error, in words (`None` when it has).
+    pub fn reason(&self) -> Option<String> {
+        match self {
+            Identifiability::Identifiable => None,
+            Identifiability::Held => Some("held: no influence on the target".into()),
+            Identifiability::NoInfluenceAtOptimum => {
+                Some("unidentifiable: no influence on the target at the optimum".into())
+            }
+            Identifiability::Combination { with } => Some(format!(
+                "not determined: only its combination with {} is",
+                with.join(", ")
+            )),
+        }
+    }
 }
 
 /// Fit quality of one target channel.
@@ -137,6 +182,13 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
     )?;
     let result = simulate(system, &scenario).map_err(|e| e.to_string())?;
     let t: Vec<f64> = result.samples.iter().map(|s| s.t).collect();
+    if t.len() < 2 {
+        return Err(format!(
+            "the simulation to the target's end (t = {} s) has {} sample: the target is shorter than an output interval",
+            target.t[target.t.len() - 1],
+            t.len()
+        ));
+    }
     Ok(target
         .channels
         .iter()
@@ -166,9 +218,47 @@ fn rms(x: impl Iterator<Item = f64>) -> f64 {
     (sum / n.max(1) as f64).sqrt()
 }
 
-/// Checks the target against the scenario before any fitting.
-fn check_target(target: &TimeHistories) -> Result<(), String> {
-    if target.t[0] < 0.0 {
+/// Checks the target's extent against the scenario and the number of
+/// fitted `entries`: at least two times, the last after the scenario's
+/// first output interval (a simulation to it has a sample after 0), and
+/// more values than entries. A target too short or too coarse is refused
+/// before any simulation.
+pub fn check_target_extent(
+    target: &TimeHistories,
+    base: &BaseScenario,
+    entries: usize,
+) -> Result<(), String> {
+    let samples = target.t.len();
+    if samples < 2 {
+        return Err(format!(
+            "the target has {samples} sample{}; a fit needs at least 2 times",
+            if samples == 1 { "" } else { "s" }
+        ));
+    }
+    let interval = base
+        .resolve(&[])
+        .map_err(|e| e.to_string())?
+        .output_interval;
+    let end = target.t[samples - 1];
+    if end <= interval {
+        return Err(format!(
+            "the target ends at t = {end} s, within the scenario's first output interval ({interval} s): a fit needs target times after t = {interval} s (or a shorter simulation.output_interval)"
+        ));
+    }
+    let values = samples * target.channels.len();
+    if values <= entries {
+        return Err(format!(
+            "the target has {values} values ({samples} times × {} channels) for {entries} fitted entries: a fit needs more values than entries (a finer target or fewer entries)",
+            target.channels.len()
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the target's values: it starts at or after 0, and no channel is
+/// zero throughout (each scales its residuals by its RMS).
+fn check_target_values(target: &TimeHistories) -> Result<(), String> {
+    if target.t.first().is_some_and(|&t| t < 0.0) {
         return Err(format!(
             "the target starts at t = {} s; the simulation starts at 0 (first contact)",
             target.t[0]
@@ -207,6 +297,18 @@ fn channel_fits(
         .collect()
 }
 
+/// What [`statistics::uncertainty`] found of an entry, with names.
+fn identifiability(determined: Option<&Determined>, labels: &[String]) -> Identifiability {
+    match determined {
+        None => Identifiability::Held,
+        Some(Determined::Yes) => Identifiability::Identifiable,
+        Some(Determined::NoInfluence) => Identifiability::NoInfluenceAtOptimum,
+        Some(Determined::Combination(with)) => Identifiability::Combination {
+            with: with.iter().map(|&k| labels[k].clone()).collect(),
+        },
+    }
+}
+
 /// Fits `setup.parameters`, calling `progress(simulations, best cost)`.
 pub fn fit<const N: usize, S>(
     system: &S,
@@ -217,7 +319,8 @@ where
     S: LagrangianSystem<N> + Clone + Send,
 {
     let clock = std::time::Instant::now();
-    check_target(&setup.target)?;
+    check_target_values(&setup.target)?;
+    check_target_extent(&setup.target, &setup.base, setup.parameters.entries.len())?;
     let problem = Problem::new(system, setup, progress)?;
     let initial = setup.parameters.base_values();
     let initial_channels = problem.channels_of(&initial)?;
@@ -234,12 +337,18 @@ where
     let parameters = labels
         .iter()
         .enumerate()
-        .map(|(i, name)| FittedParameter {
-            name: name.clone(),
-            initial: initial[i],
-            fitted: outcome.values[i],
-            standard_error: stats.standard_errors[i],
-            identifiable: problem.free.contains(&i),
+        .map(|(i, name)| {
+            let identifiability = identifiability(stats.determined[i].as_ref(), &labels);
+            FittedParameter {
+                name: name.clone(),
+                initial: initial[i],
+                fitted: outcome.values[i],
+                standard_error: stats.standard_errors[i],
+                identifiable: identifiability == Identifiability::Identifiable
+                    && stats.standard_errors[i].is_some(),
+                identifiability,
+                relative_influence: stats.influence[i],
+            }
         })
         .collect();
     Ok(FitReport {

@@ -2,9 +2,10 @@
 //! and the model, the transforms that keep them feasible, and the settings
 //! that apply a set of values to the scenario.
 //!
-//! Names: `stiffness` / `damping` / `force` (the values k1…k7 / c1…c7 of
-//! the scenario's crush component, or the forces of a force–deflection
-//! curve; `front_end.stiffness` when there are several),
+//! Names: `NAME.stiffness` / `NAME.damping` / `NAME.force` (the values
+//! k1…k7 / c1…c7 of crush component `NAME`, or the forces of its
+//! force–deflection curve; the bare word where one crush component has
+//! that curve, see [`curve_names`]),
 //! a dotted scenario entry holding a number or a list of numbers
 //! (`components.front_end.unloading_stiffness`), or a spec parameter (`k_f`).
 //!
@@ -92,43 +93,152 @@ fn lookup<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     value
 }
 
-/// The scenario key of the values a `stiffness` / `damping` name stands
-/// for (`front_end.stiffness`: the `stiffness_values` of crush component
-/// `front_end`; a bare `stiffness`: those of the scenario's only crush
-/// component) and the prefix of their labels (`front_end.k`); `None` for
-/// any other name.
+/// The curves of a crush component that `--fit` names: the word, the
+/// scenario entry of its values (`{component}.{entry}`) and the letter of
+/// its labels (`front_end.k3`).
+const CURVES: [(&str, &str, &str); 3] = [
+    ("stiffness", "stiffness_values", "k"),
+    ("damping", "damping_values", "c"),
+    ("force", "force_values", "F"),
+];
+
+/// One curve of a crush component that `--fit` accepts by name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveName {
+    /// The crush component (`front_end`).
+    pub component: String,
+    /// `stiffness`, `damping` or `force`.
+    pub what: &'static str,
+}
+
+impl CurveName {
+    /// `front_end.stiffness`: the name `--fit` takes.
+    pub fn name(&self) -> String {
+        format!("{}.{}", self.component, self.what)
+    }
+
+    fn entry(&self) -> (String, String) {
+        let (_, values, letter) = CURVES
+            .iter()
+            .find(|(what, _, _)| *what == self.what)
+            .expect("a curve's word is one of CURVES");
+        (
+            format!("components.{}.{values}", self.component),
+            format!("{}.{letter}", self.component),
+        )
+    }
+}
+
+/// The curves of the crush components of `document` that `--fit` accepts
+/// (a curve is there when its `…_values` entry is), in component order:
+/// the one list that resolving a name and every suggestion come from.
+pub fn curve_names(document: &toml::Table) -> Vec<CurveName> {
+    let mut names = Vec::new();
+    let components = document.get("components").and_then(toml::Value::as_table);
+    for component in crush_components(document) {
+        let section = components.and_then(|c| c.get(&component));
+        for (what, values, _) in CURVES {
+            if section.and_then(|s| s.get(values)).is_some() {
+                names.push(CurveName {
+                    component: component.clone(),
+                    what,
+                });
+            }
+        }
+    }
+    names
+}
+
+/// The names `--fit` accepts that the messages suggest: the crush curves
+/// (`front_end.stiffness`; the bare word too where one component has that
+/// curve), then the spec parameters.
+pub fn accepted_names(document: &toml::Table, model: &ModelNames) -> Vec<String> {
+    let curves = curve_names(document);
+    let mut names: Vec<String> = curves.iter().map(CurveName::name).collect();
+    for (what, _, _) in CURVES {
+        if curves.iter().filter(|c| c.what == what).count() == 1 {
+            names.push(what.to_string());
+        }
+    }
+    names.extend(model.parameters.iter().cloned());
+    names
+}
+
+/// `` `a`, `b` `` for a message.
+fn quoted(names: &[String]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    quoted.join(", ")
+}
+
+/// The scenario key of the values a curve name stands for
+/// (`front_end.stiffness`: the `stiffness_values` of crush component
+/// `front_end`; a bare `stiffness`: those of the only crush component with
+/// a stiffness curve) and the prefix of their labels (`front_end.k`);
+/// `None` for a name that is no curve's.
 fn crush_values_key(
     name: &str,
     document: &toml::Table,
 ) -> Result<Option<(String, String)>, String> {
-    let short = |component: &str, what: &str| match what {
-        "stiffness" => Some((format!("components.{component}.stiffness_values"), "k")),
-        "damping" => Some((format!("components.{component}.damping_values"), "c")),
-        "force" => Some((format!("components.{component}.force_values"), "F")),
-        _ => None,
-    };
-    let crush = crush_components(document);
-    const WHAT: [&str; 3] = ["stiffness", "damping", "force"];
-    if WHAT.contains(&name) {
-        match crush.as_slice() {
-            [one] => Ok(short(one, name).map(|(k, l)| (k, format!("{one}.{l}")))),
-            [] => Err(format!(
+    let curves = curve_names(document);
+    let is_word = |w: &str| CURVES.iter().any(|(what, _, _)| *what == w);
+    let names_of = |c: &[&CurveName]| quoted(&c.iter().map(|c| c.name()).collect::<Vec<_>>());
+    let all: Vec<&CurveName> = curves.iter().collect();
+    if is_word(name) {
+        let holders: Vec<&CurveName> = curves.iter().filter(|c| c.what == name).collect();
+        return match holders.as_slice() {
+            [one] => Ok(Some(one.entry())),
+            [] if crush_components(document).is_empty() => Err(format!(
                 "--fit {name}: the scenario has no crush component (type = \"crush\")"
             )),
-            many => Err(format!(
-                "--fit {name}: the scenario has several crush components ({}); name one, e.g. `{}.{name}`",
-                many.join(", "),
-                many[0]
+            [] => Err(format!(
+                "--fit {name}: no crush component of the scenario has a {name} curve (`{name}_values`); the curves it has: {}",
+                names_of(&all)
             )),
-        }
-    } else if let Some((component, what)) = name.split_once('.')
-        && crush.iter().any(|c| c == component)
-        && WHAT.contains(&what)
-    {
-        Ok(short(component, what).map(|(k, l)| (k, format!("{component}.{l}"))))
-    } else {
-        Ok(None)
+            many => Err(format!(
+                "--fit {name}: several crush components have a {name} curve; name one: {}",
+                names_of(many)
+            )),
+        };
     }
+    let Some((component, what)) = name.split_once('.') else {
+        return Ok(None);
+    };
+    if !is_word(what) || !crush_components(document).iter().any(|c| c == component) {
+        return Ok(None);
+    }
+    match curves
+        .iter()
+        .find(|c| c.component == component && c.what == what)
+    {
+        Some(curve) => Ok(Some(curve.entry())),
+        None => {
+            let own: Vec<&CurveName> = curves.iter().filter(|c| c.component == component).collect();
+            Err(format!(
+                "--fit {name}: crush component `{component}` has no {what} curve (`{what}_values`); the curves it has: {}",
+                names_of(&own)
+            ))
+        }
+    }
+}
+
+/// The error for a `--fit` name that is nothing the fit knows, with the
+/// names it accepts (and the closest of them).
+fn unknown_name(name: &str, document: &toml::Table, model: &ModelNames) -> String {
+    let curves: Vec<String> = curve_names(document).iter().map(CurveName::name).collect();
+    let accepted = accepted_names(document, model);
+    let mut message = format!(
+        "--fit {name}: not a spec parameter ({}), a crush curve of the scenario ({}), or an entry of the scenario",
+        quoted(&model.parameters),
+        match curves.is_empty() {
+            true => "it has none".to_string(),
+            false => quoted(&curves),
+        }
+    );
+    if let Some(best) = lagrangian_model::names::closest(name, accepted.iter().map(String::as_str))
+    {
+        message.push_str(&format!("; did you mean `{best}`?"));
+    }
+    message
 }
 
 impl Parameters {
@@ -157,12 +267,8 @@ impl Parameters {
             }
             let (key, prefix) = crush_values_key(name, document)?
                 .unwrap_or_else(|| (name.to_string(), String::new()));
-            let value = lookup(document, &key).ok_or_else(|| {
-                let parameters = model.parameters.join(", ");
-                format!(
-                    "--fit {name}: not a spec parameter ({parameters}), `stiffness`, `damping`, `force` (of a crush component with that curve), or an entry of the scenario"
-                )
-            })?;
+            let value =
+                lookup(document, &key).ok_or_else(|| unknown_name(name, document, model))?;
             match value {
                 toml::Value::Array(items) => parameters.push_list(name, key, &prefix, items)?,
                 other => {
@@ -446,7 +552,8 @@ mod tests {
     fn unknown_and_ambiguous_names_are_refused() {
         let doc: toml::Table = SCENARIO.parse().unwrap();
         let e = Parameters::resolve(&["stifness".into()], &doc, &names(), &[1.0, 1.0]).unwrap_err();
-        assert!(e.contains("not a spec parameter (m, k_f)"), "{e}");
+        assert!(e.contains("not a spec parameter (`m`, `k_f`)"), "{e}");
+        assert!(e.ends_with("did you mean `stiffness`?"), "{e}");
         let e = Parameters::resolve(&["k_f".into(), "k_f".into()], &doc, &names(), &[1.0, 1.0])
             .unwrap_err();
         assert_eq!(e, "--fit: `k_f` is named twice");
@@ -474,5 +581,69 @@ mod tests {
             p.settings(&base)[0],
             "components.rails.force_values=[180000.0, 220000.0]"
         );
+    }
+
+    /// Scenarios whose crush components have different curves: every name
+    /// a message suggests is one `resolve` accepts, and a curve a
+    /// component lacks is refused with the curves it has.
+    #[test]
+    fn every_suggested_name_is_accepted() {
+        let doc: toml::Table = r#"
+            [components.front]
+            type = "crush"
+            stiffness_breakpoints = [0.1]
+            stiffness_values = [1.0e6, 2.0e6]
+            damping_breakpoints = [1.0]
+            damping_values = [0.0, 0.0]
+            [components.belt]
+            type = "crush"
+            force_breakpoints = [0.1, 0.2]
+            force_values = [1.0e3, 2.0e3]
+            damping_breakpoints = [1.0]
+            damping_values = [10.0, 10.0]
+            [components.rails]
+            type = "crush"
+            force_breakpoints = [0.1, 0.2]
+            force_values = [1.0e5, 2.0e5]
+        "#
+        .parse()
+        .unwrap();
+        let resolve = |name: &str| Parameters::resolve(&[name.into()], &doc, &names(), &[1.0, 1.0]);
+        let suggested = |message: &str| -> Vec<String> {
+            let (_, list) = message.rsplit_once(": ").unwrap();
+            list.split(", ")
+                .map(|n| n.trim_matches('`').to_string())
+                .collect()
+        };
+        // One component has a stiffness curve: the bare word is its.
+        let p = resolve("stiffness").unwrap();
+        assert_eq!(p.entries[0].label, "front.k1");
+        let e = resolve("damping").unwrap_err();
+        assert_eq!(
+            e,
+            "--fit damping: several crush components have a damping curve; name one: `belt.damping`, `front.damping`"
+        );
+        let e = resolve("belt.stiffness").unwrap_err();
+        assert_eq!(
+            e,
+            "--fit belt.stiffness: crush component `belt` has no stiffness curve (`stiffness_values`); the curves it has: `belt.damping`, `belt.force`"
+        );
+        let e2 = resolve("force").unwrap_err();
+        for message in [&e, &e2] {
+            for name in suggested(message) {
+                let p = resolve(&name);
+                assert!(p.is_ok(), "{message}: `{name}` is refused: {p:?}");
+            }
+        }
+        // Every name the unknown-name message and the accepted list give.
+        let e = resolve("stifness").unwrap_err();
+        assert!(e.ends_with("did you mean `stiffness`?"), "{e}");
+        for name in accepted_names(&doc, &names()) {
+            assert!(resolve(&name).is_ok(), "`{name}` is listed but refused");
+        }
+        let listed = e.split('(').nth(2).unwrap().split(')').next().unwrap();
+        for name in listed.split(", ") {
+            assert!(resolve(name.trim_matches('`')).is_ok(), "{e}: {name}");
+        }
     }
 }

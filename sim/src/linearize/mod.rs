@@ -22,7 +22,7 @@ mod modes;
 mod report;
 
 pub use modes::{Mode, ModeKind, modes};
-pub use report::{FIELDS, Field, json, markdown};
+pub use report::{FIELDS, Field, json, markdown, projection_note};
 
 use crate::crash::constant::Constant;
 use crate::crash::{Binding, BoundInputs, NamedComponent, Port};
@@ -31,7 +31,7 @@ use crate::ode::PhaseState;
 use crate::ode::tr_bdf2::AccelerationJacobians;
 use crate::scenario::Scenario;
 use crate::simulate::{
-    CrashProblem, SimulationError, SolverError, constrained, static_equilibrium,
+    CrashProblem, Projection, SimulationError, SolverError, constrained, static_equilibrium,
 };
 use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{InputFunctions, LagrangianSystem, solve_mass_matrix};
@@ -65,6 +65,23 @@ pub struct OperatingPoint {
     pub qdd: Vec<f64>,
     /// How the equilibrium was found (`None` for a given state).
     pub equilibrium: Option<Equilibrium>,
+    /// A given state of a model with constraints, moved onto them as
+    /// `simulate` moves its initial state: the state asked for and what
+    /// the projection changed (`None` otherwise).
+    pub projection: Option<GivenState>,
+}
+
+/// A state given to linearize about, and its projection onto the
+/// model's constraints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GivenState {
+    /// The coordinates asked for.
+    pub q: Vec<f64>,
+    /// The velocities asked for.
+    pub qd: Vec<f64>,
+    /// What the projection changed (`residual_before` is how far the given
+    /// state was off the constraints).
+    pub projection: Projection,
 }
 
 /// How an operating point at a static equilibrium was found.
@@ -144,6 +161,20 @@ pub enum LinearizeError {
     /// `A` is not finite, or its eigenvalues did not converge.
     #[error("no eigenvalues of A: {0}")]
     Eigenvalues(String),
+    /// As many constraints as coordinates (or more): nothing moves.
+    #[error(
+        "the model has no free coordinates: its {} constraints ({}) fix all {} coordinates ({}); there is no motion to linearize",
+        .constraints.len(),
+        .constraints.join(", "),
+        .coordinates.len(),
+        .coordinates.join(", ")
+    )]
+    NoFreeCoordinates {
+        /// The model's coordinates.
+        coordinates: Vec<String>,
+        /// Its constraints.
+        constraints: Vec<String>,
+    },
 }
 
 /// The linearization of `system` under `scenario` (its parameters, its
@@ -153,13 +184,20 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
     scenario: &Scenario,
     at: &At,
 ) -> Result<Linearization, LinearizeError> {
+    let own = |names: Vec<&str>| names.into_iter().map(str::to_string).collect::<Vec<_>>();
+    if system.constraint_count() >= N {
+        return Err(LinearizeError::NoFreeCoordinates {
+            coordinates: own(system.coordinate_names()),
+            constraints: own(system.constraint_names()),
+        });
+    }
     let mut model = system.clone();
     (scenario.apply_parameters(&mut model)).map_err(SimulationError::Model)?;
     let mut problem = CrashProblem::new(&model, held_inputs(&scenario.inputs));
     // The dynamics itself: the stabilization only pulls a violated
     // constraint back, a motion off the manifold the modes leave out.
     problem.stabilization = Baumgarte::NONE;
-    let (y, equilibrium) = operating_state(&mut problem, scenario, at)?;
+    let (y, equilibrium, projection) = operating_state(&mut problem, scenario, at)?;
     let fault = |fault| {
         SimulationError::from(SolverError::Rhs {
             t: 0.0,
@@ -200,6 +238,7 @@ pub fn linearize<const N: usize, S: LagrangianSystem<N> + Clone>(
             qd: y.v.as_slice().to_vec(),
             qdd: qdd.as_slice().to_vec(),
             equilibrium,
+            projection,
         },
         source,
         constraints: model
@@ -240,18 +279,31 @@ fn held_inputs(inputs: &BoundInputs) -> BoundInputs {
 }
 
 /// The operating state, with the start and the solved coordinates of an
-/// equilibrium; the components put in the state a run from it starts in.
+/// equilibrium, or the projection of a given state onto the model's
+/// constraints (as `simulate` projects its initial state); the components
+/// put in the state a run from it starts in.
 fn operating_state<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     scenario: &Scenario,
     at: &At,
-) -> Result<(PhaseState<N>, Option<Equilibrium>), SimulationError> {
+) -> Result<(PhaseState<N>, Option<Equilibrium>, Option<GivenState>), SimulationError> {
     let mut q = SVector::<f64, N>::zeros();
     let mut v = SVector::<f64, N>::zeros();
+    let mut given = None;
     let equilibrium = match at {
         At::State { q: q0, qd } => {
             q.copy_from_slice(q0);
             v.copy_from_slice(qd);
+            if problem.system.constraint_count() > 0 {
+                problem.start(0.0, &PhaseState::new(q, v))?;
+                let (system, inputs) = (problem.system, &problem.inputs);
+                let projection = constrained::project(system, inputs, 0.0, &mut q, &mut v)?;
+                given = Some(GivenState {
+                    q: q0.clone(),
+                    qd: qd.clone(),
+                    projection,
+                });
+            }
             None
         }
         At::Equilibrium => {
@@ -273,7 +325,7 @@ fn operating_state<const N: usize, S: LagrangianSystem<N>>(
     };
     let y = PhaseState::new(q, v);
     problem.start(0.0, &y)?;
-    Ok((y, equilibrium))
+    Ok((y, equilibrium, given))
 }
 
 /// `A` from the derived Jacobians, or by central differences of `q̈`.

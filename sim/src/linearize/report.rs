@@ -94,12 +94,24 @@ fn operating_point(l: &Linearization) -> Value {
             "moved": named(l, &moved),
         })
     });
+    let projection = point.projection.as_ref().map(|given| {
+        let p = &given.projection;
+        json!({
+            "given_q": named(l, &given.q),
+            "given_qd": named(l, &given.qd),
+            "residual_before": p.residual_before,
+            "coordinate_change": p.coordinate_change,
+            "velocity_change": p.velocity_change,
+            "iterations": p.iterations,
+        })
+    });
     json!({
         "t": 0.0,
         "q": named(l, &point.q),
         "qd": named(l, &point.qd),
         "qdd": named(l, &point.qdd),
         "equilibrium": equilibrium,
+        "projection": projection,
     })
 }
 
@@ -118,6 +130,7 @@ fn mode(m: &Mode) -> Value {
 pub fn markdown(l: &Linearization, title: &str) -> String {
     let mut text = format!("# Linearization of {title}\n\n## Operating point (t = 0)\n\n");
     text.push_str(&operating_point_table(l));
+    text.push_str(&projection_note(l));
     text.push_str("\n## Modes\n\n| # | frequency [Hz] | damping ratio | eigenvalue [1/s] | kind |\n|---|---|---|---|---|\n");
     for (k, m) in l.modes.iter().enumerate() {
         let ratio = finite(m.damping_ratio).as_f64().map_or("—".into(), number);
@@ -159,6 +172,22 @@ pub fn markdown(l: &Linearization, title: &str) -> String {
         }
     }
     text
+}
+
+/// What the projection of a given state onto the constraints changed, as
+/// `simulate`'s summary says it (empty without one).
+pub fn projection_note(l: &Linearization) -> String {
+    let Some(given) = &l.operating_point.projection else {
+        return String::new();
+    };
+    let p = &given.projection;
+    format!(
+        "\nThe state given was projected onto the constraints ({}): |g| was {:.1e}; |Δq| = {:.1e}, |Δq̇| = {:.1e}. The table is the projected state.\n",
+        l.constraints.join(", "),
+        p.residual_before,
+        p.coordinate_change,
+        p.velocity_change
+    )
 }
 
 fn operating_point_table(l: &Linearization) -> String {

@@ -220,7 +220,7 @@ fn the_paper_model_about_its_equilibrium_has_the_modes_of_its_differenced_accele
     let mut model = yaris.clone();
     scenario.apply_parameters(&mut model).unwrap();
     let mut problem = CrashProblem::new(&model, held_inputs(&scenario.inputs));
-    let (y, _) = operating_state(&mut problem, &scenario, &At::Equilibrium).unwrap();
+    let (y, _, _) = operating_state(&mut problem, &scenario, &At::Equilibrium).unwrap();
     let (a_q, a_v) = differenced_jacobians(&problem, &y).unwrap();
     let mut differenced = l.a.clone();
     differenced.view_mut((3, 0), (3, 3)).copy_from(&a_q);

@@ -8,20 +8,11 @@
 /// the key. `None` when the text has no such entry, or when one of the
 /// `settings` (`key=value`) set it: then the value is not the file's.
 pub(super) fn locate(text: &str, message: &str, settings: &[String]) -> Option<(usize, usize)> {
-    let end = message.find([' ', ':'])?;
-    let key = &message[..end];
-    let set_by = |s: &String| {
-        let set = s
-            .split('=')
-            .next()
-            .unwrap_or("")
-            .trim()
-            .trim_end_matches('*');
-        set == key || key.starts_with(&format!("{set}."))
-    };
-    if settings.iter().any(set_by) {
+    if setting_of(message, settings).is_some() {
         return None;
     }
+    let end = message.find([' ', ':'])?;
+    let key = &message[..end];
     let (section, name) = key.rsplit_once('.')?;
     let value = quoted_value(&message[end..]);
     let lines: Vec<&str> = text.lines().collect();
@@ -37,6 +28,59 @@ pub(super) fn locate(text: &str, message: &str, settings: &[String]) -> Option<(
     }
     let column = lines[start].len() - lines[start].trim_start().len();
     Some((start + 1, column + 1))
+}
+
+/// The last of `settings` (`key=value`, `key*=factor`) that set the entry
+/// `message` starts with (`section.key = "value": …`, `section.key: …`),
+/// or a table above it: the value it is about is the setting's.
+pub(super) fn setting_of<'a>(message: &str, settings: &'a [String]) -> Option<&'a String> {
+    let end = message.find([' ', ':'])?;
+    let key = &message[..end];
+    let set_by = |s: &&String| {
+        let set = s
+            .split('=')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .trim_end_matches('*')
+            .trim();
+        // A plain key sets a parameter: `parameters.NAME`.
+        let set = match set.contains('.') {
+            true => set.to_string(),
+            false => format!("parameters.{set}"),
+        };
+        set == key || key.starts_with(&format!("{set}."))
+    };
+    settings.iter().rev().find(set_by)
+}
+
+/// `message` about an entry that `setting` set, as an error of the
+/// setting: `--set KEY=VALUE: what is wrong` in place of the entry and its
+/// value (`parameters.k = inf: …`) when the setting gave that value, else
+/// `--set KEY*=FACTOR: message` (the message names what the setting made).
+pub(super) fn blamed(setting: &str, message: &str) -> String {
+    let setting = setting.trim();
+    let key = setting.split('=').next().unwrap_or("").trim();
+    let key = match key.contains('.') {
+        true => key.to_string(),
+        false => format!("parameters.{key}"),
+    };
+    let end = message.find([' ', ':']);
+    // The message is about the very entry set to that value.
+    let plain = end.is_some_and(|end| message[..end] == key);
+    let rest = end.map(|end| &message[end..]);
+    let reason = rest.map(|rest| {
+        let rest = rest.trim_start();
+        let rest = rest.strip_prefix('=').map_or(rest, |r| {
+            // ` = value: reason`: the reason after the value.
+            r.split_once(": ").map_or("", |(_, reason)| reason)
+        });
+        rest.strip_prefix(':').unwrap_or(rest).trim_start()
+    });
+    match reason {
+        Some(reason) if plain && !reason.is_empty() => format!("--set {setting}: {reason}"),
+        _ => format!("--set {setting}: {message}"),
+    }
 }
 
 /// The value in ` = "value"` at the start of the rest of a message.

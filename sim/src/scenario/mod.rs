@@ -57,6 +57,7 @@ mod file;
 mod locate;
 mod overrides;
 mod resolve;
+mod scale;
 mod signal;
 
 use crate::crash::BoundInputs;
@@ -72,8 +73,9 @@ pub use overrides::Setting;
 #[cfg(any(feature = "sweep", test))]
 pub(crate) use overrides::split_setting;
 use overrides::with_settings;
-pub use resolve::MAX_SAMPLES;
 use resolve::resolve;
+pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};
+pub use scale::{as_number, factor_base, scaled_inline, toml_number};
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -108,6 +110,10 @@ pub struct ModelNames {
     pub constraints: Vec<String>,
     /// The unit of each constraint's multiplier, where known.
     pub multiplier_units: Vec<Option<String>>,
+    /// The default value of each parameter, in the order of `parameters`
+    /// (what a factor `--set NAME*=x` multiplies when the scenario does not
+    /// set it; empty where unknown).
+    pub parameter_defaults: Vec<f64>,
 }
 
 impl ModelNames {
@@ -124,6 +130,7 @@ impl ModelNames {
             output_units: vec![None; system.output_names().len()],
             constraints: own(system.constraint_names()),
             multiplier_units: vec![None; system.constraint_count()],
+            parameter_defaults: system.parameters(),
             ..ModelNames::default()
         }
     }
@@ -142,6 +149,7 @@ impl ModelNames {
             component_columns: Vec::new(),
             constraints: model.constraint_names().to_vec(),
             multiplier_units: model.multiplier_units().to_vec(),
+            parameter_defaults: model.parameters().to_vec(),
         }
     }
 
@@ -351,16 +359,22 @@ impl Scenario {
         let document: toml::Table = text
             .parse()
             .map_err(|e: toml::de::Error| toml_error(file, text, &e))?;
-        let (document, constants) = with_settings(document, names, settings)
+        let (settled, constants) = with_settings(document.clone(), names, settings)
             .map_err(|m| ScenarioError::invalid(None, m))?;
-        let parsed: File = document.try_into().map_err(|e: toml::de::Error| {
+        let parsed: File = settled.try_into().map_err(|e: toml::de::Error| {
             // The document has no positions; the text has them when the
             // problem is in the file rather than in a setting.
             match toml::from_str::<File>(text) {
                 Err(located) if located.message() == e.message() => {
                     toml_error(file, text, &located)
                 }
-                _ => error(with_suggestion(e.message())),
+                _ => match culprit(document, names, settings, e.message()) {
+                    Some(setting) => ScenarioError::invalid(
+                        None,
+                        format!("--set {setting}: {}", with_suggestion(e.message())),
+                    ),
+                    None => error(with_suggestion(e.message())),
+                },
             }
         })?;
         let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
@@ -369,15 +383,43 @@ impl Scenario {
             ..error(message)
         })?;
         resolve(parsed, base, names, constants, &tables)
-            .map_err(|message| ScenarioError {
-                location: locate::locate(text, &message, settings),
-                ..error(message)
+            .map_err(|message| match locate::setting_of(&message, settings) {
+                Some(setting) => ScenarioError::invalid(None, locate::blamed(setting, &message)),
+                None => ScenarioError {
+                    location: locate::locate(text, &message, settings),
+                    ..error(message)
+                },
             })
             .map(|mut s| {
                 s.file = file.map(Path::to_path_buf);
                 s
             })
     }
+}
+
+/// The first of `settings` after which `document` no longer reads as a
+/// scenario, with the error `message` (or any error, when none gives that
+/// one): the setting a problem that is not in the file comes from.
+fn culprit<'a>(
+    document: toml::Table,
+    names: &ModelNames,
+    settings: &'a [String],
+    message: &str,
+) -> Option<&'a str> {
+    let mut first_failing = None;
+    let mut current = document;
+    for setting in settings {
+        current = with_settings(current, names, std::slice::from_ref(setting))
+            .ok()?
+            .0;
+        if let Err(e) = current.clone().try_into::<File>() {
+            if e.message() == message {
+                return Some(setting.trim());
+            }
+            first_failing.get_or_insert(setting.trim());
+        }
+    }
+    first_failing
 }
 
 /// Reads every data file a scenario's components name, and checks that

@@ -2,6 +2,7 @@
 
 use super::ModelNames;
 use super::resolve::unknown;
+use super::scale::{factor_base, scaled_inline};
 use std::collections::BTreeMap;
 
 /// `--set key=value` split at the first `=`, both sides trimmed.
@@ -17,6 +18,14 @@ pub fn setting_number(name: &str, value: &str) -> Result<f64, String> {
     value
         .parse()
         .map_err(|_| format!("--set {name}: `{value}` is not a number"))
+}
+
+/// `text` read as a TOML value, if it is one.
+fn toml_value(text: &str) -> Option<toml::Value> {
+    format!("v = {text}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
 }
 
 /// What one `--set key=value` sets.
@@ -43,6 +52,15 @@ pub enum Setting {
         /// The value as TOML reads it (a bare word is a string).
         value: toml::Value,
     },
+    /// `KEY*=FACTOR`: a parameter, or every number of a dotted entry (a
+    /// number, or a list or table of numbers), multiplied by `factor`, as
+    /// a factor of `sweep --grid` does.
+    Scale {
+        /// A parameter name or a dotted key.
+        key: String,
+        /// The factor, finite.
+        factor: f64,
+    },
 }
 
 impl Setting {
@@ -51,12 +69,11 @@ impl Setting {
     /// scenario entry.
     pub fn parse(setting: &str, names: &ModelNames) -> Result<Setting, String> {
         let (key, value) = split_setting(setting)?;
+        if let Some(key) = key.strip_suffix('*') {
+            return Setting::factor(key.trim(), value, names);
+        }
         if key.contains('.') {
-            let value = format!("v = {value}")
-                .parse::<toml::Table>()
-                .ok()
-                .and_then(|mut t| t.remove("v"))
-                .unwrap_or_else(|| toml::Value::String(value.to_string()));
+            let value = toml_value(value).unwrap_or_else(|| toml::Value::String(value.to_string()));
             return Ok(Setting::Entry {
                 key: key.to_string(),
                 value,
@@ -85,6 +102,28 @@ impl Setting {
     }
 }
 
+impl Setting {
+    /// `KEY*=FACTOR` for a parameter or a dotted entry.
+    fn factor(key: &str, value: &str, names: &ModelNames) -> Result<Setting, String> {
+        let factor = setting_number(&format!("{key}*"), value)?;
+        if !factor.is_finite() {
+            return Err(format!("--set {key}*: `{value}` is not a finite factor"));
+        }
+        if !key.contains('.') && !names.parameters.iter().any(|p| p == key) {
+            let known = names.parameters.iter().map(String::as_str);
+            return Err(unknown(
+                "--set: a factor applies to a parameter or a dotted scenario entry; parameter",
+                key,
+                known,
+            ));
+        }
+        Ok(Setting::Scale {
+            key: key.to_string(),
+            factor,
+        })
+    }
+}
+
 /// Applies one `--set key=value` to the document (input constants go to
 /// `constants`, which are not part of it).
 fn apply_setting(
@@ -106,6 +145,16 @@ fn apply_setting(
             constants.insert(name, value);
         }
         Setting::Entry { key, value } => set_entry(document, &key, value)?,
+        Setting::Scale { key, factor } => {
+            let base = factor_base(&key, document, names, &names.parameter_defaults)
+                .map_err(|e| format!("--set {e}"))?;
+            let value = toml_value(&scaled_inline(&base, factor))
+                .ok_or_else(|| format!("`{key}*=`: the scaled value is not TOML"))?;
+            match key.contains('.') {
+                true => set_entry(document, &key, value)?,
+                false => set_entry(document, &format!("parameters.{key}"), value)?,
+            }
+        }
     }
     Ok(())
 }

@@ -72,7 +72,7 @@ fn non_finite_and_out_of_range_numbers_name_their_key() {
         "{e}"
     );
     let e = error(PUSH, &["k=inf"]);
-    assert!(e.starts_with("parameters.k = inf: must be"), "{e}");
+    assert!(e.starts_with("--set k=inf: must be a finite number"), "{e}");
     let e = error("", &["push=-inf"]);
     assert!(e.starts_with("--set push = -inf: must be"), "{e}");
     let weld = "[components.w]\ntype = \"weld\"\ninputs = { moment = \"push\" }\ncurve = [[0.0, 0.0], [1.0, 1.0]]\n";
@@ -158,7 +158,10 @@ fn a_crush_section_with_both_forms_of_its_curve_or_a_bad_gap_names_the_keys() {
     );
     // A setting reaches the same check.
     let e = error_for(YARIS, &front, &["components.fe.gap=-0.1"]);
-    assert_eq!(e, "components.fe.gap = -0.1: must be a finite number ≥ 0");
+    assert_eq!(
+        e,
+        "--set components.fe.gap=-0.1: must be a finite number ≥ 0"
+    );
     let e = error_for(YARIS, &front.replace("[0.1]", "[0.0]"), &[]);
     assert!(
         e.starts_with("components.fe.stiffness_breakpoints: breakpoint 1 (0) must be a positive"),
@@ -382,7 +385,7 @@ fn tolerances_outside_a_sensible_range_name_their_key_and_value() {
     // The same through --set, as `lpm simulate --rtol` gives it.
     let e = error(&format!("{paper_start}{PUSH}"), &["simulation.rtol=0.9"]);
     assert!(
-        e.starts_with("simulation.rtol = 0.9: must be in (0, 0.1]"),
+        e.starts_with("--set simulation.rtol=0.9: must be in (0, 0.1]"),
         "{e}"
     );
     // At the edges: accepted. A state at rest is scaled by 1.
@@ -397,5 +400,86 @@ fn tolerances_outside_a_sensible_range_name_their_key_and_value() {
     assert!(
         e.contains("at most 1.00e-3 (1e-3 × the largest initial coordinate or velocity, 0, or 1)"),
         "{e}"
+    );
+}
+
+/// `--set` errors name the flag and its value, not the scenario file,
+/// whether serde or the checks of the values find them.
+#[test]
+fn setting_errors_name_the_setting() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let refused = |settings: &[&str]| {
+        let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
+        let file = Some(Path::new("scenarios/x.toml"));
+        Scenario::parse(PUSH, file, &names, &settings)
+            .unwrap_err()
+            .to_string()
+    };
+    assert_eq!(
+        refused(&["initial.speed="]),
+        "--set initial.speed=: invalid type: string \"\", expected f64"
+    );
+    // The second of two settings is the culprit.
+    assert_eq!(
+        refused(&["simulation.t_end=0.5", "simulation.rtool=1e-6"]),
+        "--set simulation.rtool=1e-6: unknown field `rtool`, expected one of `t_end`, `method`, `rtol`, `atol`, `max_step`, `step`, `output_interval`, `max_steps`, `accelerations`, `time_kinks` (did you mean `rtol`?)"
+    );
+    assert_eq!(
+        refused(&["simulation.t_end=-1"]),
+        "--set simulation.t_end=-1: must be a positive, finite number"
+    );
+    // The file's own mistakes still name the file.
+    let e = Scenario::parse(
+        "[simulation]\nt_end = -1.0\n",
+        Some(Path::new("x.toml")),
+        &names,
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("x.toml:2:1: simulation.t_end = -1: must be"),
+        "{e}"
+    );
+}
+
+/// `KEY*=FACTOR` multiplies a parameter (the scenario's value, else the
+/// spec's) or every number of an entry, as `sweep --grid` does.
+#[test]
+fn a_factor_setting_scales_parameters_and_entries() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let parse = |text: &str, settings: &[&str]| {
+        let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
+        Scenario::parse(text, None, &names, &settings)
+    };
+    let k = names.parameters.iter().position(|p| p == "k").unwrap();
+    // The spec's k = 100.
+    let s = parse(PUSH, &["k*=2.5"]).unwrap();
+    assert_eq!(s.parameters, [(k, 250.0)]);
+    // The scenario's k = 40, then a second factor on the result.
+    let text = format!("[parameters]\nk = 40.0\n{PUSH}");
+    let s = parse(&text, &["k*=2", "k *= 0.5"]).unwrap();
+    assert_eq!(s.parameters, [(k, 40.0)]);
+    // A table of numbers: every one of them.
+    let text = format!(
+        "[simulation]\nt_end = 2.0\n[initial]\ncoordinates = {{ x = 0.2 }}\nvelocities = {{ x = -3.0 }}\n{PUSH}"
+    );
+    let s = parse(&text, &["initial.velocities*=2", "simulation.t_end*=1.5"]).unwrap();
+    assert_eq!(s.initial_velocities, [(0, -6.0)]);
+    assert_eq!(s.initial_coordinates, [(0, 0.2)]);
+    assert_eq!(s.t_end, 3.0);
+    let refused = |settings: &[&str]| parse(PUSH, settings).unwrap_err().to_string();
+    assert_eq!(refused(&["k*=x"]), "--set k*: `x` is not a number");
+    assert_eq!(
+        refused(&["k*=inf"]),
+        "--set k*: `inf` is not a finite factor"
+    );
+    assert_eq!(
+        refused(&["initial.speed*=2"]),
+        "--set `initial.speed*=`: the scenario has no such entry to scale"
+    );
+    assert_eq!(
+        refused(&["kk*=2"]),
+        "--set: a factor applies to a parameter or a dotted scenario entry; parameter `kk` does not exist in the spec; did you mean `k`?"
     );
 }

@@ -4,6 +4,7 @@
 mod channels;
 pub mod constrained;
 mod equilibrium;
+mod initial;
 mod kink_rates;
 mod kinks;
 mod metrics;
@@ -145,6 +146,10 @@ pub enum SimulationError {
     /// not satisfiable near it, or some are redundant).
     #[error("{0}")]
     Constraints(String),
+    /// The model's energies are not finite at the initial state (a
+    /// parameter beyond the model's arithmetic, named where one is).
+    #[error("{0}")]
+    InitialState(String),
     /// The integration stopped; `reached` is where its last accepted step
     /// ended (`None` when it failed before the first step).
     #[error("integration failed: {error}")]
@@ -212,7 +217,9 @@ impl SimulationError {
     /// sweep's `status` column.
     pub fn kind(&self) -> FailureKind {
         match self {
-            SimulationError::Model(_) | SimulationError::Constraints(_) => FailureKind::Scenario,
+            SimulationError::Model(_)
+            | SimulationError::Constraints(_)
+            | SimulationError::InitialState(_) => FailureKind::Scenario,
             SimulationError::Equilibrium(_) => FailureKind::NoEquilibrium,
             SimulationError::Solver { error, .. } => match error {
                 SolverError::StepSizeUnderflow { .. }
@@ -331,6 +338,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let mut problem = CrashProblem::new(&model, scenario.inputs.clone());
     problem.stabilization = scenario.stabilization;
     problem.time_kinks(scenario.time_kinks);
+    initial::check_parameters(system, &mut problem, scenario)?;
     let (y0, projection) = initial_state(&mut problem, scenario)?;
     let g = gravity(&model);
     let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
@@ -426,17 +434,11 @@ fn initial_state<const N: usize, S: LagrangianSystem<N>>(
     problem: &mut CrashProblem<N, S>,
     scenario: &Scenario,
 ) -> Result<(PhaseState<N>, Option<Projection>), SimulationError> {
-    let mut q = SVector::<f64, N>::zeros();
-    let mut v = SVector::<f64, N>::zeros();
-    for &(i, value) in &scenario.initial_coordinates {
-        q[i] = value;
-    }
-    for &(i, value) in &scenario.initial_velocities {
-        v[i] = value;
-    }
+    let given = initial::given_state::<N>(scenario);
+    let (mut q, mut v) = (given.q, given.v);
     // The components' state (a crush element in contact or not) follows the
     // initial state, for the equilibrium as for the run.
-    problem.start(0.0, &PhaseState::new(q, v))?;
+    problem.start(0.0, &given)?;
     if !scenario.equilibrium.is_empty() {
         q = static_equilibrium(problem, 0.0, q, &scenario.equilibrium)?;
     }

@@ -31,15 +31,21 @@ pub struct Journal {
 
 impl Journal {
     /// Starts a new journal for a sweep of table `layout`.
+    /// A journal that cannot be written whole (a full disk) is removed.
     pub fn create(path: &Path, layout: &Layout) -> Result<Journal, String> {
         let file =
             File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
         let mut journal = Journal::over(path, layout, file);
-        journal
+        let started = journal
             .writer
             .write_record(columns(layout))
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        journal.flush()?;
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))
+            .and_then(|()| journal.flush());
+        if let Err(e) = started {
+            drop(journal);
+            let _ = std::fs::remove_file(path);
+            return Err(e);
+        }
         Ok(journal)
     }
 

@@ -5,6 +5,7 @@ use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
 use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
 use crate::scenario::{ScenarioError, ScenarioErrorKind};
+use crate::scenario::{as_number, factor_base, scaled_inline, toml_number};
 use crate::simulate::{SimulationError, Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
 use std::collections::BTreeMap;
@@ -44,34 +45,7 @@ struct Scaled(toml::Value);
 impl Scaled {
     /// The base value times `x`, written as an inline TOML value.
     fn times(&self, x: f64) -> String {
-        inline_toml(&self.0, x)
-    }
-}
-
-/// `value` with every number multiplied by `x`, as inline TOML.
-fn inline_toml(value: &toml::Value, x: f64) -> String {
-    match value {
-        toml::Value::Array(items) => {
-            let items: Vec<String> = items.iter().map(|v| inline_toml(v, x)).collect();
-            format!("[{}]", items.join(", "))
-        }
-        toml::Value::Table(table) => {
-            let entries: Vec<String> = table
-                .iter()
-                .map(|(k, v)| format!("{k:?} = {}", inline_toml(v, x)))
-                .collect();
-            format!("{{ {} }}", entries.join(", "))
-        }
-        other => toml_number(as_number(other).unwrap_or(f64::NAN) * x),
-    }
-}
-
-/// `true` when `value` is a number, or a list or table of numbers (nested).
-fn all_numbers(value: &toml::Value) -> bool {
-    match value {
-        toml::Value::Array(items) => items.iter().all(all_numbers),
-        toml::Value::Table(table) => table.values().all(all_numbers),
-        other => as_number(other).is_some(),
+        scaled_inline(&self.0, x)
     }
 }
 
@@ -153,62 +127,13 @@ impl Settings {
     }
 }
 
-/// A number as TOML reads it back exactly: a whole number as an integer
-/// (so that integer entries such as `simulation.max_steps` can be swept;
-/// float entries accept integers), else the shortest round-tripping float.
-fn toml_number(x: f64) -> String {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        format!("{}", x as i64)
-    } else {
-        format!("{x:?}")
-    }
-}
-
 fn scaled_base(
     axis: &Axis,
     document: &toml::Table,
     names: &ModelNames,
     parameter_defaults: &[f64],
 ) -> Result<Scaled, String> {
-    let path: Vec<&str> = if axis.key.contains('.') {
-        axis.key.split('.').collect()
-    } else if let Some(k) = names.parameters.iter().position(|p| *p == axis.key) {
-        let in_file = document
-            .get("parameters")
-            .and_then(|t| t.get(&axis.key))
-            .and_then(as_number);
-        let base = in_file.unwrap_or(parameter_defaults[k]);
-        return Ok(Scaled(toml::Value::Float(base)));
-    } else {
-        return Err(format!(
-            "`{0}*=`: a factor applies to a parameter or a dotted scenario entry, and `{0}` is no parameter",
-            axis.key
-        ));
-    };
-    let mut value: Option<&toml::Value> = None;
-    let mut table = Some(document);
-    for part in &path {
-        value = table.and_then(|t| t.get(*part));
-        table = value.and_then(toml::Value::as_table);
-    }
-    let missing = || format!("`{}*=`: the scenario has no such entry to scale", axis.key);
-    let value = value.ok_or_else(missing)?;
-    if all_numbers(value) {
-        Ok(Scaled(value.clone()))
-    } else {
-        Err(format!(
-            "`{}*=`: a factor scales a number, or a list or table of numbers, not `{value}`",
-            axis.key
-        ))
-    }
-}
-
-fn as_number(value: &toml::Value) -> Option<f64> {
-    match value {
-        toml::Value::Float(x) => Some(*x),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
+    factor_base(&axis.key, document, names, parameter_defaults).map(Scaled)
 }
 
 /// The scenario of one run.

@@ -1,0 +1,96 @@
+//! Factors `KEY*=x`, as `--set` and `sweep --grid` take them: the entry's
+//! value (a number, or a list or table of numbers, each multiplied) or a
+//! parameter's, times `x`.
+
+use super::ModelNames;
+
+/// The value a factor on `key` multiplies: the scenario `document`'s entry
+/// at a dotted key, or for a parameter its `[parameters]` value in the
+/// document or else the spec default (`parameter_defaults`, in the
+/// model's order of parameters).
+pub fn factor_base(
+    key: &str,
+    document: &toml::Table,
+    names: &ModelNames,
+    parameter_defaults: &[f64],
+) -> Result<toml::Value, String> {
+    if !key.contains('.') {
+        let Some(k) = names.parameters.iter().position(|p| p == key) else {
+            return Err(format!(
+                "`{key}*=`: a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
+            ));
+        };
+        let in_file = document
+            .get("parameters")
+            .and_then(|t| t.get(key))
+            .and_then(as_number);
+        let base = in_file
+            .or(parameter_defaults.get(k).copied())
+            .ok_or_else(|| {
+                format!("`{key}*=`: the value of parameter `{key}` is not known to scale it")
+            })?;
+        return Ok(toml::Value::Float(base));
+    }
+    let mut value: Option<&toml::Value> = None;
+    let mut table = Some(document);
+    for part in key.split('.') {
+        value = table.and_then(|t| t.get(part));
+        table = value.and_then(toml::Value::as_table);
+    }
+    let value =
+        value.ok_or_else(|| format!("`{key}*=`: the scenario has no such entry to scale"))?;
+    if all_numbers(value) {
+        Ok(value.clone())
+    } else {
+        Err(format!(
+            "`{key}*=`: a factor scales a number, or a list or table of numbers, not `{value}`"
+        ))
+    }
+}
+
+/// `value` with every number multiplied by `x`, as inline TOML.
+pub fn scaled_inline(value: &toml::Value, x: f64) -> String {
+    match value {
+        toml::Value::Array(items) => {
+            let items: Vec<String> = items.iter().map(|v| scaled_inline(v, x)).collect();
+            format!("[{}]", items.join(", "))
+        }
+        toml::Value::Table(table) => {
+            let entries: Vec<String> = table
+                .iter()
+                .map(|(k, v)| format!("{k:?} = {}", scaled_inline(v, x)))
+                .collect();
+            format!("{{ {} }}", entries.join(", "))
+        }
+        other => toml_number(as_number(other).unwrap_or(f64::NAN) * x),
+    }
+}
+
+/// A number as TOML reads it back exactly: a whole number as an integer
+/// (so that integer entries such as `simulation.max_steps` can be scaled;
+/// float entries accept integers), else the shortest round-tripping float.
+pub fn toml_number(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// `true` when `value` is a number, or a list or table of numbers (nested).
+fn all_numbers(value: &toml::Value) -> bool {
+    match value {
+        toml::Value::Array(items) => items.iter().all(all_numbers),
+        toml::Value::Table(table) => table.values().all(all_numbers),
+        other => as_number(other).is_some(),
+    }
+}
+
+/// A TOML float or integer as a number.
+pub fn as_number(value: &toml::Value) -> Option<f64> {
+    match value {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
