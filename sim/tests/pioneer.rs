@@ -59,7 +59,7 @@ struct Figures {
 }
 
 fn figures(result: &SimulationResult) -> Figures {
-    let g = result.g;
+    let g = lagrangian_sim::pulse::STANDARD_GRAVITY;
     let wall = (result.component_columns.iter())
         .position(|(name, _)| name == "wall.force")
         .unwrap();
