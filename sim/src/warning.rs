@@ -299,9 +299,22 @@ pub fn flipped_acceleration(
 /// a micrometre, far above the rounding of an equilibrium solve.
 pub const CRUSH_AT_START: f64 = 1e-6;
 
-/// A crush channel that is still compressing at its last sample.
-pub fn still_crushing(channel: &str, last: ChannelPoint) -> Option<Warning> {
-    (last.rate > 0.0).then(|| Warning::StillCrushing {
+/// The crush rate at the end of a run, relative to the impact velocity,
+/// above which the crush is still under way (a car resting against the
+/// barrier creeps at far less).
+pub const STILL_CRUSHING: f64 = 1e-3;
+
+/// Whether a crush channel compressing at `rate` at the end of a run that
+/// started at `v0` (its rate at the start) is still under way: faster than
+/// [`STILL_CRUSHING`] of `|v0|`.
+pub fn is_still_crushing(rate: f64, v0: f64) -> bool {
+    rate > STILL_CRUSHING * v0.abs()
+}
+
+/// A crush channel that is still compressing at its last sample (see
+/// [`is_still_crushing`]; `v0`: its rate at the start).
+pub fn still_crushing(channel: &str, last: ChannelPoint, v0: f64) -> Option<Warning> {
+    is_still_crushing(last.rate, v0).then(|| Warning::StillCrushing {
         channel: channel.to_string(),
         t_end: last.t,
         crush: last.value,
@@ -405,7 +418,7 @@ mod tests {
             value: 0.3792,
             rate: 9.071,
         };
-        let w = still_crushing("crush channel `-r`", end).unwrap();
+        let w = still_crushing("crush channel `-r`", end, 15.5556).unwrap();
         assert_eq!(w.kind(), "still_crushing");
         assert!(
             w.message().starts_with(
@@ -415,7 +428,11 @@ mod tests {
             "{w}"
         );
         let rebounding = ChannelPoint { rate: -1.8, ..end };
-        assert_eq!(still_crushing("c", rebounding), None);
+        assert_eq!(still_crushing("c", rebounding, 15.5556), None);
+        // Creeping at 1 mm/s after a 15.6 m/s impact: at rest, not crushing.
+        let creeping = ChannelPoint { rate: 1e-3, ..end };
+        assert_eq!(still_crushing("c", creeping, 15.5556), None);
+        assert!(still_crushing("c", creeping, 0.0).is_some());
         assert_eq!(crush_offset("c", point(1e-7, 15.0)), None);
         let w = crush_offset("crush channel `-r`", point(0.01, 15.0)).unwrap();
         assert_eq!(w.kind(), "crush_offset");

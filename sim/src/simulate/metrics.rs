@@ -297,8 +297,12 @@ impl Metrics {
             summary.time_to_zero_velocity_s = first_zero(&self.crush_history);
             summary.peak_deceleration_g = Some(self.peak_deceleration());
             summary.rebound_velocity_mps = Some(peak.rebound);
-            summary.still_crushing = (self.crush_history.len() > 1)
-                && self.crush_history.last().is_some_and(|p| p.rate > 0.0);
+            let (start, end) = (
+                self.crush_history[0],
+                self.crush_history[self.crush_history.len() - 1],
+            );
+            summary.still_crushing =
+                (self.crush_history.len() > 1) && warning::is_still_crushing(end.rate, start.rate);
             let v0 = self.crush_history[0].rate;
             summary.equivalent_square_wave_g = (summary.max_crush_m)
                 .filter(|&c| c > 0.0)
@@ -400,7 +404,7 @@ impl Metrics {
         let offset = warning::crush_offset(channel, first);
         let flat = warning::never_compresses(channel, first, peak.largest);
         let still = (history.len() > 1)
-            .then(|| warning::still_crushing(channel, point(end)))
+            .then(|| warning::still_crushing(channel, point(end), start.rate))
             .flatten();
         [away, offset, flat, still].into_iter().flatten().collect()
     }
