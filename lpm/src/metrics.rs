@@ -17,7 +17,8 @@ pub struct Args {
     v0: Option<f64>,
     #[arg(long, value_parser = ["text", "json"], default_value = "text")]
     format: String,
-    /// Make warnings (a flipped acceleration column) errors: exit status 9.
+    /// Make warnings (a flipped acceleration column, a sample rate too low
+    /// for a filter class) errors: exit status 9.
     #[arg(long)]
     strict: bool,
 }
@@ -47,16 +48,18 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
             "impact velocity {v0} is not a number"
         )));
     }
-    let warnings: Vec<Warning> =
+    let mut warnings: Vec<Warning> =
         warning::flipped_acceleration(&acceleration.header, &histories.t, &acceleration.values, v0)
             .into_iter()
             .collect();
     let crush = histories
         .channel(Quantity::Crush)
         .map(|c| c.values.as_slice());
-    let metrics = Pulse::resampled(&histories.t, &acceleration.values, v0, crush)
-        .and_then(|p| p.metrics())
-        .map_err(|e| Failure::evaluation(format!("{}: {e}", file.display())))?;
+    let evaluation = |e| Failure::evaluation(format!("{}: {e}", file.display()));
+    let pulse =
+        Pulse::resampled(&histories.t, &acceleration.values, v0, crush).map_err(evaluation)?;
+    let metrics = pulse.metrics().map_err(evaluation)?;
+    warnings.extend(pulse.filter_warnings());
     let text = if json {
         json_text(&metrics, &warnings)
     } else {
@@ -97,10 +100,7 @@ fn text(m: &PulseMetrics, file: &Path) -> String {
             "peak deceleration",
             format!("{:.1} g (unfiltered)", m.peak_deceleration_g),
         ),
-        (
-            "CFC 60 peak",
-            format!("{:.1} g", m.peak_deceleration_cfc60_g),
-        ),
+        ("CFC 60 peak", opt(m.peak_deceleration_cfc60_g, 1.0, "g", 1)),
         (
             "equivalent square wave",
             opt(m.equivalent_square_wave_g, 1.0, "g", 1),

@@ -279,7 +279,7 @@ fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
         channels: scenario.channels.clone(),
         pitch: scenario.pitch.clone(),
         force_deflection: scenario.inputs.force_deflection_columns(),
-        g: result.g,
+        g: lagrangian_sim::pulse::STANDARD_GRAVITY,
         title: figure_title(&result.model, scenario, scenario_name),
     };
     let svg =

@@ -52,6 +52,48 @@ pub enum Warning {
         /// The error, relative to the initial energy.
         error: f64,
     },
+    /// The crush channel still compresses at the end of the run: its
+    /// largest crush is not the maximum of the pulse.
+    StillCrushing {
+        /// The channel, as messages name it.
+        channel: String,
+        /// The end of the run \[s\].
+        t_end: f64,
+        /// The crush there \[m\].
+        crush: f64,
+        /// Its rate there, compression positive [m/s].
+        rate: f64,
+    },
+    /// The crush channel does not start at 0: its crush figures are
+    /// measured from the channel's zero, not from the start of the run.
+    CrushOffset {
+        /// The channel, as messages name it.
+        channel: String,
+        /// Its value at the start \[m\].
+        initial: f64,
+    },
+    /// A quantity of the run that is not a number (NaN or ±∞) at some
+    /// time: an output, or a term of the energy balance.
+    NonFinite {
+        /// What it is, as messages name it (e.g. "output `th`").
+        what: String,
+        /// The first time it is not finite \[s\].
+        t: f64,
+        /// Its value there.
+        value: f64,
+    },
+    /// A filter class that the samples' rate cannot give (SAE J211-1: the
+    /// design frequency 2.0775·CFC below half the sample rate), and what
+    /// the metrics do without it.
+    FilterClass {
+        /// The class (60, 180, 600, 1000).
+        cfc: f64,
+        /// The period of the samples \[s\].
+        period: f64,
+        /// What goes without it, e.g. "the CFC 60 peak deceleration is not
+        /// computed".
+        consequence: String,
+    },
 }
 
 impl Warning {
@@ -62,6 +104,10 @@ impl Warning {
             Warning::NeverCompresses { .. } => "never_compresses",
             Warning::FlippedAcceleration { .. } => "flipped_acceleration",
             Warning::EnergyBalance { .. } => "energy_balance",
+            Warning::FilterClass { .. } => "filter_class",
+            Warning::StillCrushing { .. } => "still_crushing",
+            Warning::CrushOffset { .. } => "crush_offset",
+            Warning::NonFinite { .. } => "non_finite",
         }
     }
 
@@ -98,8 +144,71 @@ impl Warning {
                 "energy balance error {error:.1e} (relative) exceeds {ENERGY_BALANCE_LIMIT:.0e}: \
                  the results are not accurate; tighten simulation.rtol and simulation.atol"
             ),
+            Warning::StillCrushing {
+                channel,
+                t_end,
+                crush,
+                rate,
+            } => format!(
+                "the {channel} is still compressing at t_end = {:.1} ms (crush {crush:.4} m, rate \
+                 {rate:.3} m/s): the max dynamic crush is not the maximum, and the pulse's metrics \
+                 are of its first {:.1} ms only; raise simulation.t_end",
+                t_end * 1e3,
+                t_end * 1e3
+            ),
+            Warning::CrushOffset { channel, initial } => format!(
+                "the {channel} starts at {initial:.4e} m, not 0: the max dynamic crush and the \
+                 equivalent square wave are measured from its zero, not from the start of the run \
+                 (a gap before contact starts below 0; a crush above 0 was there before the impact)"
+            ),
+            Warning::NonFinite { what, t, value } => format!(
+                "{what} is {value} at t = {t:.6} s, the first sample where it is not a number; \
+                 check its expression's domain and the parameters"
+            ),
+            Warning::FilterClass {
+                cfc,
+                period,
+                consequence,
+            } => format!(
+                "CFC {cfc} needs a sample rate above {:.0} Hz (SAE J211-1: 2.0775·CFC below half \
+                 the sample rate); samples every {} ms give {:.0} Hz: {consequence}",
+                crate::pulse::cfc::min_sample_rate(*cfc),
+                round_ms(*period),
+                1.0 / period
+            ),
         }
     }
+}
+
+/// `period` in ms, to 4 decimals without trailing zeros (1.5, 0.1,
+/// 4.1667).
+fn round_ms(period: f64) -> String {
+    let text = format!("{:.4}", period * 1e3);
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    text.to_string()
+}
+
+/// The filter classes of `needs` (`(class, what goes without it)` pairs)
+/// that samples every `period` seconds cannot give: one warning a class, in
+/// the order of their first need, with what goes without it joined.
+pub fn filter_classes(period: f64, needs: &[(f64, String)]) -> Vec<Warning> {
+    let mut missing: Vec<(f64, Vec<&str>)> = Vec::new();
+    for (cfc, what) in needs {
+        if crate::pulse::cfc::applies(*cfc, period) {
+            continue;
+        }
+        match missing.iter_mut().find(|(c, _)| c == cfc) {
+            Some((_, whats)) => whats.push(what),
+            None => missing.push((*cfc, vec![what])),
+        }
+    }
+    (missing.into_iter())
+        .map(|(cfc, whats)| Warning::FilterClass {
+            cfc,
+            period,
+            consequence: whats.join("; "),
+        })
+        .collect()
 }
 
 impl std::fmt::Display for Warning {
@@ -186,6 +295,42 @@ pub fn flipped_acceleration(
     })
 }
 
+/// Crush at the start of a crush channel below which it counts as 0 \[m\]:
+/// a micrometre, far above the rounding of an equilibrium solve.
+pub const CRUSH_AT_START: f64 = 1e-6;
+
+/// The crush rate at the end of a run, relative to the impact velocity,
+/// above which the crush is still under way (a car resting against the
+/// barrier creeps at far less).
+pub const STILL_CRUSHING: f64 = 1e-3;
+
+/// Whether a crush channel compressing at `rate` at the end of a run that
+/// started at `v0` (its rate at the start) is still under way: faster than
+/// [`STILL_CRUSHING`] of `|v0|`.
+pub fn is_still_crushing(rate: f64, v0: f64) -> bool {
+    rate > STILL_CRUSHING * v0.abs()
+}
+
+/// A crush channel that is still compressing at its last sample (see
+/// [`is_still_crushing`]; `v0`: its rate at the start).
+pub fn still_crushing(channel: &str, last: ChannelPoint, v0: f64) -> Option<Warning> {
+    is_still_crushing(last.rate, v0).then(|| Warning::StillCrushing {
+        channel: channel.to_string(),
+        t_end: last.t,
+        crush: last.value,
+        rate: last.rate,
+    })
+}
+
+/// A crush channel whose first sample is farther than [`CRUSH_AT_START`]
+/// from 0.
+pub fn crush_offset(channel: &str, first: ChannelPoint) -> Option<Warning> {
+    (first.value.abs() > CRUSH_AT_START).then(|| Warning::CrushOffset {
+        channel: channel.to_string(),
+        initial: first.value,
+    })
+}
+
 /// A relative energy balance error above [`ENERGY_BALANCE_LIMIT`] (or not
 /// a number).
 pub fn energy_balance(error: f64) -> Option<Warning> {
@@ -265,5 +410,82 @@ mod tests {
         assert!(energy_balance(f64::NAN).is_some());
         let json = serde_json::to_string(&w).unwrap();
         assert!(json.starts_with(r#"{"kind":"energy_balance","message":"energy balance"#));
+    }
+    #[test]
+    fn a_crush_channel_still_compressing_at_the_end_or_not_at_0_warns() {
+        let end = ChannelPoint {
+            t: 0.03,
+            value: 0.3792,
+            rate: 9.071,
+        };
+        let w = still_crushing("crush channel `-r`", end, 15.5556).unwrap();
+        assert_eq!(w.kind(), "still_crushing");
+        assert!(
+            w.message().starts_with(
+                "the crush channel `-r` is still compressing at t_end = 30.0 ms (crush 0.3792 m, \
+                 rate 9.071 m/s): the max dynamic crush is not the maximum"
+            ),
+            "{w}"
+        );
+        let rebounding = ChannelPoint { rate: -1.8, ..end };
+        assert_eq!(still_crushing("c", rebounding, 15.5556), None);
+        // Creeping at 1 mm/s after a 15.6 m/s impact: at rest, not crushing.
+        let creeping = ChannelPoint { rate: 1e-3, ..end };
+        assert_eq!(still_crushing("c", creeping, 15.5556), None);
+        assert!(still_crushing("c", creeping, 0.0).is_some());
+        assert_eq!(crush_offset("c", point(1e-7, 15.0)), None);
+        let w = crush_offset("crush channel `-r`", point(0.01, 15.0)).unwrap();
+        assert_eq!(w.kind(), "crush_offset");
+        assert!(
+            w.message()
+                .starts_with("the crush channel `-r` starts at 1.0000e-2 m, not 0"),
+            "{w}"
+        );
+        assert!(crush_offset("c", point(-0.05, 15.0)).is_some());
+    }
+
+    #[test]
+    fn a_value_that_is_not_a_number_is_named_with_its_first_time() {
+        let w = Warning::NonFinite {
+            what: "output `phase`".into(),
+            t: 0.0,
+            value: f64::NAN,
+        };
+        assert_eq!(w.kind(), "non_finite");
+        assert!(
+            w.message()
+                .starts_with("output `phase` is NaN at t = 0.000000 s"),
+            "{w}"
+        );
+    }
+
+    /// One warning a class, in the order of the first need, joining what
+    /// goes without it; classes the rate gives are not there.
+    #[test]
+    fn filter_classes_the_rate_cannot_give_warn_once_each() {
+        let needs = [
+            (60.0, "a".to_string()),
+            (180.0, "b".to_string()),
+            (1000.0, "c".to_string()),
+            (180.0, "d".to_string()),
+        ];
+        // 1 kHz: CFC 60 and 180 apply (249.3 and 747.9 Hz), 1000 does not.
+        let [w] = &filter_classes(1e-3, &needs)[..] else {
+            panic!("{:?}", filter_classes(1e-3, &needs))
+        };
+        assert_eq!(w.kind(), "filter_class");
+        assert_eq!(
+            w.message(),
+            "CFC 1000 needs a sample rate above 4155 Hz (SAE J211-1: 2.0775·CFC below half the \
+             sample rate); samples every 1 ms give 1000 Hz: c"
+        );
+        let slow = filter_classes(1.5e-3, &needs);
+        assert_eq!(slow.len(), 2);
+        assert!(
+            slow[0].message().ends_with("give 667 Hz: b; d"),
+            "{}",
+            slow[0]
+        );
+        assert_eq!(filter_classes(1e-4, &needs), []);
     }
 }

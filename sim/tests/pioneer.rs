@@ -89,7 +89,7 @@ fn momentum(result: &SimulationResult, k: usize) -> f64 {
 }
 
 fn figures(result: &SimulationResult) -> Figures {
-    let g = result.g;
+    let g = lagrangian_sim::pulse::STANDARD_GRAVITY;
     let force = column(result, "wall.force");
     let time = |k: usize| result.samples[k].t;
     let touching: Vec<usize> = (0..force.len()).filter(|&k| force[k] > 0.0).collect();

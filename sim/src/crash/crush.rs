@@ -581,10 +581,13 @@ impl CrushSection {
         let policy = outside(&format!("components.{name}"), &self.outside)?;
         let damping = SecantCurve::new(&self.damping_breakpoints, &self.damping_values, policy)
             .map_err(|e| table_error(name, ["damping_breakpoints", "damping_values"], &e))?;
+        let loading = self.loading(name, policy)?;
+        let unloading = self.unloading(name)?;
+        check_unloading(name, &loading, unloading)?;
         let element = CrushElement::new(
-            self.loading(name, policy)?,
+            loading,
             damping,
-            self.unloading(name)?,
+            unloading,
             self.compression_sign(name)?,
             self.contact_only,
         );
@@ -662,6 +665,54 @@ impl CrushSection {
     }
 }
 
+/// Plastic unloading at least as stiff as the loading curve's tangent
+/// wherever the spring pushes: loading dissipates `S·δ̇·(1 − S′/k_u)`
+/// ([`energy`]), so where `S′ > k_u` the unloading line would give back
+/// more than loading stored and the dissipated energy would fall, below
+/// zero in the end.
+fn check_unloading(name: &str, loading: &LoadingCurve, unloading: Unloading) -> Result<(), String> {
+    let Unloading::Plastic { stiffness } = unloading else {
+        return Ok(());
+    };
+    let Some((delta, tangent)) = stiffest(loading) else {
+        return Ok(());
+    };
+    if tangent <= stiffness {
+        return Ok(());
+    }
+    Err(format!(
+        "components.{name}: unloading_stiffness = {stiffness:e} N/m is softer than the loading \
+         curve, whose tangent stiffness is {tangent:.4e} N/m at a deflection of {delta:.4} m: \
+         unloading from there would return more energy than loading stored (a negative \
+         dissipated energy); plastic unloading needs an unloading_stiffness of at least \
+         {tangent:.4e} N/m"
+    ))
+}
+
+/// The deflection and the tangent stiffness `S′` of the loading curve's
+/// stiffest point where it pushes (`S > 0`), the first of equals: sampled
+/// at the start of each of its segments, 15 points within and just
+/// before its end, and half its last breakpoint beyond it; `None` if it
+/// pushes nowhere.
+fn stiffest(loading: &LoadingCurve) -> Option<(f64, f64)> {
+    let xs = loading.curve().xs();
+    let last = xs[xs.len() - 1];
+    let within = xs.windows(2).flat_map(|w| {
+        let (a, h) = (w[0], w[1] - w[0]);
+        (0..=16).map(move |j| a + h * (j as f64 / 16.0).min(1.0 - 1e-9))
+    });
+    let points = within.chain([1.5 * last]);
+    points
+        .filter_map(|delta| {
+            let (force, tangent) = loading.force(delta).ok()?;
+            (force > 0.0 && tangent.is_finite()).then_some((delta, tangent))
+        })
+        .fold(None, |best: Option<(f64, f64)>, p| match best {
+            Some(b) if b.1 >= p.1 => Some(b),
+            _ => Some(p),
+        })
+}
+
 /// The breakpoints and values of a table whose keys are `keys`, both given.
 fn both<'a>(
     name: &str,
@@ -695,6 +746,47 @@ mod tests {
         let k = SecantCurve::new(&[0.1, 0.5], &[1.0e6, 2.0e6, 1.0e6], Outside::Hold).unwrap();
         let loading = LoadingCurve::SecantStiffness(k);
         CrushElement::new(loading, SecantCurve::constant(1.0e3), unloading, -1.0, true)
+    }
+
+    /// A force–deflection curve of slopes 1e6 then 3e6 N/m (1e5 N at
+    /// 0.1 m, 4e5 N at 0.2 m): plastic unloading at 2e6 N/m would give
+    /// back S²/(2 k_u) = 4e4 J from 0.2 m, where loading stored
+    /// 5e3 + 2.5e4 = 3e4 J; at 3e6 N/m it gives 2.67e4 J.
+    #[test]
+    fn plastic_unloading_softer_than_the_loading_curve_is_refused() {
+        let curve = ForceCurve::new(&[0.1, 0.2], &[1.0e5, 4.0e5], Outside::Hold).unwrap();
+        let loading = LoadingCurve::ForceDeflection(curve);
+        let (stored, returned) = (
+            0.5 * 1e5 * 0.1 + 0.5 * (1e5 + 4e5) * 0.1,
+            4e5f64.powi(2) / 4e6,
+        );
+        assert!(returned > stored, "{returned} vs {stored}");
+        let soft = Unloading::Plastic { stiffness: 2.0e6 };
+        let e = check_unloading("front", &loading, soft).unwrap_err();
+        assert!(
+            e.starts_with(
+                "components.front: unloading_stiffness = 2e6 N/m is softer than the loading curve, \
+                 whose tangent stiffness is 3.0000e6 N/m at a deflection of 0.1"
+            ),
+            "{e}"
+        );
+        for fine in [Unloading::Plastic { stiffness: 3.0e6 }, Unloading::Elastic] {
+            assert_eq!(check_unloading("front", &loading, fine), Ok(()));
+        }
+        // The paper's secant curve (k falling from 2.4e6 N/m) and its 3e7 N/m.
+        let k = SecantCurve::new(
+            &[0.05, 0.10, 0.25, 0.45, 0.60, 0.80],
+            &[2.4e6, 2.4e6, 2.1e6, 0.94e6, 0.567e6, 0.50e6, 0.5625e6],
+            Outside::Hold,
+        )
+        .unwrap();
+        let paper = LoadingCurve::SecantStiffness(k);
+        let (_, tangent) = stiffest(&paper).unwrap();
+        assert!((tangent - 2.4e6).abs() < 1.0, "{tangent}");
+        assert_eq!(
+            check_unloading("front_end", &paper, Unloading::Plastic { stiffness: 3.0e7 }),
+            Ok(())
+        );
     }
 
     #[test]

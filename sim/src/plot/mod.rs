@@ -35,8 +35,8 @@ pub struct PlotSetup {
     /// deflection in [`crate::simulate::Sample::components`]
     /// ([`crate::crash::BoundInputs::force_deflection_columns`]).
     pub force_deflection: Vec<(String, usize, usize)>,
-    /// The gravitational acceleration the deceleration and acceleration
-    /// panels are in [m/s²] ([`SimulationResult::g`]).
+    /// The unit `g` the deceleration and acceleration panels are in [m/s²]:
+    /// standard gravity ([`crate::pulse::STANDARD_GRAVITY`]) as the summary's.
     pub g: f64,
     /// The title above the figure (`lpm simulate` writes the model and the
     /// scenario's description).

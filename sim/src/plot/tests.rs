@@ -59,6 +59,7 @@ fn channel(role: Role, name: &str, column: Column, unit: &str) -> Channel {
     Channel {
         role,
         signal: signal(name, column, unit),
+        cfc: crate::pulse::cfc::DEFAULT_CLASS,
     }
 }
 
@@ -96,7 +97,6 @@ fn result() -> SimulationResult {
             ..Summary::EMPTY
         },
         method: Method::Dopri5,
-        g: 10.0,
         warnings: Vec::new(),
         constraints: None,
     }

@@ -18,6 +18,29 @@ use std::f64::consts::SQRT_2;
 /// The standard channel classes of J211-1.
 pub const STANDARD_CLASSES: [f64; 4] = [60.0, 180.0, 600.0, 1000.0];
 
+/// The class J211-1 recommends for what a channel measures (its table of
+/// filter classes by measurement), by the name a scenario's
+/// `metrics.classes` gives it.
+pub const CLASS_BY_MEASUREMENT: [(&str, f64); 12] = [
+    ("head", 1000.0),
+    ("neck_force", 1000.0),
+    ("neck_moment", 600.0),
+    ("chest", 180.0),
+    ("chest_deflection", 180.0),
+    ("pelvis", 1000.0),
+    ("femur", 600.0),
+    ("tibia", 600.0),
+    ("structure", 60.0),
+    ("integration", 180.0),
+    ("sled", 60.0),
+    ("belt", 60.0),
+];
+
+/// The class of an acceleration channel that names none: CFC 180, J211-1's
+/// for a thorax (chest) acceleration and for a structure's acceleration to
+/// be integrated, and the one the 3 ms clip of FMVSS 208 reads.
+pub const DEFAULT_CLASS: f64 = 180.0;
+
 /// Length of the padding at each end before filtering \[s\]. J211 asks for at
 /// least 10 ms of pre-test data; the padding stands in for it, and is made
 /// long enough that the start-up transient of the slowest class (CFC 60:
@@ -45,18 +68,41 @@ pub enum CfcError {
     },
 }
 
+/// The factor from the class to the design frequency of J211-1 Appendix C:
+/// `f_d = 2.0775 · CFC`.
+const DESIGN_FACTOR: f64 = 2.0775;
+
+/// The design angular frequency `ω_d = 2π · 2.0775 · CFC` [rad/s].
+fn design_frequency(cfc: f64) -> f64 {
+    2.0 * std::f64::consts::PI * cfc * DESIGN_FACTOR
+}
+
+/// Whether class `cfc` can be applied to a signal sampled every `dt`
+/// seconds: the one rule of this module (and of every metric that filters),
+/// the design frequency `2.0775·CFC` below half the sample rate, so that
+/// `tan(ω_d T / 2)` is finite and positive.
+pub fn applies(cfc: f64, dt: f64) -> bool {
+    dt > 0.0 && dt.is_finite() && cfc > 0.0 && design_frequency(cfc) * dt < std::f64::consts::PI
+}
+
+/// The sample rate [Hz] that class `cfc` needs to exceed: twice its design
+/// frequency, `2 · 2.0775 · CFC` (748 Hz for CFC 180, 249 Hz for CFC 60).
+pub fn min_sample_rate(cfc: f64) -> f64 {
+    2.0 * DESIGN_FACTOR * cfc
+}
+
 /// The coefficients `[a0, a1, a2, b1, b2]` of one pass.
 pub fn coefficients(cfc: f64, dt: f64) -> Result<[f64; 5], CfcError> {
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(CfcError::SamplePeriod(dt));
     }
-    let wd = 2.0 * std::f64::consts::PI * cfc * 2.0775;
-    if !(cfc > 0.0 && wd * dt < std::f64::consts::PI) {
+    if !applies(cfc, dt) {
         return Err(CfcError::Class {
             cfc,
             sample_rate: 1.0 / dt,
         });
     }
+    let wd = design_frequency(cfc);
     let wa = (wd * dt / 2.0).tan();
     let s = 1.0 + SQRT_2 * wa + wa * wa;
     let a0 = wa * wa / s;
@@ -270,6 +316,25 @@ mod tests {
             cfc_filter(&[0.0; 10], 0.0, 60.0),
             Err(CfcError::SamplePeriod(_))
         ));
+    }
+
+    /// The rule is the design frequency 2.0775·CFC below half the rate: at
+    /// 1.5 ms (667 Hz) CFC 60 applies (needs 249.3 Hz), CFC 180 does not
+    /// (747.9 Hz); just either side of 747.9 Hz, it does and does not.
+    #[test]
+    fn each_class_applies_above_twice_its_design_frequency() {
+        assert!(applies(60.0, 1.5e-3) && !applies(180.0, 1.5e-3));
+        assert!((min_sample_rate(180.0) - 747.9).abs() < 1e-9);
+        assert!((min_sample_rate(60.0) - 249.3).abs() < 1e-9);
+        assert!(applies(180.0, 1.0 / 748.0) && !applies(180.0, 1.0 / 747.8));
+        assert!(applies(1000.0, 1e-4) && !applies(1000.0, 1.0 / 4150.0));
+        for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+            assert!(!applies(60.0, dt), "{dt}");
+        }
+        assert_eq!(
+            cfc_filter(&[0.0; 10], 1.5e-3, 180.0).is_ok(),
+            applies(180.0, 1.5e-3)
+        );
     }
 
     /// The filter as J211 draws it: pad, filter, reverse, filter, reverse,

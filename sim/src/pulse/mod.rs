@@ -10,6 +10,7 @@ pub mod cfc;
 pub mod channels;
 pub mod occupant;
 
+use crate::warning::{self, Warning};
 pub use cfc::{CfcError, cfc_filter, cfc_filter_classes};
 pub use occupant::{Olc, asi, clip_3ms, integrate, olc};
 use serde::Serialize;
@@ -44,20 +45,24 @@ pub struct PulseMetrics {
     /// The velocity at the first sample, [`Pulse::v0`] [m/s].
     pub impact_velocity_mps: f64,
     /// Largest crush (the crush channel, or the displacement from the CFC 180
-    /// acceleration integrated twice) \[m\].
+    /// acceleration integrated twice; the raw one where the rate cannot
+    /// give CFC 180) \[m\].
     pub max_dynamic_crush_m: Option<f64>,
     /// When the largest crush is reached: the time of its sample \[s\].
     /// `None`, like the crush, when the vehicle never compresses.
     pub time_of_max_crush_s: Option<f64>,
-    /// First time the velocity (CFC 180 acceleration integrated) reaches zero \[s\].
+    /// First time the velocity (CFC 180 acceleration integrated; the raw
+    /// one where the rate cannot give CFC 180) reaches zero \[s\].
     pub time_to_zero_velocity_s: Option<f64>,
     /// Largest backward velocity after that [m/s].
     pub rebound_velocity_mps: Option<f64>,
     /// Largest deceleration of the unfiltered acceleration \[g\]; 0 when the
     /// vehicle never decelerates.
     pub peak_deceleration_g: f64,
-    /// Largest deceleration of the CFC 60 filtered acceleration \[g\].
-    pub peak_deceleration_cfc60_g: f64,
+    /// Largest deceleration of the CFC 60 filtered acceleration \[g\];
+    /// `None` where the sample rate cannot give CFC 60 (see
+    /// [`Pulse::filter_warnings`]).
+    pub peak_deceleration_cfc60_g: Option<f64>,
     /// `v0² / (2 g C)`: the constant deceleration that stops the car in its
     /// maximum crush \[g\].
     pub equivalent_square_wave_g: Option<f64>,
@@ -118,9 +123,6 @@ pub enum PulseError {
         /// The first sample, from 0, that is not finite.
         index: usize,
     },
-    /// The CFC filter cannot be applied at the pulse's sample rate.
-    #[error("{0}")]
-    Filter(CfcError),
 }
 
 impl Pulse {
@@ -140,10 +142,7 @@ impl Pulse {
             t.len(),
             [("acceleration", Some(acceleration)), ("crush", crush)],
         )?;
-        let period = t
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold(f64::INFINITY, f64::min);
+        let period = grid_period(t);
         let longest = period * (1.0 + EVEN_PERIODS);
         if t.windows(2).all(|w| w[1] - w[0] <= longest) {
             return Ok(Pulse {
@@ -196,17 +195,22 @@ impl Pulse {
         Ok((self.t[self.t.len() - 1] - self.t[0]) / (self.t.len() - 1) as f64)
     }
 
-    /// The CFC 60 and CFC 180 accelerations and the velocity of the
-    /// latter, of a checked pulse sampled every `dt`.
-    fn filtered(&self, dt: f64) -> Result<Filtered, PulseError> {
-        let [cfc60, cfc180] = cfc_filter_classes(&self.acceleration, dt, [60.0, 180.0])
-            .map_err(PulseError::Filter)?;
-        let velocity = integrate(&self.t, &cfc180, self.v0);
-        Ok(Filtered {
+    /// The CFC 60 and CFC 180 accelerations, each where the sample
+    /// period `dt` allows its class, and the velocity: of the CFC 180
+    /// acceleration (as J211 integrates), of the raw one where CFC 180
+    /// does not apply.
+    fn filtered(&self, dt: f64) -> Filtered {
+        let raw = &self.acceleration;
+        let (cfc60, cfc180) = match cfc_filter_classes(raw, dt, [60.0, 180.0]) {
+            Ok([cfc60, cfc180]) => (Some(cfc60), Some(cfc180)),
+            Err(_) => (cfc_filter(raw, dt, 60.0).ok(), None),
+        };
+        let velocity = integrate(&self.t, cfc180.as_deref().unwrap_or(raw), self.v0);
+        Filtered {
             cfc60,
             cfc180,
             velocity,
-        })
+        }
     }
 
     /// The metrics of the pulse's filtered acceleration alone, as
@@ -214,8 +218,31 @@ impl Pulse {
     /// raw acceleration.
     pub fn filtered_metrics(&self) -> Result<FilteredMetrics, PulseError> {
         let dt = self.check()?;
-        let f = self.filtered(dt)?;
-        Ok(FilteredMetrics::of(&self.t, &f))
+        Ok(FilteredMetrics::of(
+            &self.t,
+            &self.acceleration,
+            &self.filtered(dt),
+        ))
+    }
+
+    /// The filter classes the metrics take that the pulse's sample rate
+    /// cannot give, each with what the metrics do without it (empty when
+    /// the rate gives both CFC 60 and CFC 180, or the pulse has too few
+    /// samples to have a rate).
+    pub fn filter_warnings(&self) -> Vec<Warning> {
+        if self.t.len() < 2 {
+            return Vec::new();
+        }
+        let needs = [
+            (60.0, "the CFC 60 peak deceleration is not computed".into()),
+            (
+                180.0,
+                "the velocity (time to zero velocity, rebound, OLC) and the ASI are those of the \
+                 unfiltered acceleration"
+                    .into(),
+            ),
+        ];
+        warning::filter_classes(grid_period(&self.t), &needs)
     }
 
     /// The metrics of the pulse.
@@ -223,7 +250,7 @@ impl Pulse {
         let dt = self.check()?;
         let g = STANDARD_GRAVITY;
         let t = &self.t;
-        let filtered = self.filtered(dt)?;
+        let filtered = self.filtered(dt);
         let velocity = &filtered.velocity;
         let integrated;
         let crush = match &self.crush {
@@ -253,7 +280,7 @@ impl Pulse {
             peak_deceleration_cfc60_g,
             olc,
             asi,
-        } = FilteredMetrics::of(t, &filtered);
+        } = FilteredMetrics::of(t, &self.acceleration, &filtered);
         let crushed = max_crush > 0.0;
         Ok(PulseMetrics {
             impact_velocity_mps: self.v0,
@@ -273,10 +300,11 @@ impl Pulse {
     }
 }
 
-/// The filtered signals of a pulse.
+/// The filtered signals of a pulse, each where its class applies, and the
+/// velocity.
 struct Filtered {
-    cfc60: Vec<f64>,
-    cfc180: Vec<f64>,
+    cfc60: Option<Vec<f64>>,
+    cfc180: Option<Vec<f64>>,
     velocity: Vec<f64>,
 }
 
@@ -284,23 +312,35 @@ struct Filtered {
 /// [`PulseMetrics`] that its crush does not enter).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FilteredMetrics {
-    /// Largest deceleration of the CFC 60 filtered acceleration \[g\].
-    pub peak_deceleration_cfc60_g: f64,
-    /// The occupant load criterion of the CFC 180 velocity.
+    /// Largest deceleration of the CFC 60 filtered acceleration \[g\];
+    /// `None` where the sample rate cannot give CFC 60.
+    pub peak_deceleration_cfc60_g: Option<f64>,
+    /// The occupant load criterion of the CFC 180 velocity (of the raw
+    /// one where the sample rate cannot give CFC 180).
     pub olc: Option<Olc>,
-    /// The acceleration severity index of the CFC 180 acceleration and
-    /// when it is reached \[s\].
+    /// The acceleration severity index of the CFC 180 acceleration (of the
+    /// raw one where the rate cannot give CFC 180; its 50 ms average is a
+    /// low-pass of its own) and when it is reached \[s\].
     pub asi: Option<(f64, f64)>,
 }
 
 impl FilteredMetrics {
-    fn of(t: &[f64], f: &Filtered) -> FilteredMetrics {
+    fn of(t: &[f64], raw: &[f64], f: &Filtered) -> FilteredMetrics {
+        let for_asi = f.cfc180.as_deref().unwrap_or(raw);
         FilteredMetrics {
-            peak_deceleration_cfc60_g: peak_deceleration(&f.cfc60),
+            peak_deceleration_cfc60_g: f.cfc60.as_deref().map(peak_deceleration),
             olc: olc(t, &f.velocity),
-            asi: asi(t, &[(&f.cfc180, 12.0 * STANDARD_GRAVITY)]),
+            asi: asi(t, &[(for_asi, 12.0 * STANDARD_GRAVITY)]),
         }
     }
+}
+
+/// The period of the grid [`Pulse::resampled`] puts samples at times `t`
+/// on: the smallest that occurs \[s\] (∞ for fewer than 2 samples).
+pub fn grid_period(t: &[f64]) -> f64 {
+    (t.windows(2))
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The largest deceleration of `a` \[g\]; 0 when it never decelerates.
@@ -399,7 +439,7 @@ mod tests {
         assert!((m.peak_deceleration_g - 20.0).abs() < 1e-9);
         // CFC 60 overshoots a step by a few per cent (Butterworth) at most.
         assert!(
-            (m.peak_deceleration_cfc60_g / 20.0 - 1.0).abs() < 0.05,
+            (m.peak_deceleration_cfc60_g.unwrap() / 20.0 - 1.0).abs() < 0.05,
             "{m:?}"
         );
         // The filtered step rings below zero after the stop: a little
@@ -408,6 +448,76 @@ mod tests {
         // ASI averages the CFC 180 signal, whose overshoot at the corners
         // adds ≈ 0.06 %.
         assert!((m.asi.unwrap() / (20.0 / 12.0) - 1.0).abs() < 2e-3, "{m:?}");
+        assert_eq!(pulse.filter_warnings(), []);
+    }
+
+    /// A 20 g square pulse from 56 km/h, 100 ms long, sampled every 1.5 ms
+    /// (667 Hz, too slow for CFC 180, which needs 747.9 Hz) and every 5 ms
+    /// (200 Hz, too slow for CFC 60 too): every metric that needs no
+    /// filter is there, against the closed forms of the pulse — stop at
+    /// v0/a, crush v0²/(2a), ESW 20 g, ASI 20/12 (the 50 ms average of a
+    /// constant 20 g) — and each class that is missing has its warning.
+    #[test]
+    fn a_slow_sample_rate_keeps_every_metric_that_needs_no_filter() {
+        let (v0, a) = (15.5556, 20.0 * G);
+        let stop = v0 / a;
+        for (dt, missing) in [(1.5e-3f64, &[180.0][..]), (5e-3, &[60.0, 180.0][..])] {
+            let t: Vec<f64> = (0..=(0.15 / dt).round() as usize)
+                .map(|k| k as f64 * dt)
+                .collect();
+            // Decelerating until 0.1 s, past the stop: the velocity
+            // crosses zero at v0/a, where the crush peaks.
+            let acc: Vec<f64> = t.iter().map(|&t| if t < 0.1 { -a } else { 0.0 }).collect();
+            let pulse = Pulse {
+                t,
+                acceleration: acc,
+                v0,
+                crush: None,
+            };
+            let m = pulse.metrics().unwrap();
+            let (crush, zero) = (
+                m.max_dynamic_crush_m.unwrap(),
+                m.time_to_zero_velocity_s.unwrap(),
+            );
+            assert!((zero - stop).abs() < dt, "{dt}: {m:?}");
+            assert!(
+                (crush / (v0 * v0 / (2.0 * a)) - 1.0).abs() < 0.02,
+                "{dt}: {m:?}"
+            );
+            let esw = m.equivalent_square_wave_g.unwrap();
+            assert!((esw - 20.0).abs() < 0.4, "{dt}: {m:?}");
+            assert!(
+                (m.asi.unwrap() / (20.0 / 12.0) - 1.0).abs() < 0.02,
+                "{dt}: {m:?}"
+            );
+            assert!(m.olc_g.is_some(), "{dt}: {m:?}");
+            assert_eq!(m.peak_deceleration_cfc60_g.is_some(), dt < 4e-3, "{m:?}");
+            let warnings = pulse.filter_warnings();
+            let classes: Vec<f64> = (warnings.iter())
+                .map(|w| match w {
+                    Warning::FilterClass { cfc, .. } => *cfc,
+                    _ => panic!("{w}"),
+                })
+                .collect();
+            assert_eq!(classes, missing);
+        }
+        let pulse = Pulse {
+            t: (0..100).map(|k| k as f64 * 1.5e-3).collect(),
+            acceleration: vec![0.0; 100],
+            v0,
+            crush: None,
+        };
+        let [w] = &pulse.filter_warnings()[..] else {
+            panic!()
+        };
+        assert_eq!(w.kind(), "filter_class");
+        assert!(
+            w.message().starts_with(
+                "CFC 180 needs a sample rate above 748 Hz (SAE J211-1: 2.0775·CFC below half the \
+                 sample rate); samples every 1.5 ms give 667 Hz: the velocity"
+            ),
+            "{w}"
+        );
     }
 
     #[test]

@@ -108,6 +108,44 @@ pub(super) struct MetricsSection {
     pub(super) velocity: Vec<String>,
     pub(super) acceleration: Vec<String>,
     pub(super) force: Vec<String>,
+    /// The filter class of acceleration channels, by channel: a class
+    /// (60, 180, 600, 1000) or what the channel measures (`"head"`).
+    pub(super) classes: BTreeMap<String, ClassChoice>,
+}
+
+/// A channel's filter class as `metrics.classes` gives it.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum ClassChoice {
+    /// A class number.
+    Class(f64),
+    /// What the channel measures, a key of
+    /// [`CLASS_BY_MEASUREMENT`](crate::pulse::cfc::CLASS_BY_MEASUREMENT).
+    Measurement(String),
+}
+
+impl<'de> Deserialize<'de> for ClassChoice {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = ClassChoice;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a filter class (60, 180, 600, 1000) or what the channel measures (e.g. \"head\")")
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<ClassChoice, E> {
+                Ok(ClassChoice::Class(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<ClassChoice, E> {
+                Ok(ClassChoice::Class(v as f64))
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<ClassChoice, E> {
+                Ok(ClassChoice::Class(v))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<ClassChoice, E> {
+                Ok(ClassChoice::Measurement(v.to_string()))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 impl MetricsSection {

@@ -3,12 +3,13 @@
 
 use super::bind::bind_components;
 use super::choice::parse_choice;
-use super::file::{File, InitialSection, MetricsSection};
+use super::file::{ClassChoice, File, InitialSection, MetricsSection};
 use super::{Channel, ModelNames, Role, Scenario, Signal};
 use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
 use crate::ode::{Method, Options};
+use crate::pulse::cfc::{CLASS_BY_MEASUREMENT, DEFAULT_CLASS, STANDARD_CLASSES};
 use crate::simulate::{SampleAccelerations, TimeKinks};
 use lagrangian_model::names::closest;
 use std::collections::BTreeMap;
@@ -289,6 +290,7 @@ fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>
             channels.push(Channel {
                 role: Role::Displacement,
                 signal,
+                cfc: DEFAULT_CLASS,
             });
         }
     }
@@ -299,10 +301,49 @@ fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>
             if channels.iter().any(|c| c.signal.name == signal.name) {
                 return Err(format!("{key} = \"{text}\": the channel is listed twice"));
             }
-            channels.push(Channel { role, signal });
+            let cfc = channel_class(metrics, role, text)?;
+            channels.push(Channel { role, signal, cfc });
         }
     }
+    if let Some(name) = (metrics.classes.keys()).find(|&k| !metrics.acceleration.contains(k)) {
+        return Err(format!(
+            "metrics.classes.\"{name}\": not a channel of metrics.acceleration ({}); a filter class \
+             is given to an acceleration channel, by its name as listed there",
+            match metrics.acceleration.is_empty() {
+                true => "there is none".to_string(),
+                false => metrics
+                    .acceleration
+                    .iter()
+                    .map(|c| format!("`{c}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            }
+        ));
+    }
     Ok(channels)
+}
+
+/// The filter class of channel `text` of `role`: its `metrics.classes`
+/// entry (a J211 class, or what it measures), else [`DEFAULT_CLASS`].
+fn channel_class(metrics: &MetricsSection, role: Role, text: &str) -> Result<f64, String> {
+    let key = format!("metrics.classes.\"{text}\"");
+    match metrics.classes.get(text).filter(|_| role == Role::Acceleration) {
+        None => Ok(DEFAULT_CLASS),
+        Some(ClassChoice::Class(cfc)) if STANDARD_CLASSES.contains(cfc) => Ok(*cfc),
+        Some(ClassChoice::Class(cfc)) => Err(format!(
+            "{key} = {cfc}: not a filter class of SAE J211-1 (60, 180, 600 or 1000)"
+        )),
+        Some(ClassChoice::Measurement(what)) => (CLASS_BY_MEASUREMENT.iter())
+            .find(|(name, _)| name == what)
+            .map(|&(_, cfc)| cfc)
+            .ok_or_else(|| {
+                let known = CLASS_BY_MEASUREMENT.map(|(name, cfc)| format!("{name} ({cfc})"));
+                format!(
+                    "{key} = \"{what}\": not a measurement J211-1 gives a class for; one of {}, or a class number",
+                    known.join(", ")
+                )
+            }),
+    }
 }
 
 /// `metrics.contact` names crush components of the file.

@@ -234,6 +234,10 @@ pub struct Channel {
     pub role: Role,
     /// What it reads.
     pub signal: Signal,
+    /// The SAE J211 filter class of its filtered peak and 3 ms clip (an
+    /// acceleration's): `metrics.classes`, or
+    /// [`DEFAULT_CLASS`](crate::pulse::cfc::DEFAULT_CLASS).
+    pub cfc: f64,
 }
 
 /// `a - 2*b + c` as `[(1, "a"), (−2, "b"), (1, "c")]`.

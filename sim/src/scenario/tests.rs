@@ -483,3 +483,60 @@ fn a_factor_setting_scales_parameters_and_entries() {
         "--set: a factor applies to a parameter or a dotted scenario entry; parameter `kk` does not exist in the spec; did you mean `k`?"
     );
 }
+
+/// `metrics.classes` gives an acceleration channel its class, as a number
+/// or by what it measures (J211-1's class for it); a channel without one
+/// takes CFC 180; a class not in J211, a measurement it has no class for
+/// or a channel not listed under `acceleration` is refused, naming it.
+#[test]
+fn acceleration_channels_take_their_class_from_metrics_classes() {
+    let names = ModelNames {
+        coordinates: vec!["xa".into(), "xb".into()],
+        coordinate_units: vec![Some("m".into()), Some("m".into())],
+        ..ModelNames::default()
+    };
+    let parse = |classes: &str| {
+        let text = format!(
+            "[metrics]\nacceleration = [\"xa_ddot\", \"-xb_ddot\", \"xb_ddot\"]\n\
+             displacement = [\"xa\"]\nclasses = {{ {classes} }}\n"
+        );
+        Scenario::parse(&text, None, &names, &[])
+    };
+    let scenario = parse("xa_ddot = \"head\", \"-xb_ddot\" = 600").unwrap();
+    let classes: Vec<(&str, f64)> = (scenario.channels.iter())
+        .map(|c| (c.signal.name.as_str(), c.cfc))
+        .collect();
+    assert_eq!(
+        classes,
+        [
+            ("xa", 180.0),
+            ("xa_ddot", 1000.0),
+            ("-xb_ddot", 600.0),
+            ("xb_ddot", 180.0)
+        ]
+    );
+    let chest = parse("xb_ddot = \"chest\", xa_ddot = \"structure\"").unwrap();
+    assert_eq!(
+        (chest.channels[1].cfc, chest.channels[3].cfc),
+        (60.0, 180.0)
+    );
+    let error = |classes: &str| parse(classes).unwrap_err().to_string();
+    assert_eq!(
+        error("xa_ddot = 100"),
+        "metrics.classes.\"xa_ddot\" = 100: not a filter class of SAE J211-1 (60, 180, 600 or 1000)"
+    );
+    assert!(
+        error("xa_ddot = \"knee\"").starts_with(
+            "metrics.classes.\"xa_ddot\" = \"knee\": not a measurement J211-1 gives a class for; \
+             one of head (1000), neck_force (1000)"
+        ),
+        "{}",
+        error("xa_ddot = \"knee\"")
+    );
+    assert_eq!(
+        error("xa = 60"),
+        "metrics.classes.\"xa\": not a channel of metrics.acceleration (`xa_ddot`, `-xb_ddot`, \
+         `xb_ddot`); a filter class is given to an acceleration channel, by its name as listed there"
+    );
+    assert!(error("xa_ddot = true").contains("a filter class (60, 180, 600, 1000)"));
+}

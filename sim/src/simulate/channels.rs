@@ -1,9 +1,12 @@
 //! The metrics of the scenario's channels (`[metrics] displacement`,
 //! `velocity`, `acceleration`, `force`): extremes and their times for every channel;
 //! for an acceleration also its peak magnitude, its peaks after SAE J211
-//! CFC 60 and CFC 180 filtering and its 3 ms clip, in units of `g`.
+//! CFC 60, CFC 180 and its own class's filtering and the 3 ms clip of the
+//! latter, in units of `g`: each filtered metric where the samples' rate
+//! gives its class.
 
-use crate::pulse::{Pulse, cfc_filter, clip_3ms};
+use crate::pulse::cfc::DEFAULT_CLASS;
+use crate::pulse::{Pulse, STANDARD_GRAVITY, cfc_filter, clip_3ms};
 use crate::scenario::{Channel, Columns, Role};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
@@ -13,11 +16,12 @@ use serde::ser::{Serialize, SerializeMap, Serializer};
 pub const CHANNEL_METRICS: [&str; 4] = ["max", "time_of_max_s", "min", "time_of_min_s"];
 
 /// The further metrics of an acceleration channel.
-pub const ACCELERATION_METRICS: [&str; 5] = [
+pub const ACCELERATION_METRICS: [&str; 6] = [
     "peak_g",
     "time_of_peak_s",
     "cfc60_peak_g",
     "cfc180_peak_g",
+    "cfc_peak_g",
     "clip3ms_g",
 ];
 
@@ -39,6 +43,9 @@ pub struct ChannelSummary {
     pub role: Role,
     /// The unit of its values, where the spec declares it.
     pub unit: Option<String>,
+    /// The filter class of its `cfc_peak_g` and `clip3ms_g` (an
+    /// acceleration's).
+    pub cfc: f64,
     /// The values of [`metric_names`]`(role)`, in order; `None` where the
     /// run cannot say (no samples, a record too short to filter).
     pub values: Vec<Option<f64>>,
@@ -85,8 +92,16 @@ impl ChannelSummary {
                 Some(x) => format!("{x:.1} g"),
                 None => "–".into(),
             };
+            let own = match self.cfc == 60.0 || self.cfc == 180.0 {
+                true => String::new(),
+                false => format!(", CFC {} {}", self.cfc, g("cfc_peak_g")),
+            };
+            let clip = match self.cfc == DEFAULT_CLASS {
+                true => String::new(),
+                false => format!(" (CFC {})", self.cfc),
+            };
             line.push_str(&format!(
-                "; peak {} at {}, CFC 60 {}, CFC 180 {}, 3 ms clip {}",
+                "; peak {} at {}, CFC 60 {}, CFC 180 {}{own}, 3 ms clip{clip} {}",
                 g("peak_g"),
                 ms("time_of_peak_s"),
                 g("cfc60_peak_g"),
@@ -111,6 +126,9 @@ impl Serialize for ChannelSummary {
         let mut map = serializer.serialize_map(None)?;
         map.serialize_entry("role", self.role.name())?;
         map.serialize_entry("unit", &self.unit)?;
+        if self.role == Role::Acceleration {
+            map.serialize_entry("cfc", &self.cfc)?;
+        }
         for (name, value) in metric_names(self.role).iter().zip(&self.values) {
             map.serialize_entry(name, value)?;
         }
@@ -154,15 +172,15 @@ impl ChannelRecord {
     }
 
     /// The channel's metrics, its samples taken at `times` (one per
-    /// sample); accelerations in units of `g`.
-    pub fn summary(&self, times: &[f64], g: f64) -> ChannelSummary {
+    /// sample); accelerations in units of standard gravity.
+    pub fn summary(&self, times: &[f64]) -> ChannelSummary {
         let t = &times[..self.values.len()];
         let (max, min) = self.extremes();
         let at = |k: Option<usize>| k.map(|k| self.values[k]);
         let time = |k: Option<usize>| k.map(|k| t[k]);
         let mut values = vec![at(max), time(max), at(min), time(min)];
         if self.channel.role == Role::Acceleration {
-            values.extend(self.acceleration_metrics(t, g));
+            values.extend(self.acceleration_metrics(t));
         }
         let last = self.values.len().checked_sub(1);
         let moving_at_end = last.is_some_and(|k| k > 0 && self.values[k] != self.values[k - 1]);
@@ -170,6 +188,7 @@ impl ChannelRecord {
             name: self.channel.signal.name.clone(),
             role: self.channel.role,
             unit: self.channel.signal.unit.clone(),
+            cfc: self.channel.cfc,
             values,
             extreme_at_end: moving_at_end && (max == last || min == last),
         }
@@ -196,10 +215,12 @@ impl ChannelRecord {
         (Some(max.0), Some(min.0))
     }
 
-    /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, clip3ms_g]`:
-    /// magnitudes, the filtered ones on the record resampled onto an even
-    /// grid; the clip of the CFC 180 signal, as occupant criteria take it.
-    fn acceleration_metrics(&self, t: &[f64], g: f64) -> [Option<f64>; 5] {
+    /// `[peak_g, time_of_peak_s, cfc60_peak_g, cfc180_peak_g, cfc_peak_g,
+    /// clip3ms_g]`: magnitudes, the filtered ones on the record resampled
+    /// onto an even grid, each where the rate gives its class; the clip of
+    /// the signal of the channel's class, as occupant criteria take it.
+    fn acceleration_metrics(&self, t: &[f64]) -> [Option<f64>; 6] {
+        let g = STANDARD_GRAVITY;
         let peak = (self.values.iter().enumerate())
             .filter(|(_, x)| x.is_finite())
             .fold(None, |best: Option<(usize, f64)>, (k, &x)| match best {
@@ -209,20 +230,55 @@ impl ChannelRecord {
         let peak_g = peak.map(|(_, m)| m / g);
         let time = peak.map(|(k, _)| t[k]);
         let Ok(pulse) = Pulse::resampled(t, &self.values, 0.0, None) else {
-            return [peak_g, time, None, None, None];
+            return [peak_g, time, None, None, None, None];
         };
         let dt = pulse.t[1] - pulse.t[0];
         let filtered = |cfc: f64| cfc_filter(&pulse.acceleration, dt, cfc).ok();
         let magnitude = |a: &[f64]| a.iter().fold(0.0f64, |m, x| m.max(x.abs())) / g;
         let cfc60 = filtered(60.0);
         let cfc180 = filtered(180.0);
+        let own = match self.channel.cfc {
+            60.0 => cfc60.clone(),
+            180.0 => cfc180.clone(),
+            cfc => filtered(cfc),
+        };
         [
             peak_g,
             time,
             cfc60.as_deref().map(magnitude),
             cfc180.as_deref().map(magnitude),
-            cfc180.and_then(|a| clip_3ms(&a, dt)).map(|c| c / g),
+            own.as_deref().map(magnitude),
+            own.and_then(|a| clip_3ms(&a, dt)).map(|c| c / g),
         ]
+    }
+
+    /// The filter classes the channel's metrics take, each with what goes
+    /// without it: `(class, what)` pairs, none for a channel that is not an
+    /// acceleration.
+    pub fn filter_needs(&self) -> Vec<(f64, String)> {
+        if self.channel.role != Role::Acceleration {
+            return Vec::new();
+        }
+        let name = &self.channel.signal.name;
+        let mut needs = vec![
+            (
+                60.0,
+                format!("the CFC 60 peak of channel `{name}` is not computed"),
+            ),
+            (
+                180.0,
+                format!("the CFC 180 peak of channel `{name}` is not computed"),
+            ),
+        ];
+        let own = format!(
+            "the CFC {} peak and 3 ms clip of channel `{name}` are not computed",
+            self.channel.cfc
+        );
+        match needs.iter_mut().find(|(cfc, _)| *cfc == self.channel.cfc) {
+            Some(need) => need.1 = own,
+            None => needs.push((self.channel.cfc, own)),
+        }
+        needs
     }
 }
 
@@ -240,6 +296,7 @@ mod tests {
         let channel = Channel {
             role: Role::Displacement,
             signal,
+            cfc: crate::pulse::cfc::DEFAULT_CLASS,
         };
         let mut record = ChannelRecord::new(channel, 0);
         for x in values {
@@ -270,7 +327,7 @@ mod tests {
         for (values, expected) in cases {
             assert_eq!(record(values).extremes(), expected, "{values:?}");
         }
-        let summary = record(&[1.0, 4.0, -2.0, 0.5]).summary(&times(4), 9.81);
+        let summary = record(&[1.0, 4.0, -2.0, 0.5]).summary(&times(4));
         assert_eq!(
             summary.values,
             [Some(4.0), Some(1.0), Some(-2.0), Some(2.0)]

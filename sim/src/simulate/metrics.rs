@@ -10,7 +10,7 @@ use super::Sample;
 use super::Summary;
 use super::channels::{ChannelRecord, ChannelSummary, Channels};
 use crate::ode::{Stats, hermite_weights};
-use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY};
+use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY, grid_period};
 use crate::scenario::{Columns, CoordinateCombination, Scenario};
 use crate::warning::{self, ChannelPoint, Warning};
 
@@ -72,6 +72,8 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
 /// the end of an accepted step.
 #[derive(Clone, Copy, Debug)]
 pub struct EnergyPoint {
+    /// Time \[s\].
+    pub t: f64,
     /// Kinetic energy `T` \[J\].
     pub kinetic: f64,
     /// Potential energy `V` \[J\].
@@ -98,10 +100,20 @@ struct CrushPoint {
 pub struct Metrics {
     crush: Option<CoordinateCombination>,
     pitch: Vec<(usize, f64)>,
-    g: f64,
-    /// `(T + V)(0)` and the scale of the energy balance.
-    energy: Option<(f64, f64)>,
-    energy_error: f64,
+    /// `(T + V)(0)`.
+    initial_energy: Option<f64>,
+    /// The largest `|T + V + D − W − (T + V)(0)|` so far \[J\] (NaN once
+    /// one is not a number).
+    energy_residual: f64,
+    /// The run's energy scale so far: the largest of `T + |V|`, `|D|` and
+    /// `|W|` over the points of the balance \[J\].
+    energy_scale: f64,
+    /// The first point at which each term of the balance (`T`, `V`, `D`,
+    /// `W`) is not finite: time and value.
+    energy_not_finite: [Option<(f64, f64)>; 4],
+    /// The first sample at which each output is not finite: time and
+    /// value (empty while no sample has outputs).
+    outputs_not_finite: Vec<Option<(f64, f64)>>,
     /// The times of the samples.
     times: Vec<f64>,
     /// The deviations from equilibrium of the pitch coordinates, by
@@ -121,8 +133,9 @@ pub struct Metrics {
 
 impl Metrics {
     /// Metrics of `scenario`'s crush and pitch coordinates; pitch is measured
-    /// from `initial_q`, deceleration in units of `g`.
-    pub fn new(scenario: &Scenario, initial_q: &[f64], g: f64) -> Metrics {
+    /// from `initial_q`, deceleration in units of standard gravity (never a
+    /// parameter of the model: a spec's `g` may be anything).
+    pub fn new(scenario: &Scenario, initial_q: &[f64]) -> Metrics {
         let pitch: Vec<(usize, f64)> = scenario
             .pitch
             .iter()
@@ -139,9 +152,11 @@ impl Metrics {
             crush_history: Vec::with_capacity(history(crush.is_some())),
             crush_acceleration: Vec::with_capacity(history(crush.is_some())),
             pitch,
-            g,
-            energy: None,
-            energy_error: 0.0,
+            initial_energy: None,
+            energy_residual: 0.0,
+            energy_scale: 0.0,
+            energy_not_finite: [None; 4],
+            outputs_not_finite: Vec::new(),
             channels: (scenario.channels.iter().cloned())
                 .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
@@ -153,19 +168,69 @@ impl Metrics {
     /// time order). The balance is measured where the integration put the
     /// state, not between the ends of a step where the samples interpolate.
     pub fn energy_at(&mut self, e: EnergyPoint) {
-        let (e0, scale) = *self.energy.get_or_insert_with(|| {
-            (
-                e.kinetic + e.potential,
-                (e.kinetic + e.potential.abs()).max(f64::MIN_POSITIVE),
-            )
-        });
-        let balance = (e.kinetic + e.potential + e.dissipated - e.external_work - e0).abs() / scale;
-        self.energy_error = self.energy_error.max(balance);
+        let terms = [e.kinetic, e.potential, e.dissipated, e.external_work];
+        for (first, value) in self.energy_not_finite.iter_mut().zip(terms) {
+            if first.is_none() && !value.is_finite() {
+                *first = Some((e.t, value));
+            }
+        }
+        let e0 = *self.initial_energy.get_or_insert(e.kinetic + e.potential);
+        let residual = (e.kinetic + e.potential + e.dissipated - e.external_work - e0).abs();
+        // NaN stays: a balance that is not a number is not 0.
+        self.energy_residual = match residual.is_nan() {
+            true => f64::NAN,
+            false => self.energy_residual.max(residual),
+        };
+        let scale = (e.kinetic + e.potential.abs())
+            .max(e.dissipated.abs())
+            .max(e.external_work.abs());
+        self.energy_scale = self.energy_scale.max(scale);
+    }
+
+    /// The relative energy balance error: the largest residual over the
+    /// run's energy scale (0 for a run that has no energy at all).
+    fn energy_error(&self) -> f64 {
+        match self.energy_residual == 0.0 {
+            true => 0.0,
+            false => self.energy_residual / self.energy_scale.max(f64::MIN_POSITIVE),
+        }
+    }
+
+    /// The terms of the energy balance and the outputs that are not finite
+    /// somewhere, each at the first time it is not (`outputs`: the names of
+    /// the model's outputs).
+    pub fn non_finite_warnings(&self, outputs: &[&str]) -> Vec<Warning> {
+        const TERMS: [&str; 4] = [
+            "the kinetic energy",
+            "the potential energy",
+            "the dissipated energy",
+            "the external work",
+        ];
+        let energies = TERMS
+            .iter()
+            .map(|t| t.to_string())
+            .zip(self.energy_not_finite);
+        let outputs = (outputs.iter())
+            .map(|name| format!("output `{name}`"))
+            .zip(self.outputs_not_finite.iter().copied());
+        (outputs.chain(energies))
+            .filter_map(|(what, first)| {
+                first.map(|(t, value)| Warning::NonFinite { what, t, value })
+            })
+            .collect()
     }
 
     /// Takes the next sample (in time order).
     pub fn push(&mut self, s: SampleView) {
         self.times.push(s.t);
+        if !s.outputs.is_empty() {
+            self.outputs_not_finite.resize(s.outputs.len(), None);
+            for (first, &value) in self.outputs_not_finite.iter_mut().zip(s.outputs) {
+                if first.is_none() && !value.is_finite() {
+                    *first = Some((s.t, value));
+                }
+            }
+        }
         if !self.pitch.is_empty() {
             let mut deviations = [0.0; 2];
             for (d, (k, q0)) in deviations.iter_mut().zip(&self.pitch) {
@@ -221,7 +286,7 @@ impl Metrics {
             steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
             rhs_evaluations: stats.rhs_evaluations,
-            energy_balance_error_rel: self.energy_error,
+            energy_balance_error_rel: self.energy_error(),
             channels: Channels(self.channel_summaries()),
             ..Summary::EMPTY
         };
@@ -232,12 +297,18 @@ impl Metrics {
             summary.time_to_zero_velocity_s = first_zero(&self.crush_history);
             summary.peak_deceleration_g = Some(self.peak_deceleration());
             summary.rebound_velocity_mps = Some(peak.rebound);
-            if let Some((v0, pulse)) = self.pulse_metrics() {
-                summary.peak_deceleration_cfc60_g = Some(pulse.peak_deceleration_cfc60_g);
-                summary.equivalent_square_wave_g = summary
-                    .max_crush_m
-                    .filter(|&c| c > 0.0)
-                    .map(|c| v0.powi(2) / (2.0 * STANDARD_GRAVITY * c));
+            let (start, end) = (
+                self.crush_history[0],
+                self.crush_history[self.crush_history.len() - 1],
+            );
+            summary.still_crushing =
+                (self.crush_history.len() > 1) && warning::is_still_crushing(end.rate, start.rate);
+            let v0 = self.crush_history[0].rate;
+            summary.equivalent_square_wave_g = (summary.max_crush_m)
+                .filter(|&c| c > 0.0)
+                .map(|c| v0.powi(2) / (2.0 * STANDARD_GRAVITY * c));
+            if let Some(pulse) = self.pulse_metrics() {
+                summary.peak_deceleration_cfc60_g = pulse.peak_deceleration_cfc60_g;
                 summary.olc_g = pulse.olc.map(|o| o.deceleration / STANDARD_GRAVITY);
                 summary.asi = pulse.asi.map(|(asi, _)| asi);
             }
@@ -247,14 +318,17 @@ impl Metrics {
 
     /// The metrics of the scenario's channels.
     fn channel_summaries(&self) -> Vec<ChannelSummary> {
-        let summary = |c: &ChannelRecord| c.summary(&self.times, self.g);
+        let summary = |c: &ChannelRecord| c.summary(&self.times);
         self.channels.iter().map(summary).collect()
     }
 
-    /// The largest deceleration of the crush coordinate \[g\]: `−c̈ / g`
+    /// The largest deceleration of the crush coordinate \[g\]: `−c̈ / g₀`
     /// over the samples (−∞ when none is a number).
     fn peak_deceleration(&self) -> f64 {
-        let decelerations = self.crush_acceleration.iter().map(|a| -a / self.g);
+        let decelerations = self
+            .crush_acceleration
+            .iter()
+            .map(|a| -a / STANDARD_GRAVITY);
         decelerations.fold(f64::NEG_INFINITY, f64::max)
     }
 
@@ -291,40 +365,65 @@ impl Metrics {
         Some(w0 * a.crush + w1 * a.rate + w2 * b.crush + w3 * b.rate)
     }
 
-    /// The sign-sanity warnings of the crush channel (named `channel` in
-    /// them): moving away from the barrier at the start, never compressing.
+    /// The filter classes of the crush channel's pulse metrics and of the
+    /// channels' metrics that the samples' rate cannot give: the rate of
+    /// the even grid the records are resampled onto.
+    pub fn filter_warnings(&self) -> Vec<Warning> {
+        if self.times.len() < 3 {
+            return Vec::new();
+        }
+        let mut needs = Vec::new();
+        if !self.crush_history.is_empty() {
+            needs.push((60.0, "the CFC 60 peak deceleration is not computed".into()));
+            needs.push((
+                180.0,
+                "OLC and ASI are those of the unfiltered crush acceleration".into(),
+            ));
+        }
+        needs.extend(self.channels.iter().flat_map(ChannelRecord::filter_needs));
+        warning::filter_classes(grid_period(&self.times), &needs)
+    }
+
+    /// The sanity warnings of the crush channel (named `channel` in them):
+    /// moving away from the barrier at the start, not starting at 0, never
+    /// compressing, still compressing at the end.
     pub fn crush_warnings(&self, channel: &str) -> Vec<Warning> {
-        let (Some(start), Some(peak)) = (self.crush_history.first(), Peak::of(&self.crush_history))
+        let history = &self.crush_history;
+        let (Some(start), Some(end), Some(peak)) =
+            (history.first(), history.last(), Peak::of(history))
         else {
             return Vec::new();
         };
-        let first = ChannelPoint {
-            t: start.t,
-            value: start.crush,
-            rate: start.rate,
+        let point = |p: &CrushPoint| ChannelPoint {
+            t: p.t,
+            value: p.crush,
+            rate: p.rate,
         };
+        let first = point(start);
         let away = warning::moving_away(channel, first);
+        let offset = warning::crush_offset(channel, first);
         let flat = warning::never_compresses(channel, first, peak.largest);
-        away.into_iter().chain(flat).collect()
+        let still = (history.len() > 1)
+            .then(|| warning::still_crushing(channel, point(end), start.rate))
+            .flatten();
+        [away, offset, flat, still].into_iter().flatten().collect()
     }
 
-    /// The impact velocity and the pulse metrics of the crush coordinate's
-    /// acceleration (resampled onto an even grid when events added samples
-    /// between the output times); `None` for fewer than 3 samples, a
-    /// record the CFC 60 filter cannot take (sampled slower than 250 Hz), or
-    /// samples that are not finite. No metric read takes the crush itself:
+    /// The pulse metrics of the crush coordinate's acceleration (resampled
+    /// onto an even grid when the last sample came closer than an output
+    /// interval), each filter class where the sample rate gives it; `None`
+    /// for fewer than 3 samples, or samples that are not finite. No metric read takes the crush itself:
     /// it goes along only where its resampled values could fail the pulse's
     /// check (crush beyond [`CRUSH_BOUND`]: they cannot when every sample
     /// is within it).
-    fn pulse_metrics(&self) -> Option<(f64, FilteredMetrics)> {
+    fn pulse_metrics(&self) -> Option<FilteredMetrics> {
         let v0 = self.crush_history.first()?.rate;
         let bounded = (self.crush_history.iter()).all(|p| p.crush.abs() <= CRUSH_BOUND);
         let crush: Option<Vec<f64>> =
             (!bounded).then(|| self.crush_history.iter().map(|p| p.crush).collect());
         let t = &self.times[..self.crush_history.len()];
         let pulse = Pulse::resampled(t, &self.crush_acceleration, v0, crush.as_deref());
-        let metrics = pulse.and_then(|p| p.filtered_metrics()).ok()?;
-        Some((v0, metrics))
+        pulse.and_then(|p| p.filtered_metrics()).ok()
     }
 }
 

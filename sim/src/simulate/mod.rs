@@ -28,7 +28,6 @@ pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, Part, PhaseState, Stats};
-use crate::pulse::STANDARD_GRAVITY;
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use crate::warning::{self, Warning};
 use lagrangian_model::{LagrangianSystem, ModelError};
@@ -122,9 +121,6 @@ pub struct SimulationResult {
     pub summary: Summary,
     /// The integration method the scenario chose.
     pub method: Method,
-    /// The gravitational acceleration `g` the summary's decelerations are
-    /// in: the model's `g` parameter, or standard gravity without one.
-    pub g: f64,
     /// What looked wrong in the run, in the order found (empty for a
     /// clean run).
     pub warnings: Vec<Warning>,
@@ -298,7 +294,6 @@ pub fn simulate<const N: usize, S: LagrangianSystem<N> + Clone>(
         events: run.events,
         summary: run.summary,
         method: scenario.method,
-        g: run.g,
         warnings: run.warnings,
         constraints: run.constraints,
     })
@@ -322,7 +317,6 @@ struct Run {
     stats: Stats,
     events: Vec<EventRecord>,
     summary: Summary,
-    g: f64,
     warnings: Vec<Warning>,
     constraints: Option<ConstraintReport>,
 }
@@ -340,8 +334,7 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     problem.time_kinks(scenario.time_kinks);
     initial::check_parameters(system, &mut problem, scenario)?;
     let (y0, projection) = initial_state(&mut problem, scenario)?;
-    let g = gravity(&model);
-    let metrics = Metrics::new(scenario, y0.q.as_slice(), g);
+    let metrics = Metrics::new(scenario, y0.q.as_slice());
     let needs = needs::Needs::of(scenario, keep, problem.system.constraint_count());
     let outputs = model.output_names().len();
     let dense = rates::DenseAccelerations::of(&problem, scenario.accelerations);
@@ -377,7 +370,8 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
             t: outcome.t,
             error,
         })?;
-    let warnings = run_warnings(scenario, &sampler.metrics, &summary);
+    let mut warnings = run_warnings(scenario, &sampler.metrics, &summary);
+    warnings.extend(sampler.metrics.non_finite_warnings(&model.output_names()));
     let constraints = projection.map(|projection| ConstraintReport {
         names: own(model.constraint_names()),
         projection,
@@ -390,21 +384,21 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
         stats: outcome.stats,
         events: problem.events,
         summary,
-        g,
         warnings,
         constraints,
     };
     Ok((model, run))
 }
 
-/// The warnings of a finished run: the crush channel's sign sanity, then
-/// the energy balance.
+/// The warnings of a finished run: the crush channel's sign sanity, the
+/// filter classes the sample rate cannot give, then the energy balance.
 fn run_warnings(scenario: &Scenario, metrics: &Metrics, summary: &Summary) -> Vec<Warning> {
     let mut warnings = Vec::new();
     if let Some(crush) = &scenario.crush {
         let channel = format!("crush channel `{}`", crush.name);
         warnings.extend(metrics.crush_warnings(&channel));
     }
+    warnings.extend(metrics.filter_warnings());
     warnings.extend(warning::energy_balance(summary.energy_balance_error_rel));
     warnings
 }
@@ -545,6 +539,7 @@ impl<const N: usize> Sampler<N> {
         problem.inputs.load(&y.z);
         let energy = (problem.system).mechanical_energy(t, &y.q, &y.v, &problem.inputs);
         self.metrics.energy_at(EnergyPoint {
+            t,
             kinetic: energy.kinetic,
             potential: energy.potential,
             dissipated: y.work[0],
@@ -638,15 +633,6 @@ impl<const N: usize> Sampler<N> {
             })
         })
     }
-}
-
-/// The model's `g` parameter if it has one, else standard gravity.
-fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
-    model
-        .parameter_names()
-        .iter()
-        .position(|p| *p == "g")
-        .map_or(STANDARD_GRAVITY, |i| model.parameters()[i])
 }
 
 /// The state, accelerations, energies and outputs at one output time.

@@ -1,6 +1,6 @@
 //! What a host that advances a run itself needs (an FMU's co-simulation
-//! step, a model-exchange solver): the run's initial state and the `g` its
-//! decelerations are in, the same as [`super::simulate`] uses.
+//! step, a model-exchange solver): the run's initial state, the same as
+//! [`super::simulate`] uses.
 
 use super::{CrashProblem, SimulationError};
 use crate::ode::PhaseState;
@@ -16,10 +16,4 @@ pub fn initial_state<const N: usize, S: LagrangianSystem<N>>(
     scenario: &Scenario,
 ) -> Result<PhaseState<N>, SimulationError> {
     super::initial_state(problem, scenario).map(|(y0, _)| y0)
-}
-
-/// The gravitational acceleration a run's decelerations are in: the model's
-/// `g` parameter, or standard gravity without one.
-pub fn gravity<const N: usize, S: LagrangianSystem<N>>(model: &S) -> f64 {
-    super::gravity(model)
 }

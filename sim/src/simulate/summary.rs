@@ -196,6 +196,12 @@ macro_rules! summary {
                 serialize_with = "by_name"
             )]
             pub dissipated_by: Vec<(String, f64)>,
+            /// The crush channel still compresses at the end of the run,
+            /// so that its largest crush is not the maximum (the
+            /// `still_crushing` warning says so in `summary.json`; the
+            /// text summary's headline line says it too).
+            #[serde(skip)]
+            pub still_crushing: bool,
         }
 
         impl Summary {
@@ -209,6 +215,7 @@ macro_rules! summary {
                 $($name: <$type as Field>::EMPTY,)*
                 channels: Channels(Vec::new()),
                 dissipated_by: Vec::new(),
+                still_crushing: false,
             };
 
             /// The values, in [`Summary::METRICS`] order.
@@ -299,7 +306,10 @@ impl Summary {
                     let _ = write!(out, ", {}", text.show(value));
                 }
             }
-            note = text.note;
+            note = match metric.name == "max_crush_m" && self.still_crushing {
+                true => " (still crushing at t_end: not the maximum)",
+                false => text.note,
+            };
         }
         if !out.is_empty() {
             let _ = writeln!(out, "{note}");

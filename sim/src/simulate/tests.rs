@@ -26,8 +26,6 @@ fn an_output_interval_past_the_scenario_check_still_ends() {
             result.samples.len()
         );
         assert_eq!(result.samples[0].t, 0.0);
-        // A model without a `g` parameter is measured in standard gravity.
-        assert_eq!(result.g, 9.80665);
     }
 }
 
@@ -98,7 +96,7 @@ fn a_summary_only_run_reports_what_the_full_run_reports() {
         let decel = full
             .samples
             .iter()
-            .map(|s| s.a[0] / full.g)
+            .map(|s| s.a[0] / crate::pulse::STANDARD_GRAVITY)
             .fold(f64::MIN, f64::max);
         assert_eq!(summary.peak_deceleration_g, Some(decel));
     }
@@ -448,4 +446,171 @@ fn each_event_function_alone_is_the_one_of_all() {
             assert_eq!(alone.to_bits(), value.to_bits(), "event {k} at {x}, {v}");
         }
     }
+}
+
+/// A mass pushed back by a constant force, with a parameter named `NAME`
+/// that is a gap (0.025 m), not gravity.
+fn pushed_mass(name: &str) -> (Interpreted<1>, ModelNames) {
+    let spec = format!(
+        "model PushedMass;\ncoordinates {{ x [m], }}\n\
+         parameters {{ m [kg] = 2.0, {name} [m] = 0.025, k [N/m] = 0.0, }}\n\
+         inputs {{ push(t [s]) [N], }}\n\
+         kinetic = 0.5 * m * pow(dot(x), 2);\n\
+         potential = 0.5 * k * pow(x - {name}, 2);\n\
+         force x = push(t);\n"
+    );
+    let model = lagrangian_core::interpret(&spec).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    (Interpreted::new(model).unwrap(), names)
+}
+
+/// No parameter of a spec changes a unit: a gap named `g` gives the same
+/// figures in g as the same gap named `gap`, and a constant deceleration of
+/// 100 m/s² (200 N on 2 kg) is 100 / 9.80665 g.
+#[test]
+fn figures_in_g_are_in_standard_gravity_whatever_the_spec_calls_g() {
+    let text = "[simulation]\nt_end = 0.15\n[initial]\nvelocities = { x = 10.0 }\n\
+        [metrics]\ncrush = \"x\"\nacceleration = [\"x_ddot\"]\n\
+        [components.c]\ntype = \"constant\"\nvalues = { push = -200.0 }\n";
+    let run = |name: &str| {
+        let (model, names) = pushed_mass(name);
+        let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+        simulate(&model, &scenario).unwrap().summary
+    };
+    let (named_g, named_gap) = (run("g"), run("gap"));
+    assert_eq!(named_g, named_gap);
+    let expected = 100.0 / 9.80665;
+    let peak = named_g.peak_deceleration_g.unwrap();
+    assert!(
+        (peak / expected - 1.0).abs() < 1e-12,
+        "{peak} vs {expected}"
+    );
+    let channel = &named_g.channels.0[0];
+    let channel_peak = channel.get("peak_g").unwrap();
+    assert!(
+        (channel_peak / expected - 1.0).abs() < 1e-12,
+        "{channel_peak}"
+    );
+    // The square wave of a constant deceleration is that deceleration.
+    let esw = named_g.equivalent_square_wave_g.unwrap();
+    assert!((esw / expected - 1.0).abs() < 1e-6, "{esw}");
+}
+
+fn interpreted<const N: usize>(spec: &str) -> (Interpreted<N>, ModelNames) {
+    let model = lagrangian_core::interpret(spec).unwrap();
+    let names = ModelNames::of_interpreted(&model);
+    (Interpreted::new(model).unwrap(), names)
+}
+
+/// A mass at rest pushed by 1 N has no energy at the start: its balance is
+/// measured against the work of the force (½ J after 1 s), not against 0.
+#[test]
+fn a_run_that_starts_without_energy_is_measured_against_its_energy_scale() {
+    let spec = include_str!("../../../tests/bad_inputs/metrics_at_rest.lpm");
+    let (model, names) = interpreted::<1>(spec);
+    let scenario = Scenario::parse("[simulation]\nt_end = 1.0\n", None, &names, &[]).unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    let error = result.summary.energy_balance_error_rel;
+    assert!(error < 1e-9, "{error}");
+    assert_eq!(result.warnings, []);
+    // x = t²/2: the work at 1 s is 0.5 J, all kinetic.
+    let last = result.samples.last().unwrap();
+    assert!((last.kinetic - 0.5).abs() < 1e-9, "{}", last.kinetic);
+}
+
+/// `asin(10 sin θ)` at θ = 0.5 is NaN from the first sample: named, with
+/// that time, while the run itself succeeds.
+#[test]
+fn an_output_that_is_not_a_number_is_named_with_its_first_time() {
+    let spec = include_str!("../../../tests/bad_inputs/metrics_asin_output.lpm");
+    let (model, names) = interpreted::<1>(spec);
+    let text = "[simulation]\nt_end = 0.1\n[initial]\ncoordinates = { theta = 0.5 }\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    assert!(result.samples.iter().all(|s| s.outputs[0].is_nan()));
+    let non_finite: Vec<&Warning> = (result.warnings.iter())
+        .filter(|w| w.kind() == "non_finite")
+        .collect();
+    let [Warning::NonFinite { what, t, value }] = non_finite[..] else {
+        panic!("{:?}", result.warnings)
+    };
+    assert_eq!((what.as_str(), *t), ("output `phase`", 0.0));
+    assert!(value.is_nan());
+    // Where it is a number throughout, no warning.
+    let text = "[simulation]\nt_end = 0.1\n[initial]\ncoordinates = { theta = 0.05 }\n";
+    let scenario = Scenario::parse(text, None, &names, &[]).unwrap();
+    assert_eq!(simulate(&model, &scenario).unwrap().warnings, []);
+}
+
+/// The pushed mass of [`pushed_mass`] stopped short of its stop (v0/a =
+/// 0.1 s) is still crushing: warned, and said on the headline line.
+#[test]
+fn a_pulse_cut_short_by_t_end_is_not_its_maximum() {
+    let (model, names) = pushed_mass("gap");
+    let text = |t_end: f64| {
+        format!(
+            "[simulation]\nt_end = {t_end}\n[initial]\nvelocities = {{ x = 10.0 }}\n\
+             [metrics]\ncrush = \"x\"\n\
+             [components.c]\ntype = \"constant\"\nvalues = {{ push = -200.0 }}\n"
+        )
+    };
+    let scenario = Scenario::parse(&text(0.05), None, &names, &[]).unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    let kinds: Vec<&str> = result.warnings.iter().map(Warning::kind).collect();
+    assert_eq!(kinds, ["still_crushing"]);
+    // x = 10 t − 50 t² at 0.05 s: 0.375 m, at rate 5 m/s.
+    assert!((result.summary.max_crush_m.unwrap() - 0.375).abs() < 1e-9);
+    let lines = result.summary.text_lines();
+    assert!(
+        lines.starts_with(
+            "  max dynamic crush      0.375 m (still crushing at t_end: not the maximum)\n"
+        ),
+        "{lines}"
+    );
+    let scenario = Scenario::parse(&text(0.15), None, &names, &[]).unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    assert_eq!(result.warnings, []);
+    assert!(!result.summary.text_lines().contains("still crushing"));
+}
+
+/// An acceleration channel of class 1000 (`"head"`) sampled at 1 kHz: its
+/// CFC 60 and CFC 180 peaks are there, its own class's peak and clip are
+/// not, and a warning says why; at 10 kHz all are there, and the class's
+/// peak of a 1.6 Hz signal is its raw peak.
+#[test]
+fn each_channel_class_is_computed_where_the_rate_gives_it() {
+    let (model, names) = spring();
+    let text = |interval: f64| {
+        format!(
+            "[simulation]\nt_end = 0.5\noutput_interval = {interval}\n[parameters]\nc = 0.0\n\
+             [initial]\nvelocities = {{ x = 1.0 }}\n\
+             [metrics]\nacceleration = [\"x_ddot\"]\nclasses = {{ x_ddot = \"head\" }}\n\
+             [components.c]\ntype = \"constant\"\nvalues = {{ push = 0.0 }}\n"
+        )
+    };
+    let scenario = Scenario::parse(&text(1e-3), None, &names, &[]).unwrap();
+    assert_eq!(scenario.channels[0].cfc, 1000.0);
+    let result = simulate(&model, &scenario).unwrap();
+    let a = &result.summary.channels.0[0];
+    let g = 9.80665;
+    assert!((a.get("cfc60_peak_g").unwrap() - 10.0 / g).abs() < 1e-3);
+    assert!((a.get("cfc180_peak_g").unwrap() - 10.0 / g).abs() < 1e-3);
+    assert_eq!((a.get("cfc_peak_g"), a.get("clip3ms_g")), (None, None));
+    let [w] = &result.warnings[..] else {
+        panic!("{:?}", result.warnings)
+    };
+    assert_eq!(
+        w.message(),
+        "CFC 1000 needs a sample rate above 4155 Hz (SAE J211-1: 2.0775·CFC below half the \
+         sample rate); samples every 1 ms give 1000 Hz: the CFC 1000 peak and 3 ms clip of \
+         channel `x_ddot` are not computed"
+    );
+    let scenario = Scenario::parse(&text(1e-4), None, &names, &[]).unwrap();
+    let result = simulate(&model, &scenario).unwrap();
+    let a = &result.summary.channels.0[0];
+    assert!((a.get("cfc_peak_g").unwrap() - 10.0 / g).abs() < 1e-4);
+    assert!(a.get("clip3ms_g").is_some());
+    assert_eq!(result.warnings, []);
+    let json = serde_json::to_value(&result.summary).unwrap();
+    assert_eq!(json["channels"]["x_ddot"]["cfc"], 1000.0);
 }

@@ -21,8 +21,8 @@ use std::sync::Arc;
 pub struct Layout {
     /// The axes' columns ([`super::Axis::column`]).
     pub axes: Vec<String>,
-    /// The channels of the base scenario: name, role, unit.
-    pub channels: Vec<(String, Role, Option<String>)>,
+    /// The channels of the base scenario: name, role, unit, filter class.
+    pub channels: Vec<(String, Role, Option<String>, f64)>,
 }
 
 impl Layout {
@@ -37,7 +37,7 @@ impl Layout {
     /// A table of `axes` and the channels of `scenario`.
     pub fn new(axes: Vec<String>, scenario: &Scenario) -> Layout {
         let channels = (scenario.channels.iter())
-            .map(|c| (c.signal.name.clone(), c.role, c.signal.unit.clone()))
+            .map(|c| (c.signal.name.clone(), c.role, c.signal.unit.clone(), c.cfc))
             .collect();
         Layout { axes, channels }
     }
@@ -48,7 +48,7 @@ impl Layout {
             .zip(Summary::EMPTY.values())
             .map(|(m, v)| (m.name.to_string(), v))
             .collect();
-        for (name, role, _) in &self.channels {
+        for (name, role, ..) in &self.channels {
             for metric in metric_names(*role) {
                 metrics.push((format!("{name}.{metric}"), Value::Real(None)));
             }
@@ -60,7 +60,7 @@ impl Layout {
     /// The values of the metric columns of a run's summary.
     fn values(&self, summary: &Summary) -> Vec<Value> {
         let mut values = summary.values();
-        for (name, role, _) in &self.channels {
+        for (name, role, ..) in &self.channels {
             let channel = summary.channels.0.iter().find(|c| c.name == *name);
             for k in 0..metric_names(*role).len() {
                 let value = channel.and_then(|c| c.values.get(k).copied().flatten());
@@ -78,7 +78,7 @@ impl Layout {
         for metric in Summary::METRICS {
             summary.set(metric.name, cells.next().unwrap_or(""))?;
         }
-        for (name, role, unit) in &self.channels {
+        for (name, role, unit, cfc) in &self.channels {
             let values = (metric_names(*role).iter())
                 .map(|_| <Option<f64> as Field>::parse(cells.next().unwrap_or("")))
                 .collect::<Result<_, _>>()?;
@@ -87,6 +87,7 @@ impl Layout {
                 name: name.clone(),
                 role: *role,
                 unit: unit.clone(),
+                cfc: *cfc,
                 values,
                 extreme_at_end,
             });
@@ -419,13 +420,19 @@ mod tests {
     fn with_channel() -> (Layout, Row) {
         let layout = Layout {
             axes: vec!["a".into(), "b".into()],
-            channels: vec![("-x_ddot".into(), Role::Acceleration, Some("m/s^2".into()))],
+            channels: vec![(
+                "-x_ddot".into(),
+                Role::Acceleration,
+                Some("m/s^2".into()),
+                1000.0,
+            )],
         };
         let mut summary = summary(0.25);
         summary.channels.0.push(ChannelSummary {
             name: "-x_ddot".into(),
             role: Role::Acceleration,
             unit: Some("m/s^2".into()),
+            cfc: 1000.0,
             values: vec![
                 Some(3.5),
                 Some(0.01),
@@ -435,6 +442,7 @@ mod tests {
                 Some(0.01),
                 Some(0.9),
                 Some(1.0),
+                Some(1.1),
                 Some(0.8),
             ],
             extreme_at_end: true,
