@@ -195,19 +195,21 @@ impl Variables {
         (self.list.iter().position(|v| v.name == name)).map(|i| i as u32)
     }
 
-    /// The name of the continuous state `i` (`q` then `q̇`: `theta1`,
-    /// `der(theta1)`), for messages; `state i` past them.
+    /// The name of the continuous state `i` (`q`, then `q̇`, then the
+    /// components' internal states `z`: `theta1`, `der(theta1)`,
+    /// `spring1.z`), for messages; `state i` past them.
     pub fn state_name(&self, i: usize) -> String {
         let n = self.dimension;
-        let vr = match i < 2 * n {
-            true => self.list.iter().position(|v| match v.quantity {
-                Quantity::Coordinate(j) => j == i,
-                Quantity::Rate(j) => n + j == i,
-                _ => false,
-            }),
-            false => None,
-        };
-        vr.map_or_else(|| format!("state {i}"), |vr| self.list[vr].name.clone())
+        let name = self.list.iter().find_map(|v| match v.quantity {
+            Quantity::Coordinate(j) if j == i => Some(v.name.clone()),
+            Quantity::Rate(j) if n + j == i => Some(v.name.clone()),
+            Quantity::InternalRate(j) if 2 * n + j == i => {
+                let inner = v.name.strip_prefix("der(").and_then(|s| s.strip_suffix(')'));
+                inner.map(str::to_string)
+            }
+            _ => None,
+        });
+        name.unwrap_or_else(|| format!("state {i}"))
     }
 
     /// The 1-based index (in `<ModelVariables>`) of the state that the
@@ -326,6 +328,7 @@ fn origin(variable: &Variable) -> &'static str {
         Quantity::Output(_) => "the spec's output",
         Quantity::Crush | Quantity::Deceleration => "the scenario's crush signal",
         Quantity::Column(_) => "a column of the scenario's components",
+        Quantity::InternalRate(_) => "the rate of a component's internal state",
     }
 }
 
