@@ -394,8 +394,20 @@ where
     /// Signed as [`Run::signed_indicators`] signs them: the host sees an
     /// indicator cross zero where the FMU sees it cross, never one resting
     /// at zero (a contact that begins at zero force, at the start).
+    ///
+    /// An indicator armed at exactly zero even along the probe (a crush
+    /// rate of 1e-12 m/s at a located peak moves the crush by less than its
+    /// ulp) takes the first non-zero value the host's integration reads as
+    /// its reference: as the simulator's event tracker takes the value at
+    /// the end of the first step after an event, so that a crossing from
+    /// there (reloading past the peak) is one.
     fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
         let now = self.signed_indicators()?;
+        for (armed, &value) in self.armed.iter_mut().zip(&now) {
+            if *armed == 0.0 {
+                *armed = value;
+            }
+        }
         g.copy_from_slice(&now);
         Ok(())
     }
