@@ -44,6 +44,8 @@ fn a_default_that_uses_a_parameter_declared_below_says_so() {
         "{error}"
     );
     assert!(error.contains("move `m` up"), "{error}");
+    // Only that error: its dimension is not checked as well.
+    assert_eq!(error.matches("error: ").count(), 1, "{error}");
 }
 
 #[test]

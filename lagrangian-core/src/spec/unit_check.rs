@@ -138,14 +138,17 @@ fn per_unit_of(d: Dimension) -> Option<Dimension> {
 /// value in the declared unit, and `pi` counts as a number.
 pub(super) fn defaults(scope: &DimensionScope, parameters: &[ParameterDecl]) -> Vec<Diagnostic> {
     let mut problems = Vec::new();
-    for p in parameters {
+    for (k, p) in parameters.iter().enumerate() {
         let (Some(value), Some(unit)) = (&p.value, &p.decl.unit) else {
             continue;
         };
         let Ok(expected) = Dimension::parse(&unit.text) else {
             continue; // reported at the unit
         };
-        if !uses_a_name(value) {
+        let names = names_in(value);
+        // A parameter from here on is an error of its own (declared below).
+        let below = |n: &String| parameters[k..].iter().any(|q| q.decl.name == n);
+        if names.is_empty() || names.iter().any(below) {
             continue;
         }
         let what = format!("the default of `{}`", p.decl.name);
@@ -156,11 +159,12 @@ pub(super) fn defaults(scope: &DimensionScope, parameters: &[ParameterDecl]) -> 
     problems
 }
 
-/// Whether `expr` names anything but `pi` and the functions it calls (a
-/// name followed by its parenthesized arguments, or a method).
-fn uses_a_name(expr: &syn::Expr) -> bool {
+/// The names `expr` uses but `pi` and the functions it calls (a name
+/// followed by its parenthesized arguments, or a method).
+fn names_in(expr: &syn::Expr) -> Vec<String> {
     use proc_macro2::{Delimiter, TokenTree};
     use quote::ToTokens;
+    let mut names = Vec::new();
     let mut stack = vec![expr.to_token_stream().into_iter().peekable()];
     while let Some(tokens) = stack.last_mut() {
         let Some(token) = tokens.next() else {
@@ -171,14 +175,14 @@ fn uses_a_name(expr: &syn::Expr) -> bool {
             TokenTree::Ident(name) => {
                 let called = matches!(tokens.peek(), Some(TokenTree::Group(g)) if g.delimiter() == Delimiter::Parenthesis);
                 if !called && name != "pi" {
-                    return true;
+                    names.push(name.to_string());
                 }
             }
             TokenTree::Group(g) => stack.push(g.stream().into_iter().peekable()),
             TokenTree::Punct(_) | TokenTree::Literal(_) => {}
         }
     }
-    false
+    names
 }
 
 /// Checks every statement; returns the problems found.
