@@ -7,7 +7,9 @@ use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
 use lagrangian_sim::plot::{PlotSetup, figure_svg};
-use lagrangian_sim::report::{Units, summary_json, text_summary, trajectory_csv, write_atomically};
+use lagrangian_sim::report::{
+    Units, summary_json, text_summary, trajectory_csv, write_all_atomically,
+};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
 use std::path::{Path, PathBuf};
@@ -289,12 +291,12 @@ fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
         ("summary.json", summary_json(result)),
         ("plots.svg", svg),
     ];
-    for (name, contents) in files {
-        let path = out.join(name);
-        write_atomically(&path, contents.as_bytes())
-            .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
-    }
-    Ok(())
+    let paths: Vec<_> = files.iter().map(|(name, _)| out.join(name)).collect();
+    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
+        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
+        .collect();
+    write_all_atomically(&contents)
+        .map_err(|(path, e)| Failure::io(format!("cannot write {}: {e}", path.display())))
 }
 
 /// `model — description` of the scenario, or `model — scenario file` for a

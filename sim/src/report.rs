@@ -32,6 +32,41 @@ pub fn write_atomically_with(
     renamed
 }
 
+/// Writes several files as one output: each into its temporary (as
+/// [`write_atomically`] does), then, only when all are written and on the
+/// disk, each renamed into place. On a failure every temporary is removed
+/// and no file is replaced: the output is whole or as it was.
+pub fn write_all_atomically(
+    files: &[(&Path, &[u8])],
+) -> Result<(), (std::path::PathBuf, io::Error)> {
+    let temporaries: Vec<_> = files
+        .iter()
+        .map(|(path, _)| temporary_beside(path))
+        .collect();
+    let remove_all = || {
+        for temporary in &temporaries {
+            let _ = std::fs::remove_file(temporary);
+        }
+    };
+    for ((path, contents), temporary) in files.iter().zip(&temporaries) {
+        let written = std::fs::File::create(temporary).and_then(|mut file| {
+            file.write_all(contents)?;
+            file.sync_all()
+        });
+        if let Err(e) = written {
+            remove_all();
+            return Err((path.to_path_buf(), e));
+        }
+    }
+    for ((path, _), temporary) in files.iter().zip(&temporaries) {
+        if let Err(e) = std::fs::rename(temporary, path) {
+            remove_all();
+            return Err((path.to_path_buf(), e));
+        }
+    }
+    Ok(())
+}
+
 /// The hidden temporary `.NAME.PID.tmp` beside `path`.
 pub fn temporary_beside(path: &Path) -> std::path::PathBuf {
     let file_name = path
