@@ -114,12 +114,7 @@ fn on_a_full_disk_every_command_fails_and_leaves_no_file() {
         // Its report (20 states, 4.2 kB) is larger than a page.
         fails_and_leaves_nothing(
             &disk,
-            &[
-                "linearize",
-                "specs/pendulum_chain_10.lpm",
-                "--out",
-                &lin,
-            ],
+            &["linearize", "specs/pendulum_chain_10.lpm", "--out", &lin],
         );
     }
     disk.fill(0);
