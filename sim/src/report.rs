@@ -262,3 +262,37 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A writer that fails part-way (as a full disk does) leaves the old
+    /// file as it was and no temporary beside it.
+    #[test]
+    fn a_failed_write_leaves_the_file_as_it_was_and_no_temporary() {
+        let dir = std::env::temp_dir().join(format!("lpm-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("out.txt");
+        write_atomically(&path, b"old").unwrap();
+        let failed = write_atomically_with(&path, |file| {
+            file.write_all(b"half")?;
+            Err(io::Error::new(io::ErrorKind::StorageFull, "disk full"))
+        });
+        assert_eq!(failed.unwrap_err().kind(), io::ErrorKind::StorageFull);
+        assert_eq!(std::fs::read(&path).unwrap(), b"old");
+        // Of several files, none is replaced when one cannot be written.
+        let other = dir.join("other.txt");
+        let missing = dir.join("no-such-folder").join("x.txt");
+        let files: [(&Path, &[u8]); 2] = [(&other, b"new"), (&missing, b"x")];
+        let (at, _) = write_all_atomically(&files).unwrap_err();
+        assert_eq!(at, missing);
+        assert!(!other.exists());
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(left, [std::ffi::OsString::from("out.txt")]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
