@@ -10,7 +10,7 @@ use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
 use lagrangian_sim::plot::{Series, panels_svg};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
-use lagrangian_sim::report::write_atomically;
+use lagrangian_sim::report::write_all_atomically;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
@@ -282,10 +282,11 @@ pub fn write_files(fitting: &Fitting, out: &Path) -> Result<[(&'static str, Stri
     // Before `outputs`: rebasing the fitted scenario's paths needs `out`.
     std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
     let files = outputs(fitting, out)?;
-    for (name, contents) in &files {
-        let path = out.join(name);
-        write_atomically(&path, contents.as_bytes()).map_err(|e| io(&path, e))?;
-    }
+    let paths: Vec<PathBuf> = files.iter().map(|(name, _)| out.join(name)).collect();
+    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
+        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
+        .collect();
+    write_all_atomically(&contents).map_err(|(path, e)| io(&path, e))?;
     Ok(files)
 }
 

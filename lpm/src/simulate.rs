@@ -7,7 +7,9 @@ use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
 use lagrangian_sim::plot::{PlotSetup, figure_svg};
-use lagrangian_sim::report::{Units, summary_json, text_summary, trajectory_csv, write_atomically};
+use lagrangian_sim::report::{
+    Units, summary_json, text_summary, trajectory_csv, write_all_atomically,
+};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
 use std::path::{Path, PathBuf};
@@ -21,7 +23,9 @@ pub struct Args {
     #[arg(long)]
     scenario: Option<PathBuf>,
     /// Override a parameter (`k1=7e4`), give an input a constant (`barrier_x1=0`)
-    /// or set a scenario entry (`components.front_end.unloading=elastic`).
+    /// or set a scenario entry (`components.front_end.unloading=elastic`);
+    /// `KEY*=FACTOR` multiplies a parameter or every number of an entry
+    /// (`components.front_end.stiffness_values*=0.9`), as in `sweep --grid`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// End time \[s\].
@@ -57,19 +61,42 @@ fn methods() -> clap::builder::PossibleValuesParser {
 /// The settings the command line adds to the scenario's.
 fn settings(options: &Args) -> Vec<String> {
     let mut settings = options.set.clone();
+    settings.extend(flag_settings(options).into_iter().map(|(_, s)| s));
+    settings
+}
+
+/// The settings `--t-end`, `--rtol`, `--atol` and `--method` stand for,
+/// each with the flag as written in messages (`--rtol 0.9`).
+fn flag_settings(options: &Args) -> Vec<(String, String)> {
+    let mut settings = Vec::new();
     if let Some(t) = options.t_end {
-        settings.push(format!("simulation.t_end={t}"));
+        settings.push((format!("--t-end {t}"), format!("simulation.t_end={t}")));
     }
     if let Some(r) = options.rtol {
-        settings.push(format!("simulation.rtol={r}"));
+        settings.push((format!("--rtol {r}"), format!("simulation.rtol={r}")));
     }
     if let Some(a) = options.atol {
-        settings.push(format!("simulation.atol={a}"));
+        settings.push((format!("--atol {a}"), format!("simulation.atol={a}")));
     }
     if let Some(m) = &options.method {
-        settings.push(format!("simulation.method=\"{m}\""));
+        settings.push((
+            format!("--method {m}"),
+            format!("simulation.method=\"{m}\""),
+        ));
     }
     settings
+}
+
+/// `failure`, naming the flag a setting came from where it names the
+/// setting (`--rtol 0.9: …`, not `--set simulation.rtol=0.9: …`).
+fn naming_flags(failure: Failure, options: &Args) -> Failure {
+    for (flag, setting) in flag_settings(options) {
+        let named = format!("--set {setting}:");
+        if let Some(rest) = failure.message().strip_prefix(&named) {
+            return Failure::new(failure.status, format!("{flag}:{rest}"));
+        }
+    }
+    failure
 }
 
 /// A finished simulation with what its report needs.
@@ -147,7 +174,8 @@ pub fn load_spec(
 /// Runs `lpm simulate`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
     let settings = settings(&options);
-    let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)?;
+    let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)
+        .map_err(|f| naming_flags(f, &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
     write_outputs(&out, &simulated)?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);
@@ -289,12 +317,12 @@ fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
         ("summary.json", summary_json(result)),
         ("plots.svg", svg),
     ];
-    for (name, contents) in files {
-        let path = out.join(name);
-        write_atomically(&path, contents.as_bytes())
-            .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))?;
-    }
-    Ok(())
+    let paths: Vec<_> = files.iter().map(|(name, _)| out.join(name)).collect();
+    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
+        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
+        .collect();
+    write_all_atomically(&contents)
+        .map_err(|(path, e)| Failure::io(format!("cannot write {}: {e}", path.display())))
 }
 
 /// `model — description` of the scenario, or `model — scenario file` for a

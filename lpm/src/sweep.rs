@@ -331,7 +331,9 @@ fn sweep(
         if row.run < journaled {
             return Ok(());
         }
-        journal.append(&row)?;
+        journal.append(&row).map_err(|e| {
+            format!("{e}; the runs finished before are kept in it: make room and run the same command with --resume")
+        })?;
         tally.count(&row);
         bar.inc(1);
         Ok(())

@@ -33,6 +33,41 @@ pub fn write_atomically_with(
     renamed
 }
 
+/// Writes several files as one output: each into its temporary (as
+/// [`write_atomically`] does), then, only when all are written and on the
+/// disk, each renamed into place. On a failure every temporary is removed
+/// and no file is replaced: the output is whole or as it was.
+pub fn write_all_atomically(
+    files: &[(&Path, &[u8])],
+) -> Result<(), (std::path::PathBuf, io::Error)> {
+    let temporaries: Vec<_> = files
+        .iter()
+        .map(|(path, _)| temporary_beside(path))
+        .collect();
+    let remove_all = || {
+        for temporary in &temporaries {
+            let _ = std::fs::remove_file(temporary);
+        }
+    };
+    for ((path, contents), temporary) in files.iter().zip(&temporaries) {
+        let written = std::fs::File::create(temporary).and_then(|mut file| {
+            file.write_all(contents)?;
+            file.sync_all()
+        });
+        if let Err(e) = written {
+            remove_all();
+            return Err((path.to_path_buf(), e));
+        }
+    }
+    for ((path, _), temporary) in files.iter().zip(&temporaries) {
+        if let Err(e) = std::fs::rename(temporary, path) {
+            remove_all();
+            return Err((path.to_path_buf(), e));
+        }
+    }
+    Ok(())
+}
+
 /// The hidden temporary `.NAME.PID.tmp` beside `path`.
 pub fn temporary_beside(path: &Path) -> std::path::PathBuf {
     let file_name = path
@@ -225,4 +260,38 @@ pub fn text_summary(result: &SimulationResult, scenario_name: &str) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A writer that fails part-way (as a full disk does) leaves the old
+    /// file as it was and no temporary beside it.
+    #[test]
+    fn a_failed_write_leaves_the_file_as_it_was_and_no_temporary() {
+        let dir = std::env::temp_dir().join(format!("lpm-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("out.txt");
+        write_atomically(&path, b"old").unwrap();
+        let failed = write_atomically_with(&path, |file| {
+            file.write_all(b"half")?;
+            Err(io::Error::new(io::ErrorKind::StorageFull, "disk full"))
+        });
+        assert_eq!(failed.unwrap_err().kind(), io::ErrorKind::StorageFull);
+        assert_eq!(std::fs::read(&path).unwrap(), b"old");
+        // Of several files, none is replaced when one cannot be written.
+        let other = dir.join("other.txt");
+        let missing = dir.join("no-such-folder").join("x.txt");
+        let files: [(&Path, &[u8]); 2] = [(&other, b"new"), (&missing, b"x")];
+        let (at, _) = write_all_atomically(&files).unwrap_err();
+        assert_eq!(at, missing);
+        assert!(!other.exists());
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(left, [std::ffi::OsString::from("out.txt")]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -235,3 +235,28 @@ fn the_paper_model_about_its_equilibrium_has_the_modes_of_its_differenced_accele
         assert!((d - e).norm() <= 1e-6 * e.norm(), "{d} vs {e}");
     }
 }
+
+/// Two coordinates held by two constraints: no motion, an error naming
+/// both (it used to panic building an empty tangent basis).
+#[test]
+fn a_model_without_free_coordinates_is_an_error() {
+    let source = include_str!("../../../tests/bad_inputs/fitset_pinned.lpm");
+    let (pinned, names) = model::<2>(source);
+    let scenario = Scenario::defaults(&names, &[]).unwrap();
+    for at in [
+        At::Equilibrium,
+        At::State {
+            q: vec![0.75f64.sqrt(), 0.5],
+            qd: vec![0.0, 0.0],
+        },
+    ] {
+        let e = linearize(&pinned, &scenario, &at).unwrap_err();
+        assert_eq!(
+            e,
+            LinearizeError::NoFreeCoordinates {
+                coordinates: vec!["x".into(), "y".into()],
+                constraints: vec!["circle".into(), "line".into()],
+            }
+        );
+    }
+}
