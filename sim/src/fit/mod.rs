@@ -196,12 +196,10 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
             let values: Vec<f64> = result
                 .samples
                 .iter()
-                .map(|s| {
-                    crush.of_coordinates(match c.quantity {
-                        Quantity::Acceleration => &s.a,
-                        Quantity::Velocity => &s.v,
-                        Quantity::Crush => &s.q,
-                    })
+                .map(|s| match c.quantity {
+                    Quantity::Acceleration => crush.of_coordinates(&s.a),
+                    Quantity::Velocity => crush.of_coordinates(&s.v),
+                    Quantity::Crush => crush.plus_offset(crush.of_coordinates(&s.q)),
                 })
                 .collect();
             interpolate(&t, &values, &target.t)

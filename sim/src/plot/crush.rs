@@ -20,7 +20,9 @@ pub(super) const AFTER_CONTACT: &str = "crush channel after contact (moving apar
 pub(super) fn crush_panels(result: &SimulationResult, signal: &Signal, g: f64) -> Vec<Panel> {
     let s = &result.samples;
     let t: Vec<f64> = s.iter().map(|x| x.t).collect();
-    let crush: Vec<f64> = s.iter().map(|x| signal.of_coordinates(&x.q)).collect();
+    let crush: Vec<f64> = (s.iter())
+        .map(|x| signal.plus_offset(signal.of_coordinates(&x.q)))
+        .collect();
     let rate = s.iter().map(|x| (ms(x.t), signal.of_coordinates(&x.v)));
     let deceleration: Vec<f64> = (s.iter())
         .map(|x| -signal.of_coordinates(&x.a) / g)

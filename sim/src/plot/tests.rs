@@ -51,6 +51,7 @@ fn signal(name: &str, column: Column, unit: &str) -> Signal {
     Signal {
         name: name.into(),
         terms: vec![(if name.starts_with('-') { -1.0 } else { 1.0 }, column)],
+        offset: 0.0,
         unit: Some(unit.into()),
     }
 }

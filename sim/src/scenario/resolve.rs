@@ -266,13 +266,13 @@ fn moving_with_the_vehicle(
     Ok(velocities)
 }
 
-/// `metrics.crush`: a combination of coordinates, so that its rate and
-/// acceleration are exact.
+/// `metrics.crush`: a combination of coordinates, with an offset or not
+/// (`"y + 0.977"`), so that its rate and acceleration are exact.
 fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, String> {
     let signal = Signal::parse("metrics.crush", text, names)?;
     if !signal.is_of_coordinates() {
         return Err(format!(
-            "metrics.crush = \"{text}\": the crush channel is a combination of coordinates (e.g. \"-r\" or \"xa - xb\"), so that its rate and acceleration are exact; list other columns under metrics.displacement"
+            "metrics.crush = \"{text}\": the crush channel is a combination of coordinates (e.g. \"-r\", \"xa - xb\" or \"y + 0.977\"), so that its rate and acceleration are exact; list other columns under metrics.displacement"
         ));
     }
     Ok(signal)

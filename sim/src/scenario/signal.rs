@@ -78,7 +78,8 @@ impl<'a> Columns<'a> {
     }
 }
 
-/// A linear combination of sample columns, as the scenario writes it.
+/// An affine combination of sample columns, as the scenario writes it:
+/// terms and a constant (`"y + 0.977"`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Signal {
     /// The text in the scenario (`"xa - xb"`): the signal's name in the
@@ -86,6 +87,9 @@ pub struct Signal {
     pub name: String,
     /// `(factor, column)` per term, in the order written.
     pub terms: Vec<(f64, Column)>,
+    /// The sum of its constant terms (`0.977` of `"y + 0.977"`), in the
+    /// unit of its columns; 0 for most.
+    pub offset: f64,
     /// The unit of its columns, where the spec declares them.
     pub unit: Option<String>,
 }
@@ -95,6 +99,12 @@ impl Signal {
     /// that `-r` is exactly `−1·r`.
     #[inline]
     pub fn value(&self, s: &Columns) -> f64 {
+        self.plus_offset(self.linear(s))
+    }
+
+    /// The sum of the terms in a sample, without the offset.
+    #[inline]
+    fn linear(&self, s: &Columns) -> f64 {
         let mut terms = self.terms.iter();
         let Some(&(c, first)) = terms.next() else {
             return f64::NAN;
@@ -104,15 +114,40 @@ impl Signal {
         })
     }
 
+    /// `value` plus the signal's offset (`value` itself, bit for bit, for
+    /// a signal without one: `−0` stays `−0`).
+    #[inline]
+    pub fn plus_offset(&self, value: f64) -> f64 {
+        match self.offset {
+            0.0 => value,
+            offset => value + offset,
+        }
+    }
+
     /// Reads `text` against the model's names; `key` names the entry in
     /// messages (`metrics.crush`).
     pub fn parse(key: &str, text: &str, names: &ModelNames) -> Result<Signal, String> {
         let mut terms = Vec::new();
         let mut units: Vec<Option<String>> = Vec::new();
+        let mut offset = 0.0;
         for (factor, name) in split_terms(key, text)? {
+            if let Ok(constant) = name.parse::<f64>() {
+                offset += factor * constant;
+                continue;
+            }
             let (column, unit) = column(key, text, name, names)?;
             terms.push((factor, column));
             units.push(unit);
+        }
+        if terms.is_empty() {
+            return Err(format!(
+                "{key} = \"{text}\": a constant reads no column of the run; name one (e.g. \"y + 0.977\")"
+            ));
+        }
+        if !offset.is_finite() {
+            return Err(format!(
+                "{key} = \"{text}\": its constant is not a finite number"
+            ));
         }
         let unit = units.first().cloned().flatten();
         if let Some(other) = units.iter().find(|u| **u != units[0]) {
@@ -125,22 +160,23 @@ impl Signal {
         Ok(Signal {
             name: text.trim().to_string(),
             terms,
+            offset,
             unit,
         })
     }
 
     /// `true` when every term is a coordinate: then the same combination
-    /// of the rates and accelerations is the signal's exact rate and
-    /// acceleration ([`Signal::of_coordinates`]).
+    /// of the rates and accelerations, without the offset, is the signal's
+    /// exact rate and acceleration ([`Signal::of_coordinates`]).
     pub fn is_of_coordinates(&self) -> bool {
         (self.terms.iter()).all(|(_, column)| matches!(column, Column::Coordinate(_)))
     }
 
-    /// The combination of a signal of coordinates applied to `values`, one
-    /// per coordinate: the signal itself for `q`, its rate for `q̇`, its
-    /// acceleration for `q̈`.
+    /// The linear part of a signal of coordinates applied to `values`, one
+    /// per coordinate: its rate for `q̇`, its acceleration for `q̈`; for
+    /// `q`, the signal less its offset ([`Signal::plus_offset`] adds it).
     pub fn of_coordinates(&self, values: &[f64]) -> f64 {
-        self.value(&Columns::coordinates(values))
+        self.linear(&Columns::coordinates(values))
     }
 
     /// [`Signal::of_coordinates`] with the columns resolved once, for a
@@ -371,6 +407,7 @@ mod tests {
         Signal {
             name: "s".into(),
             terms,
+            offset: 0.0,
             unit: None,
         }
     }

@@ -291,6 +291,7 @@ mod tests {
         let signal = Signal {
             name: "x".into(),
             terms: vec![(1.0, Column::Coordinate(0))],
+            offset: 0.0,
             unit: None,
         };
         let channel = Channel {

@@ -98,7 +98,8 @@ struct CrushPoint {
 /// in one pass each.
 #[derive(Clone, Debug)]
 pub struct Metrics {
-    crush: Option<CoordinateCombination>,
+    /// The crush channel's combination of coordinates and its offset.
+    crush: Option<(CoordinateCombination, f64)>,
     pitch: Vec<(usize, f64)>,
     /// `(T + V)(0)`.
     initial_energy: Option<f64>,
@@ -146,7 +147,7 @@ impl Metrics {
         let crush = scenario.crush.as_ref();
         let history = |wanted: bool| if wanted { samples } else { 0 };
         Metrics {
-            crush: crush.map(|c| c.coordinate_combination()),
+            crush: crush.map(|c| (c.coordinate_combination(), c.offset)),
             times: Vec::with_capacity(samples),
             pitch_history: Vec::with_capacity(history(!pitch.is_empty())),
             crush_history: Vec::with_capacity(history(crush.is_some())),
@@ -238,8 +239,14 @@ impl Metrics {
             }
             self.pitch_history.push(deviations);
         }
-        if let Some(crush) = &self.crush {
+        if let Some((crush, offset)) = &self.crush {
             let [crush, rate, acceleration] = crush.of([s.q, s.v, s.a]);
+            // `−0` of a crush `-r` stays as it was without an offset.
+            let crush = if *offset == 0.0 {
+                crush
+            } else {
+                crush + offset
+            };
             let t = s.t;
             self.crush_history.push(CrushPoint { t, crush, rate });
             self.crush_acceleration.push(acceleration);

@@ -614,3 +614,49 @@ fn each_channel_class_is_computed_where_the_rate_gives_it() {
     let json = serde_json::to_value(&result.summary).unwrap();
     assert_eq!(json["channels"]["x_ddot"]["cfc"], 1000.0);
 }
+
+/// A crush channel with an offset: `x + 0.5` from x = −0.5 is the crush
+/// `x` from 0 — the same summary, since the offset leaves the rate and the
+/// acceleration alone (k = 0: the pushed mass does not feel where it is).
+#[test]
+fn a_crush_channel_with_an_offset_is_the_shifted_channel() {
+    let (model, names) = pushed_mass("gap");
+    let run = |crush: &str, x0: f64| {
+        let text = format!(
+            "[simulation]\nt_end = 0.15\n[initial]\ncoordinates = {{ x = {x0} }}\n\
+             velocities = {{ x = 10.0 }}\n[metrics]\ncrush = \"{crush}\"\n\
+             [components.c]\ntype = \"constant\"\nvalues = {{ push = -200.0 }}\n"
+        );
+        let scenario = Scenario::parse(&text, None, &names, &[]).unwrap();
+        simulate(&model, &scenario).unwrap()
+    };
+    let (plain, shifted) = (run("x", 0.0), run("x + 0.5", -0.5));
+    let close = |a: Option<f64>, b: Option<f64>| (a.unwrap() - b.unwrap()).abs() < 1e-9;
+    let (p, s) = (&plain.summary, &shifted.summary);
+    assert!(close(p.max_crush_m, s.max_crush_m), "{p:?}\n{s:?}");
+    assert!((s.max_crush_m.unwrap() - 0.5).abs() < 1e-9, "{s:?}");
+    assert!(close(
+        p.equivalent_square_wave_g,
+        s.equivalent_square_wave_g
+    ));
+    assert!(close(p.time_to_zero_velocity_s, s.time_to_zero_velocity_s));
+    // The state differs by 0.5 in x, so the integration rounds differently.
+    assert!(close(p.peak_deceleration_g, s.peak_deceleration_g));
+    assert_eq!((plain.warnings, shifted.warnings), (vec![], vec![]));
+    // Without the offset the same start is a crush channel not at 0.
+    let offset = run("x", -0.5);
+    let kinds: Vec<&str> = offset.warnings.iter().map(Warning::kind).collect();
+    assert_eq!(kinds, ["crush_offset"]);
+    let names_ = names.clone();
+    let error = |crush: &str| {
+        let text = format!("[metrics]\ncrush = \"{crush}\"\n");
+        Scenario::parse(&text, None, &names_, &[])
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(
+        error("0.5").contains("a constant reads no column of the run"),
+        "{}",
+        error("0.5")
+    );
+}
