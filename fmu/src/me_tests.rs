@@ -25,8 +25,16 @@ fn model_exchange(loaded: Loaded) -> Instance {
     Instance::new("me", Interface::ModelExchange, &guid, loaded).unwrap()
 }
 
+/// The value of the variable `name`; `crush`, the scenario's crush signal,
+/// under its name with or without the namespace of what the FMU adds
+/// (`metrics.crush`).
 fn read(me: &mut Instance, name: &str) -> f64 {
-    let vr = me.variables.reference(name).unwrap();
+    let namespaced = format!("metrics.{name}");
+    let vr = (me.variables.reference(name))
+        .filter(|_| name != "crush")
+        .or_else(|| me.variables.reference(&namespaced))
+        .or_else(|| me.variables.reference(name))
+        .unwrap_or_else(|| panic!("no variable {name}"));
     let mut value = [0.0];
     me.get_real(&[vr], &mut value).unwrap();
     value[0]
