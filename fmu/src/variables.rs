@@ -204,7 +204,10 @@ impl Variables {
             Quantity::Coordinate(j) if j == i => Some(v.name.clone()),
             Quantity::Rate(j) if n + j == i => Some(v.name.clone()),
             Quantity::InternalRate(j) if 2 * n + j == i => {
-                let inner = v.name.strip_prefix("der(").and_then(|s| s.strip_suffix(')'));
+                let inner = v
+                    .name
+                    .strip_prefix("der(")
+                    .and_then(|s| s.strip_suffix(')'));
                 inner.map(str::to_string)
             }
             _ => None,

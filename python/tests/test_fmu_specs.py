@@ -14,12 +14,6 @@ from conftest import SPECS, run_lpm
 
 #: Every scenario shipped, with the spec it names (its `spec` key).
 SCENARIOS = sorted((SPECS / "scenarios").glob("*.toml"))
-#: Models with constraints: the FMU refuses them for now (issue 33, item 2,
-#: constrained models in the FMU). Strict: the day they export, this fails
-#: and the mark goes.
-CONSTRAINED = {"four_bar_linkage", "slider_crank"}
-
-
 def spec_of(scenario):
     found = re.search(r'^spec\s*=\s*"([^"]+)"', scenario.read_text(), re.MULTILINE)
     return (scenario.parent / found.group(1)).resolve()
@@ -32,10 +26,7 @@ def outputs_of(spec):
 
 def cases():
     for scenario in SCENARIOS:
-        marks = []
-        if scenario.stem in CONSTRAINED:
-            marks.append(pytest.mark.xfail(strict=True, reason="constrained models are refused"))
-        yield pytest.param(scenario, id=scenario.stem, marks=marks)
+        yield pytest.param(scenario, id=scenario.stem)
 
 
 def test_every_spec_of_a_scenario_is_listed():
