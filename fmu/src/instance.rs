@@ -8,33 +8,7 @@ use crate::plant::{Plant, PlantFactory, plant};
 use crate::resources::Loaded;
 use crate::variables::Variables;
 
-/// Which interface an instance was created for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Interface {
-    /// The host integrates `(q, q̇)` and handles the events it locates.
-    ModelExchange,
-    /// The FMU integrates between communication points.
-    CoSimulation,
-}
-
-/// Where an instance is in the FMI 2.0 state machine.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
-    /// After `fmi2Instantiate` (and `fmi2Reset`).
-    Instantiated,
-    /// Between `fmi2EnterInitializationMode` and `fmi2ExitInitializationMode`.
-    Initialization,
-    /// Co-Simulation, between steps.
-    StepComplete,
-    /// Model Exchange, handling events.
-    Event,
-    /// Model Exchange, integrating.
-    ContinuousTime,
-    /// After `fmi2Terminate`.
-    Terminated,
-    /// After a call failed: only `fmi2Reset` and `fmi2FreeInstance` help.
-    Failed,
-}
+pub use crate::machine::{Interface, Mode};
 
 /// Why a call failed: the status to return and the message to log.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,10 +1,36 @@
 //! The FMI 2.0 state machine: in which states, and for which interface,
 //! each call is allowed (the tables of the standard, sections 3.2.3 and
 //! 4.2.4, as the Modelica Association's Reference FMUs encode them). One
-//! table, read by [`crate::guard::guard`] before every call on an instance
-//! and by the [`Instance`](crate::instance::Instance) methods themselves.
+//! table, read by the guard (`guard::guard`) before every call on an instance
+//! and by the instance's methods themselves.
 
-use crate::instance::{Interface, Mode};
+/// Which interface an instance was created for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Interface {
+    /// The host integrates `(q, q̇)` and handles the events it locates.
+    ModelExchange,
+    /// The FMU integrates between communication points.
+    CoSimulation,
+}
+
+/// Where an instance is in the FMI 2.0 state machine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// After `fmi2Instantiate` (and `fmi2Reset`).
+    Instantiated,
+    /// Between `fmi2EnterInitializationMode` and `fmi2ExitInitializationMode`.
+    Initialization,
+    /// Co-Simulation, between steps.
+    StepComplete,
+    /// Model Exchange, handling events.
+    Event,
+    /// Model Exchange, integrating.
+    ContinuousTime,
+    /// After `fmi2Terminate`.
+    Terminated,
+    /// After a call failed: only `fmi2Reset` and `fmi2FreeInstance` help.
+    Failed,
+}
 
 /// Every mode of an instance.
 const ANY: &[Mode] = &[

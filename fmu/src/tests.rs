@@ -276,3 +276,35 @@ fn a_guid_of_another_export_is_refused() {
         .unwrap();
     assert!(wrong.message.contains("different exports"), "{wrong:?}");
 }
+
+/// The variable names of the shipped spec `name` under its scenario.
+fn names(spec: &str, scenario: &str) -> Result<Vec<String>, String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specs");
+    let (spec_path, scenario_path) = (root.join(spec), root.join("scenarios").join(scenario));
+    let spec = std::fs::read_to_string(&spec_path).unwrap();
+    let scenario = std::fs::read_to_string(&scenario_path).unwrap();
+    let loaded = load_texts((&spec_path, &spec), Some((&scenario_path, &scenario)))?;
+    let model = &loaded.compiled.model;
+    let variables = crate::variables::Variables::new(model, &loaded.scenario, &loaded.unbound)?;
+    Ok(variables.list.into_iter().map(|v| v.name).collect())
+}
+
+#[test]
+fn a_spec_output_called_crush_or_deceleration_keeps_its_name_beside_the_fmus() {
+    let car_to_car = names("car_to_car.lpm", "car_to_car.toml").unwrap();
+    let wall = names("wall_impact.lpm", "wall_impact.toml").unwrap();
+    for name in [
+        "crush",
+        "metrics.crush",
+        "metrics.deceleration",
+        "front_a.force",
+    ] {
+        assert!(
+            car_to_car.contains(&name.to_string()),
+            "{name}: {car_to_car:?}"
+        );
+    }
+    for name in ["deceleration", "metrics.crush", "metrics.deceleration"] {
+        assert!(wall.contains(&name.to_string()), "{name}: {wall:?}");
+    }
+}

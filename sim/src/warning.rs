@@ -90,6 +90,8 @@ pub enum Warning {
         cfc: f64,
         /// The period of the samples \[s\].
         period: f64,
+        /// The sample rate the class needs \[Hz\] (`pulse::cfc::min_sample_rate`).
+        min_rate: f64,
         /// What goes without it, e.g. "the CFC 60 peak deceleration is not
         /// computed".
         consequence: String,
@@ -168,11 +170,12 @@ impl Warning {
             Warning::FilterClass {
                 cfc,
                 period,
+                min_rate,
                 consequence,
             } => format!(
                 "CFC {cfc} needs a sample rate above {:.0} Hz (SAE J211-1: 2.0775·CFC below half \
                  the sample rate); samples every {} ms give {:.0} Hz: {consequence}",
-                crate::pulse::cfc::min_sample_rate(*cfc),
+                min_rate,
                 round_ms(*period),
                 1.0 / period
             ),
@@ -186,29 +189,6 @@ fn round_ms(period: f64) -> String {
     let text = format!("{:.4}", period * 1e3);
     let text = text.trim_end_matches('0').trim_end_matches('.');
     text.to_string()
-}
-
-/// The filter classes of `needs` (`(class, what goes without it)` pairs)
-/// that samples every `period` seconds cannot give: one warning a class, in
-/// the order of their first need, with what goes without it joined.
-pub fn filter_classes(period: f64, needs: &[(f64, String)]) -> Vec<Warning> {
-    let mut missing: Vec<(f64, Vec<&str>)> = Vec::new();
-    for (cfc, what) in needs {
-        if crate::pulse::cfc::applies(*cfc, period) {
-            continue;
-        }
-        match missing.iter_mut().find(|(c, _)| c == cfc) {
-            Some((_, whats)) => whats.push(what),
-            None => missing.push((*cfc, vec![what])),
-        }
-    }
-    (missing.into_iter())
-        .map(|(cfc, whats)| Warning::FilterClass {
-            cfc,
-            period,
-            consequence: whats.join("; "),
-        })
-        .collect()
 }
 
 impl std::fmt::Display for Warning {
@@ -457,35 +437,5 @@ mod tests {
                 .starts_with("output `phase` is NaN at t = 0.000000 s"),
             "{w}"
         );
-    }
-
-    /// One warning a class, in the order of the first need, joining what
-    /// goes without it; classes the rate gives are not there.
-    #[test]
-    fn filter_classes_the_rate_cannot_give_warn_once_each() {
-        let needs = [
-            (60.0, "a".to_string()),
-            (180.0, "b".to_string()),
-            (1000.0, "c".to_string()),
-            (180.0, "d".to_string()),
-        ];
-        // 1 kHz: CFC 60 and 180 apply (249.3 and 747.9 Hz), 1000 does not.
-        let [w] = &filter_classes(1e-3, &needs)[..] else {
-            panic!("{:?}", filter_classes(1e-3, &needs))
-        };
-        assert_eq!(w.kind(), "filter_class");
-        assert_eq!(
-            w.message(),
-            "CFC 1000 needs a sample rate above 4155 Hz (SAE J211-1: 2.0775·CFC below half the \
-             sample rate); samples every 1 ms give 1000 Hz: c"
-        );
-        let slow = filter_classes(1.5e-3, &needs);
-        assert_eq!(slow.len(), 2);
-        assert!(
-            slow[0].message().ends_with("give 667 Hz: b; d"),
-            "{}",
-            slow[0]
-        );
-        assert_eq!(filter_classes(1e-4, &needs), []);
     }
 }

@@ -13,6 +13,7 @@
 //!
 //! The CFC number is not the −3 dB frequency: that lies near 5/3 · CFC.
 
+use crate::warning::Warning;
 use std::f64::consts::SQRT_2;
 
 /// The standard channel classes of J211-1.
@@ -205,6 +206,30 @@ impl Pass {
     }
 }
 
+/// The filter classes of `needs` (`(class, what goes without it)` pairs)
+/// that samples every `period` seconds cannot give: one warning a class, in
+/// the order of their first need, with what goes without it joined.
+pub fn filter_classes(period: f64, needs: &[(f64, String)]) -> Vec<Warning> {
+    let mut missing: Vec<(f64, Vec<&str>)> = Vec::new();
+    for (cfc, what) in needs {
+        if applies(*cfc, period) {
+            continue;
+        }
+        match missing.iter_mut().find(|(c, _)| c == cfc) {
+            Some((_, whats)) => whats.push(what),
+            None => missing.push((*cfc, vec![what])),
+        }
+    }
+    (missing.into_iter())
+        .map(|(cfc, whats)| Warning::FilterClass {
+            cfc,
+            period,
+            min_rate: min_sample_rate(cfc),
+            consequence: whats.join("; "),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -383,5 +408,35 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// One warning a class, in the order of the first need, joining what
+    /// goes without it; classes the rate gives are not there.
+    #[test]
+    fn filter_classes_the_rate_cannot_give_warn_once_each() {
+        let needs = [
+            (60.0, "a".to_string()),
+            (180.0, "b".to_string()),
+            (1000.0, "c".to_string()),
+            (180.0, "d".to_string()),
+        ];
+        // 1 kHz: CFC 60 and 180 apply (249.3 and 747.9 Hz), 1000 does not.
+        let [w] = &filter_classes(1e-3, &needs)[..] else {
+            panic!("{:?}", filter_classes(1e-3, &needs))
+        };
+        assert_eq!(w.kind(), "filter_class");
+        assert_eq!(
+            w.message(),
+            "CFC 1000 needs a sample rate above 4155 Hz (SAE J211-1: 2.0775·CFC below half the \
+             sample rate); samples every 1 ms give 1000 Hz: c"
+        );
+        let slow = filter_classes(1.5e-3, &needs);
+        assert_eq!(slow.len(), 2);
+        assert!(
+            slow[0].message().ends_with("give 667 Hz: b; d"),
+            "{}",
+            slow[0]
+        );
+        assert_eq!(filter_classes(1e-4, &needs), []);
     }
 }

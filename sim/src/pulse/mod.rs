@@ -10,7 +10,7 @@ pub mod cfc;
 pub mod channels;
 pub mod occupant;
 
-use crate::warning::{self, Warning};
+use crate::warning::Warning;
 pub use cfc::{CfcError, cfc_filter, cfc_filter_classes};
 pub use occupant::{Olc, asi, clip_3ms, integrate, olc};
 use serde::Serialize;
@@ -242,7 +242,7 @@ impl Pulse {
                     .into(),
             ),
         ];
-        warning::filter_classes(grid_period(&self.t), &needs)
+        cfc::filter_classes(grid_period(&self.t), &needs)
     }
 
     /// The metrics of the pulse.

@@ -388,7 +388,7 @@ impl Metrics {
             ));
         }
         needs.extend(self.channels.iter().flat_map(ChannelRecord::filter_needs));
-        warning::filter_classes(grid_period(&self.times), &needs)
+        crate::pulse::cfc::filter_classes(grid_period(&self.times), &needs)
     }
 
     /// The sanity warnings of the crush channel (named `channel` in them):
