@@ -44,7 +44,7 @@ fn read(me: &mut Instance, name: &str) -> f64 {
 /// initial event iteration, then fixed RK4 steps of `h` to `t_end`,
 /// entering event mode where an indicator changed sign within a step;
 /// the largest value of `name` at the steps' ends.
-fn max_over_run(me: &mut Instance, name: &str, h: f64, t_end: f64) -> f64 {
+pub(crate) fn max_over_run(me: &mut Instance, name: &str, h: f64, t_end: f64) -> f64 {
     me.enter_initialization().unwrap();
     me.exit_initialization().unwrap();
     me.new_discrete_states().unwrap();
@@ -77,7 +77,7 @@ fn max_over_run(me: &mut Instance, name: &str, h: f64, t_end: f64) -> f64 {
         me.set_states(&x).unwrap();
         let before = g.clone();
         me.event_indicators(&mut g).unwrap();
-        if before.iter().zip(&g).any(|(a, b)| a * b < 0.0) {
+        if before.iter().zip(&g).any(|(a, b)| (*a < 0.0) != (*b < 0.0)) {
             me.enter_event_mode().unwrap();
             if me.new_discrete_states().unwrap().states_changed {
                 x = me.states();

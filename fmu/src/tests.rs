@@ -94,54 +94,11 @@ fn a_parameter_set_through_its_value_reference_changes_the_run_as_set_does() {
     assert!(relative < 2e-3, "CS {max} vs {reference}: {relative:e}");
 }
 
-/// A fixed-step RK4 over `(q, q̇)` with the FMU's derivatives, entering
-/// event mode where an indicator changed sign within a step (at the step's
-/// end, as a host without root finding does).
+/// The maximum crush under the fixed-step RK4 host of `me_tests` (event
+/// mode where an indicator changed sign within a step, at the step's end,
+/// as a host without root finding does).
 fn model_exchange_max_crush(me: &mut Instance, h: f64, t_end: f64) -> f64 {
-    me.enter_initialization().unwrap();
-    me.exit_initialization().unwrap();
-    me.new_discrete_states().unwrap();
-    me.enter_continuous_time_mode().unwrap();
-    let n = me.state_count();
-    let mut g = vec![0.0; me.event_count()];
-    me.event_indicators(&mut g).unwrap();
-    let mut x = me.states();
-    let (mut t, mut max) = (0.0, crush(me));
-    let rate = |me: &mut Instance, t: f64, x: &[f64]| {
-        me.set_time(t).unwrap();
-        me.set_states(x).unwrap();
-        let mut dx = vec![0.0; n];
-        me.derivatives(&mut dx).unwrap();
-        dx
-    };
-    let along = |x: &[f64], k: &[f64], c: f64| -> Vec<f64> {
-        x.iter().zip(k).map(|(x, k)| x + c * k).collect()
-    };
-    while t < t_end - 0.5 * h {
-        let k1 = rate(me, t, &x);
-        let k2 = rate(me, t + h / 2.0, &along(&x, &k1, h / 2.0));
-        let k3 = rate(me, t + h / 2.0, &along(&x, &k2, h / 2.0));
-        let k4 = rate(me, t + h, &along(&x, &k3, h));
-        for i in 0..n {
-            x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-        }
-        t += h;
-        me.set_time(t).unwrap();
-        me.set_states(&x).unwrap();
-        let before = g.clone();
-        me.event_indicators(&mut g).unwrap();
-        if before.iter().zip(&g).any(|(a, b)| (*a < 0.0) != (*b < 0.0)) {
-            me.enter_event_mode().unwrap();
-            let update = me.new_discrete_states().unwrap();
-            if update.states_changed {
-                x = me.states();
-            }
-            me.enter_continuous_time_mode().unwrap();
-            me.event_indicators(&mut g).unwrap();
-        }
-        max = max.max(crush(me));
-    }
-    max
+    crate::me_tests::max_over_run(me, "crush", h, t_end)
 }
 
 #[test]
