@@ -16,6 +16,8 @@ mod models {
     lagrangian::lagrangian!(file = "specs/slider_crank.lpm");
     // Too large for the canonical form: its program comes from the derivation graph.
     lagrangian::lagrangian!(file = "tests/specs/three_link_conical_pendulum.lpm");
+    // An input inside another input's arguments.
+    lagrangian::lagrangian!(file = "tests/specs/nested_inputs/friction_under_contact.lpm");
 }
 
 /// Random specs from the property tests' generator (`lagrangian-core/tests/
@@ -157,8 +159,8 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default>(spec: &str) -> u64 
         assert_eq!(compiled.input_sites(), interpreted.input_sites());
         let total: usize = compiled.input_sites().iter().map(|s| s.1).sum();
         let (mut ac, mut ai) = (vec![0.0; total], vec![0.0; total]);
-        compiled.input_arguments(t, &q, &qd, &mut ac);
-        interpreted.input_arguments(t, &q, &qd, &mut ai);
+        compiled.input_arguments(t, &q, &qd, &inputs, &mut ac);
+        interpreted.input_arguments(t, &q, &qd, &inputs, &mut ai);
         assert_close("input arguments", &ac, &ai, &mut worst);
         let seen = std::cell::RefCell::new(vec![Vec::new(); compiled.input_names().len()]);
         let recording = |index: usize, args: &[f64]| {
@@ -220,6 +222,9 @@ fn every_spec_agrees() {
         compare::<10, models::PendulumChain10>("specs/pendulum_chain_10.lpm"),
         compare::<3, models::FourBarLinkage>("specs/four_bar_linkage.lpm"),
         compare::<3, models::SliderCrank>("specs/slider_crank.lpm"),
+        compare::<2, models::FrictionUnderContact>(
+            "tests/specs/nested_inputs/friction_under_contact.lpm",
+        ),
         compare::<6, models::ThreeLinkConicalPendulum>(
             "tests/specs/three_link_conical_pendulum.lpm",
         ),

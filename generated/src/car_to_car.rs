@@ -284,11 +284,12 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         out.mass_times_acceleration_q[(2, 2)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let xa = q[0];

@@ -199,11 +199,12 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         forcing[1] = m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x2 * g));
         [0.0, 0.0]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
         out: &mut [f64],
     ) {}
     fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(

@@ -256,11 +256,12 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
             0.0,
         ]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
         out: &mut [f64],
     ) {}
     #[inline]

@@ -257,11 +257,12 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         out.mass_times_acceleration_q[(1, 1)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let xb = q[0];

@@ -152,11 +152,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         forcing[0] = x0 - m * l * g * theta.sin() - theta_dot * c;
         [c * (theta_dot * theta_dot), x0 * theta_dot]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         out[0] = t;

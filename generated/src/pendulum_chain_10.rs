@@ -1039,11 +1039,12 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                     + x66 * x81 + x69 * x83 + x71 * x85 + x72 * x87 - x34 * g));
         [0.0, 0.0]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        inputs: &I,
         out: &mut [f64],
     ) {}
 }

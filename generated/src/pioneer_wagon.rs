@@ -683,11 +683,12 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         out.mass_times_acceleration_q[(6, 6)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let x1 = q[0];

@@ -148,11 +148,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         forcing[0] = -(m * l * g * theta.sin());
         [0.0, 0.0]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
         out: &mut [f64],
     ) {}
 }

@@ -237,11 +237,12 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         forcing[2] = (x_free - x) * k;
         [0.0, 0.0]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        inputs: &I,
         out: &mut [f64],
     ) {}
     fn constraints<I: ::lagrangian_model::InputFunctions + ?Sized>(

@@ -145,11 +145,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         forcing[0] = x0 - x * k - x_dot * c;
         [c * (x_dot * x_dot), x0 * x_dot]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         out[0] = t;

@@ -138,11 +138,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         forcing[0] = -x0;
         [0.0, -(x_dot * x0)]
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let x = q[0];

@@ -659,11 +659,12 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         out.mass_times_acceleration_q[(2, 2)] = m2 * (l2 * (x51 - x50));
         ::core::result::Result::Ok(())
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let r = q[0];

@@ -788,11 +788,12 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         out.mass_times_acceleration_q[(3, 3)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments(
+    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
         qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        inputs: &I,
         out: &mut [f64],
     ) {
         let r = q[0];

@@ -76,7 +76,7 @@ fn evaluate<const N: usize, M: LagrangianSystem<N>>(
     let (mut m1, mut f1) = (SMatrix::<f64, N, N>::zeros(), SVector::<f64, N>::zeros());
     let powers = model.mass_matrix_forcing_and_powers(t, q, qd, &inputs, &mut m1, &mut f1);
     let mut arguments = vec![0.0; model.input_sites().iter().map(|s| s.1).sum()];
-    model.input_arguments(t, q, qd, &mut arguments);
+    model.input_arguments(t, q, qd, &inputs, &mut arguments);
     let mut outputs = vec![0.0; model.output_names().len()];
     model.outputs(t, q, qd, a, &inputs, &mut outputs);
     let mut switching = vec![0.0; model.switching_count()];

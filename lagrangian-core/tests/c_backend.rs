@@ -197,7 +197,7 @@ fn expected(
     let count = program.input_sites.iter().map(|s| s.1).sum();
     let mut arguments = vec![0.0; count];
     model
-        .evaluate_input_arguments(t, q, qd, &mut arguments)
+        .evaluate_input_arguments(t, q, qd, &inputs, &mut arguments)
         .unwrap();
     out.extend(arguments);
     let mut outputs = vec![0.0; model.output_names().len()];

@@ -18,8 +18,10 @@ use crate::status::ExitStatus;
 use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::nalgebra::{SMatrix, SVector};
 use lagrangian_model::{
-    ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, WithDimension,
+    ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, NoInputs,
+    WithDimension,
 };
+use lagrangian_sim::crash::BoundInputs;
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
 use lagrangian_sim::simulate::constrained::{self, DEFAULT_STABILIZATION};
@@ -343,12 +345,17 @@ fn scenario_inputs(
             .map_err(|e| Failure::usage(e.to_string()))?;
     }
     let mut arguments = vec![0.0; model.input_sites().iter().map(|s| s.1).sum()];
+    // A state of the wrong dimension fails here, before the components start.
     model
-        .evaluate_input_arguments(t, q, qd, &mut arguments)
+        .evaluate_input_arguments(t, q, qd, &NoInputs, &mut arguments)
         .map_err(|e| Failure::evaluation(e.to_string()))?;
+    let evaluate = |inputs: &BoundInputs, out: &mut [f64]| {
+        let _ = model.evaluate_input_arguments(t, q, qd, inputs, out);
+    };
     let mut inputs = scenario.inputs.clone();
+    let sites = model.input_sites().len();
     inputs
-        .start(&arguments)
+        .start_settled(&mut arguments, sites, evaluate, |_| Ok(()))
         .map_err(|fault| Failure::evaluation(fault.to_string()))?;
     let set = scenario.parameters.iter().map(|&(i, _)| i).collect();
     Ok((Box::new(inputs), set, scenario.stabilization))

@@ -160,11 +160,16 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         let _ = (self.0).evaluate_constraints(t, q.as_slice(), qd.as_slice(), inputs, out);
     }
 
-    fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]) {
+    fn input_arguments<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    ) {
         // The dimension is N by construction, so this cannot fail.
-        let _ = self
-            .0
-            .evaluate_input_arguments(t, q.as_slice(), qd.as_slice(), out);
+        let _ = (self.0).evaluate_input_arguments(t, q.as_slice(), qd.as_slice(), inputs, out);
     }
 
     fn solve_mass(

@@ -1,13 +1,13 @@
 //! Models run by the interpreter from a compiled spec's [`Tape`], without
 //! recompiling, with the same numbers as the compiled code.
 
+use crate::InputFunctions;
 use crate::error::ModelError;
 use crate::layout::{
     ConstraintLayout, Energies, MechanicalEnergy, RoutineKind, mass_entries, unpack_dynamics,
 };
 use crate::native::{NativeRoutines, with_input_call};
 use crate::tape::{DerivedRoutine, Tape};
-use crate::{InputFunctions, NoInputs};
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -405,17 +405,18 @@ impl InterpretedModel {
     /// The arguments of every input call at one state (see
     /// [`InterpretedModel::input_sites`]), concatenated into `out`.
     #[inline]
-    pub fn evaluate_input_arguments(
+    pub fn evaluate_input_arguments<I: InputFunctions + ?Sized>(
         &self,
         t: f64,
         q: &[f64],
         qd: &[f64],
+        inputs: &I,
         out: &mut [f64],
     ) -> Result<(), ModelError> {
         self.run(
             RoutineKind::InputArguments,
             (t, q, qd, &[]),
-            &NoInputs,
+            inputs,
             |values| out[..values.len()].copy_from_slice(values),
         )
     }

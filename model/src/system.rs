@@ -107,7 +107,16 @@ pub trait LagrangianSystem<const N: usize> {
 
     /// The arguments of every call of [`LagrangianSystem::input_sites`] at
     /// this state, concatenated (`out` holds at least their total count).
-    fn input_arguments(&self, t: f64, q: &SVector<f64, N>, qd: &SVector<f64, N>, out: &mut [f64]);
+    /// An argument that calls an input (friction under a contact's normal
+    /// force, `rub(dot(x), press(y, dot(y)))`) calls it through `inputs`.
+    fn input_arguments<I: InputFunctions + ?Sized>(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        inputs: &I,
+        out: &mut [f64],
+    );
 
     /// Writes `∂f/∂q`, `∂f/∂q̇` and `∂(M a)/∂q` for the accelerations `qdd`.
     fn jacobians<I: InputFunctions + ?Sized>(

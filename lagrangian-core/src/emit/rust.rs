@@ -370,7 +370,9 @@ fn routine_method(
             }
         }
         RoutineKind::InputArguments => quote! {
-            fn input_arguments(&self, t: f64, q: &#vector, qd: &#vector, out: &mut [f64]) {
+            fn input_arguments<I: #rt::InputFunctions + ?Sized>(
+                &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
+            ) {
                 #(#statements)*
                 #(#writes)*
             }

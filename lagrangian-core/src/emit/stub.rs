@@ -40,9 +40,9 @@ pub(crate) fn emit_stub(outline: &Outline, options: &RustOptions) -> TokenStream
                     &self, t: f64, q: &#vector, qd: &#vector, inputs: &I,
                 ) -> #rt::Energies { #unreachable }
                 fn input_sites(&self) -> &[(usize, usize)] { #unreachable }
-                fn input_arguments(&self, t: f64, q: &#vector, qd: &#vector, out: &mut [f64]) {
-                    #unreachable
-                }
+                fn input_arguments<I: #rt::InputFunctions + ?Sized>(
+                    &self, t: f64, q: &#vector, qd: &#vector, inputs: &I, out: &mut [f64],
+                ) { #unreachable }
             }
         }
     });

@@ -304,14 +304,12 @@ impl<'a> ExpressionLowering<'a> {
             Some((Binding::Input(index, arity), _)) => {
                 let (index, arity) = (*index, *arity);
                 check_arity(ident, &name, arity, args.len(), span)?;
-                let before = self.input_calls.len();
+                // An argument may call inputs itself: they are evaluated
+                // innermost first, wherever the call is evaluated.
                 let values = args
                     .iter()
                     .map(|a| self.expr(a))
                     .collect::<Result<Vec<_>, _>>()?;
-                if let Some(&(inner, at)) = self.input_calls.get(before) {
-                    return Err(input_in_arguments(&name, &self.input_names[inner], at));
-                }
                 self.input_calls.push((index, span));
                 Ok(self.store.input_call(index, values))
             }
@@ -560,20 +558,6 @@ fn check_arity(
     Err(Diagnostic::new(
         span,
         format!("`{name}` takes {expected} argument(s) but {found} were given"),
-    ))
-}
-
-/// An argument of input `outer` that calls input `inner` (directly or
-/// through a `let`), at `at`: the components bound to inputs read their
-/// arguments without evaluating the inputs, so such a model would fail at
-/// its first step; refused until arguments are evaluated in dependency order.
-fn input_in_arguments(outer: &str, inner: &str, at: SpanRange) -> Diagnostic {
-    Diagnostic::new(
-        at,
-        format!("an argument of input `{outer}` calls input `{inner}`: an input's arguments cannot call inputs (not supported yet)"),
-    )
-    .with_help(format!(
-        "give `{outer}` the arguments of `{inner}` instead (e.g. `{outer}(v, y, dot(y))`) and let its component compute both, or write one of them as a spec expression"
     ))
 }
 

@@ -236,6 +236,38 @@ impl BoundInputs {
         self.event_arguments[c].map(|(start, len)| &arguments[start..start + len])
     }
 
+    /// Starts the components at the arguments `evaluate` writes into
+    /// `arguments` with the components as they stand, `prepare` run after
+    /// each start (the internal states loaded). An input called inside
+    /// another input's arguments needs its component started, so the start
+    /// is repeated until the arguments no longer change: one pass per level
+    /// of nesting, at most `sites + 1` (a model without nested inputs starts
+    /// once, and evaluates its arguments a second time to see them settled).
+    pub fn start_settled(
+        &mut self,
+        arguments: &mut [f64],
+        sites: usize,
+        evaluate: impl Fn(&BoundInputs, &mut [f64]),
+        mut prepare: impl FnMut(&mut BoundInputs) -> Result<(), Fault>,
+    ) -> Result<(), Fault> {
+        let mut started: Option<Vec<f64>> = None;
+        for _ in 0..=sites + 1 {
+            evaluate(self, arguments);
+            // A failure of an input not yet started is no failure of the
+            // run: the next pass evaluates it started.
+            let failure = self.take_failure();
+            if started.as_deref().is_some_and(|s| same_bits(s, arguments)) {
+                return failure.map_or(Ok(()), Err);
+            }
+            self.start(arguments)?;
+            prepare(self)?;
+            started = Some(arguments.to_vec());
+        }
+        Err(Fault::Component(
+            "the arguments of the inputs did not settle at the start: an input inside another input's arguments depends on the other".to_string(),
+        ))
+    }
+
     /// Puts every component in its initial state for a run that starts
     /// with the model's input arguments `arguments` (crush elements in
     /// contact or not, welds intact).
@@ -650,4 +682,9 @@ mod tests {
             Some(Fault::OutOfRange { x, .. }) if x == 2.0
         ));
     }
+}
+
+/// Whether two argument lists are the same numbers, NaN included.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }

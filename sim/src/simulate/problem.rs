@@ -146,18 +146,24 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
 
     /// Puts the crash components in the state a run from `(t, y)` starts
     /// in, with their internal states at `y.z`, or at their initial values
-    /// when `y` carries none.
+    /// when `y` carries none (see [`BoundInputs::start_settled`] for inputs
+    /// inside inputs' arguments).
     pub fn start(&mut self, t: f64, y: &PhaseState<N>) -> Result<(), SolverError> {
-        self.system
-            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
-        let error = |fault| SolverError::Rhs { t, error: fault };
-        self.inputs.start(&self.arguments).map_err(error)?;
-        if y.z.is_empty() {
-            self.inputs.initial_internal().map_err(error)?;
-        } else {
-            self.inputs.load(&y.z);
-        }
-        Ok(())
+        let system = &self.system;
+        let sites = system.input_sites().len();
+        let evaluate = |inputs: &BoundInputs, out: &mut [f64]| {
+            system.input_arguments(t, &y.q, &y.v, inputs, out)
+        };
+        let prepare = |inputs: &mut BoundInputs| match y.z.is_empty() {
+            true => inputs.initial_internal().map(|_| ()),
+            false => {
+                inputs.load(&y.z);
+                Ok(())
+            }
+        };
+        (self.inputs)
+            .start_settled(&mut self.arguments, sites, evaluate, prepare)
+            .map_err(|fault| SolverError::Rhs { t, error: fault })
     }
 
     /// The internal states a run starts with (empty for a scenario whose
@@ -178,7 +184,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         rates: &mut Internal,
     ) -> Result<(), Fault> {
         self.system
-            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+            .input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
         rates.assign(&y.z);
         self.inputs
             .internal_rates(&self.arguments, rates.as_mut_slice())?;
@@ -372,7 +378,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
 
     /// The value of every input the dynamics calls, in input-site order.
     pub fn input_values(&mut self, t: f64, q: &SVector<f64, N>, v: &SVector<f64, N>) -> Vec<f64> {
-        self.system.input_arguments(t, q, v, &mut self.arguments);
+        self.system
+            .input_arguments(t, q, v, &self.inputs, &mut self.arguments);
         let mut offset = 0;
         let mut values = Vec::with_capacity(self.system.input_sites().len());
         for &(input, arity) in self.system.input_sites() {
@@ -393,7 +400,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
     ) -> Result<Vec<f64>, Fault> {
-        self.system.input_arguments(t, q, v, &mut self.arguments);
+        self.system
+            .input_arguments(t, q, v, &self.inputs, &mut self.arguments);
         self.inputs.column_values(&self.arguments)
     }
 
@@ -405,7 +413,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         y: &PhaseState<N>,
     ) -> Result<Vec<(String, f64)>, Fault> {
         self.inputs.load(&y.z);
-        (self.system).input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        (self.system).input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
         self.inputs.dissipated_energies(&self.arguments)
     }
 }
@@ -434,7 +442,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
     fn events(&mut self, t: f64, y: &PhaseState<N>, g: &mut [f64]) -> Result<(), Fault> {
         self.inputs.load(&y.z);
         self.system
-            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+            .input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
         let (components, switching) = g.split_at_mut(self.inputs.event_count());
         // A smooth model has none, and writes nothing.
         if !switching.is_empty() {
@@ -450,7 +458,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         self.inputs.load(&y.z);
         let Some(switch) = k.checked_sub(self.inputs.event_count()) else {
             self.system
-                .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+                .input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
             return self.inputs.event_value(k, &self.arguments, g);
         };
         let switching = &mut g[self.inputs.event_count()..];
@@ -496,7 +504,7 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
         }
         self.inputs.load(&y.z);
         self.system
-            .input_arguments(t, &y.q, &y.v, &mut self.arguments);
+            .input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
         match self.inputs.on_event(k, t, &self.arguments) {
             // A kink of a component's curve: not a change of regime.
             Ok((_, description)) if description.is_empty() => EventAction::Restart,

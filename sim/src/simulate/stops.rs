@@ -9,7 +9,7 @@
 //! what a spec's `barrier(t)` compiles to.
 
 use crate::crash::BoundInputs;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_model::{LagrangianSystem, NoInputs};
 use nalgebra::SVector;
 
 /// Two probe times, far from any breakpoint a table is likely to have.
@@ -77,7 +77,7 @@ pub(super) fn time_sites<const N: usize, S: LagrangianSystem<N>>(system: &S) -> 
     let zero = SVector::<f64, N>::zeros();
     let arguments = PROBES.map(|t| {
         let mut out = vec![0.0; count];
-        system.input_arguments(t, &zero, &zero, &mut out);
+        system.input_arguments(t, &zero, &zero, &NoInputs, &mut out);
         out
     });
     let mut offset = 0;
