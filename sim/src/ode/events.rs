@@ -80,7 +80,7 @@ impl EventTracker {
             return Ok(());
         }
         events_at(problem, t, y, &mut self.start)?;
-        check_finite(&self.start, t)?;
+        check_finite(problem, &self.start, t)?;
         if self.start.contains(&0.0) {
             let delta = 1e-9 * t.abs().max(1.0);
             let mut ahead = y.clone();
@@ -109,12 +109,12 @@ impl EventTracker {
         }
         let (t0, t1) = (dense.t0(), dense.t1());
         events_at(problem, t1, y_end, &mut self.end)?;
-        check_finite(&self.end, t1)?;
+        check_finite(problem, &self.end, t1)?;
         // The midpoint catches a function that crosses and returns within one step.
         let tm = 0.5 * (t0 + t1);
         dense.eval(tm, scratch);
         events_at(problem, tm, scratch, &mut self.middle)?;
-        check_finite(&self.middle, tm)?;
+        check_finite(problem, &self.middle, tm)?;
         let mut earliest: Option<(usize, f64)> = None;
         for k in 0..self.start.len() {
             // Any crossing is a change of sign: the direction is asked
@@ -189,7 +189,7 @@ impl EventTracker {
             if !gc.is_finite() {
                 return Err(SolverError::NonFinite {
                     t: c,
-                    what: format!("event function {k}"),
+                    what: problem.name_event(k, gc),
                 });
             }
             if gc.signum() == before_sign && gc != 0.0 {
@@ -224,12 +224,18 @@ fn events_at<Y: OdeVector, P: OdeProblem<Y>>(
         .map_err(|error| SolverError::Rhs { t, error })
 }
 
-fn check_finite<E>(values: &[f64], t: f64) -> Result<(), SolverError<E>> {
+/// `Err` naming the first of the event functions `values` at `t` that is
+/// not finite, as `problem` names it.
+fn check_finite<Y: OdeVector, P: OdeProblem<Y>>(
+    problem: &P,
+    values: &[f64],
+    t: f64,
+) -> Result<(), SolverError<P::Error>> {
     match values.iter().position(|g| !g.is_finite()) {
         None => Ok(()),
         Some(k) => Err(SolverError::NonFinite {
             t,
-            what: format!("event function {k}"),
+            what: problem.name_event(k, values[k]),
         }),
     }
 }

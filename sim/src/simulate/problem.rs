@@ -222,7 +222,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         self.input_failure()?;
         if self.constraint_count == 0 {
             return Ok(Accelerations {
-                a: self.solve(q, v, &mass, &forcing)?,
+                a: self.solve((t, q, v), &mass, &forcing)?,
                 multipliers: Vec::new(),
                 residual: Vec::new(),
             });
@@ -245,8 +245,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         forcing: &SVector<f64, N>,
     ) -> Result<(SVector<f64, N>, f64), Fault> {
         if self.constraint_count == 0 {
-            let (_, q, v) = state;
-            return Ok((self.solve(q, v, mass, forcing)?, 0.0));
+            return Ok((self.solve(state, mass, forcing)?, 0.0));
         }
         let mut workspace = self.workspace.borrow_mut();
         let dynamics = (mass, forcing);
@@ -281,11 +280,11 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     }
 
     /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
-    /// singular `M` reported by name and state.
+    /// singular `M` reported by name and state: the component input that
+    /// is not finite, where one is.
     fn solve(
         &self,
-        q: &SVector<f64, N>,
-        v: &SVector<f64, N>,
+        (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, Fault> {
@@ -294,6 +293,9 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             && a.iter().all(|x| x.is_finite())
         {
             return Ok(a);
+        }
+        if let Some(fault) = self.non_finite_input(t, q, v) {
+            return Err(fault);
         }
         // Name the first bad value: a non-finite entry of M or f is the
         // cause of anything that follows from it.
@@ -359,6 +361,9 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .zip(["dissipated power", "power of the forces"])
         {
             if !power.is_finite() {
+                if let Some(fault) = self.non_finite_input(t, q, v) {
+                    return Err(fault);
+                }
                 return Err(Fault::NonFinite {
                     output: format!("the {name}"),
                     value: *power,
@@ -368,6 +373,46 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             }
         }
         Ok((a, powers))
+    }
+
+    /// The first input the dynamics calls at a state whose component gives
+    /// a value that is not finite at finite arguments, as a fault naming
+    /// the input, the component and the arguments; `None` if there is none
+    /// (what is not finite is the model's own arithmetic). For the message
+    /// of a dynamics that is not finite: it evaluates the inputs again.
+    fn non_finite_input(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Option<Fault> {
+        let mut arguments = vec![0.0; self.arguments.len()];
+        self.system.input_arguments(t, q, v, &mut arguments);
+        let mut offset = 0;
+        let mut found = None;
+        for &(input, arity) in self.system.input_sites() {
+            let args = &arguments[offset..offset + arity];
+            offset += arity;
+            if !args.iter().all(|x| x.is_finite()) {
+                continue;
+            }
+            let value = self.inputs.value(input, args);
+            if !value.is_finite()
+                && let Some(output) = self.inputs.name_input(input, args)
+            {
+                found = Some((output, value));
+                break;
+            }
+        }
+        // What the calls failed on was reported before this one.
+        let _ = self.inputs.take_failure();
+        let (output, value) = found?;
+        Some(Fault::NonFinite {
+            output,
+            value,
+            q: q.as_slice().to_vec(),
+            qd: v.as_slice().to_vec(),
+        })
     }
 
     /// The value of every input the dynamics calls, in input-site order.
@@ -473,6 +518,39 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
             self.smoothed.0 = t0;
             self.smoothed.1.clear();
             self.smoothed.1.extend(self.inputs.stand_ins());
+        }
+    }
+
+    /// The first entry of `dy` that is not finite, by name: a coordinate's
+    /// velocity or acceleration, a power, or a component's state rate or
+    /// dissipated power (naming the component).
+    fn name_non_finite(&mut self, t: f64, y: &PhaseState<N>, dy: &PhaseState<N>) -> String {
+        let names = self.system.coordinate_names();
+        let first = |values: &[f64]| values.iter().position(|x| !x.is_finite());
+        if let Some(i) = first(dy.q.as_slice()) {
+            return format!("the velocity of {} ({})", names[i], dy.q[i]);
+        }
+        if let Some(i) = first(dy.v.as_slice()) {
+            return format!("the acceleration of {} ({})", names[i], dy.v[i]);
+        }
+        if let Some(i) = first(&dy.work) {
+            let power = ["the dissipated power", "the power of the forces"][i];
+            return format!("{power} ({})", dy.work[i]);
+        }
+        let Some(i) = first(dy.z.as_slice()) else {
+            return "the right-hand side".to_string();
+        };
+        self.inputs.load(&y.z);
+        (self.system).input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        (self.inputs).name_internal_rate(i, dy.z.as_slice()[i], &self.arguments)
+    }
+
+    /// A component's event by its name and component; a switching function
+    /// of the model by its number.
+    fn name_event(&self, k: usize, value: f64) -> String {
+        match k.checked_sub(self.inputs.event_count()) {
+            Some(switch) => format!("switching function {} of the model ({value})", switch + 1),
+            None => self.inputs.name_event(k, value),
         }
     }
 
