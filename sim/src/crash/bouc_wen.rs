@@ -226,10 +226,26 @@ impl BoucWen {
         let (fy, uy, big_a) = (self.fy, self.uy, self.big_a);
         let (beta, gamma) = (self.beta, self.gamma);
         let checks = [
-            (("fy/uy", "the initial stiffness"), vec![("fy", fy), ("uy", uy)], fy / uy),
-            (("A/uy", "the rate of z"), vec![("A", big_a), ("uy", uy)], big_a / uy),
-            (("beta/uy", "the rate of z"), vec![("beta", beta), ("uy", uy)], beta / uy),
-            (("gamma/uy", "the rate of z"), vec![("gamma", gamma), ("uy", uy)], gamma / uy),
+            (
+                ("fy/uy", "the initial stiffness"),
+                vec![("fy", fy), ("uy", uy)],
+                fy / uy,
+            ),
+            (
+                ("A/uy", "the rate of z"),
+                vec![("A", big_a), ("uy", uy)],
+                big_a / uy,
+            ),
+            (
+                ("beta/uy", "the rate of z"),
+                vec![("beta", beta), ("uy", uy)],
+                beta / uy,
+            ),
+            (
+                ("gamma/uy", "the rate of z"),
+                vec![("gamma", gamma), ("uy", uy)],
+                gamma / uy,
+            ),
             (
                 ("fy/A", "the dissipated power"),
                 vec![("fy", fy), ("A", big_a)],

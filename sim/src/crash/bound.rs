@@ -539,13 +539,21 @@ impl BoundInputs {
         match state {
             Some(k) => {
                 let state = named.component.states()[k].quantity;
-                let z = self.loaded.as_slice().get(index).copied().unwrap_or(f64::NAN);
+                let z = self
+                    .loaded
+                    .as_slice()
+                    .get(index)
+                    .copied()
+                    .unwrap_or(f64::NAN);
                 format!(
                     "the rate of state `{state}` of {} ({rate}, at {state} = {z:e}, {at})",
                     named.describe()
                 )
             }
-            None => format!("the dissipated power of {} ({rate}, at {at})", named.describe()),
+            None => format!(
+                "the dissipated power of {} ({rate}, at {at})",
+                named.describe()
+            ),
         }
     }
 
@@ -581,7 +589,10 @@ impl BoundInputs {
             named.describe(),
             listed(args)
         );
-        let stateful = self.layout.stateful().find(|&(c, _)| c == binding.component);
+        let stateful = self
+            .layout
+            .stateful()
+            .find(|&(c, _)| c == binding.component);
         let states = named.component.states();
         let loaded = stateful.and_then(|(_, at)| self.loaded.as_slice().get(at..at + states.len()));
         if let Some(z) = loaded {
@@ -736,5 +747,80 @@ mod tests {
             inputs.take_failure(),
             Some(Fault::OutOfRange { x, .. }) if x == 2.0
         ));
+    }
+
+    /// A crush element on the input `element(u, v)`, with its events seen.
+    fn crush_on_element() -> BoundInputs {
+        let crush = CrushElement::new(
+            LoadingCurve::SecantStiffness(SecantCurve::constant(1.0e6)),
+            SecantCurve::constant(1.0e3),
+            Unloading::Elastic,
+            1.0,
+            true,
+        );
+        let named = NamedComponent {
+            name: "bumper".into(),
+            component: Box::new(crush),
+        };
+        let binding = Binding {
+            component: 0,
+            port: Port::Value,
+        };
+        let names = vec!["element".into()];
+        BoundInputs::new(vec![named], vec![Some(binding)], vec![Some((0, 2))], names)
+    }
+
+    /// The messages of a component that is not finite name it by its
+    /// section and kind, and say which event, input or quantity, with the
+    /// value and the arguments (the strings are the format documented on
+    /// each method, written out here).
+    #[test]
+    fn a_component_that_is_not_finite_is_named() {
+        let inputs = crush_on_element();
+        assert_eq!(
+            inputs.name_event(0, f64::NAN),
+            "the function of event `peak crush` of crush component `bumper` (NaN)"
+        );
+        assert_eq!(
+            inputs.name_event(2, f64::INFINITY),
+            "the function of event `separation` of crush component `bumper` (inf)"
+        );
+        assert_eq!(inputs.name_event(99, 1.0 / 0.0), "event function 99 (inf)");
+        assert_eq!(
+            inputs.name_input(0, &[0.01, -2.0]).unwrap(),
+            "input `element` (the force of crush component `bumper` at arguments 1e-2, -2e0)"
+        );
+        // Its dissipated energy is its one internal state.
+        assert_eq!(
+            inputs.name_internal_rate(0, f64::NAN, &[0.01, -2.0]),
+            "the dissipated power of crush component `bumper` (NaN, at arguments 1e-2, -2e0)"
+        );
+    }
+
+    /// A Bouc–Wen spring's state is named, with its value.
+    #[test]
+    fn a_state_rate_that_is_not_finite_names_the_state() {
+        use crate::crash::bouc_wen::BoucWen;
+        let spring = BoucWen::new(1e3, 0.01, 0.1, 1.0, 0.5, 0.5, 2.0, 1e200);
+        let named = NamedComponent {
+            name: "hinge".into(),
+            component: Box::new(spring),
+        };
+        let binding = Binding {
+            component: 0,
+            port: Port::Value,
+        };
+        let names = vec!["element".into()];
+        let mut inputs =
+            BoundInputs::new(vec![named], vec![Some(binding)], vec![Some((0, 2))], names);
+        inputs.initial_internal().unwrap();
+        assert_eq!(
+            inputs.name_internal_rate(0, f64::NEG_INFINITY, &[0.0, 1.0]),
+            "the rate of state `z` of bouc_wen component `hinge` (-inf, at z = 1e200, arguments 0e0, 1e0)"
+        );
+        assert_eq!(
+            inputs.name_input(0, &[0.0, 1.0]).unwrap(),
+            "input `element` (the force of bouc_wen component `hinge` at arguments 0e0, 1e0, its state z = 1e200)"
+        );
     }
 }

@@ -520,7 +520,9 @@ fn checked_table(
     {
         return Err(TableError::Value { index, value });
     }
-    let xs: Vec<f64> = std::iter::once(0.0).chain(breakpoints.iter().copied()).collect();
+    let xs: Vec<f64> = std::iter::once(0.0)
+        .chain(breakpoints.iter().copied())
+        .collect();
     let ys: Vec<f64> = first.into_iter().chain(values.iter().copied()).collect();
     if let Some((index, slope)) = overflowing_slope(&xs, &ys) {
         return Err(TableError::Slope { index, slope });

@@ -137,7 +137,12 @@ impl Section for DahlSection {
         let (sigma0, fc) = (law.sigma0, law.fc);
         let entries = [("sigma0", sigma0), ("fc", fc)];
         let formula = ("sigma0/fc", "the rate of z");
-        finite_combination(&format!("components.{name}"), formula, &entries, sigma0 / fc)?;
+        finite_combination(
+            &format!("components.{name}"),
+            formula,
+            &entries,
+            sigma0 / fc,
+        )?;
         let c = binder.add(name.to_string(), Box::new(law));
         binder.bind_ports(&self.inputs, "force", c, name)
     }

@@ -380,4 +380,35 @@ mod tests {
         assert_eq!(k, 0);
         assert!(t >= 3.3e-4 && t - 3.3e-4 <= 1e-12, "{t}");
     }
+
+    /// An event function that is not finite at the step's end, or at a
+    /// point of the bracket, is an error that says which function and its
+    /// value, as the problem names it (by default by its index).
+    #[test]
+    fn an_event_function_that_is_not_finite_is_named() {
+        let mut at_end = OneEvent {
+            g: |_t, call| if call == 1 { -1.0 } else { f64::NAN },
+            calls: 0,
+        };
+        let result = locate_in_step(&mut at_end);
+        let Err(SolverError::NonFinite { t, what }) = result else {
+            panic!("{result:?}");
+        };
+        assert_eq!((t, what.as_str()), (1e-3, "event function 0 (NaN)"));
+        // Start, end and midpoint finite, then -inf at the first probe.
+        let mut in_bracket = OneEvent {
+            g: |_t, call| match call {
+                1 | 3 => -1.0,
+                2 => 1.0,
+                _ => f64::NEG_INFINITY,
+            },
+            calls: 0,
+        };
+        let result = locate_in_step(&mut in_bracket);
+        let Err(SolverError::NonFinite { t, what }) = result else {
+            panic!("{result:?}");
+        };
+        assert!(t > 0.5e-3 && t < 1e-3, "{t}");
+        assert_eq!(what, "event function 0 (-inf)");
+    }
 }

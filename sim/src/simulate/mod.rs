@@ -374,7 +374,9 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
     let components: Vec<String> = (scenario.inputs.columns().into_iter())
         .map(|(name, _)| name)
         .collect();
-    let non_finite = sampler.metrics.non_finite_warnings(&model.output_names(), &components);
+    let non_finite = sampler
+        .metrics
+        .non_finite_warnings(&model.output_names(), &components);
     warnings.extend(non_finite);
     let constraints = projection.map(|projection| ConstraintReport {
         names: own(model.constraint_names()),

@@ -12,6 +12,11 @@ use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
 
+/// An input value of this magnitude or more squares to more than the
+/// largest double (`√f64::MAX ≈ 1.34e154`): the input a dynamics that
+/// overflowed is blamed on, when none is infinite itself.
+const HUGE_INPUT: f64 = 1.3e154;
+
 /// One event handled during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRecord {
@@ -294,22 +299,10 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         {
             return Ok(a);
         }
-        if let Some(fault) = self.non_finite_input(t, q, v) {
-            return Err(fault);
-        }
         // Name the first bad value: a non-finite entry of M or f is the
         // cause of anything that follows from it.
         let names = self.system.coordinate_names();
-        let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
-        let non_finite = |output: String, value: f64| {
-            let (q, qd) = state();
-            Fault::NonFinite {
-                output,
-                value,
-                q,
-                qd,
-            }
-        };
+        let non_finite = |output: String, value: f64| self.non_finite((t, q, v), output, value);
         for i in 0..N {
             for j in 0..N {
                 if !mass[(i, j)].is_finite() {
@@ -322,10 +315,10 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             }
         }
         match a {
-            None => {
-                let (q, qd) = state();
-                Err(Fault::SingularMassMatrix { q, qd })
-            }
+            None => Err(Fault::SingularMassMatrix {
+                q: q.as_slice().to_vec(),
+                qd: v.as_slice().to_vec(),
+            }),
             Some(a) => {
                 let i = a.iter().position(|x| !x.is_finite()).unwrap_or(0);
                 let output = format!("the acceleration of {}", names[i]);
@@ -361,58 +354,72 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .zip(["dissipated power", "power of the forces"])
         {
             if !power.is_finite() {
-                if let Some(fault) = self.non_finite_input(t, q, v) {
-                    return Err(fault);
-                }
-                return Err(Fault::NonFinite {
-                    output: format!("the {name}"),
-                    value: *power,
-                    q: q.as_slice().to_vec(),
-                    qd: v.as_slice().to_vec(),
-                });
+                return Err(self.non_finite((t, q, v), format!("the {name}"), *power));
             }
         }
         Ok((a, powers))
     }
 
-    /// The first input the dynamics calls at a state whose component gives
-    /// a value that is not finite at finite arguments, as a fault naming
-    /// the input, the component and the arguments; `None` if there is none
-    /// (what is not finite is the model's own arithmetic). For the message
-    /// of a dynamics that is not finite: it evaluates the inputs again.
-    fn non_finite_input(
+    /// The input the dynamics calls at a state that explains a dynamics
+    /// that is not finite there, named with its component and arguments,
+    /// and its value: the first whose component gives a value that is not
+    /// finite at finite arguments, else the largest beyond
+    /// [`HUGE_INPUT`], whose product with another such overflows; `None`
+    /// if there is neither (the model's own arithmetic is the cause). For
+    /// messages only: it evaluates the inputs again.
+    fn blamed_input(
         &self,
         t: f64,
         q: &SVector<f64, N>,
         v: &SVector<f64, N>,
-    ) -> Option<Fault> {
+    ) -> Option<(String, f64)> {
         let mut arguments = vec![0.0; self.arguments.len()];
         self.system.input_arguments(t, q, v, &mut arguments);
         let mut offset = 0;
-        let mut found = None;
+        let mut largest: Option<(usize, (usize, usize), f64)> = None;
         for &(input, arity) in self.system.input_sites() {
-            let args = &arguments[offset..offset + arity];
+            let at = offset;
             offset += arity;
+            let args = &arguments[at..at + arity];
             if !args.iter().all(|x| x.is_finite()) {
                 continue;
             }
             let value = self.inputs.value(input, args);
-            if !value.is_finite()
-                && let Some(output) = self.inputs.name_input(input, args)
-            {
-                found = Some((output, value));
+            if !value.is_finite() {
+                largest = Some((input, (at, arity), value));
                 break;
+            }
+            if value.abs() >= HUGE_INPUT && largest.is_none_or(|(_, _, l)| value.abs() > l.abs()) {
+                largest = Some((input, (at, arity), value));
             }
         }
         // What the calls failed on was reported before this one.
         let _ = self.inputs.take_failure();
-        let (output, value) = found?;
-        Some(Fault::NonFinite {
+        let (input, (at, arity), value) = largest?;
+        let name = self.inputs.name_input(input, &arguments[at..at + arity])?;
+        Some((name, value))
+    }
+
+    /// A fault for `output` of the dynamics, whose value `value` is not
+    /// finite at `(t, q, v)`: the input that is not finite instead, where
+    /// one is, or with the input too large for the arithmetic named.
+    fn non_finite(
+        &self,
+        (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
+        output: String,
+        value: f64,
+    ) -> Fault {
+        let (output, value) = match self.blamed_input(t, q, v) {
+            Some((input, value)) if !value.is_finite() => (input, value),
+            Some((input, large)) => (format!("{output}, where {input} is {large:e},"), value),
+            None => (output, value),
+        };
+        Fault::NonFinite {
             output,
             value,
             q: q.as_slice().to_vec(),
             qd: v.as_slice().to_vec(),
-        })
+        }
     }
 
     /// The value of every input the dynamics calls, in input-site order.
