@@ -785,7 +785,7 @@ mod tests {
             inputs.name_event(2, f64::INFINITY),
             "the function of event `separation` of crush component `bumper` (inf)"
         );
-        assert_eq!(inputs.name_event(99, 1.0 / 0.0), "event function 99 (inf)");
+        assert_eq!(inputs.name_event(99, f64::INFINITY), "event function 99 (inf)");
         assert_eq!(
             inputs.name_input(0, &[0.01, -2.0]).unwrap(),
             "input `element` (the force of crush component `bumper` at arguments 1e-2, -2e0)"
