@@ -32,7 +32,7 @@
 
 use super::curve::OutOfRange;
 use super::{Binder, Column, Component, Port, Section};
-use crate::scenario::bind::{Ports, finite, non_negative, positive};
+use crate::scenario::bind::{Ports, finite, finite_combination, non_negative, positive};
 use serde::Deserialize;
 
 /// The spring's parameters and its hysteretic variable.
@@ -203,7 +203,7 @@ impl BoucWenSection {
                 beta + gamma
             ));
         }
-        Ok(BoucWen::new(
+        let spring = BoucWen::new(
             positive(&key("fy"), self.fy)?,
             positive(&key("uy"), self.uy)?,
             a,
@@ -212,7 +212,50 @@ impl BoucWenSection {
             gamma,
             positive(&key("n"), self.n)?,
             finite(&key("z0"), self.z0)?,
-        ))
+        );
+        spring.check_coefficients(&format!("components.{name}"))?;
+        Ok(spring)
+    }
+}
+
+impl BoucWen {
+    /// `Err` naming the entries when a coefficient of `F`, `ż` or `P`
+    /// overflows although each entry is finite (a `uy` of 1e-320): the run
+    /// would meet it as a force or rate that is not finite at once.
+    fn check_coefficients(&self, section: &str) -> Result<(), String> {
+        let (fy, uy, big_a) = (self.fy, self.uy, self.big_a);
+        let (beta, gamma) = (self.beta, self.gamma);
+        let checks = [
+            (
+                ("fy/uy", "the initial stiffness"),
+                vec![("fy", fy), ("uy", uy)],
+                fy / uy,
+            ),
+            (
+                ("A/uy", "the rate of z"),
+                vec![("A", big_a), ("uy", uy)],
+                big_a / uy,
+            ),
+            (
+                ("beta/uy", "the rate of z"),
+                vec![("beta", beta), ("uy", uy)],
+                beta / uy,
+            ),
+            (
+                ("gamma/uy", "the rate of z"),
+                vec![("gamma", gamma), ("uy", uy)],
+                gamma / uy,
+            ),
+            (
+                ("fy/A", "the dissipated power"),
+                vec![("fy", fy), ("A", big_a)],
+                fy / big_a * beta.abs().max(gamma.abs()).max(1.0),
+            ),
+        ];
+        for (formula, entries, value) in checks {
+            finite_combination(section, formula, &entries, value)?;
+        }
+        Ok(())
     }
 }
 

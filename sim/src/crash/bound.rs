@@ -21,6 +21,19 @@ pub struct NamedComponent {
     pub component: Box<dyn Component>,
 }
 
+impl NamedComponent {
+    /// `bouc_wen component `hinge``, for messages.
+    pub fn describe(&self) -> String {
+        format!("{} component `{}`", self.component.kind(), self.name)
+    }
+}
+
+/// `0.01, 1` (in `e` notation), for the arguments in messages.
+fn listed(values: &[f64]) -> String {
+    let values: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
+    values.join(", ")
+}
+
 /// Where a model's input function gets its value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Binding {
@@ -540,6 +553,91 @@ impl BoundInputs {
     }
 }
 
+/// The messages that name a component whose value, internal state or event
+/// is not finite.
+impl BoundInputs {
+    /// What entry `index` of the internal states' rates `ż` is, with its
+    /// `rate` that is not finite, the state it has and the arguments of its
+    /// component's value input among the model's input `arguments`: `the
+    /// rate of state `z` of bouc_wen component `hinge` (-inf, at z = 2e0,
+    /// arguments 1e-2, 1e0)`.
+    pub fn name_internal_rate(&self, index: usize, rate: f64, arguments: &[f64]) -> String {
+        let Some((c, state)) = self.layout.owner(index) else {
+            return format!("the rate of internal state {index} ({rate})");
+        };
+        let named = &self.components[c];
+        let args = self.arguments_of(c, arguments).unwrap_or(&[]);
+        let at = format!("arguments {}", listed(args));
+        match state {
+            Some(k) => {
+                let state = named.component.states()[k].quantity;
+                let z = self
+                    .loaded
+                    .as_slice()
+                    .get(index)
+                    .copied()
+                    .unwrap_or(f64::NAN);
+                format!(
+                    "the rate of state `{state}` of {} ({rate}, at {state} = {z:e}, {at})",
+                    named.describe()
+                )
+            }
+            None => format!(
+                "the dissipated power of {} ({rate}, at {at})",
+                named.describe()
+            ),
+        }
+    }
+
+    /// Global event function `k` with its `value` that is not finite: `the
+    /// function of event `peak crush` of crush component `bumper` (NaN)`.
+    pub fn name_event(&self, k: usize, value: f64) -> String {
+        let Some((c, local)) = self.event(k) else {
+            return format!("event function {k} ({value})");
+        };
+        let named = &self.components[c];
+        let event = named.component.events()[local].name;
+        format!(
+            "the function of event `{event}` of {} ({value})",
+            named.describe()
+        )
+    }
+
+    /// What input `input` is, called with the finite `args` and giving
+    /// `value`, which is not finite: `input `element` (the force of
+    /// bouc_wen component `hinge` at arguments 1e-2, 1e0, its states z =
+    /// 2e0)`; `None` for an input no component answers.
+    pub fn name_input(&self, input: usize, args: &[f64]) -> Option<String> {
+        let binding = (*self.bindings.get(input)?)?;
+        let named = self.components.get(binding.component)?;
+        let quantity = match binding.port {
+            Port::Value => (named.component.columns().first()).map_or("value", |c| c.quantity),
+            Port::Stiffness => "tangent stiffness",
+            Port::Damping => "tangent damping",
+        };
+        let mut text = format!(
+            "input `{}` (the {quantity} of {} at arguments {}",
+            self.input_names[input],
+            named.describe(),
+            listed(args)
+        );
+        let stateful = self
+            .layout
+            .stateful()
+            .find(|&(c, _)| c == binding.component);
+        let states = named.component.states();
+        let loaded = stateful.and_then(|(_, at)| self.loaded.as_slice().get(at..at + states.len()));
+        if let Some(z) = loaded {
+            let values: Vec<String> = (states.iter().zip(z))
+                .map(|(s, v)| format!("{} = {v:e}", s.quantity))
+                .collect();
+            text.push_str(&format!(", its state {}", values.join(", ")));
+        }
+        text.push(')');
+        Some(text)
+    }
+}
+
 impl InputFunctions for BoundInputs {
     fn value(&self, input: usize, args: &[f64]) -> f64 {
         if self.standing_in
@@ -681,6 +779,81 @@ mod tests {
             inputs.take_failure(),
             Some(Fault::OutOfRange { x, .. }) if x == 2.0
         ));
+    }
+
+    /// A crush element on the input `element(u, v)`, with its events seen.
+    fn crush_on_element() -> BoundInputs {
+        let crush = CrushElement::new(
+            LoadingCurve::SecantStiffness(SecantCurve::constant(1.0e6)),
+            SecantCurve::constant(1.0e3),
+            Unloading::Elastic,
+            1.0,
+            true,
+        );
+        let named = NamedComponent {
+            name: "bumper".into(),
+            component: Box::new(crush),
+        };
+        let binding = Binding {
+            component: 0,
+            port: Port::Value,
+        };
+        let names = vec!["element".into()];
+        BoundInputs::new(vec![named], vec![Some(binding)], vec![Some((0, 2))], names)
+    }
+
+    /// The messages of a component that is not finite name it by its
+    /// section and kind, and say which event, input or quantity, with the
+    /// value and the arguments (the strings are the format documented on
+    /// each method, written out here).
+    #[test]
+    fn a_component_that_is_not_finite_is_named() {
+        let inputs = crush_on_element();
+        assert_eq!(
+            inputs.name_event(0, f64::NAN),
+            "the function of event `peak crush` of crush component `bumper` (NaN)"
+        );
+        assert_eq!(
+            inputs.name_event(2, f64::INFINITY),
+            "the function of event `separation` of crush component `bumper` (inf)"
+        );
+        assert_eq!(inputs.name_event(99, f64::INFINITY), "event function 99 (inf)");
+        assert_eq!(
+            inputs.name_input(0, &[0.01, -2.0]).unwrap(),
+            "input `element` (the force of crush component `bumper` at arguments 1e-2, -2e0)"
+        );
+        // Its dissipated energy is its one internal state.
+        assert_eq!(
+            inputs.name_internal_rate(0, f64::NAN, &[0.01, -2.0]),
+            "the dissipated power of crush component `bumper` (NaN, at arguments 1e-2, -2e0)"
+        );
+    }
+
+    /// A Bouc–Wen spring's state is named, with its value.
+    #[test]
+    fn a_state_rate_that_is_not_finite_names_the_state() {
+        use crate::crash::bouc_wen::BoucWen;
+        let spring = BoucWen::new(1e3, 0.01, 0.1, 1.0, 0.5, 0.5, 2.0, 1e200);
+        let named = NamedComponent {
+            name: "hinge".into(),
+            component: Box::new(spring),
+        };
+        let binding = Binding {
+            component: 0,
+            port: Port::Value,
+        };
+        let names = vec!["element".into()];
+        let mut inputs =
+            BoundInputs::new(vec![named], vec![Some(binding)], vec![Some((0, 2))], names);
+        inputs.initial_internal().unwrap();
+        assert_eq!(
+            inputs.name_internal_rate(0, f64::NEG_INFINITY, &[0.0, 1.0]),
+            "the rate of state `z` of bouc_wen component `hinge` (-inf, at z = 1e200, arguments 0e0, 1e0)"
+        );
+        assert_eq!(
+            inputs.name_input(0, &[0.0, 1.0]).unwrap(),
+            "input `element` (the force of bouc_wen component `hinge` at arguments 0e0, 1e0, its state z = 1e200)"
+        );
     }
 }
 

@@ -58,6 +58,14 @@ pub enum CurveError {
         /// The abscissa.
         value: f64,
     },
+    /// The slope between points `index` and `index + 1` (from 0) is not
+    /// finite: points too close for the difference of their values.
+    Slope {
+        /// The first point's index, from 0.
+        index: usize,
+        /// The slope.
+        slope: f64,
+    },
     /// Not as many values as abscissae.
     LengthMismatch {
         /// The number of abscissae.
@@ -74,6 +82,7 @@ impl fmt::Display for CurveError {
             CurveError::NotFinite { index } => {
                 write!(f, "point {} is not a finite number", index + 1)
             }
+            CurveError::Slope { index, slope } => write!(f, "{}", slope_message(*index, *slope)),
             CurveError::NotIncreasing {
                 index,
                 previous,
@@ -170,6 +179,9 @@ impl Curve {
                     value: xs[i],
                 });
             }
+        }
+        if let Some((index, slope)) = overflowing_slope(&xs, &ys) {
+            return Err(CurveError::Slope { index, slope });
         }
         Ok(Curve::linear(xs, ys, outside))
     }
@@ -400,6 +412,14 @@ pub enum TableError {
         /// The value.
         value: f64,
     },
+    /// The slope between points `index` and `index + 1` of the curve (from
+    /// 0, the curve's first point at 0) is not finite.
+    Slope {
+        /// The first point's index, from 0.
+        index: usize,
+        /// The slope.
+        slope: f64,
+    },
     /// The number of values does not fit the number of breakpoints.
     Count {
         /// The number of breakpoints.
@@ -414,7 +434,10 @@ pub enum TableError {
 impl TableError {
     /// Whether the problem is in the values (else in the breakpoints).
     pub fn in_values(&self) -> bool {
-        matches!(self, TableError::Value { .. } | TableError::Count { .. })
+        matches!(
+            self,
+            TableError::Value { .. } | TableError::Count { .. } | TableError::Slope { .. }
+        )
     }
 }
 
@@ -442,6 +465,7 @@ impl fmt::Display for TableError {
                 "value {} ({value}) must be a finite number ≥ 0",
                 index + 1
             ),
+            TableError::Slope { index, slope } => write!(f, "{}", slope_message(*index, *slope)),
             TableError::Count {
                 breakpoints,
                 values,
@@ -496,9 +520,34 @@ fn checked_table(
     {
         return Err(TableError::Value { index, value });
     }
-    let xs = std::iter::once(0.0).chain(breakpoints.iter().copied());
-    let ys = first.into_iter().chain(values.iter().copied());
-    Ok(Curve::linear(xs.collect(), ys.collect(), outside))
+    let xs: Vec<f64> = std::iter::once(0.0)
+        .chain(breakpoints.iter().copied())
+        .collect();
+    let ys: Vec<f64> = first.into_iter().chain(values.iter().copied()).collect();
+    if let Some((index, slope)) = overflowing_slope(&xs, &ys) {
+        return Err(TableError::Slope { index, slope });
+    }
+    Ok(Curve::linear(xs, ys, outside))
+}
+
+/// The first segment of the points `(xs, ys)` (finite, `xs` increasing)
+/// whose slope is not finite, with it: points too close for their values,
+/// whose tangent stiffness a run would meet as ±∞.
+fn overflowing_slope(xs: &[f64], ys: &[f64]) -> Option<(usize, f64)> {
+    (xs.windows(2).zip(ys.windows(2)))
+        .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+        .enumerate()
+        .find(|(_, slope)| !slope.is_finite())
+}
+
+/// The message of a slope that is not finite between points `index` and
+/// `index + 1` (from 0).
+fn slope_message(index: usize, slope: f64) -> String {
+    format!(
+        "the slope between points {} and {} is {slope}: the points are too close for the difference of their values (a tangent that is not finite)",
+        index + 1,
+        index + 2
+    )
 }
 
 /// A coefficient curve in the secant form of the paper's eqs 1–2: the

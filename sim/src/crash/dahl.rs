@@ -22,7 +22,7 @@
 
 use super::curve::OutOfRange;
 use super::{Binder, Column, Component, Port, Section};
-use crate::scenario::bind::{Ports, finite, positive};
+use crate::scenario::bind::{Ports, finite, finite_combination, positive};
 use serde::Deserialize;
 
 /// The friction law's parameters and the bristles' deflection.
@@ -134,6 +134,15 @@ impl Section for DahlSection {
             z0,
             z: z0,
         };
+        let (sigma0, fc) = (law.sigma0, law.fc);
+        let entries = [("sigma0", sigma0), ("fc", fc)];
+        let formula = ("sigma0/fc", "the rate of z");
+        finite_combination(
+            &format!("components.{name}"),
+            formula,
+            &entries,
+            sigma0 / fc,
+        )?;
         let c = binder.add(name.to_string(), Box::new(law));
         binder.bind_ports(&self.inputs, "force", c, name)
     }

@@ -20,7 +20,7 @@
 
 use super::curve::OutOfRange;
 use super::{Binder, Column, Component, Port, Section, Smoothness};
-use crate::scenario::bind::{Ports, finite, positive};
+use crate::scenario::bind::{Ports, finite, finite_combination, positive};
 use serde::Deserialize;
 
 /// The element's parameters and its dashpot's displacement.
@@ -130,6 +130,10 @@ impl Section for MaxwellSection {
             positive(&key("damping"), self.damping)?,
             finite(&key("dashpot0"), self.dashpot0)?,
         );
+        let (k, c) = (element.stiffness, element.damping);
+        let entries = [("stiffness", k), ("damping", c)];
+        let formula = ("stiffness/damping", "the dashpot's rate");
+        finite_combination(&format!("components.{name}"), formula, &entries, k / c)?;
         let c = binder.add(name.to_string(), Box::new(element));
         binder.bind_ports(&self.inputs, "force", c, name)
     }

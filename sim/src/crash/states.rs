@@ -92,6 +92,20 @@ impl StateLayout {
         self.energies.iter().copied()
     }
 
+    /// Whose entry `index` of `z` is: `(component, Some(k))` for its state
+    /// `k`, `(component, None)` for the energy it dissipated.
+    pub fn owner(&self, index: usize) -> Option<(usize, Option<usize>)> {
+        let state = (self.states.iter())
+            .find(|&&(_, offset, count)| (offset..offset + count).contains(&index))
+            .map(|&(c, offset, _)| (c, Some(index - offset)));
+        let energy = || {
+            (self.energies.iter())
+                .find(|&&(_, at)| at == index)
+                .map(|&(c, _)| (c, None))
+        };
+        state.or_else(energy)
+    }
+
     /// The columns of `z`, `(NAME.STATE, unit)`, in its order.
     pub fn columns(&self, components: &[NamedComponent]) -> Vec<(String, Option<String>)> {
         let mut columns = Vec::new();

@@ -280,6 +280,7 @@ impl Table {
             CurveError::NotFinite { index } | CurveError::NotIncreasing { index, .. } => {
                 Some(index)
             }
+            CurveError::Slope { index, .. } => Some(index + 1),
             CurveError::TooFewPoints(_) | CurveError::LengthMismatch { .. } => None,
         };
         TableError::Malformed {

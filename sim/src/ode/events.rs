@@ -80,7 +80,7 @@ impl EventTracker {
             return Ok(());
         }
         events_at(problem, t, y, &mut self.start)?;
-        check_finite(&self.start, t)?;
+        check_finite(problem, &self.start, t)?;
         if self.start.contains(&0.0) {
             let delta = 1e-9 * t.abs().max(1.0);
             let mut ahead = y.clone();
@@ -109,12 +109,12 @@ impl EventTracker {
         }
         let (t0, t1) = (dense.t0(), dense.t1());
         events_at(problem, t1, y_end, &mut self.end)?;
-        check_finite(&self.end, t1)?;
+        check_finite(problem, &self.end, t1)?;
         // The midpoint catches a function that crosses and returns within one step.
         let tm = 0.5 * (t0 + t1);
         dense.eval(tm, scratch);
         events_at(problem, tm, scratch, &mut self.middle)?;
-        check_finite(&self.middle, tm)?;
+        check_finite(problem, &self.middle, tm)?;
         let mut earliest: Option<(usize, f64)> = None;
         for k in 0..self.start.len() {
             // Any crossing is a change of sign: the direction is asked
@@ -189,7 +189,7 @@ impl EventTracker {
             if !gc.is_finite() {
                 return Err(SolverError::NonFinite {
                     t: c,
-                    what: format!("event function {k}"),
+                    what: problem.name_event(k, gc),
                 });
             }
             if gc.signum() == before_sign && gc != 0.0 {
@@ -224,12 +224,18 @@ fn events_at<Y: OdeVector, P: OdeProblem<Y>>(
         .map_err(|error| SolverError::Rhs { t, error })
 }
 
-fn check_finite<E>(values: &[f64], t: f64) -> Result<(), SolverError<E>> {
+/// `Err` naming the first of the event functions `values` at `t` that is
+/// not finite, as `problem` names it.
+fn check_finite<Y: OdeVector, P: OdeProblem<Y>>(
+    problem: &P,
+    values: &[f64],
+    t: f64,
+) -> Result<(), SolverError<P::Error>> {
     match values.iter().position(|g| !g.is_finite()) {
         None => Ok(()),
         Some(k) => Err(SolverError::NonFinite {
             t,
-            what: format!("event function {k}"),
+            what: problem.name_event(k, values[k]),
         }),
     }
 }
@@ -373,5 +379,36 @@ mod tests {
         let (k, t) = locate_in_step(&mut problem).unwrap().unwrap();
         assert_eq!(k, 0);
         assert!(t >= 3.3e-4 && t - 3.3e-4 <= 1e-12, "{t}");
+    }
+
+    /// An event function that is not finite at the step's end, or at a
+    /// point of the bracket, is an error that says which function and its
+    /// value, as the problem names it (by default by its index).
+    #[test]
+    fn an_event_function_that_is_not_finite_is_named() {
+        let mut at_end = OneEvent {
+            g: |_t, call| if call == 1 { -1.0 } else { f64::NAN },
+            calls: 0,
+        };
+        let result = locate_in_step(&mut at_end);
+        let Err(SolverError::NonFinite { t, what }) = result else {
+            panic!("{result:?}");
+        };
+        assert_eq!((t, what.as_str()), (1e-3, "event function 0 (NaN)"));
+        // Start, end and midpoint finite, then -inf at the first probe.
+        let mut in_bracket = OneEvent {
+            g: |_t, call| match call {
+                1 | 3 => -1.0,
+                2 => 1.0,
+                _ => f64::NEG_INFINITY,
+            },
+            calls: 0,
+        };
+        let result = locate_in_step(&mut in_bracket);
+        let Err(SolverError::NonFinite { t, what }) = result else {
+            panic!("{result:?}");
+        };
+        assert!(t > 0.5e-3 && t < 1e-3, "{t}");
+        assert_eq!(what, "event function 0 (-inf)");
     }
 }

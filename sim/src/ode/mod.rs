@@ -105,6 +105,20 @@ pub trait OdeProblem<Y: OdeVector> {
     fn step_window(&mut self, window: Option<(f64, f64)>) {
         let _ = window;
     }
+
+    /// Which value of `dy = F(t, y)` is not finite, in words with the
+    /// value, for [`SolverError::NonFinite`] (a problem that knows its
+    /// components' names says which; "the right-hand side" by default).
+    fn name_non_finite(&mut self, t: f64, y: &Y, dy: &Y) -> String {
+        let _ = (t, y, dy);
+        "the right-hand side".to_string()
+    }
+
+    /// Event function `k` for messages, with `value`, its value that is
+    /// not finite ("event function k (NaN)" by default).
+    fn name_event(&self, k: usize, value: f64) -> String {
+        format!("event function {k} ({value})")
+    }
 }
 
 /// Step-size control and limits.
@@ -330,7 +344,7 @@ pub(crate) fn evaluate<Y: OdeVector, P: OdeProblem<Y>>(
     } else {
         Err(SolverError::NonFinite {
             t,
-            what: "the right-hand side".to_string(),
+            what: problem.name_non_finite(t, y, dy),
         })
     }
 }

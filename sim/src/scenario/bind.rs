@@ -5,7 +5,7 @@
 
 use super::ModelNames;
 use super::resolve::index_of;
-pub(crate) use super::resolve::{finite, non_negative, outside, positive};
+pub(crate) use super::resolve::{finite, finite_combination, non_negative, outside, positive};
 use crate::crash::constant::Constant;
 use crate::crash::table::Table;
 use crate::crash::{Binding, BoundInputs, Component, ComponentSection, NamedComponent, Port};

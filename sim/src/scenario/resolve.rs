@@ -63,6 +63,30 @@ pub(crate) fn finite(key: &str, value: f64) -> Result<f64, String> {
     }
 }
 
+/// `Ok` if `value`, the combination `formula` of the entries `entries` of
+/// the scenario's section `section`, is finite; else an error naming the
+/// entries and what the combination is (`meaning`): entries each finite
+/// whose quotient or product overflows double precision, which the run
+/// would meet as a force or rate that is not finite.
+pub(crate) fn finite_combination(
+    section: &str,
+    (formula, meaning): (&str, &str),
+    entries: &[(&str, f64)],
+    value: f64,
+) -> Result<(), String> {
+    if value.is_finite() {
+        return Ok(());
+    }
+    let given: Vec<String> = (entries.iter())
+        .map(|(key, v)| format!("{key} = {}", number(*v)))
+        .collect();
+    Err(format!(
+        "{section}: {formula} = {} ({}) is not finite: {meaning} overflows double precision",
+        number(value),
+        given.join(", ")
+    ))
+}
+
 /// `value` if it is finite and positive; else an error naming `key`.
 pub(crate) fn positive(key: &str, value: f64) -> Result<f64, String> {
     if value.is_finite() && value > 0.0 {

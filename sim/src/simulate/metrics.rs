@@ -84,6 +84,20 @@ pub struct EnergyPoint {
     pub external_work: f64,
 }
 
+/// Keeps in `firsts` the first time each of `values` (at time `t`) is
+/// not finite, with its value; none while no sample has values.
+fn first_non_finite(firsts: &mut Vec<Option<(f64, f64)>>, t: f64, values: &[f64]) {
+    if values.is_empty() {
+        return;
+    }
+    firsts.resize(values.len(), None);
+    for (first, &value) in firsts.iter_mut().zip(values) {
+        if first.is_none() && !value.is_finite() {
+            *first = Some((t, value));
+        }
+    }
+}
+
 /// Time, crush and crush rate of one sample.
 #[derive(Clone, Copy, Debug)]
 struct CrushPoint {
@@ -115,6 +129,8 @@ pub struct Metrics {
     /// The first sample at which each output is not finite: time and
     /// value (empty while no sample has outputs).
     outputs_not_finite: Vec<Option<(f64, f64)>>,
+    /// Likewise for each of the components' columns.
+    components_not_finite: Vec<Option<(f64, f64)>>,
     /// The times of the samples.
     times: Vec<f64>,
     /// The deviations from equilibrium of the pitch coordinates, by
@@ -158,6 +174,7 @@ impl Metrics {
             energy_scale: 0.0,
             energy_not_finite: [None; 4],
             outputs_not_finite: Vec::new(),
+            components_not_finite: Vec::new(),
             channels: (scenario.channels.iter().cloned())
                 .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
@@ -197,10 +214,11 @@ impl Metrics {
         }
     }
 
-    /// The terms of the energy balance and the outputs that are not finite
-    /// somewhere, each at the first time it is not (`outputs`: the names of
-    /// the model's outputs).
-    pub fn non_finite_warnings(&self, outputs: &[&str]) -> Vec<Warning> {
+    /// The terms of the energy balance, the outputs and the components'
+    /// columns that are not finite somewhere, each at the first time it is
+    /// not (`outputs`: the names of the model's outputs; `components`: of
+    /// the components' columns, `NAME.QUANTITY`).
+    pub fn non_finite_warnings(&self, outputs: &[&str], components: &[String]) -> Vec<Warning> {
         const TERMS: [&str; 4] = [
             "the kinetic energy",
             "the potential energy",
@@ -214,7 +232,10 @@ impl Metrics {
         let outputs = (outputs.iter())
             .map(|name| format!("output `{name}`"))
             .zip(self.outputs_not_finite.iter().copied());
-        (outputs.chain(energies))
+        let components = (components.iter())
+            .map(|name| format!("component column `{name}`"))
+            .zip(self.components_not_finite.iter().copied());
+        (outputs.chain(components).chain(energies))
             .filter_map(|(what, first)| {
                 first.map(|(t, value)| Warning::NonFinite { what, t, value })
             })
@@ -224,14 +245,8 @@ impl Metrics {
     /// Takes the next sample (in time order).
     pub fn push(&mut self, s: SampleView) {
         self.times.push(s.t);
-        if !s.outputs.is_empty() {
-            self.outputs_not_finite.resize(s.outputs.len(), None);
-            for (first, &value) in self.outputs_not_finite.iter_mut().zip(s.outputs) {
-                if first.is_none() && !value.is_finite() {
-                    *first = Some((s.t, value));
-                }
-            }
-        }
+        first_non_finite(&mut self.outputs_not_finite, s.t, s.outputs);
+        first_non_finite(&mut self.components_not_finite, s.t, s.components);
         if !self.pitch.is_empty() {
             let mut deviations = [0.0; 2];
             for (d, (k, q0)) in deviations.iter_mut().zip(&self.pitch) {

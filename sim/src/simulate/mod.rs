@@ -371,7 +371,13 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
             error,
         })?;
     let mut warnings = run_warnings(scenario, &sampler.metrics, &summary);
-    warnings.extend(sampler.metrics.non_finite_warnings(&model.output_names()));
+    let components: Vec<String> = (scenario.inputs.columns().into_iter())
+        .map(|(name, _)| name)
+        .collect();
+    let non_finite = sampler
+        .metrics
+        .non_finite_warnings(&model.output_names(), &components);
+    warnings.extend(non_finite);
     let constraints = projection.map(|projection| ConstraintReport {
         names: own(model.constraint_names()),
         projection,

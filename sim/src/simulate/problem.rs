@@ -12,6 +12,11 @@ use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
 
+/// An input value of this magnitude or more squares to more than the
+/// largest double (`√f64::MAX ≈ 1.34e154`): the input a dynamics that
+/// overflowed is blamed on, when none is infinite itself.
+const HUGE_INPUT: f64 = 1.3e154;
+
 /// One event handled during a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRecord {
@@ -228,7 +233,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         self.input_failure()?;
         if self.constraint_count == 0 {
             return Ok(Accelerations {
-                a: self.solve(q, v, &mass, &forcing)?,
+                a: self.solve((t, q, v), &mass, &forcing)?,
                 multipliers: Vec::new(),
                 residual: Vec::new(),
             });
@@ -251,8 +256,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         forcing: &SVector<f64, N>,
     ) -> Result<(SVector<f64, N>, f64), Fault> {
         if self.constraint_count == 0 {
-            let (_, q, v) = state;
-            return Ok((self.solve(q, v, mass, forcing)?, 0.0));
+            return Ok((self.solve(state, mass, forcing)?, 0.0));
         }
         let mut workspace = self.workspace.borrow_mut();
         let dynamics = (mass, forcing);
@@ -287,11 +291,11 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
     }
 
     /// `q̈ = M⁻¹ f`, with a non-finite entry of `M`, `f` or `q̈` or a
-    /// singular `M` reported by name and state.
+    /// singular `M` reported by name and state: the component input that
+    /// is not finite, where one is.
     fn solve(
         &self,
-        q: &SVector<f64, N>,
-        v: &SVector<f64, N>,
+        (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
         mass: &SMatrix<f64, N, N>,
         forcing: &SVector<f64, N>,
     ) -> Result<SVector<f64, N>, Fault> {
@@ -304,16 +308,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         // Name the first bad value: a non-finite entry of M or f is the
         // cause of anything that follows from it.
         let names = self.system.coordinate_names();
-        let state = || (q.as_slice().to_vec(), v.as_slice().to_vec());
-        let non_finite = |output: String, value: f64| {
-            let (q, qd) = state();
-            Fault::NonFinite {
-                output,
-                value,
-                q,
-                qd,
-            }
-        };
+        let non_finite = |output: String, value: f64| self.non_finite((t, q, v), output, value);
         for i in 0..N {
             for j in 0..N {
                 if !mass[(i, j)].is_finite() {
@@ -326,10 +321,10 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             }
         }
         match a {
-            None => {
-                let (q, qd) = state();
-                Err(Fault::SingularMassMatrix { q, qd })
-            }
+            None => Err(Fault::SingularMassMatrix {
+                q: q.as_slice().to_vec(),
+                qd: v.as_slice().to_vec(),
+            }),
             Some(a) => {
                 let i = a.iter().position(|x| !x.is_finite()).unwrap_or(0);
                 let output = format!("the acceleration of {}", names[i]);
@@ -365,15 +360,72 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
             .zip(["dissipated power", "power of the forces"])
         {
             if !power.is_finite() {
-                return Err(Fault::NonFinite {
-                    output: format!("the {name}"),
-                    value: *power,
-                    q: q.as_slice().to_vec(),
-                    qd: v.as_slice().to_vec(),
-                });
+                return Err(self.non_finite((t, q, v), format!("the {name}"), *power));
             }
         }
         Ok((a, powers))
+    }
+
+    /// The input the dynamics calls at a state that explains a dynamics
+    /// that is not finite there, named with its component and arguments,
+    /// and its value: the first whose component gives a value that is not
+    /// finite at finite arguments, else the largest beyond
+    /// [`HUGE_INPUT`], whose product with another such overflows; `None`
+    /// if there is neither (the model's own arithmetic is the cause). For
+    /// messages only: it evaluates the inputs again.
+    fn blamed_input(
+        &self,
+        t: f64,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> Option<(String, f64)> {
+        let mut arguments = vec![0.0; self.arguments.len()];
+        self.system.input_arguments(t, q, v, &mut arguments);
+        let mut offset = 0;
+        let mut largest: Option<(usize, (usize, usize), f64)> = None;
+        for &(input, arity) in self.system.input_sites() {
+            let at = offset;
+            offset += arity;
+            let args = &arguments[at..at + arity];
+            if !args.iter().all(|x| x.is_finite()) {
+                continue;
+            }
+            let value = self.inputs.value(input, args);
+            if !value.is_finite() {
+                largest = Some((input, (at, arity), value));
+                break;
+            }
+            if value.abs() >= HUGE_INPUT && largest.is_none_or(|(_, _, l)| value.abs() > l.abs()) {
+                largest = Some((input, (at, arity), value));
+            }
+        }
+        // What the calls failed on was reported before this one.
+        let _ = self.inputs.take_failure();
+        let (input, (at, arity), value) = largest?;
+        let name = self.inputs.name_input(input, &arguments[at..at + arity])?;
+        Some((name, value))
+    }
+
+    /// A fault for `output` of the dynamics, whose value `value` is not
+    /// finite at `(t, q, v)`: the input that is not finite instead, where
+    /// one is, or with the input too large for the arithmetic named.
+    fn non_finite(
+        &self,
+        (t, q, v): (f64, &SVector<f64, N>, &SVector<f64, N>),
+        output: String,
+        value: f64,
+    ) -> Fault {
+        let (output, value) = match self.blamed_input(t, q, v) {
+            Some((input, value)) if !value.is_finite() => (input, value),
+            Some((input, large)) => (format!("{output}, where {input} is {large:e},"), value),
+            None => (output, value),
+        };
+        Fault::NonFinite {
+            output,
+            value,
+            q: q.as_slice().to_vec(),
+            qd: v.as_slice().to_vec(),
+        }
     }
 
     /// The value of every input the dynamics calls, in input-site order.
@@ -481,6 +533,39 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
             self.smoothed.0 = t0;
             self.smoothed.1.clear();
             self.smoothed.1.extend(self.inputs.stand_ins());
+        }
+    }
+
+    /// The first entry of `dy` that is not finite, by name: a coordinate's
+    /// velocity or acceleration, a power, or a component's state rate or
+    /// dissipated power (naming the component).
+    fn name_non_finite(&mut self, t: f64, y: &PhaseState<N>, dy: &PhaseState<N>) -> String {
+        let names = self.system.coordinate_names();
+        let first = |values: &[f64]| values.iter().position(|x| !x.is_finite());
+        if let Some(i) = first(dy.q.as_slice()) {
+            return format!("the velocity of {} ({})", names[i], dy.q[i]);
+        }
+        if let Some(i) = first(dy.v.as_slice()) {
+            return format!("the acceleration of {} ({})", names[i], dy.v[i]);
+        }
+        if let Some(i) = first(&dy.work) {
+            let power = ["the dissipated power", "the power of the forces"][i];
+            return format!("{power} ({})", dy.work[i]);
+        }
+        let Some(i) = first(dy.z.as_slice()) else {
+            return "the right-hand side".to_string();
+        };
+        self.inputs.load(&y.z);
+        (self.system).input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        (self.inputs).name_internal_rate(i, dy.z.as_slice()[i], &self.arguments)
+    }
+
+    /// A component's event by its name and component; a switching function
+    /// of the model by its number.
+    fn name_event(&self, k: usize, value: f64) -> String {
+        match k.checked_sub(self.inputs.event_count()) {
+            Some(switch) => format!("switching function {} of the model ({value})", switch + 1),
+            None => self.inputs.name_event(k, value),
         }
     }
 
