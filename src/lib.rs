@@ -86,3 +86,10 @@ pub use lagrangian_sim::*;
 #[cfg(all(doctest, feature = "sim"))]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The Rust examples of the book's chapters, as doctests (see
+/// `ReadmeDoctests`; `lpm/tests/readme.rs` checks that every chapter with
+/// Rust blocks is here).
+#[cfg(all(doctest, feature = "sim"))]
+#[doc = include_str!("../docs/book/rust.md")]
+pub struct BookDoctests;

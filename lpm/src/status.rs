@@ -1,5 +1,5 @@
 //! The exit statuses of `lpm`: one list, from which `lpm --help` prints its
-//! table (and which a test holds the README's table against).
+//! table (and which a test holds the book's table, docs/book/reference/errors.md, against).
 
 use lagrangian_sim::simulate::FailureKind;
 
@@ -104,7 +104,7 @@ impl ExitStatus {
         }
     }
 
-    /// What the status means, as the help text and the README say it.
+    /// What the status means, as the help text and the book say it.
     pub const fn meaning(self) -> &'static str {
         match self {
             ExitStatus::Success => "success",
@@ -170,12 +170,12 @@ impl From<FailureKind> for ExitStatus {
 mod tests {
     use super::*;
 
-    /// The README's table of exit statuses, `| code | meaning |` rows.
+    /// The book's table of exit statuses, `| code | meaning |` rows.
     fn readme_table() -> Vec<(u8, String)> {
-        let readme = include_str!("../../README.md");
+        let readme = include_str!("../../docs/book/reference/errors.md");
         let start = readme
             .find("| exit status | meaning |")
-            .expect("the README has a table of exit statuses");
+            .expect("the book has a table of exit statuses");
         readme[start..]
             .lines()
             .skip(2)
@@ -188,7 +188,7 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_lists_every_exit_status_as_the_help_does() {
+    fn the_book_lists_every_exit_status_as_the_help_does() {
         let ours: Vec<(u8, String)> = ExitStatus::ALL
             .iter()
             .map(|s| (s.code(), s.meaning().replace('|', "\\|")))

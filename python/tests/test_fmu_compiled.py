@@ -24,8 +24,8 @@ from conftest import ROOT, SPECS, run_lpm
 YARIS = SPECS / "yaris_double_pendulum.lpm"
 RUNTIME = ROOT / "target" / "debug" / "liblagrangian_fmu.so"
 BINARY = "binaries/linux64/lagrangian_fmu.so"
-#: The README's command line (shown in a text block, which the Rust README
-#: test does not run: a release build), run here with the debug profile.
+#: The book's command line (docs/book/fmu.md, in a block the Rust README
+#: test skips: a release build), run here with the debug profile.
 README_COMMAND = "lpm export-fmu specs/yaris_double_pendulum.lpm --compiled --out yaris.fmu"
 OUTPUTS = ["metrics.crush", "metrics.deceleration", "front_end.force", "r", "theta2", "der(theta1)"]
 
@@ -64,8 +64,8 @@ def fmus(tmp_path_factory):
     return interpreted, compiled
 
 
-def test_the_readme_shows_the_command_tested_here():
-    assert README_COMMAND in (ROOT / "README.md").read_text()
+def test_the_book_shows_the_command_tested_here():
+    assert README_COMMAND in (ROOT / "docs" / "book" / "fmu.md").read_text()
 
 
 def test_the_standard_lists_44_functions():

@@ -1,4 +1,5 @@
-"""Every `python` block of the README runs (in the repository root)."""
+"""Every `python` block of the README and of the book (`docs/book/`) runs
+(in the repository root), the README's first."""
 
 import math
 import os
@@ -9,9 +10,19 @@ import numpy as np
 from conftest import ROOT
 
 
+def documents():
+    """The README, then the book's chapters in path order."""
+    book = sorted((ROOT / "docs" / "book").rglob("*.md"))
+    return [ROOT / "README.md", *book]
+
+
 def python_blocks():
-    text = (ROOT / "README.md").read_text()
-    return re.findall(r"^```python\n(.*?)^```", text, flags=re.S | re.M)
+    blocks = []
+    for path in documents():
+        text = path.read_text()
+        found = re.findall(r"^```python\n(.*?)^```", text, flags=re.S | re.M)
+        blocks += [(path.relative_to(ROOT), block) for block in found]
+    return blocks
 
 
 def test_every_python_block_of_the_readme_runs(capsys):
@@ -20,8 +31,8 @@ def test_every_python_block_of_the_readme_runs(capsys):
     cwd = os.getcwd()
     os.chdir(ROOT)
     try:
-        for block in blocks:
-            exec(compile(block, "README.md", "exec"), {})
+        for path, block in blocks:
+            exec(compile(block, str(path), "exec"), {})
     finally:
         os.chdir(cwd)
     printed = capsys.readouterr().out.splitlines()
