@@ -114,6 +114,14 @@ pub trait OdeProblem<Y: OdeVector> {
         "the right-hand side".to_string()
     }
 
+    /// The largest value of `dy = F(t, y)`, in words with the value, for a
+    /// first step that rates too large to weigh make impossible ("the
+    /// right-hand side" by default).
+    fn name_largest_rate(&mut self, t: f64, y: &Y, dy: &Y) -> String {
+        let _ = (t, y, dy);
+        "the right-hand side".to_string()
+    }
+
     /// Event function `k` for messages, with `value`, its value that is
     /// not finite ("event function k (NaN)" by default).
     fn name_event(&self, k: usize, value: f64) -> String {
@@ -380,6 +388,15 @@ pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
     // The error norm's weights with the scale of y alone.
     let scaled = |v: &Y| error_norm(v, y, y, options);
     let (d0, d1) = (scaled(y), scaled(f0));
+    if !d1.is_finite() {
+        // Finite rates whose weighted size overflows (a coefficient of
+        // 1e300): no step can be chosen, which says more than h = 0.
+        let largest = problem.name_largest_rate(t, y, f0);
+        return Err(SolverError::NonFinite {
+            t,
+            what: format!("the weighted size of the rates, the largest {largest},"),
+        });
+    }
     // The probe is no shorter than the driver's smallest step. With a loose
     // rtol the weighted size of y saturates (|y|/(atol + rtol|y|) < 1/rtol),
     // while the rate of a component that starts at zero is weighed by atol

@@ -380,7 +380,7 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         v: &SVector<f64, N>,
     ) -> Option<(String, f64)> {
         let mut arguments = vec![0.0; self.arguments.len()];
-        self.system.input_arguments(t, q, v, &mut arguments);
+        self.system.input_arguments(t, q, v, &self.inputs, &mut arguments);
         let mut offset = 0;
         let mut largest: Option<(usize, (usize, usize), f64)> = None;
         for &(input, arity) in self.system.input_sites() {
@@ -556,8 +556,35 @@ impl<const N: usize, S: LagrangianSystem<N>> OdeProblem<PhaseState<N>> for Crash
             return "the right-hand side".to_string();
         };
         self.inputs.load(&y.z);
-        (self.system).input_arguments(t, &y.q, &y.v, &mut self.arguments);
+        (self.system).input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
         (self.inputs).name_internal_rate(i, dy.z.as_slice()[i], &self.arguments)
+    }
+
+    fn name_largest_rate(&mut self, t: f64, y: &PhaseState<N>, dy: &PhaseState<N>) -> String {
+        let names = self.system.coordinate_names();
+        let largest = |values: &[f64]| {
+            (0..values.len()).max_by(|&i, &j| values[i].abs().total_cmp(&values[j].abs()))
+        };
+        let size = |values: &[f64], i: Option<usize>| i.map_or(0.0, |i: usize| values[i].abs());
+        let (q, v, z) = (dy.q.as_slice(), dy.v.as_slice(), dy.z.as_slice());
+        let (iq, iv, iz) = (largest(q), largest(v), largest(z));
+        let (sq, sv, sz) = (size(q, iq), size(v, iv), size(z, iz));
+        if let Some(i) = iz.filter(|_| sz >= sq.max(sv)) {
+            self.inputs.load(&y.z);
+            (self.system).input_arguments(t, &y.q, &y.v, &self.inputs, &mut self.arguments);
+            return (self.inputs).name_internal_rate(i, z[i], &self.arguments);
+        }
+        match (iq, iv) {
+            (Some(i), _) if sq >= sv => format!("the velocity of {} ({:e})", names[i], q[i]),
+            (_, Some(i)) => {
+                let cause = match self.blamed_input(t, &y.q, &y.v) {
+                    Some((input, large)) => format!(", where {input} is {large:e}"),
+                    None => String::new(),
+                };
+                format!("the acceleration of {} ({:e}){cause}", names[i], v[i])
+            }
+            _ => "the right-hand side".to_string(),
+        }
     }
 
     /// A component's event by its name and component; a switching function
