@@ -103,7 +103,7 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Outcome<&'a [T]
     }
 }
 
-/// `n` values at `p` as a mutable slice (see [`slice`]).
+/// `n` values at `p` as a mutable slice (see [`slice()`]).
 ///
 /// # Safety
 /// A non-null `p` points to `n` writable values that outlive the slice.
