@@ -5,8 +5,9 @@
 
 #![allow(non_snake_case)]
 
+use crate::component::{Component, Logger};
 use crate::ffi::*;
-use crate::guard::{Component, Logger, guard, shielded, slice, slice_mut, text};
+use crate::guard::{guard, shielded, slice, slice_mut, text};
 use crate::instance::{Failure, Instance, Interface, Outcome};
 use crate::plant::PlantFactory;
 use crate::resources::{directory_of, load};
@@ -352,8 +353,8 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, state: *mut fmi2FMUst
 /// Restores a state this instance saved.
 pub extern "C" fn fmi2SetFMUstate(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
     guard(c, "fmi2SetFMUstate", |c| {
-        let snapshot =
-            (c.states.get(&(state as usize))).ok_or_else(|| crate::guard::unknown_state(state))?;
+        let snapshot = (c.states.get(&(state as usize)))
+            .ok_or_else(|| crate::component::unknown_state(state))?;
         c.instance.restore(snapshot);
         Ok(())
     })

@@ -1,92 +1,17 @@
-//! What stands between the host and the Rust code: the instance behind an
-//! `fmi2Component` (found through [`crate::registry`]), the host's logger,
-//! and [`guard`], which every entry point runs its body in: it refuses a
+//! What stands between the host and the Rust code: [`guard`], which every
+//! entry point runs its body in on the component behind an `fmi2Component`
+//! ([`crate::component`], found through [`crate::registry`]): it refuses a
 //! handle that is no live instance and a call the state machine
 //! ([`crate::machine`]) does not allow in the instance's state, lets no
 //! panic unwind into the host (it becomes `fmi2Fatal`), logs every failure
 //! and returns it as its status; after an `fmi2Error` the instance is in
 //! the standard's error state.
 
-use crate::ffi::{fmi2CallbackLogger, fmi2Component, fmi2ComponentEnvironment, fmi2Status};
-use crate::instance::{Failure, Instance, Outcome, Snapshot};
-use std::collections::BTreeMap;
-use std::ffi::{CString, c_char};
+use crate::component::Component;
+use crate::ffi::{fmi2Component, fmi2Status};
+use crate::instance::{Failure, Outcome};
+use std::ffi::c_char;
 use std::panic::{AssertUnwindSafe, catch_unwind};
-
-/// The host's logger and its environment pointer.
-#[derive(Clone, Copy)]
-pub struct Logger {
-    /// The callback (`None`: the host gave none).
-    pub callback: fmi2CallbackLogger,
-    /// Passed back to the callback.
-    pub environment: fmi2ComponentEnvironment,
-}
-
-impl Logger {
-    /// Sends `message` under `category` with `status` for `instance`; `%`
-    /// is doubled, as the message is a `printf` format for the host.
-    pub fn log(&self, instance: &str, status: fmi2Status, category: &str, message: &str) {
-        let Some(callback) = self.callback else {
-            return;
-        };
-        let text = |s: &str| CString::new(s.replace('\0', " ")).unwrap_or_default();
-        let (name, category) = (text(instance), text(category));
-        let message = text(&message.replace('%', "%%"));
-        // SAFETY: the host's logger with valid zero-terminated strings that
-        // live across the call, and no variadic arguments (no `%` left).
-        unsafe {
-            callback(
-                self.environment,
-                name.as_ptr(),
-                status,
-                category.as_ptr(),
-                message.as_ptr(),
-            )
-        }
-    }
-}
-
-/// What an `fmi2Component` points to.
-pub struct Component {
-    /// The instance.
-    pub instance: Instance,
-    /// The host's logger.
-    pub logger: Logger,
-    /// Set when a call panicked: the instance may be inconsistent, so
-    /// every later call is `fmi2Fatal`.
-    pub broken: bool,
-    /// The states `fmi2GetFMUstate` saved and `fmi2FreeFMUstate` has not
-    /// freed, by handle ([`crate::registry::new_handle`]): a handle of a
-    /// freed state, or of another instance's, is refused.
-    pub states: BTreeMap<usize, Snapshot>,
-}
-
-impl Component {
-    /// A component of `instance` that logs to `logger`.
-    pub fn new(instance: Instance, logger: Logger) -> Component {
-        Component {
-            instance,
-            logger,
-            broken: false,
-            states: BTreeMap::new(),
-        }
-    }
-
-    /// The saved state of handle `state`.
-    pub fn state(&self, state: *mut std::ffi::c_void) -> Outcome<&Snapshot> {
-        (self.states.get(&(state as usize))).ok_or_else(|| unknown_state(state))
-    }
-
-    /// Logs `message` with `status` under the category that goes with it.
-    pub fn log(&self, status: fmi2Status, message: &str) {
-        let category = match status {
-            fmi2Status::fmi2OK => "logEvents",
-            _ => "logStatusError",
-        };
-        self.logger
-            .log(&self.instance.name, status, category, message);
-    }
-}
 
 /// Runs `body`: its failure is reported with `report` and returned as its
 /// status; a panic is reported as an internal error and becomes
@@ -164,14 +89,6 @@ pub fn not_an_instance(call: &str, c: fmi2Component) -> String {
     }
 }
 
-/// The failure of a state handle this instance did not save.
-pub fn unknown_state(state: *mut std::ffi::c_void) -> Failure {
-    Failure::error(format!(
-        "FMU state {state:p} is not one this instance saved (freed already, or another \
-         instance's)"
-    ))
-}
-
 /// `n` values at `p` as a slice (empty for `n == 0`, whatever `p`);
 /// `Err` for a null `p` with `n > 0`.
 ///
@@ -186,7 +103,7 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Outcome<&'a [T]
     }
 }
 
-/// `n` values at `p` as a mutable slice (see [`slice`]).
+/// `n` values at `p` as a mutable slice (see [`slice()`]).
 ///
 /// # Safety
 /// A non-null `p` points to `n` writable values that outlive the slice.

@@ -1,7 +1,7 @@
 //! One FMU instance: the FMI 2.0 state machine around a [`Plant`], with
 //! every call's checks and effects, free of C types so that it is tested
-//! in Rust. The C entry points ([`crate::common`], [`crate::cs`],
-//! [`crate::me`]) only convert arguments and report failures.
+//! in Rust. The C entry points above it (the modules `common`, `cs` and
+//! `me`) only convert arguments and report failures.
 
 use crate::ffi::fmi2Status;
 use crate::plant::{Plant, PlantFactory, plant};

@@ -28,6 +28,7 @@
 #![warn(missing_docs)]
 
 pub mod common;
+pub mod component;
 pub mod cs;
 pub mod export;
 pub mod ffi;

@@ -2,10 +2,10 @@
 //! not a pointer but a handle, a number never given out twice, that only
 //! [`find`] turns into an instance, through the table of live ones. So a
 //! handle the host freed already, one of another FMU, or garbage, is
-//! recognized and refused ([`crate::guard::guard`]) instead of read as
+//! recognized and refused (by the guard, `guard::guard`) instead of read as
 //! memory: `fmi2FreeInstance` twice, or any call on a freed instance, is
 //! harmless. The same numbering names the saved states of `fmi2GetFMUstate`
-//! ([`crate::guard::Component::states`]).
+//! ([`crate::component::Component::states`]).
 //!
 //! Each instance is behind its own lock, taken with `try_lock`: two calls
 //! on one instance at once (which the standard forbids; a logger callback
@@ -13,8 +13,8 @@
 //! deadlocking, and an instance freed while one of its calls runs on
 //! another thread lives until that call returns.
 
+use crate::component::{Component, Logger};
 use crate::ffi::fmi2Component;
-use crate::guard::{Component, Logger};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError, TryLockError};

@@ -3,7 +3,7 @@
 //! Pipeline: spec text or tokens → [`spec::Model`] (names resolved, expressions
 //! in canonical form, the energies also on the derivation [`graph`]) →
 //! [`derive::Derivation`] (`M q̈ = f`, energies, Jacobians), or
-//! [`graph::GraphDerivation`] for a model too large for the canonical form →
+//! [`graph_derivation::GraphDerivation`] for a model too large for the canonical form →
 //! [`program::Program`] (optimized straight-line code) → Rust source
 //! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
 //! [`tape::lower`]).
@@ -21,6 +21,7 @@ pub mod expand;
 pub mod expr;
 pub mod generate;
 pub mod graph;
+pub mod graph_derivation;
 pub mod optimize;
 pub mod program;
 pub mod random;
@@ -88,7 +89,7 @@ impl Compiled {
                 .into());
         }
         depth::with_large_stack(|| {
-            let derivation = graph::derive_graph(&mut model)?;
+            let derivation = graph_derivation::derive_graph(&mut model)?;
             let program =
                 optimize::build_program_from_graph(&mut model.store, &model.graph, &derivation);
             derive::check_program_mass(&mut model, &program)?;

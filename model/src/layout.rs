@@ -183,9 +183,7 @@ impl Energies {
 
 /// The mechanical energy at one state: `T` and `V`, the fields of
 /// [`Energies`] that need neither the dissipation nor the forces (those of
-/// the tape's [`DerivedRoutine::MechanicalEnergy`], in order).
-///
-/// [`DerivedRoutine::MechanicalEnergy`]: crate::tape::DerivedRoutine::MechanicalEnergy
+/// the tape's derived mechanical-energy routine, in order).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MechanicalEnergy {
     /// Kinetic energy `T`.

@@ -1,5 +1,6 @@
 //! Direct floating-point evaluation of expressions (checks and tests; the fast
-//! path is the optimized [`crate::program::Program`]).
+//! path is the optimized straight-line program, `program::Program`, a
+//! module above this one).
 
 use super::{ExprId, Node, Store, SymbolKind};
 use rustc_hash::FxHashMap;

@@ -15,9 +15,6 @@
 //! Nodes are hash-consed: structurally equal nodes share one [`GraphId`].
 
 mod calculus;
-mod derive;
-
-pub use derive::{GraphDerivation, derive_graph};
 
 use crate::expr::{ExprId, Func, Node, Store, SymbolId};
 use crate::rational::Rational;

@@ -5,7 +5,8 @@
 
 use super::{Builder, RoutineOutputs, Signed, assemble};
 use crate::expr::Store;
-use crate::graph::{Graph, GraphDerivation, GraphId, GraphNode};
+use crate::graph::{Graph, GraphId, GraphNode};
+use crate::graph_derivation::GraphDerivation;
 use crate::program::{Op, Program};
 use crate::rational::Rational;
 use lagrangian_model::layout::mass_entries;

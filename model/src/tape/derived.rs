@@ -17,7 +17,8 @@ use crate::layout::{Energy, RoutineKind};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DerivedRoutine {
     /// `T` and `V`, in that order: the mechanical energy, from
-    /// [`RoutineKind::Energies`] without the dissipation and the powers.
+    /// [`RoutineKind::Energies`] without the dissipation and the powers
+    /// (the fields of [`MechanicalEnergy`](crate::layout::MechanicalEnergy)).
     MechanicalEnergy,
 }
 

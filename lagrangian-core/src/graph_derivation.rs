@@ -1,4 +1,5 @@
-//! The Euler–Lagrange equations on the graph, for the program:
+//! The Euler–Lagrange equations on the derivation graph ([`crate::graph`]),
+//! for the program:
 //!
 //! ```text
 //! p   = ∂L/∂q̇                      (one reverse sweep of L = T − V)
@@ -9,13 +10,14 @@
 //! `(∂p/∂q) q̇ + ∂p/∂t` is one forward pass in the direction `(q̇, 1)` of
 //! `(q, t)`: the time derivative of the momenta without their `M q̈` part.
 
-use super::GraphId;
 use crate::diagnostic::SpecErrors;
 use crate::expr::{Store, SymbolId};
+use crate::graph::GraphId;
 use crate::spec::{Model, engine_diagnostic};
 
 /// The equations of motion, energies, powers, Jacobians and outputs as
-/// graph nodes: what [`crate::optimize::build_program_from_graph`] emits.
+/// graph nodes: what the optimizer's `build_program_from_graph` emits (a
+/// module above this one).
 #[derive(Clone, Debug)]
 pub struct GraphDerivation {
     /// `n`, the number of generalized coordinates.
