@@ -335,27 +335,31 @@ fn origin(variable: &Variable) -> &'static str {
     }
 }
 
-/// The crush signal and its deceleration, when the scenario names one.
+/// The crush signal and its deceleration, when the scenario names one; a
+/// crush of outputs has no deceleration here (the simulator takes it from
+/// differences along the motion, which the FMU does not evaluate), rather
+/// than a variable that is always NaN.
 fn crush(scenario: &Scenario) -> Vec<Variable> {
     let Some(signal) = &scenario.crush else {
         return Vec::new();
     };
-    vec![
-        Variable {
-            name: format!("{METRICS}.crush"),
-            quantity: Quantity::Crush,
-            unit: signal.unit.clone(),
-            description: format!("crush `{}` (compression positive)", signal.name),
-            start: None,
-        },
-        Variable {
+    let mut variables = vec![Variable {
+        name: format!("{METRICS}.crush"),
+        quantity: Quantity::Crush,
+        unit: signal.unit.clone(),
+        description: format!("crush `{}` (compression positive)", signal.name),
+        start: None,
+    }];
+    if signal.is_of_coordinates() {
+        variables.push(Variable {
             name: format!("{METRICS}.deceleration"),
             quantity: Quantity::Deceleration,
             unit: signal.unit.as_ref().map(|u| format!("{u}/s^2")),
             description: format!("deceleration of the crush `{}`", signal.name),
             start: None,
-        },
-    ]
+        });
+    }
+    variables
 }
 
 /// The components' columns (`front_end.force`).

@@ -112,6 +112,10 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         self.0.output_names().iter().map(String::as_str).collect()
     }
 
+    fn output_reads(&self) -> Option<Vec<crate::tape::StateReads>> {
+        Some(self.0.output_reads())
+    }
+
     fn outputs<I: InputFunctions + ?Sized>(
         &self,
         t: f64,

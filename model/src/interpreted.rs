@@ -7,7 +7,7 @@ use crate::layout::{
     ConstraintLayout, Energies, MechanicalEnergy, RoutineKind, mass_entries, unpack_dynamics,
 };
 use crate::native::{NativeRoutines, with_input_call};
-use crate::tape::{DerivedRoutine, Tape};
+use crate::tape::{DerivedRoutine, StateReads, Tape};
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -243,6 +243,14 @@ impl InterpretedModel {
     /// [`InterpretedModel::parameter_names`].
     pub fn parameters(&self) -> &[f64] {
         &self.parameters
+    }
+
+    /// What each output of [`InterpretedModel::output_names`] reads beyond
+    /// the coordinates and parameters, in order.
+    pub fn output_reads(&self) -> Vec<StateReads> {
+        (0..self.output_names().len())
+            .map(|k| (self.tape.reads(RoutineKind::Outputs, k)).unwrap_or_default())
+            .collect()
     }
 
     /// Whether the spec asked for Jacobians (`jacobians;`).

@@ -138,6 +138,14 @@ pub trait LagrangianSystem<const N: usize> {
         Vec::new()
     }
 
+    /// What each output of [`LagrangianSystem::output_names`] reads beyond
+    /// the coordinates and parameters (velocities, accelerations, the time,
+    /// input functions), where the model knows it (an interpreted one
+    /// does, from its tape); `None` by default.
+    fn output_reads(&self) -> Option<Vec<crate::tape::StateReads>> {
+        None
+    }
+
     /// Writes the value of each output of [`LagrangianSystem::output_names`]
     /// to `out` (which holds at least as many values), at the state
     /// `(t, q, q̇)` with the accelerations `qdd` (those the equations of

@@ -161,6 +161,30 @@ impl RegisterLayout {
     }
 }
 
+/// What a routine's output reads beyond the coordinates and parameters
+/// ([`Tape::reads`]): a fact of the instructions it depends on, so an
+/// output that reads a velocity with a factor that vanishes at run time
+/// still reads it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StateReads {
+    /// A velocity `q̇_k`.
+    pub velocities: bool,
+    /// An acceleration `q̈_k`.
+    pub accelerations: bool,
+    /// The time `t`.
+    pub time: bool,
+    /// An input function.
+    pub inputs: bool,
+}
+
+impl StateReads {
+    /// Whether it reads no more than the coordinates, the parameters and
+    /// the time: a function `o(q, t)`.
+    pub fn of_position(self) -> bool {
+        !(self.velocities || self.accelerations || self.inputs)
+    }
+}
+
 /// A tape whose registers or argument ranges fall outside its register
 /// file: a bug in whatever built it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -303,6 +327,12 @@ impl Tape {
     fn routine_and_steps(&self, kind: RoutineKind) -> Option<(&TapeRoutine, &[code::Step])> {
         let k = self.by_kind[kind.index()]?;
         Some((&self.routines[k], &self.steps[k]))
+    }
+
+    /// What output `k` of routine `kind` reads (see [`StateReads`]);
+    /// `None` when the tape has no such routine or output.
+    pub fn reads(&self, kind: RoutineKind, k: usize) -> Option<StateReads> {
+        derived::reads(self.routine(kind)?, k, &self.arguments, &self.layout)
     }
 
     /// The sizes of the register file's regions.

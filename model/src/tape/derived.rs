@@ -9,7 +9,7 @@
 //! the kept outputs bit for bit as the source routine does. The compiler
 //! need not know them: a derived routine is a fact of the tape alone.
 
-use super::{Instruction, TapeRoutine, code};
+use super::{Instruction, RegisterLayout, StateReads, TapeRoutine, code};
 use crate::layout::{Energy, RoutineKind};
 
 /// A routine derived from one of the compiler's (see the module
@@ -82,6 +82,35 @@ pub(super) fn pruned(
     })
 }
 
+/// What one output of a routine reads of the state and the inputs: the
+/// registers and input calls the instructions it depends on read (those of
+/// [`pruned`]).
+pub(super) fn reads(
+    routine: &TapeRoutine,
+    k: usize,
+    arguments: &[u32],
+    layout: &RegisterLayout,
+) -> Option<StateReads> {
+    let slice = pruned(routine, &[k], arguments, layout.registers())?;
+    let mut registers: Vec<u32> = slice.outputs.clone();
+    let mut inputs = false;
+    for instruction in &slice.instructions {
+        inputs |= matches!(instruction, Instruction::Input { .. });
+        registers.extend(code::reads(instruction, arguments));
+    }
+    let n = layout.dimension;
+    let within = |first: u32| {
+        let range = first..first + n as u32;
+        registers.iter().any(|r| range.contains(r))
+    };
+    Some(StateReads {
+        velocities: n > 0 && within(layout.velocity(0)),
+        accelerations: n > 0 && within(layout.acceleration(0)),
+        time: registers.contains(&layout.time()),
+        inputs,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{RegisterLayout, Tape};
@@ -123,6 +152,27 @@ mod tests {
             outputs: vec![t(2), t(4), 0, 0, t(3)],
         };
         (layout, routine, vec![x])
+    }
+
+    /// `T = q̇²/2` reads a velocity, `V = q²` the coordinate alone, the
+    /// external power `wall(q)·q̇` an input and a velocity, a constant
+    /// output nothing; the time register read directly is the time.
+    #[test]
+    fn an_output_reads_what_the_instructions_it_depends_on_read() {
+        let (layout, mut routine, arguments) = energies_with_an_input_call();
+        routine.outputs[3] = layout.time();
+        let reads = |k| reads(&routine, k, &arguments, &layout).unwrap();
+        let velocity = StateReads {
+            velocities: true,
+            ..StateReads::default()
+        };
+        assert_eq!(reads(0), velocity);
+        assert_eq!(reads(1), StateReads::default());
+        assert!(reads(1).of_position() && reads(2).of_position());
+        let power = reads(4);
+        assert!(power.inputs && power.velocities && !power.of_position());
+        assert!(reads(3).time && reads(3).of_position());
+        assert!(super::reads(&routine, 5, &arguments, &layout).is_none());
     }
 
     #[test]

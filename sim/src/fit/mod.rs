@@ -196,10 +196,13 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
             let values: Vec<f64> = result
                 .samples
                 .iter()
-                .map(|s| match c.quantity {
-                    Quantity::Acceleration => crush.of_coordinates(&s.a),
-                    Quantity::Velocity => crush.of_coordinates(&s.v),
-                    Quantity::Crush => crush.plus_offset(crush.of_coordinates(&s.q)),
+                .map(|s| {
+                    let [value, rate, acceleration] = s.crush_motion(&crush);
+                    match c.quantity {
+                        Quantity::Acceleration => acceleration,
+                        Quantity::Velocity => rate,
+                        Quantity::Crush => value,
+                    }
                 })
                 .collect();
             interpolate(&t, &values, &target.t)

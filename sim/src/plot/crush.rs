@@ -20,13 +20,10 @@ pub(super) const AFTER_CONTACT: &str = "crush channel after contact (moving apar
 pub(super) fn crush_panels(result: &SimulationResult, signal: &Signal, g: f64) -> Vec<Panel> {
     let s = &result.samples;
     let t: Vec<f64> = s.iter().map(|x| x.t).collect();
-    let crush: Vec<f64> = (s.iter())
-        .map(|x| signal.plus_offset(signal.of_coordinates(&x.q)))
-        .collect();
-    let rate = s.iter().map(|x| (ms(x.t), signal.of_coordinates(&x.v)));
-    let deceleration: Vec<f64> = (s.iter())
-        .map(|x| -signal.of_coordinates(&x.a) / g)
-        .collect();
+    let motion: Vec<[f64; 3]> = s.iter().map(|x| x.crush_motion(signal)).collect();
+    let crush: Vec<f64> = motion.iter().map(|m| m[0]).collect();
+    let rate = (s.iter().zip(&motion)).map(|(x, m)| (ms(x.t), m[1]));
+    let deceleration: Vec<f64> = motion.iter().map(|m| -m[2] / g).collect();
     let unit = signal.unit.as_deref();
     let contact_end = result.summary.end_of_contact_s;
     let permanent = contact_end.zip(result.summary.permanent_crush_m);

@@ -21,6 +21,7 @@ fn sample(components: Vec<f64>) -> Sample {
         components,
         multipliers: Vec::new(),
         residuals: Vec::new(),
+        crush: None,
     }
 }
 

@@ -68,6 +68,7 @@ pub use base::BaseScenario;
 pub use choice::Choice;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
+use lagrangian_model::tape::StateReads;
 use lagrangian_model::{InterpretedModel, LagrangianSystem};
 pub use overrides::Setting;
 #[cfg(any(feature = "sweep", test))]
@@ -103,6 +104,10 @@ pub struct ModelNames {
     pub outputs: Vec<String>,
     /// The unit of each output, where declared.
     pub output_units: Vec<Option<String>>,
+    /// What each output reads beyond the coordinates and parameters, where
+    /// the model knows it (an interpreted one does): a crush channel may
+    /// take an output that reads no velocity, acceleration or input.
+    pub output_reads: Vec<Option<StateReads>>,
     /// The columns of the scenario's components (`front_end.force`) with
     /// their units, once they are bound (see [`ModelNames::with_components`]).
     pub component_columns: Vec<(String, Option<String>)>,
@@ -128,6 +133,10 @@ impl ModelNames {
             input_sites: system.input_sites().to_vec(),
             outputs: own(system.output_names()),
             output_units: vec![None; system.output_names().len()],
+            output_reads: match system.output_reads() {
+                Some(reads) => reads.into_iter().map(Some).collect(),
+                None => vec![None; system.output_names().len()],
+            },
             constraints: own(system.constraint_names()),
             multiplier_units: vec![None; system.constraint_count()],
             parameter_defaults: system.parameters(),
@@ -146,6 +155,7 @@ impl ModelNames {
             coordinate_units: model.coordinate_units().to_vec(),
             outputs: model.output_names().to_vec(),
             output_units: model.output_units().to_vec(),
+            output_reads: model.output_reads().into_iter().map(Some).collect(),
             component_columns: Vec::new(),
             constraints: model.constraint_names().to_vec(),
             multiplier_units: model.multiplier_units().to_vec(),
@@ -261,8 +271,9 @@ pub struct Scenario {
     pub initial_velocities: Vec<(usize, f64)>,
     /// Coordinates solved for static equilibrium before the run.
     pub equilibrium: Vec<usize>,
-    /// The crush channel (`metrics.crush`): a combination of coordinates,
-    /// compression positive.
+    /// The crush channel (`metrics.crush`): a combination of coordinates
+    /// and of outputs of the position (functions of the coordinates and
+    /// time), with an offset or not, compression positive.
     pub crush: Option<Signal>,
     /// The channels of `metrics.displacement`, `velocity`, `acceleration`
     /// and `force`, in that order.

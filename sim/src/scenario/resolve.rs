@@ -4,7 +4,7 @@
 use super::bind::bind_components;
 use super::choice::parse_choice;
 use super::file::{ClassChoice, File, InitialSection, MetricsSection};
-use super::{Channel, ModelNames, Role, Scenario, Signal};
+use super::{Channel, Column, ModelNames, Role, Scenario, Signal};
 use crate::crash::ComponentSection;
 use crate::crash::curve::Outside;
 use crate::crash::table::Table;
@@ -290,16 +290,54 @@ fn moving_with_the_vehicle(
     Ok(velocities)
 }
 
-/// `metrics.crush`: a combination of coordinates, with an offset or not
-/// (`"y + 0.977"`), so that its rate and acceleration are exact.
+/// `metrics.crush`: a combination of coordinates and of outputs of the
+/// position (functions of the coordinates and time), with an offset or not
+/// (`"y + 0.977"`, `"intrusion"`), so that its rate and acceleration follow
+/// from the motion: exactly for coordinates, by differences along the
+/// motion for outputs (`simulate::output_motion`).
 fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, String> {
     let signal = Signal::parse("metrics.crush", text, names)?;
-    if !signal.is_of_coordinates() {
-        return Err(format!(
-            "metrics.crush = \"{text}\": the crush channel is a combination of coordinates (e.g. \"-r\", \"xa - xb\" or \"y + 0.977\"), so that its rate and acceleration are exact; list other columns under metrics.displacement"
-        ));
+    let bad = |why: String| format!("metrics.crush = \"{text}\": {why}");
+    for &(_, column) in &signal.terms {
+        match column {
+            Column::Coordinate(_) => {}
+            Column::Output(k) => output_of_position(k, names).map_err(bad)?,
+            _ => return Err(bad(NOT_OF_POSITION.to_string())),
+        }
     }
     Ok(signal)
+}
+
+/// Why a column that is neither a coordinate nor an output cannot be the
+/// crush channel.
+const NOT_OF_POSITION: &str = "the crush channel is a combination of coordinates and outputs of the position (e.g. \"-r\", \"xa - xb\", \"y + 0.977\" or an output \"intrusion\"), so that its rate and acceleration follow from the motion; list other columns under metrics.displacement";
+
+/// `Ok` when output `k` is a function of the coordinates and time alone,
+/// else why it cannot be a crush channel.
+fn output_of_position(k: usize, names: &ModelNames) -> Result<(), String> {
+    let name = &names.outputs[k];
+    let Some(reads) = names.output_reads.get(k).copied().flatten() else {
+        return Err(format!(
+            "the model does not say what output `{name}` reads (a model compiled without its tape), so it cannot be the crush channel; run the spec itself (`lpm simulate`), or write the crush as a combination of coordinates"
+        ));
+    };
+    let mut what = Vec::new();
+    if reads.velocities {
+        what.push("velocities (dot)");
+    }
+    if reads.accelerations {
+        what.push("accelerations (ddot)");
+    }
+    if reads.inputs {
+        what.push("an input function");
+    }
+    match what.is_empty() {
+        true => Ok(()),
+        false => Err(format!(
+            "output `{name}` reads {}, so its rate and acceleration along the motion are not those of a crush; the crush channel is a combination of coordinates and of outputs of the coordinates and time alone; list `{name}` under metrics.displacement",
+            what.join(" and ")
+        )),
+    }
 }
 
 /// The channels of `metrics.displacement`, `velocity`, `acceleration` and

@@ -172,6 +172,14 @@ impl Signal {
         (self.terms.iter()).all(|(_, column)| matches!(column, Column::Coordinate(_)))
     }
 
+    /// The outputs among its terms, in the order written.
+    pub fn outputs(&self) -> impl Iterator<Item = usize> + '_ {
+        (self.terms.iter()).filter_map(|&(_, column)| match column {
+            Column::Output(k) => Some(k),
+            _ => None,
+        })
+    }
+
     /// The linear part of a signal of coordinates applied to `values`, one
     /// per coordinate: its rate for `q̇`, its acceleration for `q̈`; for
     /// `q`, the signal less its offset ([`Signal::plus_offset`] adds it).
@@ -179,52 +187,78 @@ impl Signal {
         self.linear(&Columns::coordinates(values))
     }
 
-    /// [`Signal::of_coordinates`] with the columns resolved once, for a
-    /// signal read at every sample.
+    /// The signal as a combination of coordinates and outputs with its
+    /// columns resolved once, for a signal read at every sample (the crush
+    /// channel: the outputs are functions of the coordinates and time, see
+    /// [`CoordinateCombination::of`]).
     pub fn coordinate_combination(&self) -> CoordinateCombination {
-        let index = |column: Column| match column {
-            Column::Coordinate(k) | Column::Velocity(k) | Column::Acceleration(k) => Some(k),
-            Column::Output(_)
-            | Column::Component(_)
-            | Column::Multiplier(_)
-            | Column::Residual(_) => None,
+        let term = |column: Column| match column {
+            Column::Coordinate(k) | Column::Velocity(k) | Column::Acceleration(k) => {
+                Term::Coordinate(k)
+            }
+            Column::Output(k) => Term::Output(k),
+            Column::Component(_) | Column::Multiplier(_) | Column::Residual(_) => Term::Other,
         };
         CoordinateCombination {
             terms: (self.terms.iter())
-                .map(|&(c, column)| (c, index(column)))
+                .map(|&(c, column)| (c, term(column)))
                 .collect(),
         }
     }
 }
 
-/// A signal's combination of coordinates, as
-/// [`Signal::coordinate_combination`] resolves it: `(factor, index)` per
-/// term, `None` for a column that is not a coordinate's (it reads NaN, as
-/// in [`Signal::of_coordinates`]).
+/// A term of a [`CoordinateCombination`]: what it reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Term {
+    /// Coordinate `k` (its rate, its acceleration).
+    Coordinate(usize),
+    /// Output `k` of the spec (its rate, its acceleration along the motion).
+    Output(usize),
+    /// A column that is neither: it reads NaN, as in
+    /// [`Signal::of_coordinates`].
+    Other,
+}
+
+/// A signal's combination of coordinates and outputs, as
+/// [`Signal::coordinate_combination`] resolves it: `(factor, term)` per
+/// term.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CoordinateCombination {
-    terms: Vec<(f64, Option<usize>)>,
+    terms: Vec<(f64, Term)>,
 }
 
 impl CoordinateCombination {
-    /// The combination applied to each of `values` (`q`, `q̇`, `q̈`: one
-    /// value per coordinate each), bit for bit [`Signal::of_coordinates`]:
-    /// the first term's product starts each sum.
+    /// The combination applied to each of `coordinates` (`q`, `q̇`, `q̈`:
+    /// one value per coordinate each) and of `outputs` (the outputs, their
+    /// rates and their accelerations along the motion: one value per
+    /// output each, or empty where no term reads an output). For a
+    /// combination of coordinates it is bit for bit
+    /// [`Signal::of_coordinates`]: the first term's product starts each sum.
     #[inline]
-    pub fn of<const M: usize>(&self, values: [&[f64]; M]) -> [f64; M] {
-        let at = |values: &[f64], k: Option<usize>| {
-            (k.and_then(|k| values.get(k)).copied()).unwrap_or(f64::NAN)
+    pub fn of<const M: usize>(&self, coordinates: [&[f64]; M], outputs: [&[f64]; M]) -> [f64; M] {
+        let at = |m: usize, term: Term| {
+            let value = match term {
+                Term::Coordinate(k) => coordinates[m].get(k),
+                Term::Output(k) => outputs[m].get(k),
+                Term::Other => None,
+            };
+            value.copied().unwrap_or(f64::NAN)
         };
         let Some((&(c, first), rest)) = self.terms.split_first() else {
             return [f64::NAN; M];
         };
-        let mut sums = values.map(|v| c * at(v, first));
-        for &(c, k) in rest {
-            for (sum, v) in sums.iter_mut().zip(values) {
-                *sum += c * at(v, k);
+        let mut sums: [f64; M] = std::array::from_fn(|m| c * at(m, first));
+        for &(c, term) in rest {
+            for (m, sum) in sums.iter_mut().enumerate() {
+                *sum += c * at(m, term);
             }
         }
         sums
+    }
+
+    /// Whether a term reads an output.
+    pub fn reads_outputs(&self) -> bool {
+        (self.terms.iter()).any(|(_, term)| matches!(term, Term::Output(_)))
     }
 }
 
@@ -431,13 +465,16 @@ mod tests {
                 (-2.0, Column::Acceleration(0)),
             ]),
             signal(vec![(1.0, Column::Coordinate(9))]),
-            signal(vec![(1.0, Column::Coordinate(0)), (1.0, Column::Output(0))]),
+            signal(vec![
+                (1.0, Column::Coordinate(0)),
+                (1.0, Column::Component(0)),
+            ]),
             signal(vec![(2.0, Column::Multiplier(0))]),
         ];
         let rates = [-15.5, 0.25, 1e-9, 3.0];
         for s in &signals {
             let expected = [s.of_coordinates(&values), s.of_coordinates(&rates)];
-            let got = s.coordinate_combination().of([&values, &rates]);
+            let got = (s.coordinate_combination()).of([&values, &rates], [&[], &[]]);
             assert_eq!(
                 got.map(f64::to_bits),
                 expected.map(f64::to_bits),
@@ -445,5 +482,24 @@ mod tests {
                 s.terms
             );
         }
+    }
+
+    /// An output term reads the outputs' values, rates and accelerations
+    /// as a coordinate term reads `q`, `q̇`, `q̈`: `2·o₁ − x` by hand.
+    #[test]
+    fn an_output_term_reads_the_outputs_motion() {
+        let s = signal(vec![
+            (2.0, Column::Output(1)),
+            (-1.0, Column::Coordinate(0)),
+        ]);
+        let combination = s.coordinate_combination();
+        assert!(combination.reads_outputs());
+        let (q, v, a) = ([0.5], [3.0], [-40.0]);
+        let (o, rate, acceleration) = ([9.0, 0.25], [9.0, -1.5], [9.0, 12.0]);
+        let got = combination.of([&q, &v, &a], [&o, &rate, &acceleration]);
+        assert_eq!(got, [2.0 * 0.25 - 0.5, 2.0 * -1.5 - 3.0, 2.0 * 12.0 + 40.0]);
+        // Without the outputs' values the sum is not a number, never 0.
+        assert!(combination.of([&q], [&[]])[0].is_nan());
+        assert_eq!(s.outputs().collect::<Vec<_>>(), [1]);
     }
 }

@@ -279,6 +279,10 @@ fn channels_name_columns_of_the_trajectory_with_suggestions() {
         coordinate_units: vec![Some("m".into()), Some("m".into())],
         outputs: vec!["belt_force".into()],
         output_units: vec![Some("N".into())],
+        output_reads: vec![Some(lagrangian_model::tape::StateReads {
+            velocities: true,
+            ..Default::default()
+        })],
         ..ModelNames::default()
     };
     let parse =
@@ -305,7 +309,7 @@ fn channels_name_columns_of_the_trajectory_with_suggestions() {
     );
     assert!(
         error("crush = \"belt_force\"")
-            .contains("the crush channel is a combination of coordinates")
+            .contains("metrics.crush = \"belt_force\": output `belt_force` reads velocities (dot)")
     );
     assert!(
         error("crush = \"xa_dot\"").contains("the crush channel is a combination of coordinates")

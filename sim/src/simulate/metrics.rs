@@ -1,9 +1,11 @@
 //! The crash metrics of a run, accumulated sample by sample into its
 //! [`Summary`].
 //!
-//! With the crush `c = Σ c_k q_k` of the scenario's `metrics.crush`
-//! channel (compression positive), the vehicle's velocity towards the barrier is `ċ`
-//! and its deceleration `−c̈`. Pitch angles are reported relative to the
+//! With the crush `c = Σ c_k q_k + Σ d_j o_j(q, t) + c₀` of the scenario's
+//! `metrics.crush` channel (compression positive; `o_j` outputs of the
+//! position, whose rates and accelerations along the motion the sample
+//! brings, see [`super::output_motion`]), the vehicle's velocity towards
+//! the barrier is `ċ` and its deceleration `−c̈`. Pitch angles are reported relative to the
 //! static equilibrium the run started from.
 
 use super::Sample;
@@ -34,6 +36,10 @@ pub struct SampleView<'a> {
     pub multipliers: &'a [f64],
     /// The constraints' residuals `g`.
     pub residuals: &'a [f64],
+    /// The rates `ȯ` and accelerations `ö` of the outputs along the motion,
+    /// one per output each, where the crush channel reads an output (empty
+    /// otherwise; see [`super::output_motion`]).
+    pub output_motion: [&'a [f64]; 2],
 }
 
 impl<'a> SampleView<'a> {
@@ -49,10 +55,14 @@ impl<'a> SampleView<'a> {
             components: &[],
             multipliers: &[],
             residuals: &[],
+            output_motion: [&[], &[]],
         }
     }
 }
 
+/// A kept sample as the metrics see it: without the outputs' rates and
+/// accelerations, which a sample does not keep (a crush channel of outputs
+/// reads NaN rates from it).
 impl<'a> From<&'a Sample> for SampleView<'a> {
     fn from(s: &'a Sample) -> Self {
         SampleView {
@@ -64,6 +74,7 @@ impl<'a> From<&'a Sample> for SampleView<'a> {
             components: &s.components,
             multipliers: &s.multipliers,
             residuals: &s.residuals,
+            output_motion: [&[], &[]],
         }
     }
 }
@@ -112,7 +123,8 @@ struct CrushPoint {
 /// in one pass each.
 #[derive(Clone, Debug)]
 pub struct Metrics {
-    /// The crush channel's combination of coordinates and its offset.
+    /// The crush channel's combination of coordinates and outputs, and its
+    /// offset.
     crush: Option<(CoordinateCombination, f64)>,
     pitch: Vec<(usize, f64)>,
     /// `(T + V)(0)`.
@@ -255,7 +267,9 @@ impl Metrics {
             self.pitch_history.push(deviations);
         }
         if let Some((crush, offset)) = &self.crush {
-            let [crush, rate, acceleration] = crush.of([s.q, s.v, s.a]);
+            let [rates, accelerations] = s.output_motion;
+            let [crush, rate, acceleration] =
+                crush.of([s.q, s.v, s.a], [s.outputs, rates, accelerations]);
             // `−0` of a crush `-r` stays as it was without an offset.
             let crush = if *offset == 0.0 {
                 crush
@@ -280,6 +294,13 @@ impl Metrics {
                 channel.push(&columns);
             }
         }
+    }
+
+    /// The crush, crush rate and crush acceleration of the last sample
+    /// taken, where the scenario has a crush channel.
+    pub fn last_crush(&self) -> Option<[f64; 3]> {
+        let p = self.crush_history.last()?;
+        Some([p.crush, p.rate, *self.crush_acceleration.last()?])
     }
 
     /// The summary, with the run's statistics, the weld's failure time and

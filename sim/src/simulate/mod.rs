@@ -9,6 +9,7 @@ mod kink_rates;
 mod kinks;
 mod metrics;
 mod needs;
+pub mod output_motion;
 mod problem;
 mod rates;
 pub mod stepwise;
@@ -73,9 +74,24 @@ pub struct Sample {
     /// The residual `g` of each of the model's constraints (empty without
     /// constraints), likewise.
     pub residuals: Vec<f64>,
+    /// The crush channel's crush, rate and acceleration (compression
+    /// positive), where the scenario names one: what the summary's crush
+    /// metrics read of this sample.
+    pub crush: Option<[f64; 3]>,
 }
 
 impl Sample {
+    /// The crush, rate and acceleration of `crush` (the scenario's crush
+    /// channel) at this sample: as the run recorded them
+    /// ([`Sample::crush`]), else those of its coordinates (NaN for an
+    /// output term, whose rates a sample does not keep).
+    pub fn crush_motion(&self, crush: &crate::scenario::Signal) -> [f64; 3] {
+        self.crush.unwrap_or_else(|| {
+            let [q, v, a] = [&self.q, &self.v, &self.a].map(|x| crush.of_coordinates(x));
+            [crush.plus_offset(q), v, a]
+        })
+    }
+
     /// The columns a channel's signal reads.
     pub fn columns(&self) -> crate::scenario::Columns<'_> {
         crate::scenario::Columns {
@@ -620,7 +636,8 @@ impl<const N: usize> Sampler<N> {
                 }
                 self.metrics.push(view.as_view());
                 if self.needs.kept {
-                    self.samples.push(view.into_sample(columns));
+                    let crush = self.metrics.last_crush();
+                    self.samples.push(view.into_sample(columns, crush));
                 }
             }
             Err(e) => {
@@ -654,6 +671,9 @@ struct SampleValues<'a, const N: usize> {
     /// `λ` and `g` of the constraints.
     multipliers: Vec<f64>,
     residual: Vec<f64>,
+    /// The outputs' rates and accelerations along the motion, for a crush
+    /// channel of outputs (empty otherwise).
+    output_motion: [Vec<f64>; 2],
 }
 
 impl<const N: usize> SampleValues<'_, N> {
@@ -667,10 +687,11 @@ impl<const N: usize> SampleValues<'_, N> {
             components: &self.components,
             multipliers: &self.multipliers,
             residuals: &self.residual,
+            output_motion: [&self.output_motion[0], &self.output_motion[1]],
         }
     }
 
-    fn into_sample(self, inputs: Vec<f64>) -> Sample {
+    fn into_sample(self, inputs: Vec<f64>, crush: Option<[f64; 3]>) -> Sample {
         Sample {
             t: self.t,
             q: self.y.q.as_slice().to_vec(),
@@ -685,6 +706,7 @@ impl<const N: usize> SampleValues<'_, N> {
             components: self.components,
             multipliers: self.multipliers,
             residuals: self.residual,
+            crush,
         }
     }
 }
@@ -739,6 +761,10 @@ fn sample<'a, const N: usize, S: LagrangianSystem<N>>(
         }
         false => Vec::new(),
     };
+    let output_motion = match needs.output_motion {
+        true => output_motion::output_motion(problem.system, (t, &y.q, &y.v, &a), &outputs),
+        false => [Vec::new(), Vec::new()],
+    };
     let components = match needs.components {
         true => problem.component_values(t, &y.q, &y.v).map_err(fault)?,
         false => Vec::new(),
@@ -757,6 +783,7 @@ fn sample<'a, const N: usize, S: LagrangianSystem<N>>(
         components,
         multipliers,
         residual,
+        output_motion,
     };
     Ok((sample, values))
 }

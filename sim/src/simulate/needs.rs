@@ -17,8 +17,12 @@ pub(crate) struct Needs {
     /// channel's deceleration, a channel of accelerations, outputs,
     /// multipliers or residuals, the constraints' drift, or kept samples.
     pub accelerations: bool,
-    /// The model's outputs: read by a channel, or kept.
+    /// The model's outputs: read by a channel or the crush channel, or
+    /// kept.
     pub outputs: bool,
+    /// The outputs' rates and accelerations along the motion: read by a
+    /// crush channel of outputs.
+    pub output_motion: bool,
     /// The components' columns: read by a channel, or kept.
     pub components: bool,
     /// The samples are kept: everything is evaluated, the energies and the
@@ -35,7 +39,8 @@ impl Needs {
                 .flat_map(|channel| &channel.signal.terms)
                 .any(|&(_, column)| wanted(column))
         };
-        let outputs = kept || read(|c| matches!(c, Column::Output(_)));
+        let output_motion = (scenario.crush.as_ref()).is_some_and(|c| c.outputs().next().is_some());
+        let outputs = kept || output_motion || read(|c| matches!(c, Column::Output(_)));
         Needs {
             accelerations: kept
                 || outputs
@@ -43,6 +48,7 @@ impl Needs {
                 || constraints > 0
                 || read(reads_accelerations),
             outputs,
+            output_motion,
             components: kept || read(|c| matches!(c, Column::Component(_))),
             kept,
         }

@@ -408,6 +408,7 @@ fn a_summary_only_run_evaluates_what_is_read() {
             == needs::Needs {
                 accelerations: true,
                 outputs: true,
+                output_motion: false,
                 components: true,
                 kept: true,
             }
