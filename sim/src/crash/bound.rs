@@ -578,12 +578,12 @@ impl BoundInputs {
                     .copied()
                     .unwrap_or(f64::NAN);
                 format!(
-                    "the rate of state `{state}` of {} ({rate}, at {state} = {z:e}, {at})",
+                    "the rate of state `{state}` of {} ({rate:e}, at {state} = {z:e}, {at})",
                     named.describe()
                 )
             }
             None => format!(
-                "the dissipated power of {} ({rate}, at {at})",
+                "the dissipated power of {} ({rate:e}, at {at})",
                 named.describe()
             ),
         }
@@ -817,7 +817,10 @@ mod tests {
             inputs.name_event(2, f64::INFINITY),
             "the function of event `separation` of crush component `bumper` (inf)"
         );
-        assert_eq!(inputs.name_event(99, f64::INFINITY), "event function 99 (inf)");
+        assert_eq!(
+            inputs.name_event(99, f64::INFINITY),
+            "event function 99 (inf)"
+        );
         assert_eq!(
             inputs.name_input(0, &[0.01, -2.0]).unwrap(),
             "input `element` (the force of crush component `bumper` at arguments 1e-2, -2e0)"

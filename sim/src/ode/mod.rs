@@ -394,7 +394,7 @@ pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
         let largest = problem.name_largest_rate(t, y, f0);
         return Err(SolverError::NonFinite {
             t,
-            what: format!("the weighted size of the rates, the largest {largest},"),
+            what: format!("the weighted size of the rates (largest: {largest})"),
         });
     }
     // The probe is no shorter than the driver's smallest step. With a loose
@@ -419,6 +419,14 @@ pub(crate) fn initial_step<Y: OdeVector, P: OdeProblem<Y>>(
     let mut diff = y.clone();
     diff.set_combination(&f1, &[(-1.0, f0)]);
     let d2 = scaled(&diff) / h0;
+    if !d2.is_finite() {
+        // Their change over the probe step overflows the same way.
+        let largest = problem.name_largest_rate(t + h0, &y1, &f1);
+        return Err(SolverError::NonFinite {
+            t: t + h0,
+            what: format!("the change of the rates over the first step (largest: {largest})"),
+        });
+    }
     let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {

@@ -380,7 +380,8 @@ impl<'a, const N: usize, S: LagrangianSystem<N>> CrashProblem<'a, N, S> {
         v: &SVector<f64, N>,
     ) -> Option<(String, f64)> {
         let mut arguments = vec![0.0; self.arguments.len()];
-        self.system.input_arguments(t, q, v, &self.inputs, &mut arguments);
+        self.system
+            .input_arguments(t, q, v, &self.inputs, &mut arguments);
         let mut offset = 0;
         let mut largest: Option<(usize, (usize, usize), f64)> = None;
         for &(input, arity) in self.system.input_sites() {
