@@ -684,6 +684,11 @@ impl BoundInputs {
     }
 }
 
+/// Whether two argument lists are the same numbers, NaN included.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -858,9 +863,4 @@ mod tests {
             "input `element` (the force of bouc_wen component `hinge` at arguments 0e0, 1e0, its state z = 1e200)"
         );
     }
-}
-
-/// Whether two argument lists are the same numbers, NaN included.
-fn same_bits(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
