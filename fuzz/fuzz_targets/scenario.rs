@@ -5,7 +5,7 @@
 #![no_main]
 
 use lagrangian_core::Compiled;
-use lagrangian_sim::crash::table::Table;
+use lagrangian_sim::table::Table;
 use lagrangian_sim::pulse::channels::from_table;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use libfuzzer_sys::fuzz_target;

@@ -2,11 +2,11 @@
 //! failure with its one-line message and the details `-v` adds.
 
 use crate::status::ExitStatus;
-use lagrangian_sim::crash::table::TableError;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
 use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
 use lagrangian_sim::simulate::SimulationError;
+use lagrangian_sim::table::TableError;
 
 /// A finished subcommand: what it prints on stdout and how `lpm` exits.
 pub struct Outcome {

@@ -31,11 +31,16 @@
 
 #![warn(missing_docs)]
 
+#[cfg(test)]
+mod component_runs;
 pub mod crash;
+pub mod curve;
+pub(crate) mod entry;
 pub mod fault;
 #[cfg(feature = "fit")]
 pub mod fit;
 pub mod linearize;
+pub mod model_names;
 pub mod ode;
 #[cfg(feature = "plot")]
 pub mod plot;
@@ -45,4 +50,5 @@ pub mod scenario;
 pub mod simulate;
 #[cfg(feature = "sweep")]
 pub mod sweep;
+pub mod table;
 pub mod warning;

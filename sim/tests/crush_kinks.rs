@@ -7,7 +7,7 @@
 use lagrangian_model::Interpreted;
 use lagrangian_sim::crash::Component;
 use lagrangian_sim::crash::crush::{CrushElement, LoadingCurve, Unloading};
-use lagrangian_sim::crash::curve::{ForceCurve, Outside, SecantCurve};
+use lagrangian_sim::curve::{ForceCurve, Outside, SecantCurve};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 

@@ -2,10 +2,10 @@
 //! components' events and columns as one list each for the integrator and
 //! the trajectory.
 
-use super::curve::OutOfRange;
 use super::stand_in::StandIn;
 use super::states::StateLayout;
 use super::{Component, Contact, Port};
+use crate::curve::OutOfRange;
 use crate::fault::Fault;
 use crate::ode::{Direction, Internal};
 use lagrangian_model::InputFunctions;
@@ -693,7 +693,7 @@ fn same_bits(a: &[f64], b: &[f64]) -> bool {
 mod tests {
     use super::*;
     use crate::crash::crush::{CrushElement, LoadingCurve, Unloading};
-    use crate::crash::curve::SecantCurve;
+    use crate::curve::SecantCurve;
 
     #[test]
     fn an_input_of_the_wrong_arity_fails_instead_of_panicking() {
@@ -733,8 +733,8 @@ mod tests {
     /// an error outside its rows under `error` (where it is not constant).
     #[test]
     fn a_column_of_zeros_answers_as_its_component_does() {
-        use crate::crash::curve::{Curve, Outside};
         use crate::crash::tabulated::Tabulated;
+        use crate::curve::{Curve, Outside};
         let column = |outside| {
             let curve = Curve::new(vec![0.0, 1.0], vec![0.0, 0.0], outside).unwrap();
             NamedComponent {

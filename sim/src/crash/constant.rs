@@ -4,9 +4,9 @@
 //! component per input it gives a value, named `NAME.INPUT`; `--set
 //! INPUT=VALUE` adds one too.
 
-use super::curve::OutOfRange;
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::scenario::bind::finite;
+use crate::curve::OutOfRange;
+use crate::entry::finite;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 

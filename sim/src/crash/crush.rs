@@ -43,11 +43,13 @@
 //! stiffness) or `force_breakpoints` and `force_values` (force–deflection),
 //! never both.
 
-use super::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use super::held::{self, Crossed, Held};
 use super::{Binder, Column, Component, Contact, Event, Port, Section, Smoothness};
+use crate::crash::section::Ports;
+use crate::curve::outside;
+use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
+use crate::entry::non_negative;
 use crate::ode::Direction;
-use crate::scenario::bind::{Ports, non_negative, outside};
 use serde::Deserialize;
 
 mod energy;

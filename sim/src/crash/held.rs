@@ -12,7 +12,7 @@
 //! formula and the curve agree: only the steps change.
 
 use super::Event;
-use super::curve::{Curve, OutOfRange};
+use crate::curve::{Curve, OutOfRange};
 use crate::ode::Direction;
 
 /// The piece of a curve a component's value follows ([`Curve::piece`]),
@@ -95,7 +95,7 @@ impl Held {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crash::curve::Outside;
+    use crate::curve::Outside;
 
     /// (0, 0), (1, 1), (2, 1), (3, 4): kinks at 1 and 2, the ends held.
     fn curve() -> Curve {

@@ -65,8 +65,8 @@
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
-//!      `impl Section`. `build` checks the entries (`crate::scenario::bind`
-//!      has `finite`, `positive`, `non_negative` and `outside`, which name
+//!      `impl Section`. `build` checks the entries (`entry` has `finite`,
+//!      `positive` and `non_negative`, `crate::curve` has `outside`, which name
 //!      the entry in their messages), adds the component with
 //!      `binder.add(name, Box::new(component))` and binds inputs to its
 //!      ports: `binder.bind_ports(&self.inputs, "force", c, name)` for an
@@ -98,7 +98,7 @@ macro_rules! no_events {
             &self,
             _args: &[f64],
             _g: &mut [f64],
-        ) -> Result<(), $crate::crash::curve::OutOfRange> {
+        ) -> Result<(), $crate::curve::OutOfRange> {
             Ok(())
         }
 
@@ -107,7 +107,7 @@ macro_rules! no_events {
             _k: usize,
             _t: f64,
             _args: &[f64],
-        ) -> Result<String, $crate::crash::curve::OutOfRange> {
+        ) -> Result<String, $crate::curve::OutOfRange> {
             Ok(String::new())
         }
     };
@@ -122,7 +122,7 @@ macro_rules! no_events {
 /// [`Component::set_states`] takes the integrator's.
 macro_rules! one_state {
     ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
-        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::crash::curve::OutOfRange> {
+        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::curve::OutOfRange> {
             self.$state = self.$initial;
             Ok(())
         }
@@ -150,7 +150,6 @@ pub mod bound;
 pub mod constant;
 pub mod contact;
 pub mod crush;
-pub mod curve;
 pub mod dahl;
 pub mod friction;
 pub mod held;
@@ -158,24 +157,23 @@ mod integral;
 pub mod kelvin_voigt;
 pub mod lugre;
 pub mod maxwell;
-mod pchip;
+pub(crate) mod section;
 pub mod stand_in;
 pub mod states;
 pub mod stick_slip;
-pub mod table;
 pub mod tabulated;
 #[cfg(test)]
 mod test_spring;
 pub mod weld;
 
+use crate::curve::OutOfRange;
 use crate::ode::Direction;
-pub(crate) use crate::scenario::bind::Binder;
+use crate::table::Table;
 pub use bound::{Binding, BoundInputs, NamedComponent};
-use curve::OutOfRange;
+pub(crate) use section::Binder;
 pub use stand_in::StandIn;
 use std::fmt;
 use std::path::Path;
-use table::Table;
 
 /// Which value of a component an input function reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

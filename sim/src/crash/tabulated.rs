@@ -5,7 +5,7 @@
 //! The slope of a table interpolated linearly jumps at its points. A step
 //! of an adaptive explicit method across such a kink reads, by default, the
 //! table's smooth stand-in over the step (`[simulation] time_kinks`,
-//! [`crate::simulate::TimeKinks`]), which keeps a finely sampled history
+//! `TimeKinks`), which keeps a finely sampled history
 //! from cutting every step short. With `stop_at_kinks = true` the
 //! integrator ends a step at each kink instead: a choice for a table of
 //! few points with sharp corners (a pulse of straight segments), where the
@@ -15,10 +15,10 @@
 //! Its scenario section is `type = "table"` (`TableSection`): one file,
 //! and one component per column it binds, named `NAME.INPUT`.
 
-use super::curve::{Curve, OutOfRange, Outside};
-use super::table::Table;
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::scenario::bind::outside;
+use crate::curve::outside;
+use crate::curve::{Curve, OutOfRange, Outside};
+use crate::table::Table;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;

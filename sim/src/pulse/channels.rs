@@ -8,7 +8,7 @@
 //! Every column the tool reads carries its unit in brackets; values are
 //! converted to SI. Columns with other names are ignored.
 
-use crate::crash::table::{Table, TableError};
+use crate::table::{Table, TableError};
 use std::path::Path;
 
 /// What a column measures, with the sign conventions of [`super`]:

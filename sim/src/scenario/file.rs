@@ -28,7 +28,7 @@ pub(super) struct File {
 }
 
 /// `[constraints]`: Baumgarte's stabilization of a model's constraints
-/// (`crate::simulate::constrained`), `α` and `β` [1/s].
+/// (the run engine's constrained solve), `α` and `β` [1/s].
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub(super) struct ConstraintsSection {
@@ -38,7 +38,7 @@ pub(super) struct ConstraintsSection {
 
 impl Default for ConstraintsSection {
     fn default() -> Self {
-        let d = crate::simulate::constrained::DEFAULT_STABILIZATION;
+        let d = super::options::DEFAULT_STABILIZATION;
         ConstraintsSection {
             alpha: d.alpha,
             beta: d.beta,
@@ -76,10 +76,8 @@ impl Default for SimulationSection {
             step: None,
             output_interval: 1e-4,
             max_steps: 1_000_000,
-            accelerations: crate::simulate::SampleAccelerations::default()
-                .name()
-                .into(),
-            time_kinks: crate::simulate::TimeKinks::default().name().into(),
+            accelerations: super::options::SampleAccelerations::default().name().into(),
+            time_kinks: super::options::TimeKinks::default().name().into(),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! `--set key=value` overrides, applied to the scenario document before it is read.
 
 use super::ModelNames;
-use super::resolve::unknown;
 use super::scale::{factor_base, scaled_inline};
+use crate::entry::unknown;
 use std::collections::BTreeMap;
 
 /// `--set key=value` split at the first `=`, both sides trimmed.

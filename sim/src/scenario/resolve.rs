@@ -4,117 +4,20 @@
 use super::bind::bind_components;
 use super::choice::parse_choice;
 use super::file::{ClassChoice, File, InitialSection, MetricsSection};
+use super::options::{SampleAccelerations, TimeKinks};
 use super::{Channel, Column, ModelNames, Role, Scenario, Signal};
 use crate::crash::ComponentSection;
-use crate::crash::curve::Outside;
-use crate::crash::table::Table;
+use crate::entry::{finite, index_of, number, positive, unknown};
 use crate::ode::{Method, Options};
 use crate::pulse::cfc::{CLASS_BY_MEASUREMENT, DEFAULT_CLASS, STANDARD_CLASSES};
-use crate::simulate::{SampleAccelerations, TimeKinks};
+use crate::table::Table;
 use lagrangian_model::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-pub(super) fn unknown<'a>(
-    what: &str,
-    name: &str,
-    known: impl Iterator<Item = &'a str> + Clone,
-) -> String {
-    let mut message = format!("{what} `{name}` does not exist in the spec");
-    if let Some(best) = closest(name, known.clone()) {
-        message.push_str(&format!("; did you mean `{best}`?"));
-    } else {
-        let list: Vec<&str> = known.collect();
-        message.push_str(&format!(" (known: {})", list.join(", ")));
-    }
-    message
-}
-
-pub(super) fn index_of(what: &str, name: &str, list: &[String]) -> Result<usize, String> {
-    list.iter()
-        .position(|n| n == name)
-        .ok_or_else(|| unknown(what, name, list.iter().map(String::as_str)))
-}
-
 /// The most output samples a run may ask for (`t_end / output_interval`);
 /// each keeps the whole state, so more would exhaust memory.
 pub const MAX_SAMPLES: f64 = 1e6;
-
-/// `value` as written in a message: plainly in a readable range, else in
-/// scientific notation (`1e-300`, not three hundred zeros).
-pub(super) fn number(value: f64) -> String {
-    let magnitude = value.abs();
-    if value == 0.0 || !value.is_finite() || (1e-4..1e7).contains(&magnitude) {
-        format!("{value}")
-    } else {
-        format!("{value:e}")
-    }
-}
-
-/// `value` if it is a finite number; else an error naming `key`.
-pub(crate) fn finite(key: &str, value: f64) -> Result<f64, String> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(format!(
-            "{key} = {}: must be a finite number",
-            number(value)
-        ))
-    }
-}
-
-/// `Ok` if `value`, the combination `formula` of the entries `entries` of
-/// the scenario's section `section`, is finite; else an error naming the
-/// entries and what the combination is (`meaning`): entries each finite
-/// whose quotient or product overflows double precision, which the run
-/// would meet as a force or rate that is not finite.
-pub(crate) fn finite_combination(
-    section: &str,
-    (formula, meaning): (&str, &str),
-    entries: &[(&str, f64)],
-    value: f64,
-) -> Result<(), String> {
-    if value.is_finite() {
-        return Ok(());
-    }
-    let given: Vec<String> = (entries.iter())
-        .map(|(key, v)| format!("{key} = {}", number(*v)))
-        .collect();
-    Err(format!(
-        "{section}: {formula} = {} ({}) is not finite: {meaning} overflows double precision",
-        number(value),
-        given.join(", ")
-    ))
-}
-
-/// `value` if it is finite and positive; else an error naming `key`.
-pub(crate) fn positive(key: &str, value: f64) -> Result<f64, String> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(format!(
-            "{key} = {value}: must be a positive, finite number"
-        ))
-    }
-}
-
-/// `value` if it is finite and not negative; else an error naming `key`.
-pub(crate) fn non_negative(key: &str, value: f64) -> Result<f64, String> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(format!(
-            "{key} = {}: must be a finite number ≥ 0",
-            number(value)
-        ))
-    }
-}
-
-/// The `outside` policy written as `text` at `what`.
-pub(crate) fn outside(what: &str, text: &str) -> Result<Outside, String> {
-    Outside::parse(text)
-        .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
-}
 
 pub(super) fn resolve(
     file: File,

@@ -5,7 +5,7 @@
 //! combination of them such as `"xa - xb"` or `"-r"`.
 
 use super::ModelNames;
-use super::resolve::unknown;
+use crate::entry::unknown;
 
 /// A column of a run's samples that a signal reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -14,20 +14,13 @@
 
 use super::SimulationError;
 use crate::fault::Fault;
+pub use crate::scenario::options::DEFAULT_STABILIZATION;
 use lagrangian_model::constrained::{
     Baumgarte, ConstrainedSolveError, ConstraintValues, SolveWorkspace, solve_constrained_in,
     solve_positive_definite,
 };
 use lagrangian_model::{InputFunctions, LagrangianSystem};
 use nalgebra::{SMatrix, SVector};
-
-/// The scenario's default `α` and `β` [1/s]: the residual decays within a
-/// few tenths of a second, and the rates stay far below the integrators'
-/// stability limits at the steps the models' own dynamics take.
-pub const DEFAULT_STABILIZATION: Baumgarte = Baumgarte {
-    alpha: 10.0,
-    beta: 10.0,
-};
 
 /// The accelerations and multipliers at one state, with the constraint
 /// terms they came from.

@@ -15,30 +15,7 @@
 //! end; the output samples read every input as it is.
 
 use crate::crash::{BoundInputs, Port, Smoothness, StandIn};
-use crate::scenario::Choice;
 use lagrangian_model::{InputFunctions, LagrangianSystem};
-
-/// What the stages of a step see of a kink of an input of time inside it
-/// (`[simulation] time_kinks` of a scenario).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum TimeKinks {
-    /// The input's smooth stand-in over the step.
-    #[default]
-    Smoothed,
-    /// The input as it is.
-    Exact,
-}
-
-impl Choice for TimeKinks {
-    const ALL: &'static [TimeKinks] = &[TimeKinks::Smoothed, TimeKinks::Exact];
-
-    fn name(self) -> &'static str {
-        match self {
-            TimeKinks::Smoothed => "smoothed",
-            TimeKinks::Exact => "exact",
-        }
-    }
-}
 
 /// An input of time with kinks.
 #[derive(Clone, Debug, PartialEq)]
@@ -131,7 +108,8 @@ impl KinkedInputs {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::scenario::Choice;
+    use crate::scenario::options::TimeKinks;
     use crate::scenario::{ModelNames, Scenario};
     use crate::simulate::{SimulationResult, simulate};
     use lagrangian_model::Interpreted;

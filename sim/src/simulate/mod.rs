@@ -18,13 +18,13 @@ mod summary;
 #[cfg(test)]
 mod tests;
 
+pub use crate::scenario::options::SampleAccelerations;
+pub use crate::scenario::options::TimeKinks;
 pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channels, metric_names};
 pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
-pub use kinks::TimeKinks;
 pub use metrics::{EnergyPoint, Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
-pub use rates::SampleAccelerations;
 pub use summary::{Field, Metric, Summary, Text, Value};
 
 use crate::fault::Fault;
@@ -115,10 +115,10 @@ pub struct SimulationResult {
     pub coordinates: Vec<String>,
     /// The input name of each column of [`Sample::inputs`]: one per input
     /// call of the dynamics, so an input called twice is there twice.
-    /// Their units travel separately, in [`crate::report::Units`].
+    /// Their units travel separately, in `report::Units` (the writer, above this module).
     pub input_columns: Vec<String>,
     /// The name of each of the model's outputs, in the order of
-    /// [`Sample::outputs`]; their units travel in [`crate::report::Units`].
+    /// [`Sample::outputs`]; their units travel in `report::Units` (the writer, above this module).
     pub output_columns: Vec<String>,
     /// The name and unit of each column of [`Sample::components`]:
     /// `NAME.QUANTITY` of a scenario component (`front_end.force`, `N`).

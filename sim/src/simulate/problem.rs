@@ -2,11 +2,12 @@
 
 use super::SolverError;
 use super::constrained::Workspace;
-use super::kinks::{KinkedInputs, TimeKinks};
+use super::kinks::KinkedInputs;
 use crate::crash::{BoundInputs, StandIn};
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, Internal, OdeProblem, PhaseState};
+use crate::scenario::options::TimeKinks;
 use lagrangian_model::constrained::Baumgarte;
 use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};

@@ -42,35 +42,9 @@ use super::CrashProblem;
 use super::kink_rates::KinkCorrection;
 use crate::crash::{BoundInputs, Smoothness};
 use crate::ode::{DenseStep, Part, PhaseState};
-use crate::scenario::Choice;
+use crate::scenario::options::SampleAccelerations;
 use lagrangian_model::LagrangianSystem;
 use nalgebra::SVector;
-
-/// How the output samples get their accelerations `q̈` (`[simulation]
-/// accelerations` of a scenario).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum SampleAccelerations {
-    /// From the derivative of the step's dense output where that is
-    /// accurate (see the module documentation), else solved.
-    #[default]
-    Interpolated,
-    /// Solved at every sample: `M q̈ = f`.
-    Exact,
-}
-
-impl Choice for SampleAccelerations {
-    const ALL: &'static [SampleAccelerations] = &[
-        SampleAccelerations::Interpolated,
-        SampleAccelerations::Exact,
-    ];
-
-    fn name(self) -> &'static str {
-        match self {
-            SampleAccelerations::Interpolated => "interpolated",
-            SampleAccelerations::Exact => "exact",
-        }
-    }
-}
 
 /// Which steps' samples take `q̈` from the dense output.
 #[derive(Clone, Debug, PartialEq)]
@@ -232,6 +206,7 @@ fn time_kinks<const N: usize, S: LagrangianSystem<N>>(
 mod tests {
     use super::*;
     use crate::ode;
+    use crate::scenario::Choice;
     use crate::scenario::{ModelNames, Scenario};
     use crate::simulate::{SimulationResult, simulate};
     use lagrangian_model::Interpreted;

@@ -40,13 +40,12 @@ mod flores;
 mod hunt_crossley;
 mod lankarani_nikravesh;
 mod linear;
-#[cfg(test)]
-mod tests;
 
-use super::curve::OutOfRange;
 use super::{Binder, Column, Component, Contact, Event, Port, Section};
+use crate::crash::section::Ports;
+use crate::curve::OutOfRange;
+use crate::entry::positive;
 use crate::ode::Direction;
-use crate::scenario::bind::{Ports, positive};
 use serde::Deserialize;
 
 /// A contact law: how its force follows from the section's entries.

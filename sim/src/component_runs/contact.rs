@@ -2,7 +2,8 @@
 //! for the one requested, against an independent SciPy integration; their
 //! power; their sections' checks.
 
-use super::*;
+use crate::crash::contact::*;
+use crate::crash::{Component, Contact, Port};
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
 use lagrangian_model::Interpreted;

@@ -6,7 +6,7 @@
 //! are interpolated linearly; outside the time range the column's
 //! [`Outside`] policy applies.
 
-use super::curve::{Curve, CurveError, Outside};
+use crate::curve::{Curve, CurveError, Outside};
 use std::fmt;
 use std::path::{Path, PathBuf};
 

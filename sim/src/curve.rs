@@ -3,8 +3,8 @@
 //! force–deflection curves.
 
 mod formula;
+mod pchip;
 
-use super::pchip;
 use formula::Formula;
 use std::cell::Cell;
 use std::fmt;
@@ -37,6 +37,12 @@ impl Outside {
 
     /// The names of the policies, for messages.
     pub const NAMES: &'static str = "hold, extrapolate, zero, error";
+}
+
+/// The `outside` policy written as `text` at `what`.
+pub(crate) fn outside(what: &str, text: &str) -> Result<Outside, String> {
+    Outside::parse(text)
+        .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
 }
 
 /// A problem with a curve's table.

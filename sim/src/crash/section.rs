@@ -1,0 +1,214 @@
+//! What a component's section builds into: the [`Binder`] that collects the
+//! scenario's components and binds the model's input functions to their
+//! ports, and the [`Ports`] a section names. Each `[components.NAME]`
+//! section's `build` (see [`crate::crash`]) reaches only this module and
+//! [`crate::entry`], never the scenario above.
+
+use super::constant::Constant;
+use super::{Binding, BoundInputs, Component, NamedComponent, Port};
+use crate::entry::{finite, index_of};
+use crate::model_names::ModelNames;
+use crate::table::Table;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The inputs a component supplies: its value and, optionally, derivatives
+/// (`inputs = { force = "…", stiffness = "…", damping = "…" }`; `moment` for
+/// `force` too).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Ports {
+    #[serde(alias = "moment")]
+    force: String,
+    stiffness: Option<String>,
+    damping: Option<String>,
+}
+
+/// The scenario's components as they are built, and the model's inputs as
+/// they get bound, each to one port of a component.
+pub(crate) struct Binder<'a> {
+    names: &'a ModelNames,
+    tables: &'a BTreeMap<String, Table>,
+    components: Vec<NamedComponent>,
+    bindings: Vec<Option<Binding>>,
+}
+
+impl<'a> Binder<'a> {
+    /// A binder for the inputs of the model named by `names`, with the data
+    /// files the sections loaded.
+    pub(crate) fn new(names: &'a ModelNames, tables: &'a BTreeMap<String, Table>) -> Binder<'a> {
+        Binder {
+            names,
+            tables,
+            components: Vec::new(),
+            bindings: vec![None; names.inputs.len()],
+        }
+    }
+
+    /// The components and the inputs bound to them, once every section has
+    /// built and `--set` constants have overridden.
+    pub(crate) fn finish(self) -> Result<BoundInputs, String> {
+        let event_arguments = self.event_arguments()?;
+        Ok(BoundInputs::new(
+            self.components,
+            self.bindings,
+            event_arguments,
+            self.names.inputs.clone(),
+        ))
+    }
+
+    /// Adds `component` under `name`; returns its index, to bind inputs to.
+    pub(crate) fn add(&mut self, name: String, component: Box<dyn Component>) -> usize {
+        self.components.push(NamedComponent { name, component });
+        self.components.len() - 1
+    }
+
+    /// The number of components so far.
+    pub(crate) fn component_count(&self) -> usize {
+        self.components.len()
+    }
+
+    /// The kinds of the components from index `first` on.
+    pub(crate) fn kinds_from(&self, first: usize) -> impl Iterator<Item = &'static str> + '_ {
+        self.components[first..].iter().map(|c| c.component.kind())
+    }
+
+    /// The data file that section `[components.{name}]` loaded
+    /// ([`crate::crash::Section::load_table`]).
+    pub(crate) fn table(&self, name: &str) -> Result<&'a Table, String> {
+        let tables: &'a BTreeMap<String, Table> = self.tables;
+        tables
+            .get(name)
+            .ok_or_else(|| format!("components.{name}: its table was not loaded"))
+    }
+
+    /// Binds the input named at scenario entry `key` to `port` of component
+    /// `index`; the input must take the number of arguments the component
+    /// reads.
+    pub(crate) fn bind(
+        &mut self,
+        key: &str,
+        input: &str,
+        (index, port): (usize, Port),
+    ) -> Result<(), String> {
+        let names = self.names;
+        let k = index_of(&format!("{key}: input"), input, &names.inputs)?;
+        if self.bindings[k].is_some() {
+            return Err(format!(
+                "{key}: input `{input}` is already supplied by another component"
+            ));
+        }
+        let component = &self.components[index].component;
+        if let (Some((needed, meaning)), Some(has)) = (component.arguments(), names.arity(k))
+            && needed != has
+        {
+            let plural = |n: usize| if n == 1 { "" } else { "s" };
+            return Err(format!(
+                "{key}: input {} has {has} argument{}, but a {} component needs an input of {needed} argument{} ({meaning})",
+                names.signature(k),
+                plural(has),
+                component.kind(),
+                plural(needed),
+            ));
+        }
+        self.bindings[k] = Some(Binding {
+            component: index,
+            port,
+        });
+        Ok(())
+    }
+
+    /// Binds the value input (written as `inputs.{value}`) and, if given,
+    /// the stiffness and damping inputs of component `index` of section
+    /// `[components.{owner}]`.
+    pub(crate) fn bind_ports(
+        &mut self,
+        ports: &Ports,
+        value: &str,
+        index: usize,
+        owner: &str,
+    ) -> Result<(), String> {
+        let key =
+            |entry: &str, input: &str| format!("components.{owner}.inputs.{entry} = \"{input}\"");
+        let f = &ports.force;
+        self.bind(&key(value, f), f, (index, Port::Value))?;
+        if let Some(s) = &ports.stiffness {
+            self.bind(&key("stiffness", s), s, (index, Port::Stiffness))?;
+        }
+        if let Some(d) = &ports.damping {
+            self.bind(&key("damping", d), d, (index, Port::Damping))?;
+        }
+        Ok(())
+    }
+
+    /// Gives `input` the constant `value` of `--set input=value`, whatever
+    /// the file binds it to.
+    pub(crate) fn set_constant(&mut self, input: &str, value: f64) -> Result<(), String> {
+        finite(&format!("--set {input}"), value)?;
+        let k = index_of("--set: input", input, &self.names.inputs)?;
+        let c = self.add(format!("--set {input}"), Box::new(Constant { value }));
+        self.bindings[k] = Some(Binding {
+            component: c,
+            port: Port::Value,
+        });
+        Ok(())
+    }
+
+    /// For each component: where its events and columns find the arguments
+    /// of its value input (the first input bound to its value port) among
+    /// the model's input arguments — `None` for a component with neither,
+    /// or whose value input `--set` overrode or the dynamics does not call.
+    /// A component with events needs that input called at one place; one
+    /// with columns only has none where it is called at several.
+    fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, String> {
+        let mut arguments = vec![None; self.components.len()];
+        for (c, named) in self.components.iter().enumerate() {
+            let component = &named.component;
+            let stateful = !component.events().is_empty() || !component.states().is_empty();
+            if !stateful && component.columns().is_empty() && !dissipative(component.as_ref()) {
+                continue;
+            }
+            let value = Some(Binding {
+                component: c,
+                port: Port::Value,
+            });
+            let Some(k) = self.bindings.iter().position(|b| *b == value) else {
+                continue; // overridden by --set
+            };
+            arguments[c] = match self.only_call(k, &named.name) {
+                Err(_) if !stateful => None,
+                call => call?,
+            };
+        }
+        Ok(arguments)
+    }
+
+    /// The offset and number of the arguments of input `k`'s one call in
+    /// the dynamics (`None`: no call), for stateful component `owner`.
+    fn only_call(&self, k: usize, owner: &str) -> Result<Option<(usize, usize)>, String> {
+        let mut offset = 0;
+        let mut found = Vec::new();
+        for &(site, arity) in &self.names.input_sites {
+            if site == k {
+                found.push((offset, arity));
+            }
+            offset += arity;
+        }
+        match found.as_slice() {
+            [] => Ok(None),
+            [one] => Ok(Some(*one)),
+            _ => Err(format!(
+                "component `{owner}` keeps state (hysteresis, failure), but its input `{}` is called at {} places with different arguments; give each call its own input function",
+                self.names.inputs[k],
+                found.len()
+            )),
+        }
+    }
+}
+
+/// Whether `component` dissipates energy ([`Component::dissipated_power`]
+/// at zero arguments of the number it takes).
+fn dissipative(component: &dyn Component) -> bool {
+    let n = component.arguments().map_or(0, |(n, _)| n);
+    component.dissipated_power(&vec![0.0; n]).is_some()
+}
