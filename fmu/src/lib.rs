@@ -1,5 +1,5 @@
 //! The FMI 2.0 logic of lagrangian's FMUs. An FMU's binary is a cdylib
-//! that invokes [`export_fmi2!`] once: the generic one (`fmu/runtime`,
+//! that invokes [`export_fmi2!`] once: the generic one (`fmu/binary`,
 //! crate `lagrangian-fmu`), built once per platform, interprets the spec
 //! and scenario packed in the FMU's `resources/` (`model.lpm`,
 //! `scenario.toml`), so that exporting a model (`lpm export-fmu`) needs no

@@ -41,7 +41,7 @@ pub mod fault;
 pub mod fit;
 pub mod linearize;
 pub mod model_names;
-pub mod ode;
+pub use lagrangian_ode as ode;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod pulse;

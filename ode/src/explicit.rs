@@ -492,7 +492,7 @@ impl<Y: OdeVector> DormandPrince<Y> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::tableau::{DOPRI5, RK4};
+    use crate::tableau::{DOPRI5, RK4};
     use nalgebra::SVector;
 
     /// `x'' = −x` as `y = (x, x')`: from `(1, 0)`, `x = cos t`.

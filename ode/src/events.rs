@@ -243,7 +243,7 @@ fn check_finite<Y: OdeVector, P: OdeProblem<Y>>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::PhaseState;
+    use crate::PhaseState;
 
     /// A step from 0 to its end (1 ms unless said) whose dense output is
     /// irrelevant.

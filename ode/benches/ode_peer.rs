@@ -1,10 +1,10 @@
 //! Our DOPRI5 against `ode_solvers` (a well-kept Rust DOPRI5) on the same
 //! problems and tolerances: wall time (median of repeated solves), steps and
-//! right-hand-side evaluations. `cargo bench -p lagrangian-sim --bench ode_peer`.
+//! right-hand-side evaluations. `cargo bench -p lagrangian-ode --bench ode_peer`.
 
-use lagrangian_model::nalgebra::Vector4;
-use lagrangian_sim::ode::tableau::DOPRI5;
-use lagrangian_sim::ode::{OdeProblem, Options, explicit};
+use lagrangian_ode::tableau::DOPRI5;
+use lagrangian_ode::{OdeProblem, Options, explicit};
+use nalgebra::Vector4;
 use std::convert::Infallible;
 use std::time::{Duration, Instant};
 

@@ -7,13 +7,14 @@
 //! step counts against SciPy's RK45 (tests/reference/scipy_ode_reference.json,
 //! made by the committed script beside it) and TR-BDF2 on a stiff spring.
 
-use lagrangian_model::nalgebra::{SMatrix, Vector1, Vector4};
-use lagrangian_sim::ode::tableau::DOPRI5;
-use lagrangian_sim::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
-use lagrangian_sim::ode::{
-    self, DenseStep, Direction, EventAction, Method, OdeProblem, Options, Outcome, PhaseState,
+use lagrangian_ode as ode;
+use lagrangian_ode::tableau::DOPRI5;
+use lagrangian_ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
+use lagrangian_ode::{
+    DenseStep, Direction, EventAction, Method, OdeProblem, Options, Outcome, PhaseState,
     SolverError, explicit, tr_bdf2,
 };
+use nalgebra::{SMatrix, Vector1, Vector4};
 use std::convert::Infallible;
 use std::f64::consts::PI;
 
