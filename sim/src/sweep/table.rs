@@ -483,6 +483,18 @@ mod tests {
     }
 
     #[test]
+    fn a_status_that_is_no_failure_kind_is_refused() {
+        let layout = Layout::of_axes(vec!["a".into(), "b".into()]);
+        let mut cells = record(&layout, &rows()[1]);
+        assert_eq!(cells[3], FailureKind::StepSizeUnderflow.name());
+        cells[3] = "exploded".into();
+        assert_eq!(
+            parse_record(&csv::StringRecord::from(cells), &layout),
+            Err("status `exploded` is neither `ok` nor a failure kind".into())
+        );
+    }
+
+    #[test]
     fn csv_has_a_header_and_empty_cells_for_missing_metrics() {
         let axes = Layout::of_axes(vec!["k1".to_string(), "stiffness_values*".to_string()]);
         let text = String::from_utf8(sweep_csv(&axes, &rows()).unwrap()).unwrap();
