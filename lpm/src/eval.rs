@@ -24,6 +24,7 @@ use lagrangian_model::{
 use lagrangian_sim::crash::BoundInputs;
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
+use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::simulate::constrained::{self, DEFAULT_STABILIZATION};
 use std::path::PathBuf;
 
@@ -86,7 +87,7 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
         let why = mass::blame(&model, &defaults, &set, (args.time, q, qd))
             .map_or(String::new(), |why| format!(": {why}"));
         return Err(Failure::new(
-            ExitStatus::SingularMassMatrix,
+            ExitStatus::Failed(FailureKind::SingularMassMatrix),
             format!("the mass matrix is singular or not positive definite at this state{why}"),
         ));
     }
@@ -253,7 +254,7 @@ impl WithDimension for Solve<'_> {
 /// The failure of a singular or indefinite `M` at `q`.
 fn singular(t: f64, q: &[f64]) -> Failure {
     Failure::new(
-        ExitStatus::SingularMassMatrix,
+        ExitStatus::Failed(FailureKind::SingularMassMatrix),
         format!("the mass matrix is singular or not positive definite at t = {t}, q = {q:?}"),
     )
 }
@@ -261,14 +262,7 @@ fn singular(t: f64, q: &[f64]) -> Failure {
 /// The failure of the constrained solve, with the exit status `simulate`
 /// gives the same fault.
 fn fault_failure(fault: &Fault, t: f64, coordinates: &[String]) -> Failure {
-    let status = match fault {
-        Fault::SingularMassMatrix { .. } | Fault::RedundantConstraints { .. } => {
-            ExitStatus::SingularMassMatrix
-        }
-        Fault::NonFinite { .. } => ExitStatus::NonFinite,
-        Fault::OutOfRange { .. } => ExitStatus::TableOutOfRange,
-        Fault::Component(_) => ExitStatus::Component,
-    };
+    let status = ExitStatus::Failed(FailureKind::of_fault(fault));
     // A non-finite value's message names no state; the others name `q`.
     let at = match (fault, fault.state()) {
         (Fault::NonFinite { .. }, Some((q, _))) => {

@@ -4,8 +4,8 @@
 use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
-use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
-use lagrangian_sim::simulate::SimulationError;
+use lagrangian_sim::scenario::ScenarioError;
+use lagrangian_sim::simulate::{FailureKind, SimulationError};
 use lagrangian_sim::table::TableError;
 
 /// A finished subcommand: what it prints on stdout and how `lpm` exits.
@@ -102,11 +102,7 @@ impl Failure {
     /// A scenario that cannot be read (1), does not fit (4), or names a
     /// data file that cannot be used (7).
     pub fn scenario(e: &ScenarioError) -> Failure {
-        let status = match e.kind {
-            ScenarioErrorKind::Unreadable => ExitStatus::Io,
-            ScenarioErrorKind::Invalid => ExitStatus::Scenario,
-            ScenarioErrorKind::DataFile => ExitStatus::DataFile,
-        };
+        let status = e.kind.failure().map_or(ExitStatus::Io, ExitStatus::Failed);
         Failure::new(status, e.to_string())
     }
 
@@ -114,7 +110,7 @@ impl Failure {
     pub fn channels(e: &ChannelError) -> Failure {
         let status = match e {
             ChannelError::Table(TableError::Read { .. }) => ExitStatus::Io,
-            _ => ExitStatus::DataFile,
+            _ => ExitStatus::Failed(FailureKind::DataFile),
         };
         Failure::new(status, e.to_string())
     }

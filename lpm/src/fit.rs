@@ -12,6 +12,7 @@ use lagrangian_sim::plot::{Series, panels_svg};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
+use lagrangian_sim::simulate::FailureKind;
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
 
@@ -112,7 +113,7 @@ pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result
     let target = read_time_histories(&options.target).map_err(|e| Failure::channels(&e))?;
     let usage = |e: String| Failure::usage(e);
     let document = Scenario::document(&text, &names, &options.set)
-        .map_err(|e| Failure::new(ExitStatus::Scenario, e))?;
+        .map_err(|e| Failure::new(ExitStatus::Failed(FailureKind::Scenario), e))?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {
@@ -131,7 +132,7 @@ pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result
         .map_err(|e| Failure::scenario(&e))?;
     check_target_extent(&target, &base, parameters.entries.len()).map_err(|e| {
         Failure::new(
-            ExitStatus::DataFile,
+            ExitStatus::Failed(FailureKind::DataFile),
             format!("{}: {e}", options.target.display()),
         )
     })?;

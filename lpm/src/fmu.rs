@@ -22,6 +22,7 @@ use lagrangian_fmi::resources::{SCENARIO_FILE, SPEC_FILE};
 use lagrangian_fmi::variables::first_paragraph;
 use lagrangian_model::{Interpreted, WithDimension};
 use lagrangian_sim::scenario::Scenario;
+use lagrangian_sim::simulate::FailureKind;
 use std::path::{Path, PathBuf};
 
 /// The FMU's `modelIdentifier`: the runtime's library name, the same for
@@ -280,9 +281,12 @@ fn built_beside(dir: &Path, file: &str) -> PathBuf {
 fn packed_scenario(path: &Path) -> Result<Vec<Entry>, Failure> {
     let text = String::from_utf8(read(path)?)
         .map_err(|_| Failure::io(format!("{} is not UTF-8", path.display())))?;
-    let mut document: toml::Table = text
-        .parse()
-        .map_err(|e| Failure::new(ExitStatus::Scenario, format!("{}: {e}", path.display())))?;
+    let mut document: toml::Table = text.parse().map_err(|e| {
+        Failure::new(
+            ExitStatus::Failed(FailureKind::Scenario),
+            format!("{}: {e}", path.display()),
+        )
+    })?;
     if document.contains_key("spec") {
         document.insert("spec".into(), SPEC_FILE.into());
     }
@@ -339,7 +343,7 @@ fn load_packed(resources: &[Entry]) -> Result<Instance, Failure> {
     let loaded = loaded?;
     let guid = loaded.guid.clone();
     Instance::new("export", Interface::CoSimulation, &guid, loaded)
-        .map_err(|f| Failure::new(ExitStatus::Scenario, f.message))
+        .map_err(|f| Failure::new(ExitStatus::Failed(FailureKind::Scenario), f.message))
 }
 
 fn stage_and_load(
@@ -355,7 +359,7 @@ fn stage_and_load(
     }
     lagrangian_fmi::resources::load(dir).map_err(|message| {
         Failure::new(
-            ExitStatus::Scenario,
+            ExitStatus::Failed(FailureKind::Scenario),
             format!("the packed resources do not load: {message}"),
         )
     })

@@ -1,9 +1,12 @@
-//! The exit statuses of `lpm`: one list, from which `lpm --help` prints its
-//! table (and which a test holds the book's table, docs/book/reference/errors.md, against).
+//! The exit statuses of `lpm`: its own, and one per failure kind of the
+//! simulation library (`lagrangian_sim::failure`, which holds their codes
+//! and meanings). `lpm --help` prints the table from [`ExitStatus::ALL`],
+//! and a test holds the book's table, docs/book/reference/errors.md, to it.
 
 use lagrangian_sim::simulate::FailureKind;
 
-/// How `lpm` ended, as its exit status.
+/// How `lpm` ended, as its exit status: its own statuses, and one per
+/// [`FailureKind`] (whose codes and meanings sim's list holds).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExitStatus {
     /// Success.
@@ -14,67 +17,62 @@ pub enum ExitStatus {
     Usage,
     /// The spec does not compile.
     Spec,
-    /// The scenario does not fit the spec.
-    Scenario,
     /// The audit found equations that disagree.
     AuditDisagrees,
     /// Generated files are stale.
     Stale,
-    /// A data file cannot be used.
-    DataFile,
     /// The model cannot be evaluated at the given state.
     Evaluation,
     /// A run warned, and `--strict` makes warnings errors.
     Warnings,
-    /// A singular or indefinite mass matrix.
-    SingularMassMatrix,
-    /// NaN or ∞.
-    NonFinite,
-    /// The step size fell below the minimum.
-    StepSizeUnderflow,
-    /// The step limit.
-    MaxSteps,
-    /// An event that could not be located.
-    EventNotLocated,
-    /// A table read outside its range.
-    TableOutOfRange,
-    /// No static equilibrium.
-    NoEquilibrium,
-    /// An input without a value.
-    Component,
     /// Every run of a sweep failed.
     EveryRunFailed,
     /// The fit failed.
     FitFailed,
     /// Stopped by a signal.
     Interrupted,
+    /// A run failed, or the scenario or a data file it needs does not fit.
+    Failed(FailureKind),
+}
+
+/// The statuses that are not a [`FailureKind`], in the order of their numbers.
+const OWN: [ExitStatus; 11] = [
+    ExitStatus::Success,
+    ExitStatus::Io,
+    ExitStatus::Usage,
+    ExitStatus::Spec,
+    ExitStatus::AuditDisagrees,
+    ExitStatus::Stale,
+    ExitStatus::Evaluation,
+    ExitStatus::Warnings,
+    ExitStatus::EveryRunFailed,
+    ExitStatus::FitFailed,
+    ExitStatus::Interrupted,
+];
+
+/// [`OWN`] and the failure kinds, merged in the order of their numbers.
+const fn every_status() -> [ExitStatus; OWN.len() + FailureKind::ALL.len()] {
+    let kinds = FailureKind::ALL;
+    let mut all = [ExitStatus::Success; OWN.len() + FailureKind::ALL.len()];
+    let (mut own, mut kind, mut k) = (0, 0, 0);
+    while k < all.len() {
+        let take_own =
+            kind == kinds.len() || (own < OWN.len() && OWN[own].code() < kinds[kind].code());
+        if take_own {
+            all[k] = OWN[own];
+            own += 1;
+        } else {
+            all[k] = ExitStatus::Failed(kinds[kind]);
+            kind += 1;
+        }
+        k += 1;
+    }
+    all
 }
 
 impl ExitStatus {
     /// Every status, in the order of their numbers.
-    pub const ALL: [ExitStatus; 21] = [
-        ExitStatus::Success,
-        ExitStatus::Io,
-        ExitStatus::Usage,
-        ExitStatus::Spec,
-        ExitStatus::Scenario,
-        ExitStatus::AuditDisagrees,
-        ExitStatus::Stale,
-        ExitStatus::DataFile,
-        ExitStatus::Evaluation,
-        ExitStatus::Warnings,
-        ExitStatus::SingularMassMatrix,
-        ExitStatus::NonFinite,
-        ExitStatus::StepSizeUnderflow,
-        ExitStatus::MaxSteps,
-        ExitStatus::EventNotLocated,
-        ExitStatus::TableOutOfRange,
-        ExitStatus::NoEquilibrium,
-        ExitStatus::Component,
-        ExitStatus::EveryRunFailed,
-        ExitStatus::FitFailed,
-        ExitStatus::Interrupted,
-    ];
+    pub const ALL: [ExitStatus; OWN.len() + FailureKind::ALL.len()] = every_status();
 
     /// The number the process exits with.
     pub const fn code(self) -> u8 {
@@ -83,24 +81,15 @@ impl ExitStatus {
             ExitStatus::Io => 1,
             ExitStatus::Usage => 2,
             ExitStatus::Spec => 3,
-            ExitStatus::Scenario => 4,
             ExitStatus::AuditDisagrees => 5,
             ExitStatus::Stale => 6,
-            ExitStatus::DataFile => 7,
             ExitStatus::Evaluation => 8,
             ExitStatus::Warnings => 9,
-            ExitStatus::SingularMassMatrix => 10,
-            ExitStatus::NonFinite => 11,
-            ExitStatus::StepSizeUnderflow => 12,
-            ExitStatus::MaxSteps => 13,
-            ExitStatus::EventNotLocated => 14,
-            ExitStatus::TableOutOfRange => 15,
-            ExitStatus::NoEquilibrium => 16,
-            ExitStatus::Component => 17,
             ExitStatus::EveryRunFailed => 18,
             ExitStatus::FitFailed => 19,
             // 128 + SIGINT, as shells report it.
             ExitStatus::Interrupted => 130,
+            ExitStatus::Failed(kind) => kind.code(),
         }
     }
 
@@ -111,29 +100,27 @@ impl ExitStatus {
             ExitStatus::Io => "a file cannot be read or written",
             ExitStatus::Usage => "bad command line",
             ExitStatus::Spec => "the spec does not compile",
-            ExitStatus::Scenario => "the scenario does not fit the spec (unknown key, bad value)",
             ExitStatus::AuditDisagrees => "the audit found equations that disagree",
             ExitStatus::Stale => "generated files are stale (generate --check)",
-            ExitStatus::DataFile => "a data file (CSV) is missing columns, non-numeric or unsorted",
             ExitStatus::Evaluation => {
                 "the model cannot be evaluated at the given state (eval, linearize)"
             }
             ExitStatus::Warnings => "a run or pulse warned and --strict makes warnings errors",
-            ExitStatus::SingularMassMatrix => {
-                "the mass matrix is singular or not positive definite"
-            }
-            ExitStatus::NonFinite => "a NaN or infinite value (M, f, acceleration, power, event)",
-            ExitStatus::StepSizeUnderflow => "the step size fell below the minimum",
-            ExitStatus::MaxSteps => "the step limit was reached",
-            ExitStatus::EventNotLocated => "an event could not be located",
-            ExitStatus::TableOutOfRange => "a table was read outside its range (policy `error`)",
-            ExitStatus::NoEquilibrium => "no static equilibrium before the impact",
-            ExitStatus::Component => "a component could not give a value (an unbound input)",
             ExitStatus::EveryRunFailed => "every run of a sweep failed",
             ExitStatus::FitFailed => "the fit failed",
             ExitStatus::Interrupted => {
                 "a sweep stopped by Ctrl-C or a signal (--resume continues it)"
             }
+            ExitStatus::Failed(kind) => kind.meaning(),
+        }
+    }
+
+    /// The status's name in CamelCase (`Spec`, `MaxSteps`): the Python
+    /// package names its exception classes after it.
+    pub fn name(self) -> String {
+        match self {
+            ExitStatus::Failed(kind) => format!("{kind:?}"),
+            own => format!("{own:?}"),
         }
     }
 
@@ -152,17 +139,7 @@ impl ExitStatus {
 
 impl From<FailureKind> for ExitStatus {
     fn from(kind: FailureKind) -> ExitStatus {
-        match kind {
-            FailureKind::Scenario => ExitStatus::Scenario,
-            FailureKind::SingularMassMatrix => ExitStatus::SingularMassMatrix,
-            FailureKind::NonFinite => ExitStatus::NonFinite,
-            FailureKind::StepSizeUnderflow => ExitStatus::StepSizeUnderflow,
-            FailureKind::MaxSteps => ExitStatus::MaxSteps,
-            FailureKind::EventNotLocated => ExitStatus::EventNotLocated,
-            FailureKind::TableOutOfRange => ExitStatus::TableOutOfRange,
-            FailureKind::NoEquilibrium => ExitStatus::NoEquilibrium,
-            FailureKind::Component => ExitStatus::Component,
-        }
+        ExitStatus::Failed(kind)
     }
 }
 
@@ -200,5 +177,30 @@ mod tests {
     fn codes_are_distinct_and_in_order() {
         let codes: Vec<u8> = ExitStatus::ALL.iter().map(|s| s.code()).collect();
         assert!(codes.windows(2).all(|w| w[0] < w[1]), "{codes:?}");
+    }
+
+    #[test]
+    fn every_failure_kind_is_one_status_and_no_own_status_is_a_kind() {
+        for &kind in FailureKind::ALL {
+            let statuses = ExitStatus::ALL.iter().filter(|s| s.code() == kind.code());
+            assert_eq!(statuses.collect::<Vec<_>>(), [&ExitStatus::Failed(kind)]);
+        }
+        for status in OWN {
+            assert!(
+                FailureKind::ALL.iter().all(|k| k.code() != status.code()),
+                "{status:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn names_are_the_camel_case_of_each_status() {
+        let names: Vec<String> = ExitStatus::ALL.iter().map(|s| s.name()).collect();
+        assert_eq!(names[..5], ["Success", "Io", "Usage", "Spec", "Scenario"]);
+        assert!(names.contains(&"NoEquilibrium".to_string()));
+        assert!(
+            names.iter().all(|n| n.chars().all(char::is_alphanumeric)),
+            "{names:?}"
+        );
     }
 }

@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
+use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::sweep::{
     Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
     journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
@@ -220,7 +221,8 @@ impl Tally {
             Ok(_) => self.ok += 1,
             Err(e) => {
                 self.failed += 1;
-                (self.first_failure).get_or_insert((row.run, format!("{}: {}", e.kind, e.message)));
+                (self.first_failure)
+                    .get_or_insert((row.run, format!("{}: {}", e.kind.name(), e.message)));
             }
         }
     }
@@ -463,8 +465,12 @@ fn open_journal(
     let exists = path.exists();
     let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
     match (options.resume, resumable) {
-        (true, true) => Journal::resume(path, layout, plan, runs)
-            .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}"))),
+        (true, true) => Journal::resume(path, layout, plan, runs).map_err(|e| {
+            Failure::new(
+                ExitStatus::Failed(FailureKind::DataFile),
+                format!("--resume: {e}"),
+            )
+        }),
         (true, false) if out.exists() => Err(Failure::usage(format!(
             "--resume: {} is complete and there is no {} to resume",
             out.display(),
@@ -575,7 +581,7 @@ fn merge_into(
     parquet: bool,
     file: impl std::io::Write + Send,
 ) -> Result<(), Failure> {
-    let data = |e: String| Failure::new(ExitStatus::DataFile, e);
+    let data = |e: String| Failure::new(ExitStatus::Failed(FailureKind::DataFile), e);
     let rows = merged_rows(parts, &prepared.layout, &prepared.plan).map_err(data)?;
     // A part that fails its checks is a data error, one that cannot be
     // written an I/O error.

@@ -50,7 +50,7 @@ fn raise(failure: Failure) -> PyErr {
 #[pyfunction]
 fn exit_statuses() -> Vec<(u8, String, String)> {
     (ExitStatus::ALL.iter())
-        .map(|s| (s.code(), format!("{s:?}"), s.meaning().to_string()))
+        .map(|s| (s.code(), s.name(), s.meaning().to_string()))
         .collect()
 }
 

@@ -36,6 +36,7 @@ mod component_runs;
 pub mod crash;
 pub mod curve;
 pub(crate) mod entry;
+pub mod failure;
 pub mod fault;
 #[cfg(feature = "fit")]
 pub mod fit;

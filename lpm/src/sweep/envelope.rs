@@ -15,6 +15,7 @@ use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
 use lagrangian_sim::plot::{Band, bands_svg};
 use lagrangian_sim::scenario::Signal;
+use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::sweep::{
     Envelope, EnvelopeJob, PartialEnvelope, Plan, Shard, SweepMark, Weights, merged_envelope,
     partial_envelope_path, run_scenario, write_envelope_csv, write_envelope_parquet,
@@ -262,8 +263,13 @@ impl<'r> Tracked<'r> {
         let path = partial_envelope_path(journal);
         let saved = match resume {
             Some(journaled) if path.exists() => {
-                let saved = PartialEnvelope::read(&path, plan, &names, &request.weights)
-                    .map_err(|e| Failure::new(ExitStatus::DataFile, format!("--resume: {e}")))?;
+                let saved =
+                    PartialEnvelope::read(&path, plan, &names, &request.weights).map_err(|e| {
+                        Failure::new(
+                            ExitStatus::Failed(FailureKind::DataFile),
+                            format!("--resume: {e}"),
+                        )
+                    })?;
                 (saved.block == *block && saved.done <= journaled).then_some(saved)
             }
             _ => None,
@@ -345,7 +351,7 @@ pub(super) fn merged(
     parts: &[PathBuf],
     prepared: &Prepared,
 ) -> Result<Envelope, Failure> {
-    let data = |e: String| Failure::new(ExitStatus::DataFile, e);
+    let data = |e: String| Failure::new(ExitStatus::Failed(FailureKind::DataFile), e);
     let mut paths = Vec::new();
     for part in parts {
         let path = partial_envelope_path(part);

@@ -62,6 +62,7 @@ mod scale;
 mod signal;
 
 use crate::crash::BoundInputs;
+use crate::failure::FailureKind;
 pub use crate::model_names::ModelNames;
 use crate::ode::{Method, Options};
 use crate::table::Table;
@@ -101,6 +102,18 @@ pub enum ScenarioErrorKind {
     Invalid,
     /// A data file it names (a CSV table) cannot be read or is malformed.
     DataFile,
+}
+
+impl ScenarioErrorKind {
+    /// The kind of failure; `None` for a scenario file that cannot be read
+    /// (an I/O error, not a failure of the scenario).
+    pub fn failure(self) -> Option<FailureKind> {
+        match self {
+            ScenarioErrorKind::Unreadable => None,
+            ScenarioErrorKind::Invalid => Some(FailureKind::Scenario),
+            ScenarioErrorKind::DataFile => Some(FailureKind::DataFile),
+        }
+    }
 }
 
 /// A scenario that does not fit its spec, or a file that cannot be read:

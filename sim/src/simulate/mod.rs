@@ -18,6 +18,7 @@ mod summary;
 #[cfg(test)]
 mod tests;
 
+pub use crate::failure::FailureKind;
 pub use crate::scenario::options::SampleAccelerations;
 pub use crate::scenario::options::TimeKinks;
 pub use channels::{ACCELERATION_METRICS, CHANNEL_METRICS, ChannelSummary, Channels, metric_names};
@@ -184,46 +185,6 @@ pub struct Reached {
     pub qd: Vec<f64>,
 }
 
-/// What kind of failure ended a run: one exit status of `lpm` each.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FailureKind {
-    /// A scenario value that does not apply (unknown parameter, bad options).
-    Scenario,
-    /// `M(q)` singular or not positive definite.
-    SingularMassMatrix,
-    /// NaN or ±∞ in `M`, `f`, `q̈`, a power or an event function.
-    NonFinite,
-    /// Steps rejected (or Newton failing) below the minimum step size.
-    StepSizeUnderflow,
-    /// The step limit was reached before the end time.
-    MaxSteps,
-    /// An event's zero crossing could not be bracketed.
-    EventNotLocated,
-    /// A table read outside its range under the `error` policy.
-    TableOutOfRange,
-    /// No static equilibrium before the impact.
-    NoEquilibrium,
-    /// A component could not produce a value (an unbound input).
-    Component,
-}
-
-impl FailureKind {
-    /// The kind in snake case, as a sweep's `status` column writes it.
-    pub fn name(self) -> &'static str {
-        match self {
-            FailureKind::Scenario => "scenario",
-            FailureKind::SingularMassMatrix => "singular_mass_matrix",
-            FailureKind::NonFinite => "non_finite",
-            FailureKind::StepSizeUnderflow => "step_size_underflow",
-            FailureKind::MaxSteps => "max_steps",
-            FailureKind::EventNotLocated => "event_not_located",
-            FailureKind::TableOutOfRange => "table_out_of_range",
-            FailureKind::NoEquilibrium => "no_equilibrium",
-            FailureKind::Component => "component",
-        }
-    }
-}
-
 impl SimulationError {
     /// The kind of failure, which decides `lpm`'s exit status and a
     /// sweep's `status` column.
@@ -241,14 +202,7 @@ impl SimulationError {
                 SolverError::NonFinite { .. } => FailureKind::NonFinite,
                 SolverError::EventNotLocated { .. } => FailureKind::EventNotLocated,
                 SolverError::InvalidOptions(_) => FailureKind::Scenario,
-                SolverError::Rhs { error: fault, .. } => match fault {
-                    Fault::SingularMassMatrix { .. } | Fault::RedundantConstraints { .. } => {
-                        FailureKind::SingularMassMatrix
-                    }
-                    Fault::NonFinite { .. } => FailureKind::NonFinite,
-                    Fault::OutOfRange { .. } => FailureKind::TableOutOfRange,
-                    Fault::Component(_) => FailureKind::Component,
-                },
+                SolverError::Rhs { error: fault, .. } => FailureKind::of_fault(fault),
             },
         }
     }

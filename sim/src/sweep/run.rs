@@ -3,10 +3,10 @@
 
 use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
+use crate::scenario::ScenarioError;
 use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
-use crate::scenario::{ScenarioError, ScenarioErrorKind};
 use crate::scenario::{as_number, factor_base, scaled_inline, toml_number};
-use crate::simulate::{SimulationError, Summary, simulate_summary};
+use crate::simulate::{FailureKind, SimulationError, Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -24,14 +24,13 @@ pub struct Row {
     pub outcome: Result<Summary, RunFailure>,
 }
 
-/// Why a run failed: the kind (`lpm`'s `status` column: `max_steps`,
-/// `singular_mass_matrix`, … or `scenario` for values the scenario
-/// rejects) and the one-line message.
+/// Why a run failed: the kind (the table's `status` column writes its
+/// [`FailureKind::name`]) and the one-line message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunFailure {
-    /// The kind in snake case ([`crate::simulate::FailureKind::name`], or
-    /// `scenario` / `data_file`).
-    pub kind: String,
+    /// The kind: a simulation's failure, or [`FailureKind::Scenario`] /
+    /// [`FailureKind::DataFile`] for values the scenario rejects.
+    pub kind: FailureKind,
     /// What went wrong, on one line, as `lpm simulate` would print it.
     pub message: String,
 }
@@ -193,11 +192,9 @@ pub(crate) fn scenario_of(
         None => run_scenario(job.base, job.settings, values),
     };
     scenario.map_err(|e| RunFailure {
-        kind: match e.kind {
-            ScenarioErrorKind::DataFile => "data_file",
-            _ => "scenario",
-        }
-        .to_string(),
+        // A run's scenario is the base's text with settings, never read from
+        // a file here: nothing for `Unreadable` to be but the scenario's.
+        kind: e.kind.failure().unwrap_or(FailureKind::Scenario),
         message: e.to_string(),
     })
 }
@@ -205,7 +202,7 @@ pub(crate) fn scenario_of(
 /// The row's failure for a run that did not finish.
 pub(crate) fn simulation_failure(e: &SimulationError) -> RunFailure {
     RunFailure {
-        kind: e.kind().name().to_string(),
+        kind: e.kind(),
         message: e.to_string(),
     }
 }

@@ -4,6 +4,7 @@
 //! the shards of one sweep concatenate into the full table.
 
 use super::run::{Row, RunFailure};
+use crate::failure::FailureKind;
 use crate::scenario::{Role, Scenario};
 use crate::simulate::{ChannelSummary, Field, Summary, Value, metric_names};
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
@@ -106,6 +107,10 @@ pub fn columns(layout: &Layout) -> Vec<String> {
     names
 }
 
+/// The `status` of a run that finished; a failed one's is its
+/// [`FailureKind::name`].
+const OK: &str = "ok";
+
 /// The CSV cells of a row: the run, its values, `ok` or the failure kind,
 /// the error, the metrics (empty where absent). Numbers are written so that
 /// they read back exactly.
@@ -114,12 +119,12 @@ pub fn record(layout: &Layout, row: &Row) -> Vec<String> {
     record.extend(row.values.iter().map(|v| format!("{v:?}")));
     match &row.outcome {
         Ok(summary) => {
-            record.push("ok".into());
+            record.push(OK.into());
             record.push(String::new());
             record.extend(layout.values(summary).into_iter().map(Value::cell));
         }
         Err(failure) => {
-            record.push(failure.kind.clone());
+            record.push(failure.kind.name().into());
             record.push(failure.message.clone());
             record.extend(std::iter::repeat_n(String::new(), layout.metrics().len()));
         }
@@ -147,11 +152,13 @@ pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, 
         .map(number)
         .collect::<Result<Vec<f64>, String>>()?;
     let status = &record[axes + 1];
-    let outcome = if status == "ok" {
+    let outcome = if status == OK {
         Ok(layout.summary(record.iter().skip(axes + 3))?)
     } else {
+        let kind = FailureKind::from_name(status)
+            .ok_or_else(|| format!("status `{status}` is neither `{OK}` nor a failure kind"))?;
         Err(RunFailure {
-            kind: status.to_string(),
+            kind,
             message: record[axes + 2].to_string(),
         })
     };
@@ -312,8 +319,8 @@ fn write_group<W: Write + Send>(
     let status: Vec<ByteArray> = rows
         .iter()
         .map(|r| match &r.outcome {
-            Ok(_) => ByteArray::from("ok"),
-            Err(f) => ByteArray::from(f.kind.as_str()),
+            Ok(_) => ByteArray::from(OK),
+            Err(f) => ByteArray::from(f.kind.name()),
         })
         .collect();
     columns.write::<ByteArrayType>(&status, None)?;
@@ -408,7 +415,7 @@ mod tests {
                 run: 5,
                 values: vec![2.0, 0.25],
                 outcome: Err(RunFailure {
-                    kind: "step_size_underflow".into(),
+                    kind: FailureKind::StepSizeUnderflow,
                     message: "integration failed: step size too small".into(),
                 }),
             },
@@ -476,6 +483,18 @@ mod tests {
     }
 
     #[test]
+    fn a_status_that_is_no_failure_kind_is_refused() {
+        let layout = Layout::of_axes(vec!["a".into(), "b".into()]);
+        let mut cells = record(&layout, &rows()[1]);
+        assert_eq!(cells[3], FailureKind::StepSizeUnderflow.name());
+        cells[3] = "exploded".into();
+        assert_eq!(
+            parse_record(&csv::StringRecord::from(cells), &layout),
+            Err("status `exploded` is neither `ok` nor a failure kind".into())
+        );
+    }
+
+    #[test]
     fn csv_has_a_header_and_empty_cells_for_missing_metrics() {
         let axes = Layout::of_axes(vec!["k1".to_string(), "stiffness_values*".to_string()]);
         let text = String::from_utf8(sweep_csv(&axes, &rows()).unwrap()).unwrap();
@@ -521,12 +540,15 @@ mod tests {
             cell(0, "components.weld.failure_moment"),
             Field::Double(1.5)
         );
-        assert_eq!(cell(0, "status"), Field::Str("ok".into()));
+        assert_eq!(cell(0, "status"), Field::Str(OK.into()));
         assert_eq!(cell(0, "error"), Field::Null);
         assert_eq!(cell(0, "max_crush_m"), Field::Double(0.5));
         assert_eq!(cell(0, "weld_failure_time_s"), Field::Null);
         assert_eq!(cell(0, "steps"), Field::Long(120));
-        assert_eq!(cell(1, "status"), Field::Str("step_size_underflow".into()));
+        assert_eq!(
+            cell(1, "status"),
+            Field::Str(FailureKind::StepSizeUnderflow.name().into())
+        );
         assert_eq!(
             cell(1, "error"),
             Field::Str("integration failed: step size too small".into())
