@@ -67,8 +67,6 @@
 //! assert!((e.external_power - 0.2 * 3.0).abs() < 1e-15); // Q·q̇
 //! ```
 
-#![warn(missing_docs)]
-
 /// The compiler itself (feature `compiler`): spec parser, symbolic engine,
 /// derivation, optimizer, emitters, audit; `compiler::interpret` runs a spec
 /// given as text.

@@ -25,8 +25,6 @@
 //! no call runs out of order; and [`export_fmi2!`], which exports them
 //! under their C names from an FMU binary ([`export`]).
 
-#![warn(missing_docs)]
-
 pub mod common;
 pub mod component;
 pub mod cs;

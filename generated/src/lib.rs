@@ -6,8 +6,6 @@
 //! same code). Equation documents and audits are beside, in
 //! `generated/<spec>/`.
 
-#![warn(missing_docs)]
-
 /// Generated from `specs/car_to_car.lpm`.
 #[rustfmt::skip] // formatted by prettyplease
 pub mod car_to_car;

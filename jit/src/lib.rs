@@ -14,7 +14,6 @@
 //! lowering needs) stays on the tape, and a model whose code cannot be made
 //! at all (an unsupported host) keeps interpreting — [`accelerate`] reports
 //! why and leaves the model as it was.
-#![warn(missing_docs)]
 
 mod lower;
 mod shims;

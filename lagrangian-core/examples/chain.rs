@@ -1,3 +1,6 @@
+//! The spec of an n-link pendulum chain on stdout:
+//! `cargo run -p lagrangian-core --example chain -- 10`.
+
 fn main() {
     let n: usize = std::env::args()
         .nth(1)

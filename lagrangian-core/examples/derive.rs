@@ -1,3 +1,6 @@
+//! A spec's equations of motion as text (or LaTeX with a second argument):
+//! `cargo run -p lagrangian-core --example derive -- SPEC [latex]`.
+
 fn main() {
     let path = std::env::args().nth(1).unwrap();
     let latex = std::env::args().nth(2).is_some();

@@ -1,3 +1,6 @@
+//! A spec's mass matrix entries as text, with the derivation time on stderr:
+//! `cargo run -p lagrangian-core --example smoke -- SPEC`.
+
 fn main() {
     let path = std::env::args().nth(1).unwrap();
     let src = std::fs::read_to_string(&path).unwrap();

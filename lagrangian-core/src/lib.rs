@@ -8,8 +8,6 @@
 //! ([`emit`]) or the runtime's interpreter ([`Compiled::interpreted`], by
 //! [`tape::lower`]).
 
-#![warn(missing_docs)]
-
 pub mod audit;
 pub mod constraints;
 pub mod depth;

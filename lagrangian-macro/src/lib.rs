@@ -2,8 +2,6 @@
 //! compiler can be tested as a plain library; see the umbrella crate
 //! `lagrangian` for the spec language and examples.
 
-#![warn(missing_docs)]
-
 use proc_macro::TokenStream;
 
 /// Derives a model's Euler–Lagrange equations at compile time and generates a

@@ -16,7 +16,6 @@
 //! quickly. Without its default `nalgebra` feature it holds what the compiler
 //! needs of it (the interpreter, the layout, input functions, [`names`]) and
 //! depends on nothing.
-#![warn(missing_docs)]
 
 #[cfg(feature = "nalgebra")]
 pub mod constrained;

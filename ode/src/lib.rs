@@ -26,8 +26,6 @@
 //! Adding a method: a stepper in its own file (or, for an explicit method, a
 //! tableau in [`tableau`]) and one variant of [`Method`].
 
-#![warn(missing_docs)]
-
 mod driver;
 mod events;
 pub mod explicit;

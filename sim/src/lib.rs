@@ -29,8 +29,6 @@
 //! }
 //! ```
 
-#![warn(missing_docs)]
-
 #[cfg(test)]
 mod component_runs;
 pub mod crash;

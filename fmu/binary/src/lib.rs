@@ -3,6 +3,4 @@
 //! scenario packed in the FMU's `resources/`, so that exporting a model
 //! needs no compiler.
 
-#![warn(missing_docs)]
-
 lagrangian_fmi::export_fmi2!(lagrangian_fmi::plant::plant);
