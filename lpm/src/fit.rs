@@ -7,11 +7,11 @@ use crate::spec::{compile, find_scenario, out_dir};
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
-use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
-use lagrangian_sim::plot::{Series, panels_svg};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
+use lagrangian_studies::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
+use lagrangian_studies::plot::{Series, panels_svg};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
 

@@ -6,12 +6,12 @@ use lagrangian_core::Compiled;
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
-use lagrangian_sim::plot::{PlotSetup, figure_svg};
 use lagrangian_sim::report::{
     Units, summary_json, text_summary, trajectory_csv, write_all_atomically,
 };
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
+use lagrangian_studies::plot::{PlotSetup, figure_svg};
 use std::path::{Path, PathBuf};
 
 /// Options of `lpm simulate`.

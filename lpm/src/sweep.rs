@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
-use lagrangian_sim::sweep::{
+use lagrangian_studies::sweep::{
     Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
     journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
     stream_sweep, write_csv, write_parquet,

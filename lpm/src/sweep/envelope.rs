@@ -13,9 +13,9 @@
 use super::{Args, Prepared, write_beside};
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
-use lagrangian_sim::plot::{Band, bands_svg};
 use lagrangian_sim::scenario::Signal;
-use lagrangian_sim::sweep::{
+use lagrangian_studies::plot::{Band, bands_svg};
+use lagrangian_studies::sweep::{
     Envelope, EnvelopeJob, PartialEnvelope, Plan, Shard, SweepMark, Weights, merged_envelope,
     partial_envelope_path, run_scenario, write_envelope_csv, write_envelope_parquet,
 };

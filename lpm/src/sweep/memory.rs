@@ -14,7 +14,7 @@ use super::{
 use crate::failure::Failure;
 use crate::status::ExitStatus;
 use clap::ValueEnum;
-use lagrangian_sim::sweep::{Envelope, Row, Shard, SweepJob, sweep_csv, write_envelope_csv};
+use lagrangian_studies::sweep::{Envelope, Row, Shard, SweepJob, sweep_csv, write_envelope_csv};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 

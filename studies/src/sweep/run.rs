@@ -3,11 +3,11 @@
 
 use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
-use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
-use crate::scenario::{ScenarioError, ScenarioErrorKind};
-use crate::scenario::{as_number, factor_base, scaled_inline, toml_number};
-use crate::simulate::{SimulationError, Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
+use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
+use lagrangian_sim::scenario::{as_number, factor_base, scaled_inline, toml_number};
+use lagrangian_sim::simulate::{SimulationError, Summary, simulate_summary};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -29,7 +29,7 @@ pub struct Row {
 /// rejects) and the one-line message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunFailure {
-    /// The kind in snake case ([`crate::simulate::FailureKind::name`], or
+    /// The kind in snake case ([`lagrangian_sim::simulate::FailureKind::name`], or
     /// `scenario` / `data_file`).
     pub kind: String,
     /// What went wrong, on one line, as `lpm simulate` would print it.
