@@ -3,12 +3,12 @@
 //! [`memory`] makes the same tables in memory, for the Python package.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::compile;
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
+use lagrangian_studies::spec::compile;
 use lagrangian_studies::sweep::{
     Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
     journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
@@ -180,7 +180,7 @@ fn load(options: &Args) -> Result<(InterpretedModel, BaseScenario), Failure> {
         Some(spec) => spec.clone(),
         None => spec_of(&options.scenario, &text)?,
     };
-    let model = crate::spec::interpreted(&compile(&spec)?);
+    let model = lagrangian_studies::spec::interpreted(&compile(&spec)?);
     let base = BaseScenario {
         text,
         file: Some(options.scenario.clone()),

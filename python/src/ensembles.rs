@@ -4,6 +4,8 @@
 //! of `KEY=VALUES` strings) and shapes the results.
 
 use crate::raise;
+use lagrangian_studies::error::StudyError;
+use lagrangian_studies::fitting::{self, FitRequest};
 use lpm::failure::Failure;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
@@ -41,12 +43,14 @@ impl SweepOptions {
     fn args(self) -> Result<lpm::sweep::Args, Failure> {
         let scenario = match (self.scenario, &self.spec) {
             (Some(scenario), _) => scenario,
-            (None, Some(spec)) => lpm::spec::find_scenario(spec)?.ok_or_else(|| {
-                Failure::usage(format!(
-                    "no scenario names {}; give one with scenario=",
-                    spec.display()
-                ))
-            })?,
+            (None, Some(spec)) => {
+                lagrangian_studies::spec::find_scenario(spec)?.ok_or_else(|| {
+                    Failure::usage(format!(
+                        "no scenario names {}; give one with scenario=",
+                        spec.display()
+                    ))
+                })?
+            }
             (None, None) => return Err(Failure::usage("give a spec, a scenario or both")),
         };
         Ok(lpm::sweep::Args {
@@ -189,25 +193,24 @@ pub(crate) type Fitted = (String, Vec<(String, String)>);
 /// from the current directory.
 #[pyfunction]
 pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
-    let args = lpm::fit::Args {
+    let request = FitRequest {
         spec: options.spec,
         target: options.target,
         scenario: options.scenario,
         fit: options.fit,
         set: options.set,
-        out: options.out,
         starts: options.starts,
         seed: options.seed,
-        quiet: true,
     };
-    let fitted = py.detach(|| -> Result<Fitted, Failure> {
-        let fitting = lpm::fit::fitting(&args, &|_, _| {})?;
-        let files = match &args.out {
-            Some(out) => lpm::fit::write_files(&fitting, out)?,
-            None => lpm::fit::outputs(&fitting, Path::new("."))?,
+    let out = options.out;
+    let fitted = py.detach(|| -> Result<Fitted, StudyError> {
+        let fitting = fitting::fitting(&request, &|_, _| {})?;
+        let files = match &out {
+            Some(out) => fitting::write_files(&fitting, out)?,
+            None => fitting::outputs(&fitting, Path::new("."))?,
         };
         let files = files.map(|(name, contents)| (name.to_string(), contents));
-        Ok((lpm::fit::summary_text(&fitting), files.to_vec()))
+        Ok((fitting::summary_text(&fitting), files.to_vec()))
     });
     fitted.map_err(raise)
 }

@@ -7,12 +7,25 @@
 //! * [`fit`] (feature `fit`): identification of the crush characteristic by
 //!   Levenberg–Marquardt.
 //! * [`plot`] (feature `plot`): SVG figures of a run and of a fit.
+//!
+//! And the services every host calls, failing with [`error::StudyError`]:
+//! [`spec`] (compile a spec, find its scenario), [`simulate`] (one run and
+//! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
+//! and its files).
 
 #![warn(missing_docs)]
 
+pub mod error;
+pub mod eval;
 #[cfg(feature = "fit")]
 pub mod fit;
+#[cfg(all(feature = "fit", feature = "plot"))]
+pub mod fitting;
+pub mod mass;
 #[cfg(feature = "plot")]
 pub mod plot;
+#[cfg(feature = "plot")]
+pub mod simulate;
+pub mod spec;
 #[cfg(feature = "sweep")]
 pub mod sweep;
