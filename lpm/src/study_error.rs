@@ -22,7 +22,10 @@ impl From<&StudyError> for Failure {
             StudyError::Evaluation(_) => ExitStatus::Evaluation,
             StudyError::Run { kind, .. } => (*kind).into(),
             StudyError::EveryRunFailed(_) => ExitStatus::EveryRunFailed,
-            StudyError::Interrupted(_) => ExitStatus::Interrupted,
+            StudyError::Interrupted {
+                journal: Some(_), ..
+            } => return Failure::rendered(ExitStatus::Interrupted, message),
+            StudyError::Interrupted { journal: None, .. } => ExitStatus::Interrupted,
             StudyError::Fit(_) => ExitStatus::FitFailed,
             StudyError::BadRequest(_) => ExitStatus::Usage,
         };

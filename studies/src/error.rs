@@ -43,9 +43,15 @@ pub enum StudyError {
     /// Every run of a sweep failed.
     #[error("{0}")]
     EveryRunFailed(String),
-    /// Stopped on request.
-    #[error("{0}")]
-    Interrupted(String),
+    /// Stopped on request ([`crate::progress::Progress::stop_requested`]).
+    #[error("{message}")]
+    Interrupted {
+        /// The one-line message.
+        message: String,
+        /// The journal that keeps the finished runs, to resume from (its
+        /// message says so and is printed as it is).
+        journal: Option<std::path::PathBuf>,
+    },
     /// A fit that failed.
     #[error("{0}")]
     Fit(String),
@@ -143,13 +149,12 @@ impl StudyError {
     pub fn because(mut self, why: &str) -> StudyError {
         let message = match &mut self {
             StudyError::Scenario(e) => &mut e.message,
-            StudyError::Run { message, .. } => message,
+            StudyError::Run { message, .. } | StudyError::Interrupted { message, .. } => message,
             StudyError::Io(m)
             | StudyError::Spec(m)
             | StudyError::DataFile(m)
             | StudyError::Evaluation(m)
             | StudyError::EveryRunFailed(m)
-            | StudyError::Interrupted(m)
             | StudyError::Fit(m)
             | StudyError::BadRequest(m) => m,
         };

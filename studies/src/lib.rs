@@ -11,7 +11,8 @@
 //! And the services every host calls, failing with [`error::StudyError`]:
 //! [`spec`] (compile a spec, find its scenario), [`simulate`] (one run and
 //! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
-//! and its files).
+//! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
+//! its envelopes; [`progress::Progress`] the host's view of it).
 
 #![warn(missing_docs)]
 
@@ -24,8 +25,11 @@ pub mod fitting;
 pub mod mass;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod progress;
 #[cfg(feature = "plot")]
 pub mod simulate;
 pub mod spec;
 #[cfg(feature = "sweep")]
 pub mod sweep;
+#[cfg(all(feature = "sweep", feature = "plot"))]
+pub mod sweeping;

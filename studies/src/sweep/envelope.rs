@@ -18,7 +18,6 @@ use super::weights::Weights;
 use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::scenario::Signal;
 use lagrangian_sim::simulate::{SimulationResult, simulate};
-use std::sync::atomic::AtomicBool;
 
 /// One run's channels at its output times.
 #[derive(Clone, Debug, PartialEq)]
@@ -330,7 +329,7 @@ pub fn stream_envelope<const N: usize, S>(
     job: SweepJob<'_>,
     what: EnvelopeJob<'_>,
     envelope: &mut Envelope,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     sink: &mut dyn FnMut(Row, &Envelope) -> Result<(), String>,
 ) -> Result<usize, String>
 where

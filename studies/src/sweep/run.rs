@@ -262,15 +262,15 @@ impl<T> Batch<T> {
 /// every row to `sink` in run order, as soon as the rows before it are
 /// done: memory stays bounded whatever the number of runs.
 ///
-/// Workers take runs in order; once `stop` is set they take no new run,
-/// and the runs under way finish and reach `sink`, so the rows delivered
-/// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
+/// Workers take runs in order, asking `stop` before each; once it says
+/// yes they take no new run, and the runs under way finish and reach
+/// `sink`, so the rows delivered are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
 /// `sink` ends it.
 pub fn stream_sweep<const N: usize, S>(
     system: &S,
     job: SweepJob<'_>,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     sink: &mut dyn FnMut(Row) -> Result<(), String>,
 ) -> Result<usize, String>
 where
@@ -288,7 +288,7 @@ pub(crate) type MakeRun<'f, S, T> =
 pub(crate) fn stream_runs<const N: usize, S, T: Send>(
     system: &S,
     job: SweepJob<'_>,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     make: MakeRun<'_, S, T>,
     sink: &mut dyn FnMut(T) -> Result<(), String>,
 ) -> Result<usize, String>
@@ -319,7 +319,7 @@ where
             scope.spawn(move || {
                 let mut batch = Batch::new();
                 loop {
-                    if stop.load(Ordering::Relaxed) || failed_sink.load(Ordering::Relaxed) {
+                    if stop() || failed_sink.load(Ordering::Relaxed) {
                         break;
                     }
                     let run = next.fetch_add(1, Ordering::Relaxed);
@@ -383,8 +383,7 @@ where
     S: LagrangianSystem<N> + Clone + Send,
 {
     let mut rows = Vec::with_capacity(job.runs.len());
-    let never = AtomicBool::new(false);
-    stream_sweep(system, job, &never, &mut |row| {
+    stream_sweep(system, job, &|| false, &mut |row| {
         progress();
         rows.push(row);
         Ok(())
