@@ -68,8 +68,8 @@ pub fn fitting(
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
     let target = read_time_histories(&options.target).map_err(|e| StudyError::channels(&e))?;
     let usage = |e: String| StudyError::usage(e);
-    let document = Scenario::document(&text, &names, &options.set)
-        .map_err(|e| StudyError::invalid_scenario(e))?;
+    let document =
+        Scenario::document(&text, &names, &options.set).map_err(StudyError::invalid_scenario)?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {
@@ -120,7 +120,7 @@ impl WithDimension for Fit<'_> {
     type Output = Result<FitReport, StudyError>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        fit(&system, self.setup, self.progress).map_err(|e| StudyError::Fit(e))
+        fit(&system, self.setup, self.progress).map_err(StudyError::Fit)
     }
 }
 
