@@ -9,7 +9,8 @@
 //! compiler `lagrangian-core`), the model runtime (`lagrangian-model`: the
 //! trait, input functions, the interpreter) and, with the default feature
 //! `sim`, the crash-simulation library (`lagrangian-sim`: `scenario`,
-//! `simulate`, `ode`, `crash`, `pulse`, `sweep`, `fit`, `plot`, `report`).
+//! `simulate`, `ode`, `crash`, `pulse`, `report`) and its studies
+//! (`lagrangian-studies`: `sweep`, `fit`, `plot`).
 //! With `default-features = false` it is the macro and the model runtime
 //! only, which depend on nalgebra and nothing heavy; `lagrangian::nalgebra`
 //! is then built without its `std` feature (fixed-size matrices and vectors;
@@ -78,6 +79,8 @@ pub use lagrangian_model::*;
 /// crash components, integration, pulse metrics, sweeps, fitting, plots.
 #[cfg(feature = "sim")]
 pub use lagrangian_sim::*;
+#[cfg(feature = "sim")]
+pub use lagrangian_studies::{fit, plot, sweep};
 
 /// The Rust examples of the README, compiled and run as doctests (its spec
 /// blocks, commands and outputs are checked by `lpm/tests/readme.rs`).

@@ -1,9 +1,9 @@
 //! `lpm audit`: compare a spec's hand-derived equations with the derivation.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::compile;
 use crate::status::ExitStatus;
 use lagrangian_core::audit::{AuditReport, Finding, GroupVerdict, Part, Verdict, audit, markdown};
+use lagrangian_studies::spec::compile;
 use serde_json::{Value, json};
 use std::path::PathBuf;
 

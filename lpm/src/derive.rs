@@ -1,10 +1,10 @@
 //! `lpm derive`: the derived equations, readably factored, or the Rust or C code.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::compile;
 use clap::ValueEnum;
 use lagrangian_core::emit::c::{COptions, emit_c};
 use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
+use lagrangian_studies::spec::compile;
 use std::path::PathBuf;
 
 /// Options of `lpm derive`.

@@ -1,20 +1,13 @@
 //! `lpm fit`: identify the crush characteristic (or listed parameters) from
 //! target time histories; writes the fitted scenario, a report and an
-//! overlay plot.
+//! overlay plot ([`lagrangian_studies::fitting`] does the work).
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::{compile, find_scenario, out_dir};
-use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressStyle};
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
-use lagrangian_sim::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
-use lagrangian_sim::plot::{Series, panels_svg};
-use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
-use lagrangian_sim::report::write_all_atomically;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
-use lagrangian_sim::simulate::FailureKind;
+use lagrangian_studies::fitting::{FitRequest, fitting, text_report, write_files};
+use lagrangian_studies::spec::out_dir;
 use std::fmt::Write;
-use std::path::{Component, Path, PathBuf};
+use std::path::PathBuf;
 
 /// Options of `lpm fit`.
 #[derive(clap::Args)]
@@ -51,6 +44,21 @@ pub struct Args {
     pub quiet: bool,
 }
 
+impl Args {
+    /// The fit these options ask for.
+    pub fn request(&self) -> FitRequest {
+        FitRequest {
+            spec: self.spec.clone(),
+            target: self.target.clone(),
+            scenario: self.scenario.clone(),
+            fit: self.fit.clone(),
+            set: self.set.clone(),
+            starts: self.starts,
+            seed: self.seed,
+        }
+    }
+}
+
 /// Runs `lpm fit`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
     let bar = if options.quiet {
@@ -66,7 +74,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         bar.set_position(simulations as u64);
         bar.set_message(format!("cost {cost:.4e}"));
     };
-    let fitting = fitting(&options, &progress)?;
+    let fitting = fitting(&options.request(), &progress)?;
     bar.finish_and_clear();
 
     let out = out_dir(options.out.clone(), &options.spec, "-fit");
@@ -79,300 +87,4 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         options.spec.display()
     );
     Ok(Outcome::success(text))
-}
-
-/// A finished fit: its report and what its files are made from.
-pub struct Fitting {
-    /// What the fit found.
-    pub report: FitReport,
-    setup: FitSetup,
-    /// The scenario with the settings applied, before fitting.
-    document: toml::Table,
-    names: ModelNames,
-    /// The scenario file the fit started from.
-    scenario: PathBuf,
-}
-
-/// The fit `options` describe, without writing anything (`out` and `quiet`
-/// are not read); `progress` sees the number of simulations and the cost.
-pub fn fitting(options: &Args, progress: &(dyn Fn(usize, f64) + Sync)) -> Result<Fitting, Failure> {
-    let compiled = compile(&options.spec)?;
-    let model = crate::spec::interpreted(&compiled);
-    let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match &options.scenario {
-        Some(p) => p.clone(),
-        None => find_scenario(&options.spec)?.ok_or_else(|| {
-            Failure::usage(format!(
-                "no scenario names {}; give one with --scenario",
-                options.spec.display()
-            ))
-        })?,
-    };
-    let text = std::fs::read_to_string(&scenario_path)
-        .map_err(|e| Failure::io(format!("cannot read {}: {e}", scenario_path.display())))?;
-    let target = read_time_histories(&options.target).map_err(|e| Failure::channels(&e))?;
-    let usage = |e: String| Failure::usage(e);
-    let document = Scenario::document(&text, &names, &options.set)
-        .map_err(|e| Failure::new(ExitStatus::Failed(FailureKind::Scenario), e))?;
-    let fit_names = if options.fit.is_empty() {
-        vec!["stiffness".to_string(), "damping".to_string()]
-    } else {
-        options.fit.clone()
-    };
-    let parameters =
-        Parameters::resolve(&fit_names, &document, &names, model.parameters()).map_err(usage)?;
-    let base = BaseScenario {
-        text,
-        file: Some(scenario_path.clone()),
-        names: names.clone(),
-        settings: options.set.clone(),
-    };
-    // Check the scenario once, so that its errors read as such.
-    Scenario::parse(&base.text, base.file.as_deref(), &names, &options.set)
-        .map_err(|e| Failure::scenario(&e))?;
-    check_target_extent(&target, &base, parameters.entries.len()).map_err(|e| {
-        Failure::new(
-            ExitStatus::Failed(FailureKind::DataFile),
-            format!("{}: {e}", options.target.display()),
-        )
-    })?;
-    let setup = FitSetup {
-        base,
-        target,
-        parameters,
-        starts: options.starts.max(1),
-        seed: options.seed,
-    };
-    let report = dispatch(&model, &setup, progress)?;
-    Ok(Fitting {
-        report,
-        setup,
-        document,
-        names,
-        scenario: scenario_path,
-    })
-}
-
-/// The lines `lpm fit` prints before naming its files.
-pub fn summary_text(fitting: &Fitting) -> String {
-    text_report(&fitting.report)
-}
-
-/// `fit` on the model at its dimension.
-struct Fit<'a> {
-    setup: &'a FitSetup,
-    progress: &'a (dyn Fn(usize, f64) + Sync),
-}
-
-impl WithDimension for Fit<'_> {
-    type Output = Result<FitReport, Failure>;
-
-    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        fit(&system, self.setup, self.progress).map_err(|e| Failure::new(ExitStatus::FitFailed, e))
-    }
-}
-
-fn dispatch(
-    model: &InterpretedModel,
-    setup: &FitSetup,
-    progress: &(dyn Fn(usize, f64) + Sync),
-) -> Result<FitReport, Failure> {
-    model
-        .clone()
-        .with_dimension(Fit { setup, progress })
-        .map_err(Failure::model)?
-}
-
-fn text_report(report: &FitReport) -> String {
-    let mut out = String::new();
-    let converged = report.starts.iter().filter(|s| s.converged).count();
-    let _ = writeln!(
-        out,
-        "fit: {} simulations in {:.2} s, {} of {} starts converged; cost {:.4e} → {:.4e}",
-        report.simulations,
-        report.seconds,
-        converged,
-        report.starts.len(),
-        report.cost_initial,
-        report.cost
-    );
-    let _ = writeln!(
-        out,
-        "  {:<28}{:>14}{:>14}{:>22}",
-        "parameter", "initial", "fitted", "standard error"
-    );
-    for p in &report.parameters {
-        let error = match (p.identifiability.reason(), p.standard_error) {
-            (Some(reason), _) => reason,
-            (None, Some(se)) if p.fitted != 0.0 => {
-                format!("{se:.3e} ({:.2} %)", 100.0 * se / p.fitted.abs())
-            }
-            (None, Some(se)) => format!("{se:.3e}"),
-            (None, None) => "not determined".to_string(),
-        };
-        let _ = writeln!(
-            out,
-            "  {:<28}{:>14.5e}{:>14.5e}  {error}",
-            p.name, p.initial, p.fitted
-        );
-    }
-    for c in &report.channels {
-        let _ = writeln!(
-            out,
-            "  residual {}: RMS {:.4e} {} ({:.2} % of the target's RMS; {:.4e} at the start)",
-            c.channel,
-            c.rms_error,
-            c.unit,
-            100.0 * c.relative_rms_error,
-            c.rms_error_initial
-        );
-    }
-    for (a, b, rho) in &report.strong_correlations {
-        let _ = writeln!(
-            out,
-            "  warning: {a} and {b} are correlated ({rho:+.3}): the target determines a combination of them, not each"
-        );
-    }
-    out
-}
-
-/// The files of a fit for directory `out` (which exists): `fitted.toml`
-/// (its relative paths rebased to `out`), `fit.json` and `fit.svg`, with
-/// their contents.
-pub fn outputs(fitting: &Fitting, out: &Path) -> Result<[(&'static str, String); 3], Failure> {
-    let Fitting {
-        report,
-        setup,
-        document,
-        names,
-        scenario,
-    } = fitting;
-    let values: Vec<f64> = report.parameters.iter().map(|p| p.fitted).collect();
-    let mut fitted = document.clone();
-    setup.parameters.write_into(&mut fitted, &values, names);
-    rebase_paths(
-        &mut fitted,
-        scenario.parent().unwrap_or(Path::new(".")),
-        out,
-    );
-    let header = format!(
-        "# Fitted by `lpm fit` from {} to {}: the scenario with the fitted values\n# (cost {:.4e}). Relative paths start from this file.\n",
-        scenario.display(),
-        setup.target_description(),
-        report.cost
-    );
-    let toml_text = header
-        + &toml::to_string(&fitted)
-            .map_err(|e| Failure::io(format!("cannot write the scenario: {e}")))?;
-    let json = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
-    let svg =
-        overlay(report, &setup.target).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
-    Ok([
-        ("fitted.toml", toml_text),
-        ("fit.json", json),
-        ("fit.svg", svg),
-    ])
-}
-
-/// Writes the files of a fit into directory `out`, creating it, and
-/// returns them as [`outputs`] does.
-pub fn write_files(fitting: &Fitting, out: &Path) -> Result<[(&'static str, String); 3], Failure> {
-    let io = |path: &Path, e: std::io::Error| {
-        Failure::io(format!("cannot write {}: {e}", path.display()))
-    };
-    // Before `outputs`: rebasing the fitted scenario's paths needs `out`.
-    std::fs::create_dir_all(out).map_err(|e| io(out, e))?;
-    let files = outputs(fitting, out)?;
-    let paths: Vec<PathBuf> = files.iter().map(|(name, _)| out.join(name)).collect();
-    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
-        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
-        .collect();
-    write_all_atomically(&contents).map_err(|(path, e)| io(&path, e))?;
-    Ok(files)
-}
-
-trait Describe {
-    fn target_description(&self) -> String;
-}
-
-impl Describe for FitSetup {
-    fn target_description(&self) -> String {
-        let channels: Vec<&str> = self
-            .target
-            .channels
-            .iter()
-            .map(|c| c.header.as_str())
-            .collect();
-        format!("target {}", channels.join(", "))
-    }
-}
-
-/// Rewrites the relative paths of a scenario (`spec`, `components.*.file`)
-/// written in `from` so that they hold for a file written in `to`.
-fn rebase_paths(document: &mut toml::Table, from: &Path, to: &Path) {
-    let rebase = |value: &mut toml::Value| {
-        if let Some(p) = value.as_str().map(PathBuf::from)
-            && p.is_relative()
-            && let (Ok(target), Ok(dir)) = (
-                std::fs::canonicalize(from.join(&p)),
-                std::fs::canonicalize(to),
-            )
-        {
-            *value = toml::Value::String(relative(&target, &dir).display().to_string());
-        }
-    };
-    if let Some(v) = document.get_mut("spec") {
-        rebase(v);
-    }
-    if let Some(toml::Value::Table(components)) = document.get_mut("components") {
-        for (_, c) in components.iter_mut() {
-            if let Some(v) = c.get_mut("file") {
-                rebase(v);
-            }
-        }
-    }
-}
-
-/// `target` relative to directory `dir` (both absolute).
-fn relative(target: &Path, dir: &Path) -> PathBuf {
-    let t: Vec<Component> = target.components().collect();
-    let d: Vec<Component> = dir.components().collect();
-    let common = t.iter().zip(&d).take_while(|(a, b)| a == b).count();
-    let mut out = PathBuf::new();
-    for _ in common..d.len() {
-        out.push("..");
-    }
-    for c in &t[common..] {
-        out.push(c);
-    }
-    out
-}
-
-fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, String> {
-    let panels: Vec<(String, String, String, Vec<Series>)> = target
-        .channels
-        .iter()
-        .zip(&report.curves)
-        .map(|(c, (initial, fitted))| {
-            let line = |values: &[f64]| -> Vec<(f64, f64)> {
-                target
-                    .t
-                    .iter()
-                    .map(|t| t * 1e3)
-                    .zip(values.iter().copied())
-                    .collect()
-            };
-            (
-                c.header.clone(),
-                "t [ms]".to_string(),
-                format!("{} [{}]", c.quantity.name(), c.quantity.si_unit()),
-                vec![
-                    ("target".to_string(), line(&c.values)),
-                    ("initial".to_string(), line(initial)),
-                    ("fitted".to_string(), line(fitted)),
-                ],
-            )
-        })
-        .collect();
-    panels_svg("lpm fit: target, initial and fitted", &panels)
 }

@@ -128,7 +128,7 @@ pub fn export_with(
     binary: Binary,
 ) -> Result<Exported, Failure> {
     let (compiled, model, scenario_path, resolved) =
-        crate::simulate::load_spec(spec, scenario, &[])?;
+        lagrangian_studies::simulate::load_spec(spec, scenario, &[])?;
     model.with_dimension(Supported).map_err(Failure::model)?;
     let spec_bytes = read(spec)?;
     let (library, whence) = match binary {

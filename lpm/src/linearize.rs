@@ -2,7 +2,6 @@
 //! static equilibrium or a given state, and the modes of `A`.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::{compile, find_scenario};
 use lagrangian_core::{Compiled, Model};
 use lagrangian_model::names::closest;
 use lagrangian_model::{Interpreted, WithDimension};
@@ -11,6 +10,7 @@ use lagrangian_sim::linearize::{
 };
 use lagrangian_sim::report::write_atomically;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_studies::spec::{compile, find_scenario};
 use std::path::{Path, PathBuf};
 
 /// Options of `lpm linearize`.
@@ -49,7 +49,8 @@ pub struct Args {
 
 /// Runs `lpm linearize`.
 pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let model = crate::spec::interpreted(&with_jacobians(compile(&args.spec)?, &args.spec));
+    let model =
+        lagrangian_studies::spec::interpreted(&with_jacobians(compile(&args.spec)?, &args.spec));
     let names = ModelNames::of_interpreted(&model);
     let at = parse_at(&args.at, model.coordinates())?;
     let scenario_path = match &args.scenario {
@@ -131,7 +132,7 @@ fn parse_at(text: &str, coordinates: &[String]) -> Result<At, Failure> {
     let n = coordinates.len();
     let values = match text.contains('=') {
         true => named_state(text, coordinates)?,
-        false => crate::eval::parse_state("--at", text, coordinates)?,
+        false => lagrangian_studies::eval::parse_state("--at", text, coordinates)?,
     };
     Ok(At::State {
         q: values[..n].to_vec(),

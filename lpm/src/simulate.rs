@@ -1,18 +1,11 @@
 //! `lpm simulate`: run a spec file under a scenario and write the results.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::{compile, find_scenario, out_dir};
-use lagrangian_core::Compiled;
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
-use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::Method;
-use lagrangian_sim::plot::{PlotSetup, figure_svg};
-use lagrangian_sim::report::{
-    Units, summary_json, text_summary, trajectory_csv, write_all_atomically,
-};
-use lagrangian_sim::scenario::{ModelNames, Scenario};
-use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
-use std::path::{Path, PathBuf};
+use lagrangian_sim::report::text_summary;
+use lagrangian_studies::simulate::{simulate_spec, write_outputs};
+use lagrangian_studies::spec::out_dir;
+use std::path::PathBuf;
 
 /// Options of `lpm simulate`.
 #[derive(clap::Args)]
@@ -99,85 +92,13 @@ fn naming_flags(failure: Failure, options: &Args) -> Failure {
     failure
 }
 
-/// A finished simulation with what its report needs.
-pub struct Simulated {
-    /// The run.
-    pub result: SimulationResult,
-    /// The model run (interpreted), for names and units.
-    pub model: InterpretedModel,
-    /// The scenario it ran under.
-    pub scenario: Scenario,
-    /// The scenario's file, or that there was none.
-    pub scenario_name: String,
-}
-
-impl Simulated {
-    /// The trajectory as CSV, with units in the column names (trajectory.csv).
-    pub fn trajectory_csv(&self) -> String {
-        trajectory_csv(&self.result, &units(&self.result, &self.model))
-    }
-}
-
-/// Compiles the spec at `spec`, loads its scenario (`scenario`, else the one
-/// beside the spec that names it, else the defaults) with `settings`
-/// (`--set` entries) and simulates it: what `lpm simulate` does before it
-/// writes its files.
-pub fn simulate_spec(
-    spec: &Path,
-    scenario: Option<&Path>,
-    settings: &[String],
-) -> Result<Simulated, Failure> {
-    let (compiled, model, scenario_path, scenario) = load_spec(spec, scenario, settings)?;
-    let result = dispatch(model.clone(), &scenario).map_err(|failure| {
-        match domain_cause(&failure, &compiled, &scenario, spec) {
-            Some(why) => failure.0.because(&why),
-            None => failure.0,
-        }
-    })?;
-    let scenario_name = scenario_path
-        .as_ref()
-        .map_or("default scenario (no scenario file)".to_string(), |p| {
-            p.display().to_string()
-        });
-    Ok(Simulated {
-        result,
-        model,
-        scenario,
-        scenario_name,
-    })
-}
-
-/// Compiles the spec at `spec` and resolves its scenario (`scenario`, else
-/// the one beside the spec that names it, else the defaults) with
-/// `settings`: the compiled spec, its interpreted model, the scenario's file
-/// and the scenario, each failing as `lpm simulate` fails.
-pub fn load_spec(
-    spec: &Path,
-    scenario: Option<&Path>,
-    settings: &[String],
-) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), Failure> {
-    let compiled = compile(spec)?;
-    let model = crate::spec::interpreted(&compiled);
-    let names = ModelNames::of_interpreted(&model);
-    let scenario_path = match scenario {
-        Some(p) => Some(p.to_path_buf()),
-        None => find_scenario(spec)?,
-    };
-    let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, settings),
-        None => Scenario::defaults(&names, settings),
-    }
-    .map_err(|e| Failure::scenario(&e))?;
-    Ok((compiled, model, scenario_path, scenario))
-}
-
 /// Runs `lpm simulate`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
     let settings = settings(&options);
     let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)
-        .map_err(|f| naming_flags(f, &options))?;
+        .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
-    write_outputs(&out, &simulated)?;
+    write_outputs(&out, &simulated).map_err(|e| Failure::from(&e))?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);
     text.push_str(&format!(
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
@@ -188,148 +109,4 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         &simulated.result.warnings,
         options.strict,
     ))
-}
-
-/// `simulate` on the model at its dimension.
-struct Simulate<'a> {
-    scenario: &'a Scenario,
-}
-
-impl WithDimension for Simulate<'_> {
-    type Output = Result<SimulationResult, RunFailure>;
-
-    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        simulate(&system, self.scenario).map_err(|e| {
-            let failure = Failure::simulation(&e, system.inner().coordinates());
-            let failure = match mass_cause(&e, system.inner(), self.scenario) {
-                Some(why) => failure.because(&why),
-                None => failure,
-            };
-            let fault = match e {
-                SimulationError::Solver {
-                    error: SolverError::Rhs { t, error },
-                    ..
-                } => Some(Box::new((t, error))),
-                _ => None,
-            };
-            (failure, fault)
-        })
-    }
-}
-
-/// Which call of the spec left its domain where the run turned non-finite
-/// (`acos` of 2, `ln` of a negative number, a division by zero), with its
-/// file:line and the value of its argument there.
-fn domain_cause(
-    failure: &RunFailure,
-    compiled: &Compiled,
-    scenario: &Scenario,
-    spec: &Path,
-) -> Option<String> {
-    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
-        return None;
-    };
-    let model = &compiled.model;
-    let mut parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
-    for &(i, value) in &scenario.parameters {
-        parameters[i] = value;
-    }
-    let (check, value) = model.domain_violation(*t, q, qd, &parameters)?;
-    let source = std::fs::read_to_string(spec).ok()?;
-    Some(check.describe(&spec.display().to_string(), &source, value))
-}
-
-/// Which of the scenario's parameters made the mass matrix not positive
-/// definite where the run failed on it (`model`: at its defaults).
-fn mass_cause(
-    e: &SimulationError,
-    model: &InterpretedModel,
-    scenario: &Scenario,
-) -> Option<String> {
-    let SimulationError::Solver {
-        error: SolverError::Rhs { t, error: fault },
-        ..
-    } = e
-    else {
-        return None;
-    };
-    let Fault::SingularMassMatrix { q, qd } = fault else {
-        return None;
-    };
-    let defaults = model.parameters().to_vec();
-    let mut with_scenario = model.clone();
-    let names = model.parameter_names().to_vec();
-    for &(i, value) in &scenario.parameters {
-        with_scenario.set_parameter(&names[i], value).ok()?;
-    }
-    let set: Vec<usize> = scenario.parameters.iter().map(|&(i, _)| i).collect();
-    crate::mass::blame(&with_scenario, &defaults, &set, (*t, q, qd))
-}
-
-/// The run, or its failure with the fault and the time it happened at.
-type RunFailure = (Failure, Option<Box<(f64, Fault)>>);
-
-fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, RunFailure> {
-    model
-        .with_dimension(Simulate { scenario })
-        .map_err(|e| (Failure::model(e), None))?
-}
-
-/// The units of the trajectory's columns.
-fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
-    let input_units = result
-        .input_columns
-        .iter()
-        .map(|name| {
-            let k = model.input_names().iter().position(|n| n == name)?;
-            model.input_units()[k].clone()
-        })
-        .collect();
-    Units {
-        coordinates: model.coordinate_units().to_vec(),
-        inputs: input_units,
-        outputs: model.output_units().to_vec(),
-        multipliers: model.multiplier_units().to_vec(),
-    }
-}
-
-fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), Failure> {
-    let Simulated {
-        result,
-        model: _,
-        scenario,
-        scenario_name,
-    } = simulated;
-    std::fs::create_dir_all(out)
-        .map_err(|e| Failure::io(format!("cannot create {}: {e}", out.display())))?;
-    let setup = PlotSetup {
-        crush: scenario.crush.clone(),
-        channels: scenario.channels.clone(),
-        pitch: scenario.pitch.clone(),
-        force_deflection: scenario.inputs.force_deflection_columns(),
-        g: lagrangian_sim::pulse::STANDARD_GRAVITY,
-        title: figure_title(&result.model, scenario, scenario_name),
-    };
-    let svg =
-        figure_svg(result, &setup).map_err(|e| Failure::io(format!("plotting failed: {e}")))?;
-    let files = [
-        ("trajectory.csv", simulated.trajectory_csv()),
-        ("summary.json", summary_json(result)),
-        ("plots.svg", svg),
-    ];
-    let paths: Vec<_> = files.iter().map(|(name, _)| out.join(name)).collect();
-    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
-        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
-        .collect();
-    write_all_atomically(&contents)
-        .map_err(|(path, e)| Failure::io(format!("cannot write {}: {e}", path.display())))
-}
-
-/// `model — description` of the scenario, or `model — scenario file` for a
-/// scenario without a description.
-fn figure_title(model: &str, scenario: &Scenario, scenario_name: &str) -> String {
-    match scenario.description.trim() {
-        "" => format!("{model} — {scenario_name}"),
-        description => format!("{model} — {description}"),
-    }
 }

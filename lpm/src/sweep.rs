@@ -1,29 +1,17 @@
 //! `lpm sweep`: run a scenario many times with values varied, in parallel,
-//! and write one row of summary metrics per run (CSV or Parquet).
-//! [`memory`] makes the same tables in memory, for the Python package.
+//! and write one row of summary metrics per run (CSV or Parquet). The
+//! sweep is [`lagrangian_studies::sweeping`]'s; this is its command line,
+//! its progress bar and its Ctrl-C.
 
 use crate::failure::{Failure, Outcome};
-use crate::spec::compile;
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
-use lagrangian_sim::report::write_atomically_with;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
-use lagrangian_sim::simulate::FailureKind;
-use lagrangian_sim::sweep::{
-    Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
-    journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
-    stream_sweep, write_csv, write_parquet,
-};
-use std::cell::RefCell;
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use lagrangian_studies::sweep::Design;
+use lagrangian_studies::sweeping::envelope::EnvelopeOptions;
+use lagrangian_studies::sweeping::{Progress, SweepRequest};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
-
-pub mod envelope;
-pub mod memory;
+use std::sync::{Arc, OnceLock};
 
 /// Options of `lpm sweep`.
 #[derive(clap::Args)]
@@ -100,7 +88,7 @@ pub struct Args {
     /// Envelopes and weighted mean histories of chosen channels (boxed:
     /// they are seldom given).
     #[command(flatten)]
-    pub envelope: Box<envelope::EnvelopeArgs>,
+    pub envelope: Box<EnvelopeArgs>,
 }
 
 /// How a sampled design places its runs.
@@ -112,83 +100,112 @@ pub enum DesignArg {
     Random,
 }
 
-/// The spec a scenario names with its `spec` key (relative to the scenario).
-fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, Failure> {
-    spec_named_by(scenario, text)
-        .map_err(Failure::usage)?
-        .ok_or_else(|| {
-            Failure::usage(format!(
-                "{} has no `spec = \"…\"` entry; name the spec with --spec",
-                scenario.display()
-            ))
-        })
+/// The envelope flags of `lpm sweep`.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct EnvelopeArgs {
+    /// Channels to envelope: columns of trajectory.csv or combinations as
+    /// `[metrics]` writes them ("xa - xb"); per output time, the minimum
+    /// and maximum over the runs (with the run attaining each) and the
+    /// weighted mean.
+    #[arg(
+        long,
+        value_name = "CHANNEL[,CHANNEL…]",
+        value_delimiter = ',',
+        requires = "envelope_out"
+    )]
+    pub envelope: Vec<String>,
+    /// The envelope table: .csv or .parquet, one row per output time. A
+    /// shard writes its partial envelope beside its table instead
+    /// (OUT.envelope.json), and --merge of the shards writes this table.
+    #[arg(long, value_name = "FILE.csv|FILE.parquet", requires = "envelope")]
+    pub envelope_out: Option<PathBuf>,
+    /// The envelope plot (SVG): the band between minimum and maximum and
+    /// the weighted mean, one panel per channel.
+    #[arg(long, value_name = "FILE.svg", requires = "envelope")]
+    pub envelope_plot: Option<PathBuf>,
+    /// The runs' weights in the mean: KEY=W1,W2,… (one per value of grid
+    /// axis KEY) or a CSV file with columns run,weight; default: equal.
+    #[arg(long, value_name = "KEY=W1,…|FILE.csv", requires = "envelope")]
+    pub weights: Option<String>,
 }
 
-/// The plan of the command line: a grid or a sampled design.
-fn plan(options: &Args) -> Result<Plan, String> {
-    let design = match options.design {
-        DesignArg::LatinHypercube => Design::LatinHypercube,
-        DesignArg::Random => Design::Random,
-    };
-    match (options.grid.is_empty(), options.samples) {
-        (false, None) if options.vary.is_empty() => Plan::grid(&options.grid),
-        (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, design),
-        (true, None) => {
-            Err("give --grid KEY=VALUES or --samples N with --vary KEY=LOW:HIGH".into())
+impl Args {
+    /// The sweep these options ask for.
+    pub fn request(&self) -> SweepRequest {
+        let envelope = &self.envelope;
+        SweepRequest {
+            scenario: self.scenario.clone(),
+            spec: self.spec.clone(),
+            grid: self.grid.clone(),
+            samples: self.samples,
+            vary: self.vary.clone(),
+            design: match self.design {
+                DesignArg::LatinHypercube => Design::LatinHypercube,
+                DesignArg::Random => Design::Random,
+            },
+            seed: self.seed,
+            set: self.set.clone(),
+            out: self.out.clone(),
+            format: self.format.clone(),
+            shard: self.shard.clone(),
+            shard_index: self.shard_index,
+            shard_count: self.shard_count,
+            plan_only: self.plan_only,
+            merge: self.merge.clone(),
+            threads: self.threads,
+            resume: self.resume,
+            envelope: EnvelopeOptions {
+                envelope: envelope.envelope.clone(),
+                envelope_out: envelope.envelope_out.clone(),
+                envelope_plot: envelope.envelope_plot.clone(),
+                weights: envelope.weights.clone(),
+            },
         }
-        _ => Err("--grid cannot be combined with --samples/--vary".into()),
     }
 }
 
-/// Whether the table `out` is Parquet: `--format`, else its extension.
-fn wants_parquet(options: &Args, out: &Path) -> Result<bool, Failure> {
-    match options.format.as_deref() {
-        Some(format) => Ok(format == "parquet"),
-        None => match out.extension().and_then(|e| e.to_str()) {
-            Some("parquet") => Ok(true),
-            Some("csv") => Ok(false),
-            _ => Err(Failure::usage(format!(
-                "--out {}: name a .csv or .parquet file, or give --format",
-                out.display()
-            ))),
-        },
-    }
+/// Runs `lpm sweep`: the sweep, or with `--plan` its plan, or with
+/// `--merge` the merge of its shards' tables.
+pub fn run(options: Args) -> Result<Outcome, Failure> {
+    let progress = Bar {
+        quiet: options.quiet,
+        bar: OnceLock::new(),
+        stop: OnceLock::new(),
+    };
+    let text = lagrangian_studies::sweeping::run(&options.request(), &progress)?;
+    Ok(Outcome::success(text))
 }
 
-/// The shard of `--shard`, `--shard auto` or `--shard-index`/`--shard-count`.
-fn shard(options: &Args) -> Result<Shard, String> {
-    let count = options.shard_count.map(|n| n as usize);
-    match (options.shard.as_deref(), options.shard_index, count) {
-        (Some("auto"), _, count) => shard_from_environment(&|name| std::env::var(name).ok(), count),
-        (Some(_), _, Some(_)) => {
-            Err("--shard-count goes with --shard auto or --shard-index, not --shard I/N".into())
-        }
-        (Some(text), _, None) => Shard::parse(text),
-        (None, Some(index), Some(count)) => Shard::zero_based(index, count),
-        (None, None, Some(_)) => {
-            Err("--shard-count goes with --shard auto or --shard-index".into())
-        }
-        (None, _, None) => Ok(Shard::ALL),
-    }
+/// The progress of `lpm sweep`: a bar on stderr (none with `--quiet`), and
+/// a stop on the first signal, installed when the runs start.
+struct Bar {
+    quiet: bool,
+    bar: OnceLock<ProgressBar>,
+    stop: OnceLock<Arc<AtomicBool>>,
 }
 
-/// The model the scenario (or `--spec`) names and the scenario every run
-/// starts from.
-fn load(options: &Args) -> Result<(InterpretedModel, BaseScenario), Failure> {
-    let text = std::fs::read_to_string(&options.scenario)
-        .map_err(|e| Failure::io(format!("cannot read {}: {e}", options.scenario.display())))?;
-    let spec = match &options.spec {
-        Some(spec) => spec.clone(),
-        None => spec_of(&options.scenario, &text)?,
-    };
-    let model = crate::spec::interpreted(&compile(&spec)?);
-    let base = BaseScenario {
-        text,
-        file: Some(options.scenario.clone()),
-        names: ModelNames::of_interpreted(&model),
-        settings: options.set.clone(),
-    };
-    Ok((model, base))
+impl Progress for Bar {
+    fn start(&self, runs: usize, done: usize) {
+        let bar = self.bar.get_or_init(|| progress_bar(self.quiet, runs));
+        bar.set_position(done as u64);
+        self.stop.get_or_init(stop_on_signal);
+    }
+
+    fn run_done(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.inc(1);
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+
+    fn stop_requested(&self) -> bool {
+        (self.stop.get()).is_some_and(|stop| stop.load(Ordering::Relaxed))
+    }
 }
 
 /// A progress bar over `runs` runs (hidden with `--quiet`).
@@ -206,480 +223,6 @@ fn progress_bar(quiet: bool, runs: usize) -> ProgressBar {
     bar
 }
 
-/// What the runs of this invocation came to.
-#[derive(Default)]
-struct Tally {
-    ok: usize,
-    failed: usize,
-    /// The first failed run and its `kind: message`.
-    first_failure: Option<(usize, String)>,
-}
-
-impl Tally {
-    fn count(&mut self, row: &Row) {
-        match &row.outcome {
-            Ok(_) => self.ok += 1,
-            Err(e) => {
-                self.failed += 1;
-                (self.first_failure)
-                    .get_or_insert((row.run, format!("{}: {}", e.kind.name(), e.message)));
-            }
-        }
-    }
-}
-
-/// What every mode of `lpm sweep` starts from: the plan, the model, the
-/// scenario and the table's columns.
-struct Prepared {
-    plan: Plan,
-    model: InterpretedModel,
-    base: BaseScenario,
-    settings: Settings,
-    layout: Layout,
-}
-
-fn prepare(options: &Args) -> Result<Prepared, Failure> {
-    let plan = plan(options).map_err(Failure::usage)?;
-    let (model, base) = load(options)?;
-    let settings = Settings::new(&plan, &base, model.parameters()).map_err(Failure::usage)?;
-    // A key the scenario does not know fails here, before any run starts.
-    let first = match plan.is_empty() {
-        false => run_scenario(&base, &settings, &plan.point(0)),
-        true => base.resolve(&[]),
-    };
-    let first = first.map_err(|e| Failure::scenario(&e))?;
-    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
-    let layout = Layout::new(axes, &first);
-    Ok(Prepared {
-        plan,
-        model,
-        base,
-        settings,
-        layout,
-    })
-}
-
-/// Runs `lpm sweep`: the sweep, or with `--plan` its plan, or with
-/// `--merge` the merge of its shards' tables.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let shard = shard(&options).map_err(Failure::usage)?;
-    let out = options.out.clone();
-    let parquet = out.as_deref().map(|out| wants_parquet(&options, out));
-    let prepared = prepare(&options)?;
-    let parquet = parquet.transpose()?;
-    let envelope = envelope::request(&options, &prepared)?;
-    match (out, parquet) {
-        _ if options.plan_only => plan_report(prepared),
-        (Some(out), Some(parquet)) if !options.merge.is_empty() => match &envelope {
-            None => merge(&options.merge, &prepared, &out, parquet),
-            Some(request) => {
-                let merged = envelope::merged(request, &options.merge, &prepared)?;
-                let outcome = merge(&options.merge, &prepared, &out, parquet)?;
-                envelope::with_merged(outcome, request, &merged)
-            }
-        },
-        (Some(out), Some(parquet)) => {
-            let output = Output {
-                table: &out,
-                parquet,
-                envelope: envelope.as_ref(),
-            };
-            sweep(&options, prepared, shard, output)
-        }
-        _ => Err(Failure::usage("give --out FILE")),
-    }
-}
-
-/// What a sweep writes: its table (Parquet or CSV) and any envelope.
-struct Output<'a> {
-    table: &'a Path,
-    parquet: bool,
-    envelope: Option<&'a envelope::EnvelopeRequest>,
-}
-
-/// Makes the runs of `shard` and writes their table (and envelope).
-fn sweep(
-    options: &Args,
-    prepared: Prepared,
-    shard: Shard,
-    output: Output<'_>,
-) -> Result<Outcome, Failure> {
-    let (out, parquet) = (output.table, output.parquet);
-    let Prepared {
-        plan,
-        model,
-        base,
-        settings,
-        layout,
-    } = prepared;
-    let runs = shard.runs(plan.len());
-    let (plan, base, settings, layout) = (&plan, &base, &settings, &layout);
-    let journal_path = journal_path(out);
-    let (mut journal, done) = open_journal(options, out, &journal_path, layout, plan, &runs)?;
-    let resume = options.resume.then_some(done);
-    let mut tracked = (output.envelope)
-        .map(|request| envelope::Tracked::start(request, plan, &runs, &journal_path, resume))
-        .transpose()?;
-    // With an envelope, the runs the journal holds beyond it are made again
-    // for their histories (their rows are in the journal already).
-    let from = tracked.as_ref().map_or(done, |t| t.done());
-    let journaled = runs.start + done;
-    let bar = progress_bar(options.quiet, runs.len());
-    bar.set_position(done as u64);
-    let stop = stop_on_signal();
-    let start = Instant::now();
-    let mut tally = Tally::default();
-    let mut sink = |row: Row| -> Result<(), String> {
-        if row.run < journaled {
-            return Ok(());
-        }
-        journal.append(&row).map_err(|e| {
-            format!("{e}; the runs finished before are kept in it: make room and run the same command with --resume")
-        })?;
-        tally.count(&row);
-        bar.inc(1);
-        Ok(())
-    };
-    let remaining = runs.start + from..runs.end;
-    let job = SweepJob {
-        base,
-        plan,
-        settings,
-        runs: remaining.clone(),
-        threads: options.threads,
-    };
-    let sweep = Sweep {
-        job,
-        stop: &stop,
-        sink: &mut sink,
-        envelope: tracked.as_mut().map(|t| t.streaming()),
-    };
-    let streamed = model.with_dimension(sweep).map_err(Failure::model)??;
-    bar.finish_and_clear();
-    let elapsed = start.elapsed().as_secs_f64();
-    drop(journal);
-    let finished = streamed - (done - from).min(streamed);
-    if streamed < remaining.len() {
-        if let Some(tracked) = &mut tracked {
-            tracked.save()?;
-        }
-        return Err(stopped(done + finished, runs.len(), &journal_path));
-    }
-    // The envelope's files first: a sweep stopped in between resumes.
-    let envelope_line = match &mut tracked {
-        Some(tracked) => tracked.finish(shard, out)?,
-        None => String::new(),
-    };
-    finish_output(&journal_path, out, layout, parquet)?;
-    if let Some(tracked) = &tracked {
-        tracked.remove_checkpoint()?;
-    }
-    let counts = Counts {
-        runs: &runs,
-        total: plan.len(),
-        shard,
-        done,
-        finished,
-        elapsed,
-    };
-    let text = report(&counts, &tally, out) + &envelope_line;
-    if !runs.is_empty() && tally.ok == 0 && done == 0 {
-        return Err(Failure::new(
-            ExitStatus::EveryRunFailed,
-            format!("every run failed\n{text}"),
-        ));
-    }
-    Ok(Outcome::success(text))
-}
-
-/// The failure of a sweep stopped with `kept` of its `runs` runs in the
-/// journal `journal`.
-fn stopped(kept: usize, runs: usize, journal: &Path) -> Failure {
-    Failure::rendered(
-        ExitStatus::Interrupted,
-        format!(
-            "stopped: {kept} of {runs} runs are done and kept in {}; run the same command with --resume to finish",
-            journal.display()
-        ),
-    )
-}
-
-/// How many runs there were and how long they took.
-struct Counts<'a> {
-    runs: &'a std::ops::Range<usize>,
-    total: usize,
-    shard: Shard,
-    /// Runs found in the journal.
-    done: usize,
-    /// Runs made now.
-    finished: usize,
-    elapsed: f64,
-}
-
-/// The lines `lpm sweep` prints when it is done.
-fn report(counts: &Counts, tally: &Tally, out: &Path) -> String {
-    let Counts {
-        runs,
-        total,
-        shard,
-        done,
-        finished,
-        elapsed,
-    } = *counts;
-    let rate = finished as f64 / elapsed.max(1e-9);
-    let shard_text = if shard == Shard::ALL {
-        String::new()
-    } else {
-        format!(
-            " (shard {}/{}: runs {}..{} of {total})",
-            shard.index, shard.count, runs.start, runs.end
-        )
-    };
-    let journal_text = if done > 0 {
-        format!(" ({done} from the journal, {finished} now)")
-    } else {
-        String::new()
-    };
-    let mut text = format!(
-        "{} runs{shard_text}{journal_text} in {elapsed:.2} s ({rate:.0} runs/s), {} failed; wrote {}\n",
-        runs.len(),
-        tally.failed,
-        out.display()
-    );
-    if let Some((run, message)) = &tally.first_failure {
-        text.push_str(&format!("  first failure, run {run}: {message}\n"));
-    }
-    text
-}
-
-/// The journal to append to: a new one, or with `--resume` the one an
-/// interrupted run of the same sweep left (with the number of runs in it).
-fn open_journal(
-    options: &Args,
-    out: &Path,
-    path: &Path,
-    layout: &Layout,
-    plan: &Plan,
-    runs: &std::ops::Range<usize>,
-) -> Result<(Journal, usize), Failure> {
-    let exists = path.exists();
-    let resumable = exists && std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
-    match (options.resume, resumable) {
-        (true, true) => Journal::resume(path, layout, plan, runs).map_err(|e| {
-            Failure::new(
-                ExitStatus::Failed(FailureKind::DataFile),
-                format!("--resume: {e}"),
-            )
-        }),
-        (true, false) if out.exists() => Err(Failure::usage(format!(
-            "--resume: {} is complete and there is no {} to resume",
-            out.display(),
-            path.display()
-        ))),
-        (false, true) => Err(Failure::usage(format!(
-            "{} holds the finished runs of an interrupted sweep: continue it with --resume, or delete it to start again",
-            path.display()
-        ))),
-        _ => Journal::create(path, layout)
-            .map(|j| (j, 0))
-            .map_err(Failure::io),
-    }
-}
-
-/// Turns the finished journal into the output: renamed for CSV, converted
-/// one row group at a time (then removed) for Parquet.
-fn finish_output(
-    journal: &Path,
-    out: &Path,
-    layout: &Layout,
-    parquet: bool,
-) -> Result<(), Failure> {
-    let io = |e: String| Failure::io(e);
-    if parquet {
-        let groups = read_groups(journal, layout, PARQUET_GROUP_ROWS).map_err(io)?;
-        write_beside(out, |file| write_parquet(layout, groups, file)).map_err(io)?;
-        std::fs::remove_file(journal)
-            .map_err(|e| io(format!("cannot remove {}: {e}", journal.display())))
-    } else {
-        std::fs::rename(journal, out)
-            .map_err(|e| io(format!("cannot write {}: {e}", out.display())))
-    }
-}
-
-/// Writes `out` through a temporary file beside it
-/// ([`write_atomically_with`]), renamed into place when `write` succeeds
-/// and the bytes are on the disk, removed on any failure (a full disk
-/// included): `out` is whole or absent.
-fn write_beside(
-    out: &Path,
-    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> Result<(), String>,
-) -> Result<(), String> {
-    let mut failure = None;
-    write_atomically_with(out, |file| {
-        let mut buffered = std::io::BufWriter::new(file);
-        if let Err(e) = write(&mut buffered) {
-            failure = Some(e);
-            return Err(std::io::Error::other("not written"));
-        }
-        buffered.flush()
-    })
-    .map_err(|e| failure.unwrap_or_else(|| format!("cannot write {}: {e}", out.display())))
-}
-
-/// `rows` in groups of `size` (the last one shorter); an error ends them.
-fn in_groups(
-    mut rows: impl Iterator<Item = Result<Row, String>>,
-    size: usize,
-) -> impl Iterator<Item = Result<Vec<Row>, String>> {
-    std::iter::from_fn(move || {
-        let mut group = Vec::new();
-        for row in rows.by_ref() {
-            match row {
-                Ok(row) => group.push(row),
-                Err(e) => return Some(Err(e)),
-            }
-            if group.len() == size {
-                break;
-            }
-        }
-        (!group.is_empty()).then_some(Ok(group))
-    })
-}
-
-/// `lpm sweep --merge`: the shards' tables checked against the plan and
-/// written as the table of one full run.
-fn merge(
-    parts: &[PathBuf],
-    prepared: &Prepared,
-    out: &Path,
-    parquet: bool,
-) -> Result<Outcome, Failure> {
-    let mut failure = None;
-    let written = write_beside(out, |file| {
-        merge_into(parts, prepared, parquet, file).map_err(|e| {
-            let message = e.message().to_string();
-            failure = Some(e);
-            message
-        })
-    });
-    if let Some(failure) = failure {
-        return Err(failure);
-    }
-    written.map_err(Failure::io)?;
-    Ok(Outcome::success(format!(
-        "merged {} runs from {} parts into {}\n",
-        prepared.plan.len(),
-        parts.len(),
-        out.display()
-    )))
-}
-
-/// Writes the merged table of the shards' tables `parts` to `file`.
-fn merge_into(
-    parts: &[PathBuf],
-    prepared: &Prepared,
-    parquet: bool,
-    file: impl std::io::Write + Send,
-) -> Result<(), Failure> {
-    let data = |e: String| Failure::new(ExitStatus::Failed(FailureKind::DataFile), e);
-    let rows = merged_rows(parts, &prepared.layout, &prepared.plan).map_err(data)?;
-    // A part that fails its checks is a data error, one that cannot be
-    // written an I/O error.
-    let bad_part = RefCell::new(None);
-    let rows = rows.inspect(|row| {
-        if let Err(e) = row {
-            bad_part.replace(Some(e.clone()));
-        }
-    });
-    let layout = &prepared.layout;
-    let written = match parquet {
-        true => write_parquet(layout, in_groups(rows, PARQUET_GROUP_ROWS), file),
-        false => write_csv(layout, rows, file),
-    };
-    if let Some(e) = bad_part.into_inner() {
-        return Err(data(e));
-    }
-    written.map_err(Failure::io)
-}
-
-/// Runs timed by `--plan`.
-const PLAN_TIMED_RUNS: usize = 10;
-
-/// The time of one task of a suggested split, on one core \[s\].
-const TASK_SECONDS: f64 = 600.0;
-
-/// `lpm sweep --plan`: times the first runs on one thread and suggests a
-/// split into tasks of about ten minutes of one core.
-fn plan_report(prepared: Prepared) -> Result<Outcome, Failure> {
-    let Prepared {
-        plan,
-        model,
-        base,
-        settings,
-        ..
-    } = prepared;
-    let timed = 0..plan.len().min(PLAN_TIMED_RUNS);
-    let stop = AtomicBool::new(false);
-    let mut sink = |_: Row| Ok(());
-    let job = SweepJob {
-        base: &base,
-        plan: &plan,
-        settings: &settings,
-        runs: timed.clone(),
-        threads: 1,
-    };
-    let start = Instant::now();
-    let sweep = Sweep {
-        job,
-        stop: &stop,
-        sink: &mut sink,
-        envelope: None,
-    };
-    model.with_dimension(sweep).map_err(Failure::model)??;
-    let per_run = start.elapsed().as_secs_f64() / timed.len().max(1) as f64;
-    let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
-    Ok(Outcome::success(plan_text(
-        plan.len(),
-        &axes,
-        timed.len(),
-        per_run,
-    )))
-}
-
-/// The text of `--plan` for `total` runs of `per_run` seconds each.
-fn plan_text(total: usize, axes: &[String], timed: usize, per_run: f64) -> String {
-    let all = total as f64 * per_run;
-    let mut text = format!(
-        "{total} runs over {}\na run takes {:.2} ms on one thread here ({timed} timed); all runs ≈ {} of one core\n",
-        axes.join(", "),
-        per_run * 1e3,
-        duration(all)
-    );
-    let tasks = ((all / TASK_SECONDS).ceil() as usize).clamp(1, total.max(1));
-    if tasks == 1 {
-        text.push_str("suggested split: none (the runs take under ten minutes of one core)\n");
-    } else {
-        let runs = total.div_ceil(tasks);
-        text.push_str(&format!(
-            "suggested split: {tasks} tasks of ≤ {runs} runs (≈ {} each on one core): --shard auto --shard-count {tasks}\n  (Slurm --array=1-{tasks}; Kubernetes completions: {tasks}; AWS Batch array size {tasks})\n",
-            duration(runs as f64 * per_run)
-        ));
-    }
-    text
-}
-
-/// `12.3 s`, `4.5 min` or `2.1 h`.
-fn duration(seconds: f64) -> String {
-    match seconds {
-        s if s < 120.0 => format!("{s:.1} s"),
-        s if s < 7200.0 => format!("{:.1} min", s / 60.0),
-        s => format!("{:.1} h", s / 3600.0),
-    }
-}
-
-/// Rows per Parquet row group (about 14 MB of values with 30 columns).
-const PARQUET_GROUP_ROWS: usize = 1 << 16;
-
 /// A flag set by the first SIGINT, SIGTERM or SIGHUP: the sweep takes no
 /// new run and stops once the runs under way are written. A second signal
 /// exits at once (the journal keeps every row written).
@@ -694,48 +237,4 @@ fn stop_on_signal() -> Arc<AtomicBool> {
         eprintln!("\nstopping: finishing the runs under way (again to stop at once)");
     });
     stop
-}
-
-/// `stream_sweep` (or with an envelope `stream_envelope`) on the model at
-/// its dimension.
-struct Sweep<'a> {
-    job: SweepJob<'a>,
-    stop: &'a AtomicBool,
-    sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
-    envelope: Option<Enveloping<'a>>,
-}
-
-/// The envelope a sweep accumulates: the channels and weights, the
-/// accumulators, and what to do after each row (save them now and then).
-struct Enveloping<'a> {
-    job: EnvelopeJob<'a>,
-    envelope: &'a mut Envelope,
-    after: Option<&'a mut dyn envelope::AfterRow>,
-}
-
-impl WithDimension for Sweep<'_> {
-    type Output = Result<usize, Failure>;
-
-    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        let streamed = match self.envelope {
-            None => stream_sweep(&system, self.job, self.stop, self.sink),
-            Some(Enveloping {
-                job,
-                envelope,
-                mut after,
-            }) => {
-                let sink = self.sink;
-                let mut sink = |row: Row, envelope: &Envelope| {
-                    let run = row.run;
-                    sink(row)?;
-                    match after.as_mut() {
-                        Some(checkpoints) => checkpoints.after(run, envelope),
-                        None => Ok(()),
-                    }
-                };
-                stream_envelope(&system, self.job, job, envelope, self.stop, &mut sink)
-            }
-        };
-        streamed.map_err(Failure::io)
-    }
 }

@@ -192,7 +192,9 @@ fn the_solve_of_eval_is_the_first_samples_in_full_precision() {
     let state = (first.t, &first.q[..], &first.v[..]);
     let inputs = ConstantInputs(Vec::new());
     let stabilization = scenario.stabilization;
-    let Ok(solved) = lpm::eval::accelerations(&model, &[state], &inputs, stabilization) else {
+    let Ok(solved) =
+        lagrangian_studies::eval::accelerations(&model, &[state], &inputs, stabilization)
+    else {
         panic!("the solve failed at {state:?}");
     };
     let scale = first.a.iter().fold(0.0_f64, |m, a| m.max(a.abs()));

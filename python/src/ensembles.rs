@@ -1,10 +1,14 @@
 //! `lpm sweep` and `lpm fit` from Python: the command line's own code
-//! (`lpm::sweep::memory`, `lpm::fit`), its tables and reports handed back as
+//! (`lagrangian_studies::sweeping::memory`, `lagrangian_studies::fitting`),
+//! its tables and reports handed back as
 //! the text the command writes. The Python layer builds the options (lists
 //! of `KEY=VALUES` strings) and shapes the results.
 
 use crate::raise;
-use lpm::failure::Failure;
+use lagrangian_studies::error::StudyError;
+use lagrangian_studies::fitting::{self, FitRequest};
+use lagrangian_studies::sweeping::envelope::EnvelopeOptions;
+use lagrangian_studies::sweeping::{Progress, SweepRequest, memory};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -38,24 +42,26 @@ pub(crate) struct SweepOptions {
 
 impl SweepOptions {
     /// The command line's options.
-    fn args(self) -> Result<lpm::sweep::Args, Failure> {
+    fn args(self) -> Result<SweepRequest, StudyError> {
         let scenario = match (self.scenario, &self.spec) {
             (Some(scenario), _) => scenario,
-            (None, Some(spec)) => lpm::spec::find_scenario(spec)?.ok_or_else(|| {
-                Failure::usage(format!(
-                    "no scenario names {}; give one with scenario=",
-                    spec.display()
-                ))
-            })?,
-            (None, None) => return Err(Failure::usage("give a spec, a scenario or both")),
+            (None, Some(spec)) => {
+                lagrangian_studies::spec::find_scenario(spec)?.ok_or_else(|| {
+                    StudyError::usage(format!(
+                        "no scenario names {}; give one with scenario=",
+                        spec.display()
+                    ))
+                })?
+            }
+            (None, None) => return Err(StudyError::usage("give a spec, a scenario or both")),
         };
-        Ok(lpm::sweep::Args {
+        Ok(SweepRequest {
             scenario,
             spec: self.spec,
             grid: self.grid,
             samples: self.samples,
             vary: self.vary,
-            design: lpm::sweep::memory::design(&self.design)?,
+            design: memory::design(&self.design)?,
             seed: self.seed,
             set: self.set,
             out: self.out,
@@ -66,20 +72,19 @@ impl SweepOptions {
             plan_only: false,
             merge: Vec::new(),
             threads: self.threads,
-            quiet: true,
             resume: false,
-            envelope: Box::new(lpm::sweep::envelope::EnvelopeArgs {
+            envelope: EnvelopeOptions {
                 envelope: self.envelope,
                 weights: self.weights,
                 ..Default::default()
-            }),
+            },
         })
     }
 }
 
 /// The bytes of a CSV table as text (the tables are UTF-8).
-fn text(bytes: Vec<u8>) -> Result<String, Failure> {
-    String::from_utf8(bytes).map_err(|e| Failure::io(format!("the table is not UTF-8: {e}")))
+fn text(bytes: Vec<u8>) -> Result<String, StudyError> {
+    String::from_utf8(bytes).map_err(|e| StudyError::io(format!("the table is not UTF-8: {e}")))
 }
 
 /// The sweep's table and envelope table (CSV bytes), the GIL released
@@ -87,22 +92,38 @@ fn text(bytes: Vec<u8>) -> Result<String, Failure> {
 /// exception.
 fn sweep_tables(py: Python<'_>, options: SweepOptions) -> PyResult<(Vec<u8>, Option<Vec<u8>>)> {
     let args = options.args().map_err(raise)?;
-    let stop = AtomicBool::new(false);
-    let interrupt: Mutex<Option<PyErr>> = Mutex::new(None);
-    let mut each_run = || {
-        if let Err(e) = Python::attach(|py| py.check_signals()) {
-            stop.store(true, Ordering::SeqCst);
-            interrupt
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .get_or_insert(e);
-        }
+    let progress = Signals {
+        stop: AtomicBool::new(false),
+        interrupt: Mutex::new(None),
     };
-    let tables = py.detach(|| lpm::sweep::memory::tables(&args, &stop, &mut each_run));
-    if let Some(e) = interrupt.into_inner().unwrap_or_else(|e| e.into_inner()) {
+    let tables = py.detach(|| memory::tables(&args, &progress));
+    if let Some(e) = (progress.interrupt.into_inner()).unwrap_or_else(|e| e.into_inner()) {
         return Err(e);
     }
     tables.map_err(raise)
+}
+
+/// The progress of a sweep from Python: after each run, the signals
+/// Python has seen; the first one (Ctrl-C) stops the sweep and is kept, to
+/// be raised.
+struct Signals {
+    stop: AtomicBool,
+    interrupt: Mutex<Option<PyErr>>,
+}
+
+impl Progress for Signals {
+    fn run_done(&self) {
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            self.stop.store(true, Ordering::SeqCst);
+            (self.interrupt.lock())
+                .unwrap_or_else(|e| e.into_inner())
+                .get_or_insert(e);
+        }
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
+    }
 }
 
 /// The CSV table of the sweep (or shard) of `options`, as `lpm sweep --out
@@ -122,7 +143,7 @@ pub(crate) fn sweep_table(py: Python<'_>, options: SweepOptions) -> PyResult<Str
 pub(crate) fn sweep_envelope(py: Python<'_>, options: SweepOptions) -> PyResult<(String, String)> {
     let (table, envelope) = sweep_tables(py, options)?;
     let envelope =
-        envelope.ok_or_else(|| raise(Failure::usage("give the channels to envelope")))?;
+        envelope.ok_or_else(|| raise(StudyError::usage("give the channels to envelope")))?;
     Ok((text(table).map_err(raise)?, text(envelope).map_err(raise)?))
 }
 
@@ -136,7 +157,7 @@ pub(crate) fn sweep_merge(
     parts: Vec<PathBuf>,
 ) -> PyResult<String> {
     let args = options.args().map_err(raise)?;
-    py.detach(|| lpm::sweep::memory::merged(&args, &parts).and_then(text))
+    py.detach(|| memory::merged(&args, &parts).and_then(text))
         .map_err(raise)
 }
 
@@ -151,10 +172,10 @@ pub(crate) fn sweep_merge_envelope(
 ) -> PyResult<(String, String)> {
     let args = options.args().map_err(raise)?;
     let (table, envelope) = py
-        .detach(|| lpm::sweep::memory::merged_tables(&args, &parts))
+        .detach(|| memory::merged_tables(&args, &parts))
         .map_err(raise)?;
     let envelope =
-        envelope.ok_or_else(|| raise(Failure::usage("give the channels to envelope")))?;
+        envelope.ok_or_else(|| raise(StudyError::usage("give the channels to envelope")))?;
     Ok((text(table).map_err(raise)?, text(envelope).map_err(raise)?))
 }
 
@@ -162,7 +183,7 @@ pub(crate) fn sweep_merge_envelope(
 #[pyfunction]
 pub(crate) fn sweep_plan(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
     let args = options.args().map_err(raise)?;
-    py.detach(|| lpm::sweep::memory::plan(&args)).map_err(raise)
+    py.detach(|| memory::plan(&args)).map_err(raise)
 }
 
 /// The options of `lpm fit`, as a dict with every key.
@@ -189,25 +210,24 @@ pub(crate) type Fitted = (String, Vec<(String, String)>);
 /// from the current directory.
 #[pyfunction]
 pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
-    let args = lpm::fit::Args {
+    let request = FitRequest {
         spec: options.spec,
         target: options.target,
         scenario: options.scenario,
         fit: options.fit,
         set: options.set,
-        out: options.out,
         starts: options.starts,
         seed: options.seed,
-        quiet: true,
     };
-    let fitted = py.detach(|| -> Result<Fitted, Failure> {
-        let fitting = lpm::fit::fitting(&args, &|_, _| {})?;
-        let files = match &args.out {
-            Some(out) => lpm::fit::write_files(&fitting, out)?,
-            None => lpm::fit::outputs(&fitting, Path::new("."))?,
+    let out = options.out;
+    let fitted = py.detach(|| -> Result<Fitted, StudyError> {
+        let fitting = fitting::fitting(&request, &|_, _| {})?;
+        let files = match &out {
+            Some(out) => fitting::write_files(&fitting, out)?,
+            None => fitting::outputs(&fitting, Path::new("."))?,
         };
         let files = files.map(|(name, contents)| (name.to_string(), contents));
-        Ok((lpm::fit::summary_text(&fitting), files.to_vec()))
+        Ok((fitting::summary_text(&fitting), files.to_vec()))
     });
     fitted.map_err(raise)
 }

@@ -9,8 +9,8 @@
 use lagrangian_core::Compiled;
 use lagrangian_core::emit::{Notation, render_equations, render_markdown};
 use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
+use lagrangian_studies::mass::State;
 use lpm::failure::Failure;
-use lpm::mass::State;
 use lpm::status::ExitStatus;
 use numpy::{
     IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
@@ -30,7 +30,8 @@ mod ensembles;
 static ERRORS: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
 
 /// The exception of `failure`'s exit status, with its message.
-fn raise(failure: Failure) -> PyErr {
+fn raise(failure: impl Into<Failure>) -> PyErr {
+    let failure: Failure = failure.into();
     Python::attach(|py| {
         let code = failure.status.code();
         let class = ERRORS
@@ -119,7 +120,7 @@ impl NativeModel {
             .map(|(name, value)| format!("{name}={value:e}"))
             .collect();
         let mut model = self.model().clone();
-        let (inputs, _) = lpm::eval::apply_settings(&mut model, &settings)?;
+        let (inputs, _) = lagrangian_studies::eval::apply_settings(&mut model, &settings)?;
         Ok((model, inputs))
     }
 
@@ -247,7 +248,7 @@ impl NativeModel {
     ) -> PyResult<MassAndForcing<'py>> {
         let n = self.model().dimension();
         let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, state| {
-            let (mass, forcing) = lpm::eval::evaluate(model, state, inputs)?;
+            let (mass, forcing) = lagrangian_studies::eval::evaluate(model, state, inputs)?;
             Ok([mass, forcing].concat())
         })?;
         let k = rows.len() / (n * n + n).max(1);
@@ -278,7 +279,8 @@ impl NativeModel {
         let states: Vec<State> = (0..batch.rows()).map(|k| batch.row(k)).collect();
         let stabilization = lagrangian_sim::simulate::constrained::DEFAULT_STABILIZATION;
         let solved =
-            lpm::eval::accelerations(&model, &states, &*inputs, stabilization).map_err(raise)?;
+            lagrangian_studies::eval::accelerations(&model, &states, &*inputs, stabilization)
+                .map_err(raise)?;
         let (n, m) = (model.dimension(), model.constraint_names().len());
         let k = solved.len();
         let qdd: Vec<f64> = solved.iter().flat_map(|s| s.qdd.iter().copied()).collect();
@@ -337,7 +339,9 @@ fn simulate(
     settings: Vec<String>,
 ) -> PyResult<Simulation> {
     let simulated = py
-        .detach(|| lpm::simulate::simulate_spec(&spec, scenario.as_deref(), &settings))
+        .detach(|| {
+            lagrangian_studies::simulate::simulate_spec(&spec, scenario.as_deref(), &settings)
+        })
         .map_err(raise)?;
     let summary = lagrangian_sim::report::summary_json(&simulated.result);
     let trajectory = simulated.trajectory_csv();

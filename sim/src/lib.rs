@@ -9,11 +9,10 @@
 //!   static equilibrium or a given state, and their modes.
 //! * [`pulse`]: crash-pulse metrics (SAE J211 CFC filter, OLC, ASI, ESW) of a
 //!   run or of a measured pulse.
-//! * [`sweep`] (feature `sweep`): a scenario run many times in parallel, to a
-//!   CSV or Parquet table; [`fit`] (feature `fit`): identification of the crush
-//!   characteristic by Levenberg–Marquardt; [`plot`] (feature `plot`): SVG
-//!   figures; [`warning`]: what a run does not stop at but should not be
-//!   trusted without a look.
+//! * [`warning`]: what a run does not stop at but should not be trusted
+//!   without a look.
+//!
+//! Sweeps, fits and plots of these runs are the `lagrangian-studies` crate's.
 //!
 //! ```no_run
 //! use lagrangian_model::LagrangianSystem;
@@ -36,18 +35,12 @@ pub mod curve;
 pub(crate) mod entry;
 pub mod failure;
 pub mod fault;
-#[cfg(feature = "fit")]
-pub mod fit;
 pub mod linearize;
 pub mod model_names;
 pub use lagrangian_ode as ode;
-#[cfg(feature = "plot")]
-pub mod plot;
 pub mod pulse;
 pub mod report;
 pub mod scenario;
 pub mod simulate;
-#[cfg(feature = "sweep")]
-pub mod sweep;
 pub mod table;
 pub mod warning;

@@ -73,8 +73,7 @@ use file::File;
 use lagrangian_model::LagrangianSystem;
 use options::{SampleAccelerations, TimeKinks};
 pub use overrides::Setting;
-#[cfg(any(feature = "sweep", test))]
-pub(crate) use overrides::split_setting;
+pub use overrides::split_setting;
 use overrides::with_settings;
 use resolve::resolve;
 pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};

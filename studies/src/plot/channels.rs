@@ -5,9 +5,9 @@
 
 use super::panels::{ms, with_unit};
 use super::{Line, Panel, Style};
-use crate::pulse::{Pulse, cfc_filter, interpolate};
-use crate::scenario::{Channel, Role};
-use crate::simulate::SimulationResult;
+use lagrangian_sim::pulse::{Pulse, cfc_filter, interpolate};
+use lagrangian_sim::scenario::{Channel, Role};
+use lagrangian_sim::simulate::SimulationResult;
 
 /// One panel per role of [`Role::ALL`] that has channels, in that order.
 pub(super) fn channel_panels(

@@ -14,7 +14,7 @@
 //! logarithms of its first value and its increments (it stays ordered),
 //! anything else as is.
 
-use crate::scenario::ModelNames;
+use lagrangian_sim::scenario::ModelNames;
 
 /// How an entry's value maps to the unconstrained variable of the fit.
 #[derive(Clone, Copy, Debug, PartialEq)]

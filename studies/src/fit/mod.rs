@@ -13,11 +13,11 @@ pub mod parameters;
 mod problem;
 mod statistics;
 
-use crate::pulse::channels::{Quantity, TimeHistories};
-use crate::pulse::interpolate;
-use crate::scenario::BaseScenario;
-use crate::simulate::simulate;
 use lagrangian_model::LagrangianSystem;
+use lagrangian_sim::pulse::channels::{Quantity, TimeHistories};
+use lagrangian_sim::pulse::interpolate;
+use lagrangian_sim::scenario::BaseScenario;
+use lagrangian_sim::simulate::simulate;
 pub use parameters::Parameters;
 use problem::Problem;
 use serde::Serialize;

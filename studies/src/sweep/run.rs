@@ -3,11 +3,11 @@
 
 use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
-use crate::scenario::ScenarioError;
-use crate::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
-use crate::scenario::{as_number, factor_base, scaled_inline, toml_number};
-use crate::simulate::{FailureKind, SimulationError, Summary, simulate_summary};
 use lagrangian_model::LagrangianSystem;
+use lagrangian_sim::scenario::ScenarioError;
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
+use lagrangian_sim::scenario::{as_number, factor_base, scaled_inline, toml_number};
+use lagrangian_sim::simulate::{FailureKind, SimulationError, Summary, simulate_summary};
 use std::collections::BTreeMap;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -259,15 +259,15 @@ impl<T> Batch<T> {
 /// every row to `sink` in run order, as soon as the rows before it are
 /// done: memory stays bounded whatever the number of runs.
 ///
-/// Workers take runs in order; once `stop` is set they take no new run,
-/// and the runs under way finish and reach `sink`, so the rows delivered
-/// are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
+/// Workers take runs in order, asking `stop` before each; once it says
+/// yes they take no new run, and the runs under way finish and reach
+/// `sink`, so the rows delivered are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
 /// `sink` ends it.
 pub fn stream_sweep<const N: usize, S>(
     system: &S,
     job: SweepJob<'_>,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     sink: &mut dyn FnMut(Row) -> Result<(), String>,
 ) -> Result<usize, String>
 where
@@ -285,7 +285,7 @@ pub(crate) type MakeRun<'f, S, T> =
 pub(crate) fn stream_runs<const N: usize, S, T: Send>(
     system: &S,
     job: SweepJob<'_>,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     make: MakeRun<'_, S, T>,
     sink: &mut dyn FnMut(T) -> Result<(), String>,
 ) -> Result<usize, String>
@@ -316,7 +316,7 @@ where
             scope.spawn(move || {
                 let mut batch = Batch::new();
                 loop {
-                    if stop.load(Ordering::Relaxed) || failed_sink.load(Ordering::Relaxed) {
+                    if stop() || failed_sink.load(Ordering::Relaxed) {
                         break;
                     }
                     let run = next.fetch_add(1, Ordering::Relaxed);
@@ -380,8 +380,7 @@ where
     S: LagrangianSystem<N> + Clone + Send,
 {
     let mut rows = Vec::with_capacity(job.runs.len());
-    let never = AtomicBool::new(false);
-    stream_sweep(system, job, &never, &mut |row| {
+    stream_sweep(system, job, &|| false, &mut |row| {
         progress();
         rows.push(row);
         Ok(())

@@ -3,7 +3,7 @@
 //! energies and the crush force–deflection loop.
 
 use super::{Line, Panel, PlotSetup, channels, crush};
-use crate::simulate::{Sample, SimulationResult};
+use lagrangian_sim::simulate::{Sample, SimulationResult};
 
 /// Seconds to milliseconds, the time axis of the panels.
 pub(super) fn ms(t: f64) -> f64 {

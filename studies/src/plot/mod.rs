@@ -15,8 +15,8 @@ mod tests;
 
 pub use envelope::{Band, bands_svg};
 
-use crate::scenario::{Channel, Signal};
-use crate::simulate::SimulationResult;
+use lagrangian_sim::scenario::{Channel, Signal};
+use lagrangian_sim::simulate::SimulationResult;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -32,11 +32,11 @@ pub struct PlotSetup {
     /// Pitch coordinates (drawn relative to their initial values).
     pub pitch: Vec<usize>,
     /// Each crush element's name and the columns of its force and its
-    /// deflection in [`crate::simulate::Sample::components`]
-    /// ([`crate::crash::BoundInputs::force_deflection_columns`]).
+    /// deflection in [`lagrangian_sim::simulate::Sample::components`]
+    /// ([`lagrangian_sim::crash::BoundInputs::force_deflection_columns`]).
     pub force_deflection: Vec<(String, usize, usize)>,
     /// The unit `g` the deceleration and acceleration panels are in [m/s²]:
-    /// standard gravity ([`crate::pulse::STANDARD_GRAVITY`]) as the summary's.
+    /// standard gravity ([`lagrangian_sim::pulse::STANDARD_GRAVITY`]) as the summary's.
     pub g: f64,
     /// The title above the figure (`lpm simulate` writes the model and the
     /// scenario's description).

@@ -9,8 +9,8 @@
 use super::channels::filtered_lines;
 use super::panels::{ms, with_unit};
 use super::{Line, Panel, Style};
-use crate::scenario::Signal;
-use crate::simulate::SimulationResult;
+use lagrangian_sim::scenario::Signal;
+use lagrangian_sim::simulate::SimulationResult;
 
 /// The legend of the crush channel after the end of contact.
 pub(super) const AFTER_CONTACT: &str = "crush channel after contact (moving apart)";

@@ -2,9 +2,9 @@ use super::channels::cfc60;
 use super::crush::{AFTER_CONTACT, crush_lines};
 use super::panels::{force_deflection_panel, panels_of};
 use super::*;
-use crate::ode::{Method, Stats};
-use crate::scenario::{Column, Role};
-use crate::simulate::{Sample, Summary};
+use lagrangian_sim::ode::{Method, Stats};
+use lagrangian_sim::scenario::{Column, Role};
+use lagrangian_sim::simulate::{Sample, Summary};
 
 fn sample(components: Vec<f64>) -> Sample {
     Sample {
@@ -61,7 +61,7 @@ fn channel(role: Role, name: &str, column: Column, unit: &str) -> Channel {
     Channel {
         role,
         signal: signal(name, column, unit),
-        cfc: crate::pulse::cfc::DEFAULT_CLASS,
+        cfc: lagrangian_sim::pulse::cfc::DEFAULT_CLASS,
     }
 }
 

@@ -4,9 +4,9 @@
 //! the shards of one sweep concatenate into the full table.
 
 use super::run::{Row, RunFailure};
-use crate::failure::FailureKind;
-use crate::scenario::{Role, Scenario};
-use crate::simulate::{ChannelSummary, Field, Summary, Value, metric_names};
+use lagrangian_sim::failure::FailureKind;
+use lagrangian_sim::scenario::{Role, Scenario};
+use lagrangian_sim::simulate::{ChannelSummary, Field, Summary, Value, metric_names};
 use parquet::basic::{ConvertedType, Repetition, Type as Physical};
 use parquet::data_type::{ByteArray, ByteArrayType, DataType, DoubleType, Int64Type};
 use parquet::errors::ParquetError;

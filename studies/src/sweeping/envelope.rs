@@ -1,6 +1,6 @@
-//! `lpm sweep --envelope`: the flags that ask for envelopes and weighted
-//! mean histories of chosen channels, what they are read into, and the
-//! files they write.
+//! A sweep's envelopes (`lpm sweep --envelope`): the options that ask for
+//! envelopes and weighted mean histories of chosen channels, what they are
+//! read into, and the files they write.
 //!
 //! A whole sweep writes the envelope table (and plot). A shard writes its
 //! partial envelope beside its table (`part.csv.envelope.json`), which
@@ -10,46 +10,32 @@
 //! sweep stops, so that `--resume` carries on from it; the runs the journal
 //! holds beyond it are made again for their histories.
 
-use super::{Args, Prepared, write_beside};
-use crate::failure::{Failure, Outcome};
-use crate::status::ExitStatus;
-use lagrangian_sim::plot::{Band, bands_svg};
-use lagrangian_sim::scenario::Signal;
-use lagrangian_sim::simulate::FailureKind;
-use lagrangian_sim::sweep::{
+use super::{Prepared, SweepRequest, write_beside};
+use crate::error::StudyError;
+use crate::plot::{Band, bands_svg};
+use crate::sweep::{
     Envelope, EnvelopeJob, PartialEnvelope, Plan, Shard, SweepMark, Weights, merged_envelope,
     partial_envelope_path, run_scenario, write_envelope_csv, write_envelope_parquet,
 };
+use lagrangian_sim::scenario::Signal;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// The envelope flags of `lpm sweep`.
-#[derive(clap::Args, Clone, Debug, Default)]
-pub struct EnvelopeArgs {
+/// The envelopes a sweep is asked for (`lpm sweep --envelope` and the
+/// flags beside it).
+#[derive(Clone, Debug, Default)]
+pub struct EnvelopeOptions {
     /// Channels to envelope: columns of trajectory.csv or combinations as
-    /// `[metrics]` writes them ("xa - xb"); per output time, the minimum
-    /// and maximum over the runs (with the run attaining each) and the
-    /// weighted mean.
-    #[arg(
-        long,
-        value_name = "CHANNEL[,CHANNEL…]",
-        value_delimiter = ',',
-        requires = "envelope_out"
-    )]
+    /// `[metrics]` writes them (`"xa - xb"`); none: no envelope.
     pub envelope: Vec<String>,
-    /// The envelope table: .csv or .parquet, one row per output time. A
-    /// shard writes its partial envelope beside its table instead
-    /// (OUT.envelope.json), and --merge of the shards writes this table.
-    #[arg(long, value_name = "FILE.csv|FILE.parquet", requires = "envelope")]
+    /// The envelope table: .csv or .parquet (a shard writes its partial
+    /// envelope beside its table instead).
     pub envelope_out: Option<PathBuf>,
-    /// The envelope plot (SVG): the band between minimum and maximum and
-    /// the weighted mean, one panel per channel.
-    #[arg(long, value_name = "FILE.svg", requires = "envelope")]
+    /// The envelope plot (SVG).
     pub envelope_plot: Option<PathBuf>,
-    /// The runs' weights in the mean: KEY=W1,W2,… (one per value of grid
-    /// axis KEY) or a CSV file with columns run,weight; default: equal.
-    #[arg(long, value_name = "KEY=W1,…|FILE.csv", requires = "envelope")]
+    /// The runs' weights in the mean: `KEY=W1,W2,…` or a CSV file with
+    /// columns run,weight; `None`: equal.
     pub weights: Option<String>,
 }
 
@@ -81,9 +67,9 @@ impl EnvelopeRequest {
 
 /// The envelope request of `options`, `None` without `--envelope`.
 pub(super) fn request(
-    options: &Args,
+    options: &SweepRequest,
     prepared: &Prepared,
-) -> Result<Option<EnvelopeRequest>, Failure> {
+) -> Result<Option<EnvelopeRequest>, StudyError> {
     let args = &options.envelope;
     if args.envelope.is_empty() {
         return Ok(None);
@@ -107,11 +93,11 @@ pub(super) fn request(
 }
 
 /// Whether the envelope table is Parquet, from its extension.
-fn table_is_parquet(out: &Path) -> Result<bool, Failure> {
+fn table_is_parquet(out: &Path) -> Result<bool, StudyError> {
     match out.extension().and_then(|e| e.to_str()) {
         Some("parquet") => Ok(true),
         Some("csv") => Ok(false),
-        _ => Err(Failure::usage(format!(
+        _ => Err(StudyError::usage(format!(
             "--envelope-out {}: name a .csv or .parquet file",
             out.display()
         ))),
@@ -120,7 +106,7 @@ fn table_is_parquet(out: &Path) -> Result<bool, Failure> {
 
 /// The channels of `--envelope`, read against the names of the first
 /// run's scenario (its components' columns included).
-fn channels(names: &[String], prepared: &Prepared) -> Result<Vec<Signal>, Failure> {
+fn channels(names: &[String], prepared: &Prepared) -> Result<Vec<Signal>, StudyError> {
     let Prepared {
         plan,
         base,
@@ -131,26 +117,26 @@ fn channels(names: &[String], prepared: &Prepared) -> Result<Vec<Signal>, Failur
         false => run_scenario(base, settings, &plan.point(0)),
         true => base.resolve(&[]),
     };
-    let first = first.map_err(|e| Failure::scenario(&e))?;
+    let first = first.map_err(|e| StudyError::scenario(&e))?;
     let names_of_run = base.names.with_components(&first.inputs);
     (names.iter())
-        .map(|name| Signal::parse("--envelope", name, &names_of_run).map_err(Failure::usage))
+        .map(|name| Signal::parse("--envelope", name, &names_of_run).map_err(StudyError::usage))
         .collect()
 }
 
 /// `--weights`: per grid value, or per run from a CSV file.
-fn weights(text: &str, prepared: &Prepared) -> Result<Weights, Failure> {
+fn weights(text: &str, prepared: &Prepared) -> Result<Weights, StudyError> {
     if text.contains('=') {
-        return Weights::per_value(text, &prepared.plan).map_err(Failure::usage);
+        return Weights::per_value(text, &prepared.plan).map_err(StudyError::usage);
     }
     let file = std::fs::read_to_string(text)
-        .map_err(|e| Failure::io(format!("--weights: cannot read {text}: {e}")))?;
-    Weights::per_run_csv(&file, text, &prepared.plan).map_err(Failure::usage)
+        .map_err(|e| StudyError::io(format!("--weights: cannot read {text}: {e}")))?;
+    Weights::per_run_csv(&file, text, &prepared.plan).map_err(StudyError::usage)
 }
 
 /// Writes the envelope table (whole or not at all) and the plot; returns
 /// the line `lpm sweep` reports them with.
-pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<String, Failure> {
+pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<String, StudyError> {
     let Some(out) = &request.out else {
         return Ok(String::new());
     };
@@ -159,16 +145,16 @@ pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<St
         true => write_envelope_parquet(envelope, file),
         false => write_envelope_csv(envelope, file),
     })
-    .map_err(Failure::io)?;
+    .map_err(StudyError::io)?;
     let mut line = format!(
         "envelope of {} runs: wrote {}",
         envelope.runs,
         out.display()
     );
     if let Some(plot) = &request.plot {
-        let svg = bands_svg("Envelopes over the runs", &bands(envelope)).map_err(Failure::io)?;
+        let svg = bands_svg("Envelopes over the runs", &bands(envelope)).map_err(StudyError::io)?;
         lagrangian_sim::report::write_atomically(plot, svg.as_bytes())
-            .map_err(|e| Failure::io(format!("cannot write {}: {e}", plot.display())))?;
+            .map_err(|e| StudyError::io(format!("cannot write {}: {e}", plot.display())))?;
         line.push_str(&format!(" and {}", plot.display()));
     }
     line.push('\n');
@@ -258,18 +244,13 @@ impl<'r> Tracked<'r> {
         block: &Range<usize>,
         journal: &Path,
         resume: Option<usize>,
-    ) -> Result<Tracked<'r>, Failure> {
+    ) -> Result<Tracked<'r>, StudyError> {
         let names = request.names();
         let path = partial_envelope_path(journal);
         let saved = match resume {
             Some(journaled) if path.exists() => {
-                let saved =
-                    PartialEnvelope::read(&path, plan, &names, &request.weights).map_err(|e| {
-                        Failure::new(
-                            ExitStatus::Failed(FailureKind::DataFile),
-                            format!("--resume: {e}"),
-                        )
-                    })?;
+                let saved = PartialEnvelope::read(&path, plan, &names, &request.weights)
+                    .map_err(|e| StudyError::data_file(format!("--resume: {e}")))?;
                 (saved.block == *block && saved.done <= journaled).then_some(saved)
             }
             _ => None,
@@ -312,20 +293,20 @@ impl<'r> Tracked<'r> {
     }
 
     /// Saves the envelope beside the journal (a sweep that stops).
-    pub fn save(&mut self) -> Result<(), Failure> {
+    pub fn save(&mut self) -> Result<(), StudyError> {
         let path = self.checkpoints.path.clone();
-        (self.checkpoints.save(&self.envelope, &path)).map_err(Failure::io)
+        (self.checkpoints.save(&self.envelope, &path)).map_err(StudyError::io)
     }
 
     /// The envelope's files once every run is done: the table and plot of
     /// a whole sweep, or a shard's partial envelope beside its table
     /// `out`; returns the line reporting them.
-    pub fn finish(&mut self, shard: Shard, out: &Path) -> Result<String, Failure> {
+    pub fn finish(&mut self, shard: Shard, out: &Path) -> Result<String, StudyError> {
         if shard == Shard::ALL {
             return write(self.request, &self.envelope);
         }
         let partial = partial_envelope_path(out);
-        (self.checkpoints.save(&self.envelope, &partial)).map_err(Failure::io)?;
+        (self.checkpoints.save(&self.envelope, &partial)).map_err(StudyError::io)?;
         Ok(format!(
             "partial envelope of {} runs: wrote {} (--merge the shards for the envelope)\n",
             self.envelope.runs,
@@ -334,11 +315,11 @@ impl<'r> Tracked<'r> {
     }
 
     /// Removes the envelope saved beside the journal (the sweep is done).
-    pub fn remove_checkpoint(&self) -> Result<(), Failure> {
+    pub fn remove_checkpoint(&self) -> Result<(), StudyError> {
         let path = &self.checkpoints.path;
         match path.exists() {
             true => std::fs::remove_file(path)
-                .map_err(|e| Failure::io(format!("cannot remove {}: {e}", path.display()))),
+                .map_err(|e| StudyError::io(format!("cannot remove {}: {e}", path.display()))),
             false => Ok(()),
         }
     }
@@ -350,8 +331,8 @@ pub(super) fn merged(
     request: &EnvelopeRequest,
     parts: &[PathBuf],
     prepared: &Prepared,
-) -> Result<Envelope, Failure> {
-    let data = |e: String| Failure::new(ExitStatus::Failed(FailureKind::DataFile), e);
+) -> Result<Envelope, StudyError> {
+    let data = |e: String| StudyError::data_file(e);
     let mut paths = Vec::new();
     for part in parts {
         let path = partial_envelope_path(part);
@@ -367,14 +348,14 @@ pub(super) fn merged(
     merged_envelope(&paths, &prepared.plan, &request.names(), &request.weights).map_err(data)
 }
 
-/// `outcome` of a merge with the line of the envelope's files appended.
+/// `text` of a merge with the line of the envelope's files appended.
 pub(super) fn with_merged(
-    outcome: Outcome,
+    text: String,
     request: &EnvelopeRequest,
     envelope: &Envelope,
-) -> Result<Outcome, Failure> {
+) -> Result<String, StudyError> {
     let line = write(request, envelope)?;
-    Ok(Outcome::success(outcome.text + &line))
+    Ok(text + &line)
 }
 
 /// The partial envelope of the runs `block` of `plan` (all done) as the
@@ -384,7 +365,7 @@ pub(super) fn partial_json(
     plan: &Plan,
     block: &Range<usize>,
     envelope: Envelope,
-) -> Result<Vec<u8>, Failure> {
+) -> Result<Vec<u8>, StudyError> {
     let partial = PartialEnvelope {
         mark: SweepMark::of(plan, &request.names(), &request.weights, block),
         block: block.clone(),
@@ -392,6 +373,6 @@ pub(super) fn partial_json(
         envelope,
     };
     let mut bytes = Vec::new();
-    partial.write(&mut bytes).map_err(Failure::io)?;
+    partial.write(&mut bytes).map_err(StudyError::io)?;
     Ok(bytes)
 }

@@ -15,10 +15,9 @@ use super::plan::Plan;
 use super::run::{Row, SweepJob, scenario_of, simulation_failure, stream_runs};
 use super::shared::SharedScenario;
 use super::weights::Weights;
-use crate::scenario::Signal;
-use crate::simulate::{SimulationResult, simulate};
 use lagrangian_model::LagrangianSystem;
-use std::sync::atomic::AtomicBool;
+use lagrangian_sim::scenario::Signal;
+use lagrangian_sim::simulate::{SimulationResult, simulate};
 
 /// One run's channels at its output times.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,7 +33,7 @@ impl History {
     pub fn of(result: &SimulationResult, channels: &[Signal]) -> History {
         let values = (channels.iter())
             .map(|signal| {
-                let at = |s: &crate::simulate::Sample| signal.value(&s.columns());
+                let at = |s: &lagrangian_sim::simulate::Sample| signal.value(&s.columns());
                 result.samples.iter().map(at).collect()
             })
             .collect();
@@ -330,7 +329,7 @@ pub fn stream_envelope<const N: usize, S>(
     job: SweepJob<'_>,
     what: EnvelopeJob<'_>,
     envelope: &mut Envelope,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     sink: &mut dyn FnMut(Row, &Envelope) -> Result<(), String>,
 ) -> Result<usize, String>
 where
@@ -360,7 +359,7 @@ mod tests {
     }
 
     fn envelope() -> Envelope {
-        let names = crate::scenario::ModelNames {
+        let names = lagrangian_sim::scenario::ModelNames {
             coordinates: vec!["x".into()],
             ..Default::default()
         };

@@ -1,8 +1,7 @@
-//! What several subcommands do with a spec file: compile it, find its
+//! What several services do with a spec file: compile it, find its
 //! scenario, name an output folder after it.
 
-use crate::failure::Failure;
-use crate::status::ExitStatus;
+use crate::error::StudyError;
 use lagrangian_core::Compiled;
 use lagrangian_model::InterpretedModel;
 use lagrangian_sim::scenario::scenarios_for;
@@ -10,19 +9,19 @@ use std::path::{Path, PathBuf};
 
 /// Reads and compiles a spec, rendering errors as `file:line:col` snippets;
 /// the spec's warnings go to stderr, rendered the same way.
-pub fn compile(path: &Path) -> Result<Compiled, Failure> {
+pub fn compile(path: &Path) -> Result<Compiled, StudyError> {
     let source = std::fs::read_to_string(path)
-        .map_err(|e| Failure::io(format!("cannot read {}: {e}", path.display())))?;
+        .map_err(|e| StudyError::io(format!("cannot read {}: {e}", path.display())))?;
     let file = path.display().to_string();
-    let compiled = Compiled::from_source(&source)
-        .map_err(|e| Failure::rendered(ExitStatus::Spec, e.render(&file, &source)))?;
+    let compiled =
+        Compiled::from_source(&source).map_err(|e| StudyError::Spec(e.render(&file, &source)))?;
     for warning in &compiled.model.warnings {
         eprint!("{}", warning.render_warning(&file, &source));
     }
     Ok(compiled)
 }
 
-/// The model of a compiled spec as `lpm` runs it: interpreted, its
+/// The model of a compiled spec as a host runs it: interpreted, its
 /// routines compiled to native code where the `jit` feature is on (the
 /// same numbers, bit for bit, several times faster); a model the native
 /// compiler cannot handle stays interpreted, with a note on stderr.
@@ -38,12 +37,12 @@ pub fn interpreted(compiled: &Compiled) -> InterpretedModel {
 
 /// The scenario beside a spec (`<spec dir>/scenarios/*.toml` whose `spec`
 /// key names it); `None` when there is none, a failure when there are several.
-pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, Failure> {
+pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, StudyError> {
     let mut found = scenarios_for(spec);
     match found.len() {
         0 => Ok(None),
         1 => Ok(found.pop()),
-        _ => Err(Failure::usage(format!(
+        _ => Err(StudyError::usage(format!(
             "several scenarios name {}: {}; choose one with --scenario",
             spec.display(),
             found

@@ -5,7 +5,7 @@
 //! from the file's text with its settings ([`super::run_scenario`]).
 
 use super::run::Settings;
-use crate::scenario::{BaseScenario, Scenario};
+use lagrangian_sim::scenario::{BaseScenario, Scenario};
 
 /// The scenario every run of a parameter sweep starts from, resolved once.
 #[derive(Clone, Debug)]
@@ -48,10 +48,10 @@ impl SharedScenario {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::ModelNames;
-    use crate::simulate::simulate_summary;
     use crate::sweep::{Plan, run_scenario};
     use lagrangian_model::{Interpreted, LagrangianSystem};
+    use lagrangian_sim::scenario::ModelNames;
+    use lagrangian_sim::simulate::simulate_summary;
 
     #[test]
     fn a_run_from_the_shared_scenario_is_the_run_from_the_file() {

@@ -1,0 +1,34 @@
+//! Studies of `lagrangian` crash models, above the simulation library
+//! (`lagrangian-sim`): what a host — the `lpm` command line, the Python
+//! package — does with many runs of a scenario, or with one run's figure.
+//!
+//! * [`sweep`] (feature `sweep`): a scenario run many times in parallel, to a
+//!   CSV or Parquet table.
+//! * [`fit`] (feature `fit`): identification of the crush characteristic by
+//!   Levenberg–Marquardt.
+//! * [`plot`] (feature `plot`): SVG figures of a run and of a fit.
+//!
+//! And the services every host calls, failing with [`error::StudyError`]:
+//! [`spec`] (compile a spec, find its scenario), [`simulate`] (one run and
+//! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
+//! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
+//! its envelopes; [`progress::Progress`] the host's view of it).
+
+
+pub mod error;
+pub mod eval;
+#[cfg(feature = "fit")]
+pub mod fit;
+#[cfg(all(feature = "fit", feature = "plot"))]
+pub mod fitting;
+pub mod mass;
+#[cfg(feature = "plot")]
+pub mod plot;
+pub mod progress;
+#[cfg(feature = "plot")]
+pub mod simulate;
+pub mod spec;
+#[cfg(feature = "sweep")]
+pub mod sweep;
+#[cfg(all(feature = "sweep", feature = "plot"))]
+pub mod sweeping;

@@ -1,0 +1,231 @@
+//! One run of a spec file under a scenario, and the files it writes
+//! (`trajectory.csv`, `summary.json`, `plots.svg`).
+
+use crate::error::StudyError;
+use crate::plot::{PlotSetup, figure_svg};
+use crate::spec::{compile, find_scenario};
+use lagrangian_core::Compiled;
+use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::fault::Fault;
+use lagrangian_sim::report::{Units, summary_json, trajectory_csv, write_all_atomically};
+use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
+use std::path::{Path, PathBuf};
+
+/// A finished simulation with what its report needs.
+pub struct Simulated {
+    /// The run.
+    pub result: SimulationResult,
+    /// The model run (interpreted), for names and units.
+    pub model: InterpretedModel,
+    /// The scenario it ran under.
+    pub scenario: Scenario,
+    /// The scenario's file, or that there was none.
+    pub scenario_name: String,
+}
+
+impl Simulated {
+    /// The trajectory as CSV, with units in the column names (trajectory.csv).
+    pub fn trajectory_csv(&self) -> String {
+        trajectory_csv(&self.result, &units(&self.result, &self.model))
+    }
+}
+
+/// Compiles the spec at `spec`, loads its scenario (`scenario`, else the one
+/// beside the spec that names it, else the defaults) with `settings`
+/// (`--set` entries) and simulates it: what `lpm simulate` does before it
+/// writes its files ([`write_outputs`]).
+pub fn simulate_spec(
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[String],
+) -> Result<Simulated, StudyError> {
+    let (compiled, model, scenario_path, scenario) = load_spec(spec, scenario, settings)?;
+    let result = dispatch(model.clone(), &scenario).map_err(|failure| {
+        match domain_cause(&failure, &compiled, &scenario, spec) {
+            Some(why) => failure.0.because(&why),
+            None => failure.0,
+        }
+    })?;
+    let scenario_name = scenario_path
+        .as_ref()
+        .map_or("default scenario (no scenario file)".to_string(), |p| {
+            p.display().to_string()
+        });
+    Ok(Simulated {
+        result,
+        model,
+        scenario,
+        scenario_name,
+    })
+}
+
+/// Compiles the spec at `spec` and resolves its scenario (`scenario`, else
+/// the one beside the spec that names it, else the defaults) with
+/// `settings`: the compiled spec, its interpreted model, the scenario's file
+/// and the scenario, each failing as a run fails.
+pub fn load_spec(
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[String],
+) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), StudyError> {
+    let compiled = compile(spec)?;
+    let model = crate::spec::interpreted(&compiled);
+    let names = ModelNames::of_interpreted(&model);
+    let scenario_path = match scenario {
+        Some(p) => Some(p.to_path_buf()),
+        None => find_scenario(spec)?,
+    };
+    let scenario = match &scenario_path {
+        Some(path) => Scenario::load(path, &names, settings),
+        None => Scenario::defaults(&names, settings),
+    }
+    .map_err(|e| StudyError::scenario(&e))?;
+    Ok((compiled, model, scenario_path, scenario))
+}
+
+/// `simulate` on the model at its dimension.
+struct Simulate<'a> {
+    scenario: &'a Scenario,
+}
+
+impl WithDimension for Simulate<'_> {
+    type Output = Result<SimulationResult, RunFailure>;
+
+    fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
+        simulate(&system, self.scenario).map_err(|e| {
+            let failure = StudyError::simulation(&e, system.inner().coordinates());
+            let failure = match mass_cause(&e, system.inner(), self.scenario) {
+                Some(why) => failure.because(&why),
+                None => failure,
+            };
+            let fault = match e {
+                SimulationError::Solver {
+                    error: SolverError::Rhs { t, error },
+                    ..
+                } => Some(Box::new((t, error))),
+                _ => None,
+            };
+            (failure, fault)
+        })
+    }
+}
+
+/// Which call of the spec left its domain where the run turned non-finite
+/// (`acos` of 2, `ln` of a negative number, a division by zero), with its
+/// file:line and the value of its argument there.
+fn domain_cause(
+    failure: &RunFailure,
+    compiled: &Compiled,
+    scenario: &Scenario,
+    spec: &Path,
+) -> Option<String> {
+    let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
+        return None;
+    };
+    let model = &compiled.model;
+    let mut parameters: Vec<f64> = model.parameters.iter().map(|p| p.default).collect();
+    for &(i, value) in &scenario.parameters {
+        parameters[i] = value;
+    }
+    let (check, value) = model.domain_violation(*t, q, qd, &parameters)?;
+    let source = std::fs::read_to_string(spec).ok()?;
+    Some(check.describe(&spec.display().to_string(), &source, value))
+}
+
+/// Which of the scenario's parameters made the mass matrix not positive
+/// definite where the run failed on it (`model`: at its defaults).
+fn mass_cause(
+    e: &SimulationError,
+    model: &InterpretedModel,
+    scenario: &Scenario,
+) -> Option<String> {
+    let SimulationError::Solver {
+        error: SolverError::Rhs { t, error: fault },
+        ..
+    } = e
+    else {
+        return None;
+    };
+    let Fault::SingularMassMatrix { q, qd } = fault else {
+        return None;
+    };
+    let defaults = model.parameters().to_vec();
+    let mut with_scenario = model.clone();
+    let names = model.parameter_names().to_vec();
+    for &(i, value) in &scenario.parameters {
+        with_scenario.set_parameter(&names[i], value).ok()?;
+    }
+    let set: Vec<usize> = scenario.parameters.iter().map(|&(i, _)| i).collect();
+    crate::mass::blame(&with_scenario, &defaults, &set, (*t, q, qd))
+}
+
+/// The run, or its failure with the fault and the time it happened at.
+type RunFailure = (StudyError, Option<Box<(f64, Fault)>>);
+
+fn dispatch(model: InterpretedModel, scenario: &Scenario) -> Result<SimulationResult, RunFailure> {
+    model
+        .with_dimension(Simulate { scenario })
+        .map_err(|e| (StudyError::model(e), None))?
+}
+
+/// The units of the trajectory's columns.
+fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
+    let input_units = result
+        .input_columns
+        .iter()
+        .map(|name| {
+            let k = model.input_names().iter().position(|n| n == name)?;
+            model.input_units()[k].clone()
+        })
+        .collect();
+    Units {
+        coordinates: model.coordinate_units().to_vec(),
+        inputs: input_units,
+        outputs: model.output_units().to_vec(),
+        multipliers: model.multiplier_units().to_vec(),
+    }
+}
+
+/// Writes `trajectory.csv`, `summary.json` and `plots.svg` of `simulated`
+/// into `out` (created if need be), all or none.
+pub fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), StudyError> {
+    let Simulated {
+        result,
+        model: _,
+        scenario,
+        scenario_name,
+    } = simulated;
+    std::fs::create_dir_all(out)
+        .map_err(|e| StudyError::io(format!("cannot create {}: {e}", out.display())))?;
+    let setup = PlotSetup {
+        crush: scenario.crush.clone(),
+        channels: scenario.channels.clone(),
+        pitch: scenario.pitch.clone(),
+        force_deflection: scenario.inputs.force_deflection_columns(),
+        g: lagrangian_sim::pulse::STANDARD_GRAVITY,
+        title: figure_title(&result.model, scenario, scenario_name),
+    };
+    let svg =
+        figure_svg(result, &setup).map_err(|e| StudyError::io(format!("plotting failed: {e}")))?;
+    let files = [
+        ("trajectory.csv", simulated.trajectory_csv()),
+        ("summary.json", summary_json(result)),
+        ("plots.svg", svg),
+    ];
+    let paths: Vec<_> = files.iter().map(|(name, _)| out.join(name)).collect();
+    let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
+        .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
+        .collect();
+    write_all_atomically(&contents)
+        .map_err(|(path, e)| StudyError::io(format!("cannot write {}: {e}", path.display())))
+}
+
+/// `model — description` of the scenario, or `model — scenario file` for a
+/// scenario without a description.
+fn figure_title(model: &str, scenario: &Scenario, scenario_name: &str) -> String {
+    match scenario.description.trim() {
+        "" => format!("{model} — {scenario_name}"),
+        description => format!("{model} — {description}"),
+    }
+}
