@@ -219,7 +219,7 @@ fn a_run_that_starts_short_of_the_wall_starts_separated() {
     wall.start(Some(&[0.05, -2.0])).unwrap();
     assert!(!wall.in_contact());
     assert_eq!(wall.value(Port::Value, &[0.05, -2.0]).unwrap(), 0.0);
-    assert_eq!(wall.contact(), Some(Contact::Never));
+    assert_eq!(wall.report().contact, Some(Contact::Never));
     let mut g = [0.0; 2];
     wall.event_values(&[0.001, -2.0], &mut g).unwrap();
     assert_eq!(g, [1.0, -0.001]);

@@ -458,7 +458,7 @@ impl BoundInputs {
         self.with_columns()
             .filter_map(|(c, first)| {
                 let named = &self.components[c];
-                let (force, deflection) = named.component.force_deflection()?;
+                let (force, deflection) = named.component.report().force_deflection?;
                 Some((named.name.clone(), first + force, first + deflection))
             })
             .collect()
@@ -473,7 +473,7 @@ impl BoundInputs {
             if !names.is_empty() && !names.contains(&c.name) {
                 continue;
             }
-            match c.component.contact() {
+            match c.component.report().contact {
                 Some(Contact::Touching) => return None,
                 Some(Contact::EndedAt(t)) => end = Some(end.map_or(t, |e| e.max(t))),
                 Some(Contact::Never) | None => {}
@@ -549,7 +549,7 @@ impl BoundInputs {
         self.components
             .iter()
             .filter(|c| name.is_none_or(|n| n == c.name))
-            .find_map(|c| c.component.failure_time())
+            .find_map(|c| c.component.report().failed_at)
     }
 }
 

@@ -44,7 +44,7 @@
 //! never both.
 
 use super::held::{self, Crossed, Held};
-use super::{Binder, Column, Component, Contact, Event, Port, Section, Smoothness};
+use super::{Binder, Column, Component, Contact, Event, Port, Report, Section, Smoothness};
 use crate::crash::section::Ports;
 use crate::curve::outside;
 use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
@@ -492,16 +492,18 @@ impl Component for CrushElement {
         Ok(())
     }
 
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        Some((0, 1))
-    }
-
-    fn contact(&self) -> Option<Contact> {
-        Some(match (self.in_contact, self.separated_at) {
+    /// Its force and deflection for the force–crush plot, and its contact.
+    fn report(&self) -> Report {
+        let contact = match (self.in_contact, self.separated_at) {
             (true, _) => Contact::Touching,
             (false, Some(t)) => Contact::EndedAt(t),
             (false, None) => Contact::Never,
-        })
+        };
+        Report {
+            force_deflection: Some((0, 1)),
+            contact: Some(contact),
+            ..Report::default()
+        }
     }
 
     /// The power the element absorbs, `P·δ̇`, of which
@@ -864,7 +866,7 @@ mod tests {
         let mut columns = [0.0; 2];
         e.column_values(&[0.3, 0.0], &mut columns).unwrap();
         assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
-        assert_eq!(e.force_deflection(), Some((0, 1)));
+        assert_eq!(e.report().force_deflection, Some((0, 1)));
         // Compression negative (the paper's r < 0): the input's force is
         // −P, its derivative the same slope; the columns stay compression
         // positive.

@@ -27,8 +27,9 @@
 //!   weld's moment and angle; none by default) and gives their values at its
 //!   value input's arguments ([`Component::column_values`]): each is a
 //!   trajectory column `NAME.QUANTITY [unit]`;
-//! * answers the queries of the summary and the plots
-//!   ([`Component::force_deflection`], [`Component::failure_time`]);
+//! * tells the summary and the plots what they read of its run
+//!   ([`Component::report`]: a crush element's force and deflection
+//!   columns and its contact, a weld's failure);
 //! * if it dissipates energy (a damper, contact or friction), gives the
 //!   power it dissipates ([`Component::dissipated_power`]), or the power
 //!   it absorbs with the elastic energy it stores of it
@@ -53,7 +54,7 @@
 //!
 //! 1. Write `sim/src/crash/KIND.rs` with
 //!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
-//!      method but the two queries is required; a component without events
+//!      method but the report is required; a component without events
 //!      writes `no_events!();` in its `impl` (empty `events`, nothing to do
 //!      in `event_values` and `on_event`), one with events lists them in a
 //!      `const EVENTS: &[Event]`; one with columns lists them in a
@@ -298,33 +299,10 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         Ok(())
     }
 
-    /// For the force–crush plot: the indices among [`Component::columns`]
-    /// of a crush element's force and of its deflection, both positive in
-    /// compression; `None` (the default): not a crush element.
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        None
-    }
-
-    /// The time the component failed in the run, if it did; `None` (the
-    /// default) for one that cannot fail.
-    fn failure_time(&self) -> Option<f64> {
-        None
-    }
-
-    /// For a contact element (a crush element that only pushes): whether
-    /// it is in contact now, or since when it is not; `None` (the default)
-    /// for a component without contact.
-    fn contact(&self) -> Option<Contact> {
-        None
-    }
-
-    /// The abscissae, in increasing order, at which the value's derivative
-    /// jumps (the points of a table interpolated linearly); none (the
-    /// default) for a smooth component. For a component whose input's
-    /// argument is the time, the integrator ends a step at each of them
-    /// rather than step across.
-    fn breakpoints(&self) -> &[f64] {
-        &[]
+    /// What the summary and the plots read of the component's run
+    /// ([`Report`]); nothing (the default) for most components.
+    fn report(&self) -> Report {
+        Report::default()
     }
 
     /// The power the component dissipates \[W\] at its value input's
@@ -384,7 +362,14 @@ pub enum Smoothness {
     /// of it, in increasing order (the points of a table interpolated
     /// linearly): kinks as [`Smoothness::Kinks`], with straight lines
     /// between them.
-    Linear(Vec<f64>),
+    Linear {
+        /// The values of the first argument where the slope jumps.
+        points: Vec<f64>,
+        /// Whether the integrator ends a step at each of them, rather than
+        /// step across, for an input whose argument is the time (a table
+        /// with `stop_at_kinks`).
+        stops: bool,
+    },
 }
 
 impl Smoothness {
@@ -392,13 +377,42 @@ impl Smoothness {
     /// jump, for [`Smoothness::Kinks`] and [`Smoothness::Linear`].
     pub fn kinks(&self) -> Option<&[f64]> {
         match self {
-            Smoothness::Kinks(points) | Smoothness::Linear(points) => Some(points),
+            Smoothness::Kinks(points) | Smoothness::Linear { points, .. } => Some(points),
             Smoothness::Unknown | Smoothness::Smooth => None,
+        }
+    }
+
+    /// The values of the first argument at which the integrator ends a
+    /// step, for an input whose argument is the time: the points of a
+    /// [`Smoothness::Linear`] that `stops`; none otherwise.
+    pub fn stops(&self) -> &[f64] {
+        match self {
+            Smoothness::Linear {
+                points,
+                stops: true,
+            } => points,
+            _ => &[],
         }
     }
 }
 
-/// The state of a contact element's contact (see [`Component::contact`]).
+/// What a component tells the summary and the plots about its run (see
+/// [`Component::report`]): each field `None` for a component it does not
+/// concern.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Report {
+    /// For the force–crush plot: the indices among [`Component::columns`]
+    /// of a crush element's force and of its deflection, both positive in
+    /// compression.
+    pub force_deflection: Option<(usize, usize)>,
+    /// The time the component failed in the run, if it did.
+    pub failed_at: Option<f64>,
+    /// For a contact element (a crush element that only pushes): whether
+    /// it is in contact now, or since when it is not.
+    pub contact: Option<Contact>,
+}
+
+/// The state of a contact element's contact (see [`Report::contact`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Contact {
     /// In contact now.

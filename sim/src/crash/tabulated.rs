@@ -67,22 +67,17 @@ impl Component for Tabulated {
         Ok(())
     }
 
-    /// The points where the slope of a table interpolated linearly jumps,
-    /// when it asks for steps to end there; none for the monotone cubic.
-    fn breakpoints(&self) -> &[f64] {
-        match self.stop_at_kinks {
-            true => self.curve.kinks(),
-            false => &[],
-        }
-    }
-
     /// Linear between the points of a table interpolated linearly (and
     /// beyond its ends); a monotone cubic is smooth between its corners
-    /// ([`Curve::corners`]).
+    /// ([`Curve::corners`]). Steps end at the points of a table
+    /// interpolated linearly when it asks for it (`stop_at_kinks`).
     fn smoothness(&self) -> Smoothness {
         match self.curve.is_smooth() {
             true => Smoothness::Kinks(self.curve.corners()),
-            false => Smoothness::Linear(self.curve.corners()),
+            false => Smoothness::Linear {
+                points: self.curve.corners(),
+                stops: self.stop_at_kinks,
+            },
         }
     }
 }

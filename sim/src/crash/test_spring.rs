@@ -4,7 +4,7 @@
 //! one event must fire in a simulation, which shows that a new component's
 //! events reach the integrator without any other change.
 
-use super::{Binder, Component, Event, Port, Section};
+use super::{Binder, Component, Event, Port, Report, Section};
 use crate::crash::section::Ports;
 use crate::curve::OutOfRange;
 use crate::entry::positive;
@@ -67,8 +67,11 @@ impl Component for Spring {
         Ok(())
     }
 
-    fn failure_time(&self) -> Option<f64> {
-        self.broken_at
+    fn report(&self) -> Report {
+        Report {
+            failed_at: self.broken_at,
+            ..Report::default()
+        }
     }
 }
 

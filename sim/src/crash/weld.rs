@@ -20,7 +20,7 @@
 
 use super::held::{self, Crossed, Held};
 use super::integral::integral;
-use super::{Binder, Column, Component, Event, Port, Section, Smoothness};
+use super::{Binder, Column, Component, Event, Port, Report, Section, Smoothness};
 use crate::crash::section::Ports;
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange};
@@ -254,8 +254,11 @@ impl Component for Weld {
         Ok(())
     }
 
-    fn failure_time(&self) -> Option<f64> {
-        self.failed_at
+    fn report(&self) -> Report {
+        Report {
+            failed_at: self.failed_at,
+            ..Report::default()
+        }
     }
 
     fn columns(&self) -> &'static [Column] {

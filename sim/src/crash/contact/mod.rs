@@ -41,7 +41,7 @@ mod hunt_crossley;
 mod lankarani_nikravesh;
 mod linear;
 
-use super::{Binder, Column, Component, Contact, Event, Port, Section};
+use super::{Binder, Column, Component, Contact, Event, Port, Report, Section};
 use crate::crash::section::Ports;
 use crate::curve::OutOfRange;
 use crate::entry::positive;
@@ -354,16 +354,18 @@ impl Component for ContactElement {
         Ok(())
     }
 
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        Some((0, 1))
-    }
-
-    fn contact(&self) -> Option<Contact> {
-        Some(match (self.in_contact, self.separated_at) {
+    /// Its force and deflection for the force–crush plot, and its contact.
+    fn report(&self) -> Report {
+        let contact = match (self.in_contact, self.separated_at) {
             (true, _) => Contact::Touching,
             (false, Some(t)) => Contact::EndedAt(t),
             (false, None) => Contact::Never,
-        })
+        };
+        Report {
+            force_deflection: Some((0, 1)),
+            contact: Some(contact),
+            ..Report::default()
+        }
     }
 
     /// The power it absorbs, `P·δ̇`; 0 out of contact.
