@@ -85,50 +85,15 @@
 //! two traits. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
 
-/// The event methods of a component without events: `events` empty,
-/// nothing to evaluate or apply. Written out in the component's `impl`
-/// (`no_events!();`), so that leaving a component's events out stays a
-/// visible choice rather than a default.
-macro_rules! no_events {
-    () => {
-        fn events(&self) -> &'static [$crate::crash::Event] {
-            &[]
-        }
-
-        fn event_values(
-            &self,
-            _args: &[f64],
-            _g: &mut [f64],
-        ) -> Result<(), $crate::curve::OutOfRange> {
-            Ok(())
-        }
-
-        fn on_event(
-            &mut self,
-            _k: usize,
-            _t: f64,
-            _args: &[f64],
-        ) -> Result<String, $crate::curve::OutOfRange> {
-            Ok(String::new())
-        }
-    };
-}
-
 /// The plumbing of a component with one internal state, written in its
-/// `impl` (`one_state!(z: "z" ["m"], from z0);`): the state's column
-/// `NAME.QUANTITY [UNIT]` ([`Component::states`]), the field that holds
+/// `impl States` (`one_state!(z: "z" ["m"], from z0);`): the state's column
+/// `NAME.QUANTITY [UNIT]` ([`States::list`]), the field that holds
 /// its current value (`z`) and the field of its initial value (`z0`).
-/// [`Component::start`] puts the state back to its initial value,
-/// [`Component::initial_states`] gives that value and
-/// [`Component::set_states`] takes the integrator's.
+/// [`States::initial_states`] gives that value and
+/// [`States::set_states`] takes the integrator's.
 macro_rules! one_state {
     ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
-        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::curve::OutOfRange> {
-            self.$state = self.$initial;
-            Ok(())
-        }
-
-        fn states(&self) -> &'static [$crate::crash::Column] {
+        fn list(&self) -> &'static [$crate::crash::Column] {
             const STATES: &[$crate::crash::Column] = &[$crate::crash::Column {
                 quantity: $quantity,
                 unit: $unit,
@@ -235,57 +200,29 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         None
     }
 
-    /// The component's events, in index order; empty if it has none.
-    fn events(&self) -> &'static [Event];
+    /// Its events, if it changes regime (peak crush, separation,
+    /// failure): [`Events`], usually `Some(self)`; `None` for a component
+    /// without events. Required, with [`Component::events_mut`], so that a
+    /// component's events are never left out by default.
+    fn events(&self) -> Option<&dyn Events>;
 
-    /// The event functions at its value input's arguments `args`, one per
-    /// [`Component::events`] entry, into `g`. One that does not apply in the
-    /// current regime is held at a constant of the sign that cannot trigger
-    /// it.
-    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
+    /// [`Component::events`], to apply an event or start a run: `Some`
+    /// exactly when that is.
+    fn events_mut(&mut self) -> Option<&mut dyn Events>;
 
-    /// Event function `k` alone at `args`, the same value as
-    /// [`Component::event_values`] gives it: what locating a crossing of
-    /// it evaluates. `scratch` holds one value per event; by default every
-    /// event function, into `scratch`.
-    fn event_value(&self, k: usize, args: &[f64], scratch: &mut [f64]) -> Result<f64, OutOfRange> {
-        self.event_values(args, scratch)?;
-        Ok(scratch[k])
-    }
+    /// Its internal states, if it has any (a hysteretic variable, a
+    /// dashpot's displacement): [`States`], usually `Some(self)`; `None`
+    /// for a component without.
+    fn states(&self) -> Option<&dyn States>;
 
-    /// Applies event `k` at time `t` and its value input's arguments `args`;
-    /// returns a description of the change, or an empty one for an event
-    /// that changes no regime (a kink of a curve crossed, see
-    /// [`held`]), which the run's event log leaves out.
-    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
+    /// [`Component::states`], to set them: `Some` exactly when that is.
+    fn states_mut(&mut self) -> Option<&mut dyn States>;
 
-    /// Puts the component in its initial state for a run that starts with
-    /// its value input's arguments `args` (`None` when it has no events, or
-    /// the dynamics does not call that input).
-    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
-
-    /// The component's internal states `z` (a hysteretic variable, a
-    /// dashpot's displacement), with their units: first-order states with
-    /// `ż = g(z, args)` that the integrator carries beside `q` and `q̇`.
-    /// Each is a trajectory column `NAME.STATE [unit]`. None by default.
-    fn states(&self) -> &'static [Column] {
-        &[]
-    }
-
-    /// The initial values of [`Component::states`], into `z` (the
-    /// scenario's, or the component's documented default).
-    fn initial_states(&self, _z: &mut [f64]) {}
-
-    /// Takes the current values of [`Component::states`], which
-    /// [`Component::value`] and the other methods then read. The problem
-    /// calls it before every evaluation at a state of the run.
-    fn set_states(&mut self, _z: &[f64]) {}
-
-    /// `ż = g(z, args)` of [`Component::states`] at its value input's
-    /// arguments `args` and the states last set, into `rates`.
-    fn state_rates(&self, _args: &[f64], _rates: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
+    /// How it dissipates energy, if it does (a damper, contact, friction):
+    /// [`Dissipation`], usually `Some(self)`; `None` for a component that
+    /// dissipates nothing, at any arguments. Asked once, to lay out the
+    /// run's states (one dissipated energy per dissipative component).
+    fn energy(&self) -> Option<&dyn Dissipation>;
 
     /// The quantities worth plotting, in the order
     /// [`Component::column_values`] writes them; none by default.
@@ -305,22 +242,85 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         Report::default()
     }
 
-    /// The power the component dissipates \[W\] at its value input's
-    /// arguments `args` (and its internal states, for one that has them);
-    /// `None` (the default) for a component that dissipates nothing, at
-    /// any arguments. Its integral, less the growth of
-    /// [`Component::stored_energy`] for a component that returns the
-    /// power it absorbs instead, is the energy it dissipated, carried as
-    /// an internal state of the run and reported by name. Whether it is
-    /// `Some` must not depend on the arguments: it is asked once, at zero
-    /// arguments, to lay out the run's states.
-    fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
-        None
+    /// How smooth the component's ports are within a step of the
+    /// integration ([`Smoothness`]): the output samples of a step over
+    /// which every input the dynamics calls is smooth take `q̈` from the
+    /// step's dense output. [`Smoothness::Unknown`] (the default) has them
+    /// solve for it.
+    fn smoothness(&self) -> Smoothness {
+        Smoothness::Unknown
     }
+}
+
+/// The events of a component that changes regime (see
+/// [`Component::events`]): a change of regime is an event, so that each
+/// port is smooth within a step.
+pub trait Events {
+    /// The events, in index order, with their directions.
+    fn list(&self) -> &'static [Event];
+
+    /// The event functions at its value input's arguments `args`, one per
+    /// [`Events::list`] entry, into `g`. One that does not apply in the
+    /// current regime is held at a constant of the sign that cannot trigger
+    /// it.
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
+
+    /// Event function `k` alone at `args`, the same value as
+    /// [`Events::event_values`] gives it: what locating a crossing of
+    /// it evaluates. `scratch` holds one value per event; by default every
+    /// event function, into `scratch`.
+    fn event_value(&self, k: usize, args: &[f64], scratch: &mut [f64]) -> Result<f64, OutOfRange> {
+        self.event_values(args, scratch)?;
+        Ok(scratch[k])
+    }
+
+    /// Applies event `k` at time `t` and its value input's arguments `args`;
+    /// returns a description of the change, or an empty one for an event
+    /// that changes no regime (a kink of a curve crossed, see
+    /// [`held`]), which the run's event log leaves out.
+    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
+
+    /// Puts the component in its initial regime for a run that starts with
+    /// its value input's arguments `args` (`None` when the dynamics does
+    /// not call that input).
+    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
+}
+
+/// The internal states `z` of a component (see [`Component::states`]):
+/// first-order states with `ż = g(z, args)` that the integrator carries
+/// beside `q` and `q̇`. A run starts them at [`States::initial_states`].
+pub trait States {
+    /// The states, with their units: each is a trajectory column
+    /// `NAME.STATE [unit]`.
+    fn list(&self) -> &'static [Column];
+
+    /// The initial values of the states, into `z` (the scenario's, or the
+    /// component's documented default).
+    fn initial_states(&self, z: &mut [f64]);
+
+    /// Takes the current values of the states, which
+    /// [`Component::value`] and the other methods then read. The problem
+    /// calls it before every evaluation at a state of the run.
+    fn set_states(&mut self, z: &[f64]);
+
+    /// `ż = g(z, args)` at its value input's arguments `args` and the
+    /// states last set, into `rates`.
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange>;
+}
+
+/// How a component dissipates energy (see [`Component::energy`]).
+pub trait Dissipation {
+    /// The power the component dissipates \[W\] at its value input's
+    /// arguments `args` (and its internal states, for one that has them).
+    /// Its integral, less the growth of [`Dissipation::stored_energy`] for
+    /// a component that returns the power it absorbs instead, is the
+    /// energy it dissipated, carried as an internal state of the run and
+    /// reported by name.
+    fn dissipated_power(&self, args: &[f64]) -> f64;
 
     /// The elastic energy \[J\] a dissipative component stores at its
     /// value input's arguments `args` in its current regime, for one whose
-    /// [`Component::dissipated_power`] is the power it absorbs, part of
+    /// [`Dissipation::dissipated_power`] is the power it absorbs, part of
     /// which it stores and may give back (a crush spring, a weld); 0 (the
     /// default) for one whose power is dissipated as it is absorbed. The
     /// energy reported as dissipated is the integral of that power less
@@ -330,15 +330,6 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// then steps by as much.
     fn stored_energy(&self, _args: &[f64]) -> Result<f64, OutOfRange> {
         Ok(0.0)
-    }
-
-    /// How smooth the component's ports are within a step of the
-    /// integration ([`Smoothness`]): the output samples of a step over
-    /// which every input the dynamics calls is smooth take `q̈` from the
-    /// step's dense output. [`Smoothness::Unknown`] (the default) has them
-    /// solve for it.
-    fn smoothness(&self) -> Smoothness {
-        Smoothness::Unknown
     }
 }
 
@@ -522,11 +513,11 @@ impl ComponentSection {
     }
 }
 
-/// Asserts that [`Component::event_value`] gives each event function of
-/// `component` at `args` bit for bit as [`Component::event_values`] does.
+/// Asserts that [`Events::event_value`] gives each event function of
+/// `component` at `args` bit for bit as [`Events::event_values`] does.
 #[cfg(test)]
-pub(crate) fn assert_event_value_is_event_values(component: &dyn Component, args: &[f64]) {
-    let n = component.events().len();
+pub(crate) fn assert_event_value_is_event_values(component: &dyn Events, args: &[f64]) {
+    let n = component.list().len();
     let mut all = vec![0.0; n];
     component.event_values(args, &mut all).unwrap();
     for (k, value) in all.iter().enumerate() {

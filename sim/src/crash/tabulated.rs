@@ -16,6 +16,7 @@
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::{Binder, Component, Port, Section, Smoothness};
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
 use crate::table::Table;
@@ -60,11 +61,24 @@ impl Component for Tabulated {
         }
     }
 
-    // None: it keeps no state.
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        Ok(())
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        None
     }
 
     /// Linear between the points of a table interpolated linearly (and
