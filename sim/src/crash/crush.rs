@@ -541,7 +541,7 @@ impl Events for CrushElement {
 
 impl Dissipation for CrushElement {
     /// The power the element absorbs, `P·δ̇`, of which
-    /// [`Component::stored_energy`] says what it stores (`energy` module);
+    /// [`Dissipation::stored_energy`] says what it stores (`energy` module);
     /// NaN where a curve cannot be evaluated (the force then reports it).
     fn dissipated_power(&self, args: &[f64]) -> f64 {
         self.absorbed_power(args).unwrap_or(f64::NAN)

@@ -15,32 +15,44 @@
 //!   section) and how many arguments the inputs bound to it must take
 //!   ([`Component::arguments`]), which the scenario checks;
 //! * computes each port at an input's arguments ([`Component::value`]);
-//! * lists its events with their directions ([`Component::events`]; a
-//!   component without events says so with an empty list), gives their
-//!   functions ([`Component::event_values`]) and applies one when the
-//!   integrator finds its zero ([`Component::on_event`]): a change of regime
-//!   (peak crush, separation, failure) is an event, so each port is smooth
-//!   within a step;
-//! * starts every run in its initial state ([`Component::start`]);
 //! * lists the quantities worth plotting, with their units
 //!   ([`Component::columns`]: a crush element's force and deflection, a
 //!   weld's moment and angle; none by default) and gives their values at its
 //!   value input's arguments ([`Component::column_values`]): each is a
 //!   trajectory column `NAME.QUANTITY [unit]`;
+//! * says how smooth its ports are within a step
+//!   ([`Component::smoothness`]: smooth, with kinks, or linear between
+//!   points at which steps may end);
 //! * tells the summary and the plots what they read of its run
 //!   ([`Component::report`]: a crush element's force and deflection
-//!   columns and its contact, a weld's failure);
-//! * if it dissipates energy (a damper, contact or friction), gives the
-//!   power it dissipates ([`Component::dissipated_power`]), or the power
-//!   it absorbs with the elastic energy it stores of it
-//!   ([`Component::stored_energy`]: a spring that unloads plastically,
-//!   separates or breaks).
+//!   columns and its contact, a weld's failure; nothing by default).
 //!
-//! A component with events keeps state, which it reads from the arguments
+//! What a component can do beyond that is a capability, a small trait it
+//! implements on itself and hands out from an accessor of [`Component`]
+//! (`Some(self)`; `None` for a component without it). The accessors are
+//! required, so that a component without events says so in its `impl`:
+//!
+//! * [`Events`] ([`Component::events`], [`Component::events_mut`]): a
+//!   change of regime (peak crush, separation, failure) is an event, so
+//!   each port is smooth within a step. The component lists its events
+//!   with their directions ([`Events::list`]), gives their functions
+//!   ([`Events::event_values`]), applies one when the integrator finds its
+//!   zero ([`Events::on_event`]) and starts every run in its initial
+//!   regime ([`Events::start`]);
+//! * [`States`] ([`Component::states`], [`Component::states_mut`]):
+//!   internal states `z` with `ż = g(z, args)` (a hysteretic variable, a
+//!   dashpot's displacement), which the integrator carries and every run
+//!   starts at their initial values;
+//! * [`Dissipation`] ([`Component::energy`]): a damper, contact or
+//!   friction gives the power it dissipates
+//!   ([`Dissipation::dissipated_power`]), or the power it absorbs with the
+//!   elastic energy it stores of it ([`Dissipation::stored_energy`]: a
+//!   spring that unloads plastically, separates or breaks).
+//!
+//! A component with events or states reads them from the arguments
 //! of its value input: that input must be called at one place of the
 //! dynamics (the scenario checks it), and [`BoundInputs`] passes its
-//! arguments to the component's events, its columns and
-//! [`Component::start`].
+//! arguments to the component's events, states, columns and power.
 //!
 //! Its scenario section, `[components.NAME]` with `type = "KIND"`, is a
 //! struct that implements the crate's `Section` trait: it reads the
@@ -53,16 +65,19 @@
 //! A new component touches one new file and two lines of this one:
 //!
 //! 1. Write `sim/src/crash/KIND.rs` with
-//!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
-//!      method but the report is required; a component without events
-//!      writes `no_events!();` in its `impl` (empty `events`, nothing to do
-//!      in `event_values` and `on_event`), one with events lists them in a
-//!      `const EVENTS: &[Event]`; one with columns lists them in a
+//!    * the component: `#[derive(Clone, Debug)]`, `impl Component` with
+//!      `kind`, `arguments`, `value` and the five accessors `events`,
+//!      `events_mut`, `states`, `states_mut` and `energy`, each `None` or
+//!      `Some(self)`; `constant`, `columns`, `column_values`, `smoothness`
+//!      and `report` have defaults. One with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
-//!      `column_values`; one with a single internal state writes
+//!      `column_values`;
+//!    * for each capability it has, its `impl`: `impl Events` with its
+//!      events in a `const EVENTS: &[Event]`; `impl States`, where a single
+//!      internal state writes
 //!      `one_state!(FIELD: "QUANTITY" ["UNIT"], from INITIAL_FIELD);` for
-//!      `start`, `states`, `initial_states` and `set_states`, and gives its
-//!      `state_rates`;
+//!      `list`, `initial_states` and `set_states`, and gives its
+//!      `state_rates`; `impl Dissipation`;
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
@@ -81,8 +96,8 @@
 //!    which [`Component::kind`] must return (checked in debug builds).
 //!
 //! Nothing else names a component: scenario files, the binding of inputs,
-//! events, the summary and the plots reach every component through these
-//! two traits. `test_spring.rs`, registered for tests only, is a complete
+//! events, the summary and the plots reach every component through
+//! [`Component`], its capabilities and `Section`. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
 
 /// The plumbing of a component with one internal state, written in its
@@ -175,8 +190,9 @@ pub struct Column {
 /// A crash component: the source of one or more of a model's input
 /// functions (see the module documentation for the contract).
 ///
-/// Every event method is required, so that a component with events cannot
-/// leave one out; a component without events implements them as such.
+/// The accessors of its capabilities ([`Events`], [`States`],
+/// [`Dissipation`]) are required, so that a component with events cannot
+/// leave them out by default; a component without says `None`.
 pub trait Component: ComponentClone + fmt::Debug + Send {
     /// What the scenario calls this kind of component: the `type` its
     /// section is registered under.

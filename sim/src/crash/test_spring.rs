@@ -2,7 +2,8 @@
 //! component is (this file and one line of the `components!` list): a
 //! linear spring that breaks when its extension reaches a threshold. Its
 //! one event must fire in a simulation, which shows that a new component's
-//! events reach the integrator without any other change.
+//! events reach the integrator without any other change. It has one
+//! capability, [`Events`]: its other accessors say `None`.
 
 use super::{Binder, Component, Event, Port, Report, Section};
 use crate::crash::section::Ports;

@@ -307,7 +307,7 @@ impl Events for Weld {
 
 impl Dissipation for Weld {
     /// The power the weld absorbs, `M·θ̇` (damping included), of which
-    /// [`Component::stored_energy`] says what its spring stores; NaN where
+    /// [`Dissipation::stored_energy`] says what its spring stores; NaN where
     /// its curve cannot be evaluated (the moment then reports it).
     fn dissipated_power(&self, args: &[f64]) -> f64 {
         self.moment(args).map_or(f64::NAN, |(m, _, _)| m * args[1])

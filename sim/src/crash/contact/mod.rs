@@ -24,7 +24,7 @@
 //! The `NAME.power` column is the damping's power, `(c + k·D·δⁿ/v₀)·δ̇²`.
 //! The energy it reports as dissipated is the work it absorbs, `∫ P·δ̇ dt`,
 //! less what its spring still stores, `k·δ^(n+1)/(n+1)` in contact
-//! ([`Component::stored_energy`]): the damping's work, plus, for a contact
+//! ([`Dissipation::stored_energy`]): the damping's work, plus, for a contact
 //! that lets go with `δ > 0` (the linear laws), the spring energy it holds
 //! then, lost as the wall relaxes out of contact.
 //!
