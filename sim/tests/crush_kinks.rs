@@ -5,7 +5,7 @@
 //! cross them, with rejections. Either way the force is the curve's.
 
 use lagrangian_model::Interpreted;
-use lagrangian_sim::crash::Component;
+use lagrangian_sim::crash::Events;
 use lagrangian_sim::crash::crush::{CrushElement, LoadingCurve, Unloading};
 use lagrangian_sim::curve::{ForceCurve, Outside, SecantCurve};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
@@ -164,7 +164,7 @@ fn walked_through_its_kinks_by_its_events_the_element_gives_the_curves_force() {
         })
         .collect();
     held.start(Some(&path[0])).unwrap();
-    let events = held.events();
+    let events = held.list();
     let (mut before, mut after) = ([0.0; 8], [0.0; 8]);
     let mut crossings = 0;
     for pair in path.windows(2) {

@@ -1,8 +1,8 @@
 //! Runs of the `weld` component through the simulator (moved out of
 //! `crash::weld`, which must not reach the run engine above it).
 
-use crate::crash::Component;
 use crate::crash::weld::*;
+use crate::crash::{Component, Events};
 use crate::curve::Curve;
 use crate::curve::Outside;
 

@@ -32,6 +32,7 @@
 
 use super::{Binder, Column, Component, Port, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, finite_combination, non_negative, positive};
 use serde::Deserialize;
@@ -127,13 +128,24 @@ impl Component for BoucWen {
         })
     }
 
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    one_state!(z: "z" ["1"], from z0);
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
 
-    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
-        rates[0] = self.z_rate(args[1]);
-        Ok(())
+    fn states(&self) -> Option<&dyn States> {
+        Some(self)
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        Some(self)
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
     }
 
     fn columns(&self) -> &'static [Column] {
@@ -145,12 +157,23 @@ impl Component for BoucWen {
         out[1] = args[0];
         Ok(())
     }
+}
 
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+impl States for BoucWen {
+    one_state!(z: "z" ["1"], from z0);
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.z_rate(args[1]);
+        Ok(())
+    }
+}
+
+impl Dissipation for BoucWen {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
         let (du, z) = (args[1], self.z);
         let zn = z.abs().powf(self.n);
         let hysteretic = self.beta * du.abs() * z.abs() * zn + self.gamma * du * z * zn;
-        Some((1.0 - self.a) * self.fy / self.big_a * hysteretic)
+        (1.0 - self.a) * self.fy / self.big_a * hysteretic
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::stand_in::StandIn;
 use super::states::StateLayout;
-use super::{Component, Contact, Port};
+use super::{Column, Component, Contact, Event, Port};
 use crate::curve::OutOfRange;
 use crate::fault::Fault;
 use crate::ode::{Direction, Internal};
@@ -25,6 +25,16 @@ impl NamedComponent {
     /// `bouc_wen component `hinge``, for messages.
     pub fn describe(&self) -> String {
         format!("{} component `{}`", self.component.kind(), self.name)
+    }
+
+    /// Its events ([`super::Events::list`]); none for a component without.
+    pub fn events(&self) -> &'static [Event] {
+        self.component.events().map_or(&[], |events| events.list())
+    }
+
+    /// Its internal states ([`super::States::list`]); none for a component without.
+    pub fn states(&self) -> &'static [Column] {
+        self.component.states().map_or(&[], |states| states.list())
     }
 }
 
@@ -94,7 +104,7 @@ pub struct BoundInputs {
     /// index of its first event among all and its number of events.
     event_blocks: Vec<(usize, usize, usize)>,
     /// The elastic energy each component stored when the run started
-    /// ([`Component::stored_energy`]; 0 for one without).
+    /// ([`super::Dissipation::stored_energy`]; 0 for one without).
     stored_at_start: Vec<f64>,
     /// By input index (one per binding): the smooth stand-in an input of
     /// time takes within the step being tried ([`BoundInputs::stand_in`]).
@@ -283,11 +293,21 @@ impl BoundInputs {
 
     /// Puts every component in its initial state for a run that starts
     /// with the model's input arguments `arguments` (crush elements in
-    /// contact or not, welds intact).
+    /// contact or not, welds intact, internal states at their initial
+    /// values).
     pub fn start(&mut self, arguments: &[f64]) -> Result<(), Fault> {
         for c in 0..self.components.len() {
             let args = self.arguments_of(c, arguments);
-            let result = self.components[c].component.start(args);
+            let component = &mut self.components[c].component;
+            if let Some(states) = component.states_mut() {
+                let mut z = vec![0.0; states.list().len()];
+                states.initial_states(&mut z);
+                states.set_states(&z);
+            }
+            let Some(events) = component.events_mut() else {
+                continue;
+            };
+            let result = events.start(args);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
         self.stored_at_start = vec![0.0; self.components.len()];
@@ -298,10 +318,14 @@ impl BoundInputs {
     }
 
     /// The elastic energy component `c` stores at the model's input
-    /// `arguments` ([`Component::stored_energy`]).
+    /// `arguments` ([`super::Dissipation::stored_energy`]; 0 for one that does
+    /// not dissipate).
     fn stored(&self, c: usize, arguments: &[f64]) -> Result<f64, Fault> {
+        let Some(energy) = self.components[c].component.energy() else {
+            return Ok(0.0);
+        };
         let args = self.arguments_of(c, arguments).unwrap_or(&[]);
-        let result = self.components[c].component.stored_energy(args);
+        let result = energy.stored_energy(args);
         result.map_err(|e| self.out_of_range(c, None, e))
     }
 
@@ -318,7 +342,7 @@ impl BoundInputs {
     /// none unless its events see the arguments of its value input.
     fn events_of(&self, c: usize) -> usize {
         match self.event_arguments[c] {
-            Some(_) => self.components[c].component.events().len(),
+            Some(_) => self.components[c].events().len(),
             None => 0,
         }
     }
@@ -336,7 +360,7 @@ impl BoundInputs {
     /// The direction of crossing that triggers global event `k`.
     pub fn event_direction(&self, k: usize) -> Direction {
         match self.event(k) {
-            Some((c, local)) => self.components[c].component.events()[local].direction,
+            Some((c, local)) => self.components[c].events()[local].direction,
             None => Direction::Either,
         }
     }
@@ -345,15 +369,17 @@ impl BoundInputs {
     pub fn events(&self, arguments: &[f64], g: &mut [f64]) -> Result<(), Fault> {
         for &(c, first, count) in &self.event_blocks {
             let args = self.arguments_of(c, arguments).unwrap_or(&[]);
-            let component = &self.components[c].component;
-            let result = component.event_values(args, &mut g[first..first + count]);
+            let Some(events) = self.components[c].component.events() else {
+                continue;
+            };
+            let result = events.event_values(args, &mut g[first..first + count]);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
         Ok(())
     }
 
     /// Global event function `k` alone, given the model's input arguments
-    /// at one state ([`Component::event_value`]); `scratch` holds one value
+    /// at one state ([`super::Events::event_value`]); `scratch` holds one value
     /// per event of its component.
     pub fn event_value(
         &self,
@@ -365,9 +391,11 @@ impl BoundInputs {
             return Err(Fault::Component(format!("no event {k}")));
         };
         let args = self.arguments_of(c, arguments).unwrap_or(&[]);
-        let component = &self.components[c].component;
-        let scratch = &mut scratch[..component.events().len()];
-        let result = component.event_value(local, args, scratch);
+        let Some(events) = self.components[c].component.events() else {
+            return Err(Fault::Component(format!("no event {k}")));
+        };
+        let scratch = &mut scratch[..events.list().len()];
+        let result = events.event_value(local, args, scratch);
         result.map_err(|e| self.out_of_range(c, None, e))
     }
 
@@ -384,7 +412,10 @@ impl BoundInputs {
         let args = self.arguments_of(c, arguments).unwrap_or(&[]);
         let named = &mut self.components[c];
         let name = named.name.clone();
-        let result = named.component.on_event(local, t, args);
+        let Some(events) = named.component.events_mut() else {
+            return Err(Fault::Component(format!("no event {k}")));
+        };
+        let result = events.on_event(local, t, args);
         result
             .map(|d| (name, d))
             .map_err(|e| self.out_of_range(c, None, e))
@@ -458,7 +489,7 @@ impl BoundInputs {
         self.with_columns()
             .filter_map(|(c, first)| {
                 let named = &self.components[c];
-                let (force, deflection) = named.component.force_deflection()?;
+                let (force, deflection) = named.component.report().force_deflection?;
                 Some((named.name.clone(), first + force, first + deflection))
             })
             .collect()
@@ -473,7 +504,7 @@ impl BoundInputs {
             if !names.is_empty() && !names.contains(&c.name) {
                 continue;
             }
-            match c.component.contact() {
+            match c.component.report().contact {
                 Some(Contact::Touching) => return None,
                 Some(Contact::EndedAt(t)) => end = Some(end.map_or(t, |e| e.max(t))),
                 Some(Contact::Never) | None => {}
@@ -512,18 +543,18 @@ impl BoundInputs {
     /// input `arguments` at the same state, into `rates` (of their length).
     pub fn internal_rates(&self, arguments: &[f64], rates: &mut [f64]) -> Result<(), Fault> {
         for (c, offset) in self.layout.stateful() {
-            let component = &self.components[c].component;
+            let Some(states) = self.components[c].component.states() else {
+                continue;
+            };
             let args = self.arguments_of(c, arguments).unwrap_or(&[]);
-            let count = component.states().len();
-            let result = component.state_rates(args, &mut rates[offset..offset + count]);
+            let count = states.list().len();
+            let result = states.state_rates(args, &mut rates[offset..offset + count]);
             result.map_err(|e| self.out_of_range(c, None, e))?;
         }
         for (c, index) in self.layout.dissipative() {
             let args = self.arguments_of(c, arguments).unwrap_or(&[]);
-            rates[index] = self.components[c]
-                .component
-                .dissipated_power(args)
-                .unwrap_or(0.0);
+            rates[index] = (self.components[c].component.energy())
+                .map_or(0.0, |energy| energy.dissipated_power(args));
         }
         Ok(())
     }
@@ -531,8 +562,8 @@ impl BoundInputs {
     /// The energy each dissipative component dissipated, by name \[J\], at
     /// the state last loaded, whose model's input arguments are
     /// `arguments`: its energy state (the integral of
-    /// [`Component::dissipated_power`]) less the elastic energy it has
-    /// stored since the start ([`Component::stored_energy`]).
+    /// [`super::Dissipation::dissipated_power`]) less the elastic energy it has
+    /// stored since the start ([`super::Dissipation::stored_energy`]).
     pub fn dissipated_energies(&self, arguments: &[f64]) -> Result<Vec<(String, f64)>, Fault> {
         (self.layout.dissipative())
             .filter(|&(_, index)| index < self.loaded.len())
@@ -549,7 +580,7 @@ impl BoundInputs {
         self.components
             .iter()
             .filter(|c| name.is_none_or(|n| n == c.name))
-            .find_map(|c| c.component.failure_time())
+            .find_map(|c| c.component.report().failed_at)
     }
 }
 
@@ -570,7 +601,7 @@ impl BoundInputs {
         let at = format!("arguments {}", listed(args));
         match state {
             Some(k) => {
-                let state = named.component.states()[k].quantity;
+                let state = named.states()[k].quantity;
                 let z = self
                     .loaded
                     .as_slice()
@@ -596,7 +627,7 @@ impl BoundInputs {
             return format!("event function {k} ({value})");
         };
         let named = &self.components[c];
-        let event = named.component.events()[local].name;
+        let event = named.events()[local].name;
         format!(
             "the function of event `{event}` of {} ({value})",
             named.describe()
@@ -625,7 +656,7 @@ impl BoundInputs {
             .layout
             .stateful()
             .find(|&(c, _)| c == binding.component);
-        let states = named.component.states();
+        let states = named.states();
         let loaded = stateful.and_then(|(_, at)| self.loaded.as_slice().get(at..at + states.len()));
         if let Some(z) = loaded {
             let values: Vec<String> = (states.iter().zip(z))

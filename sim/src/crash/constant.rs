@@ -5,6 +5,7 @@
 //! INPUT=VALUE` adds one too.
 
 use super::{Binder, Component, Port, Section, Smoothness};
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::finite;
 use serde::Deserialize;
@@ -43,11 +44,24 @@ impl Component for Constant {
         self.value(port, &[]).ok()
     }
 
-    // None: it keeps no state.
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        Ok(())
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        None
     }
 
     fn smoothness(&self) -> Smoothness {

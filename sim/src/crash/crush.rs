@@ -44,8 +44,9 @@
 //! never both.
 
 use super::held::{self, Crossed, Held};
-use super::{Binder, Column, Component, Contact, Event, Port, Section, Smoothness};
+use super::{Binder, Column, Component, Contact, Event, Port, Report, Section, Smoothness};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use crate::entry::non_negative;
@@ -397,7 +398,63 @@ impl Component for CrushElement {
         }
     }
 
-    fn events(&self) -> &'static [Event] {
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        Some(self)
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The compressive force `P` and the deflection `δ`.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.compressive(args)?.0;
+        out[1] = self.crush(args).0;
+        Ok(())
+    }
+
+    /// Its force and deflection for the force–crush plot, and its contact.
+    fn report(&self) -> Report {
+        let contact = match (self.in_contact, self.separated_at) {
+            (true, _) => Contact::Touching,
+            (false, Some(t)) => Contact::EndedAt(t),
+            (false, None) => Contact::Never,
+        };
+        Report {
+            force_deflection: Some((0, 1)),
+            contact: Some(contact),
+            ..Report::default()
+        }
+    }
+
+    /// Smooth when it holds the segments of its curves (`stop_at_kinks`):
+    /// its changes of regime and the kinks of its curves are then events.
+    fn smoothness(&self) -> Smoothness {
+        match self.stop_at_kinks {
+            true => Smoothness::Smooth,
+            false => Smoothness::Unknown,
+        }
+    }
+}
+
+impl Events for CrushElement {
+    fn list(&self) -> &'static [Event] {
         EVENTS
     }
 
@@ -480,50 +537,20 @@ impl Component for CrushElement {
         }
         Ok(())
     }
+}
 
-    fn columns(&self) -> &'static [Column] {
-        COLUMNS
-    }
-
-    /// The compressive force `P` and the deflection `δ`.
-    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
-        out[0] = self.compressive(args)?.0;
-        out[1] = self.crush(args).0;
-        Ok(())
-    }
-
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        Some((0, 1))
-    }
-
-    fn contact(&self) -> Option<Contact> {
-        Some(match (self.in_contact, self.separated_at) {
-            (true, _) => Contact::Touching,
-            (false, Some(t)) => Contact::EndedAt(t),
-            (false, None) => Contact::Never,
-        })
-    }
-
+impl Dissipation for CrushElement {
     /// The power the element absorbs, `P·δ̇`, of which
-    /// [`Component::stored_energy`] says what it stores (`energy` module);
+    /// [`Dissipation::stored_energy`] says what it stores (`energy` module);
     /// NaN where a curve cannot be evaluated (the force then reports it).
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.absorbed_power(args).unwrap_or(f64::NAN))
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        self.absorbed_power(args).unwrap_or(f64::NAN)
     }
 
     /// In contact, the energy of the unloading line (plastic unloading) or
     /// `∫₀^δ S dx` (elastic, or under tension); 0 separated.
     fn stored_energy(&self, args: &[f64]) -> Result<f64, OutOfRange> {
         self.stored(args)
-    }
-
-    /// Smooth when it holds the segments of its curves (`stop_at_kinks`):
-    /// its changes of regime and the kinks of its curves are then events.
-    fn smoothness(&self) -> Smoothness {
-        match self.stop_at_kinks {
-            true => Smoothness::Smooth,
-            false => Smoothness::Unknown,
-        }
     }
 }
 
@@ -864,7 +891,7 @@ mod tests {
         let mut columns = [0.0; 2];
         e.column_values(&[0.3, 0.0], &mut columns).unwrap();
         assert!((columns[0] - 175e3).abs() < 1e-9 && columns[1] == 0.3);
-        assert_eq!(e.force_deflection(), Some((0, 1)));
+        assert_eq!(e.report().force_deflection, Some((0, 1)));
         // Compression negative (the paper's r < 0): the input's force is
         // −P, its derivative the same slope; the columns stay compression
         // positive.

@@ -26,6 +26,7 @@
 
 use super::{Binder, Column, Component, Port, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{non_negative, positive};
 use serde::Deserialize;
@@ -121,11 +122,24 @@ impl Component for Friction {
         })
     }
 
-    // None: it keeps no state.
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        Ok(())
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
     }
 
     fn columns(&self) -> &'static [Column] {
@@ -137,9 +151,11 @@ impl Component for Friction {
         out[1] = self.power(args);
         Ok(())
     }
+}
 
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.power(args))
+impl Dissipation for Friction {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        self.power(args)
     }
 }
 

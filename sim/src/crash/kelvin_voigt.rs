@@ -10,6 +10,7 @@
 
 use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::non_negative;
 use serde::Deserialize;
@@ -64,11 +65,24 @@ impl Component for KelvinVoigt {
         })
     }
 
-    // None: it keeps no state.
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        Ok(())
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
     }
 
     fn columns(&self) -> &'static [Column] {
@@ -81,12 +95,14 @@ impl Component for KelvinVoigt {
         Ok(())
     }
 
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.power(args))
-    }
-
     fn smoothness(&self) -> Smoothness {
         Smoothness::Smooth
+    }
+}
+
+impl Dissipation for KelvinVoigt {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        self.power(args)
     }
 }
 

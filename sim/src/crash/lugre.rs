@@ -23,6 +23,7 @@
 
 use super::{Binder, Column, Component, Port, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, non_negative, positive};
 use serde::Deserialize;
@@ -106,13 +107,24 @@ impl Component for LuGre {
         })
     }
 
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    one_state!(z: "z" ["m"], from z0);
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
 
-    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
-        rates[0] = self.z_rate(args[1]);
-        Ok(())
+    fn states(&self) -> Option<&dyn States> {
+        Some(self)
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        Some(self)
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
     }
 
     fn columns(&self) -> &'static [Column] {
@@ -124,10 +136,21 @@ impl Component for LuGre {
         out[1] = args[1];
         Ok(())
     }
+}
 
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+impl States for LuGre {
+    one_state!(z: "z" ["m"], from z0);
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.z_rate(args[1]);
+        Ok(())
+    }
+}
+
+impl Dissipation for LuGre {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
         let v = args.get(1).copied().unwrap_or(0.0);
-        Some(self.force(v) * v - self.sigma0 * self.z * self.z_rate(v))
+        self.force(v) * v - self.sigma0 * self.z * self.z_rate(v)
     }
 }
 

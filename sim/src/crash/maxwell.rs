@@ -20,6 +20,7 @@
 
 use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, finite_combination, positive};
 use serde::Deserialize;
@@ -83,13 +84,24 @@ impl Component for Maxwell {
         })
     }
 
-    no_events!();
+    fn events(&self) -> Option<&dyn Events> {
+        None
+    }
 
-    one_state!(dashpot: "dashpot" ["m"], from dashpot0);
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
 
-    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
-        rates[0] = self.force(args[0]) / self.damping;
-        Ok(())
+    fn states(&self) -> Option<&dyn States> {
+        Some(self)
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        Some(self)
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
     }
 
     fn columns(&self) -> &'static [Column] {
@@ -102,13 +114,24 @@ impl Component for Maxwell {
         Ok(())
     }
 
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        let force = self.force(args.first().copied().unwrap_or(0.0));
-        Some(force * force / self.damping)
-    }
-
     fn smoothness(&self) -> Smoothness {
         Smoothness::Smooth
+    }
+}
+
+impl States for Maxwell {
+    one_state!(dashpot: "dashpot" ["m"], from dashpot0);
+
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange> {
+        rates[0] = self.force(args[0]) / self.damping;
+        Ok(())
+    }
+}
+
+impl Dissipation for Maxwell {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        let force = self.force(args.first().copied().unwrap_or(0.0));
+        force * force / self.damping
     }
 }
 

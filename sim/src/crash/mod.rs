@@ -15,31 +15,44 @@
 //!   section) and how many arguments the inputs bound to it must take
 //!   ([`Component::arguments`]), which the scenario checks;
 //! * computes each port at an input's arguments ([`Component::value`]);
-//! * lists its events with their directions ([`Component::events`]; a
-//!   component without events says so with an empty list), gives their
-//!   functions ([`Component::event_values`]) and applies one when the
-//!   integrator finds its zero ([`Component::on_event`]): a change of regime
-//!   (peak crush, separation, failure) is an event, so each port is smooth
-//!   within a step;
-//! * starts every run in its initial state ([`Component::start`]);
 //! * lists the quantities worth plotting, with their units
 //!   ([`Component::columns`]: a crush element's force and deflection, a
 //!   weld's moment and angle; none by default) and gives their values at its
 //!   value input's arguments ([`Component::column_values`]): each is a
 //!   trajectory column `NAME.QUANTITY [unit]`;
-//! * answers the queries of the summary and the plots
-//!   ([`Component::force_deflection`], [`Component::failure_time`]);
-//! * if it dissipates energy (a damper, contact or friction), gives the
-//!   power it dissipates ([`Component::dissipated_power`]), or the power
-//!   it absorbs with the elastic energy it stores of it
-//!   ([`Component::stored_energy`]: a spring that unloads plastically,
-//!   separates or breaks).
+//! * says how smooth its ports are within a step
+//!   ([`Component::smoothness`]: smooth, with kinks, or linear between
+//!   points at which steps may end);
+//! * tells the summary and the plots what they read of its run
+//!   ([`Component::report`]: a crush element's force and deflection
+//!   columns and its contact, a weld's failure; nothing by default).
 //!
-//! A component with events keeps state, which it reads from the arguments
+//! What a component can do beyond that is a capability, a small trait it
+//! implements on itself and hands out from an accessor of [`Component`]
+//! (`Some(self)`; `None` for a component without it). The accessors are
+//! required, so that a component without events says so in its `impl`:
+//!
+//! * [`Events`] ([`Component::events`], [`Component::events_mut`]): a
+//!   change of regime (peak crush, separation, failure) is an event, so
+//!   each port is smooth within a step. The component lists its events
+//!   with their directions ([`Events::list`]), gives their functions
+//!   ([`Events::event_values`]), applies one when the integrator finds its
+//!   zero ([`Events::on_event`]) and starts every run in its initial
+//!   regime ([`Events::start`]);
+//! * [`States`] ([`Component::states`], [`Component::states_mut`]):
+//!   internal states `z` with `ż = g(z, args)` (a hysteretic variable, a
+//!   dashpot's displacement), which the integrator carries and every run
+//!   starts at their initial values;
+//! * [`Dissipation`] ([`Component::energy`]): a damper, contact or
+//!   friction gives the power it dissipates
+//!   ([`Dissipation::dissipated_power`]), or the power it absorbs with the
+//!   elastic energy it stores of it ([`Dissipation::stored_energy`]: a
+//!   spring that unloads plastically, separates or breaks).
+//!
+//! A component with events or states reads them from the arguments
 //! of its value input: that input must be called at one place of the
 //! dynamics (the scenario checks it), and [`BoundInputs`] passes its
-//! arguments to the component's events, its columns and
-//! [`Component::start`].
+//! arguments to the component's events, states, columns and power.
 //!
 //! Its scenario section, `[components.NAME]` with `type = "KIND"`, is a
 //! struct that implements the crate's `Section` trait: it reads the
@@ -52,16 +65,19 @@
 //! A new component touches one new file and two lines of this one:
 //!
 //! 1. Write `sim/src/crash/KIND.rs` with
-//!    * the component: `#[derive(Clone, Debug)]`, `impl Component`. Every
-//!      method but the two queries is required; a component without events
-//!      writes `no_events!();` in its `impl` (empty `events`, nothing to do
-//!      in `event_values` and `on_event`), one with events lists them in a
-//!      `const EVENTS: &[Event]`; one with columns lists them in a
+//!    * the component: `#[derive(Clone, Debug)]`, `impl Component` with
+//!      `kind`, `arguments`, `value` and the five accessors `events`,
+//!      `events_mut`, `states`, `states_mut` and `energy`, each `None` or
+//!      `Some(self)`; `constant`, `columns`, `column_values`, `smoothness`
+//!      and `report` have defaults. One with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
-//!      `column_values`; one with a single internal state writes
+//!      `column_values`;
+//!    * for each capability it has, its `impl`: `impl Events` with its
+//!      events in a `const EVENTS: &[Event]`; `impl States`, where a single
+//!      internal state writes
 //!      `one_state!(FIELD: "QUANTITY" ["UNIT"], from INITIAL_FIELD);` for
-//!      `start`, `states`, `initial_states` and `set_states`, and gives its
-//!      `state_rates`;
+//!      `list`, `initial_states` and `set_states`, and gives its
+//!      `state_rates`; `impl Dissipation`;
 //!    * its section: `#[derive(Deserialize)]`,
 //!      `#[serde(deny_unknown_fields)]`, a `pub(crate) struct KindSection`
 //!      of its entries (with `#[serde(default = …)]` for optional ones) and
@@ -80,54 +96,19 @@
 //!    which [`Component::kind`] must return (checked in debug builds).
 //!
 //! Nothing else names a component: scenario files, the binding of inputs,
-//! events, the summary and the plots reach every component through these
-//! two traits. `test_spring.rs`, registered for tests only, is a complete
+//! events, the summary and the plots reach every component through
+//! [`Component`], its capabilities and `Section`. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
 
-/// The event methods of a component without events: `events` empty,
-/// nothing to evaluate or apply. Written out in the component's `impl`
-/// (`no_events!();`), so that leaving a component's events out stays a
-/// visible choice rather than a default.
-macro_rules! no_events {
-    () => {
-        fn events(&self) -> &'static [$crate::crash::Event] {
-            &[]
-        }
-
-        fn event_values(
-            &self,
-            _args: &[f64],
-            _g: &mut [f64],
-        ) -> Result<(), $crate::curve::OutOfRange> {
-            Ok(())
-        }
-
-        fn on_event(
-            &mut self,
-            _k: usize,
-            _t: f64,
-            _args: &[f64],
-        ) -> Result<String, $crate::curve::OutOfRange> {
-            Ok(String::new())
-        }
-    };
-}
-
 /// The plumbing of a component with one internal state, written in its
-/// `impl` (`one_state!(z: "z" ["m"], from z0);`): the state's column
-/// `NAME.QUANTITY [UNIT]` ([`Component::states`]), the field that holds
+/// `impl States` (`one_state!(z: "z" ["m"], from z0);`): the state's column
+/// `NAME.QUANTITY [UNIT]` ([`States::list`]), the field that holds
 /// its current value (`z`) and the field of its initial value (`z0`).
-/// [`Component::start`] puts the state back to its initial value,
-/// [`Component::initial_states`] gives that value and
-/// [`Component::set_states`] takes the integrator's.
+/// [`States::initial_states`] gives that value and
+/// [`States::set_states`] takes the integrator's.
 macro_rules! one_state {
     ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
-        fn start(&mut self, _args: Option<&[f64]>) -> Result<(), $crate::curve::OutOfRange> {
-            self.$state = self.$initial;
-            Ok(())
-        }
-
-        fn states(&self) -> &'static [$crate::crash::Column] {
+        fn list(&self) -> &'static [$crate::crash::Column] {
             const STATES: &[$crate::crash::Column] = &[$crate::crash::Column {
                 quantity: $quantity,
                 unit: $unit,
@@ -209,8 +190,9 @@ pub struct Column {
 /// A crash component: the source of one or more of a model's input
 /// functions (see the module documentation for the contract).
 ///
-/// Every event method is required, so that a component with events cannot
-/// leave one out; a component without events implements them as such.
+/// The accessors of its capabilities ([`Events`], [`States`],
+/// [`Dissipation`]) are required, so that a component with events cannot
+/// leave them out by default; a component without says `None`.
 pub trait Component: ComponentClone + fmt::Debug + Send {
     /// What the scenario calls this kind of component: the `type` its
     /// section is registered under.
@@ -234,57 +216,29 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         None
     }
 
-    /// The component's events, in index order; empty if it has none.
-    fn events(&self) -> &'static [Event];
+    /// Its events, if it changes regime (peak crush, separation,
+    /// failure): [`Events`], usually `Some(self)`; `None` for a component
+    /// without events. Required, with [`Component::events_mut`], so that a
+    /// component's events are never left out by default.
+    fn events(&self) -> Option<&dyn Events>;
 
-    /// The event functions at its value input's arguments `args`, one per
-    /// [`Component::events`] entry, into `g`. One that does not apply in the
-    /// current regime is held at a constant of the sign that cannot trigger
-    /// it.
-    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
+    /// [`Component::events`], to apply an event or start a run: `Some`
+    /// exactly when that is.
+    fn events_mut(&mut self) -> Option<&mut dyn Events>;
 
-    /// Event function `k` alone at `args`, the same value as
-    /// [`Component::event_values`] gives it: what locating a crossing of
-    /// it evaluates. `scratch` holds one value per event; by default every
-    /// event function, into `scratch`.
-    fn event_value(&self, k: usize, args: &[f64], scratch: &mut [f64]) -> Result<f64, OutOfRange> {
-        self.event_values(args, scratch)?;
-        Ok(scratch[k])
-    }
+    /// Its internal states, if it has any (a hysteretic variable, a
+    /// dashpot's displacement): [`States`], usually `Some(self)`; `None`
+    /// for a component without.
+    fn states(&self) -> Option<&dyn States>;
 
-    /// Applies event `k` at time `t` and its value input's arguments `args`;
-    /// returns a description of the change, or an empty one for an event
-    /// that changes no regime (a kink of a curve crossed, see
-    /// [`held`]), which the run's event log leaves out.
-    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
+    /// [`Component::states`], to set them: `Some` exactly when that is.
+    fn states_mut(&mut self) -> Option<&mut dyn States>;
 
-    /// Puts the component in its initial state for a run that starts with
-    /// its value input's arguments `args` (`None` when it has no events, or
-    /// the dynamics does not call that input).
-    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
-
-    /// The component's internal states `z` (a hysteretic variable, a
-    /// dashpot's displacement), with their units: first-order states with
-    /// `ż = g(z, args)` that the integrator carries beside `q` and `q̇`.
-    /// Each is a trajectory column `NAME.STATE [unit]`. None by default.
-    fn states(&self) -> &'static [Column] {
-        &[]
-    }
-
-    /// The initial values of [`Component::states`], into `z` (the
-    /// scenario's, or the component's documented default).
-    fn initial_states(&self, _z: &mut [f64]) {}
-
-    /// Takes the current values of [`Component::states`], which
-    /// [`Component::value`] and the other methods then read. The problem
-    /// calls it before every evaluation at a state of the run.
-    fn set_states(&mut self, _z: &[f64]) {}
-
-    /// `ż = g(z, args)` of [`Component::states`] at its value input's
-    /// arguments `args` and the states last set, into `rates`.
-    fn state_rates(&self, _args: &[f64], _rates: &mut [f64]) -> Result<(), OutOfRange> {
-        Ok(())
-    }
+    /// How it dissipates energy, if it does (a damper, contact, friction):
+    /// [`Dissipation`], usually `Some(self)`; `None` for a component that
+    /// dissipates nothing, at any arguments. Asked once, to lay out the
+    /// run's states (one dissipated energy per dissipative component).
+    fn energy(&self) -> Option<&dyn Dissipation>;
 
     /// The quantities worth plotting, in the order
     /// [`Component::column_values`] writes them; none by default.
@@ -298,60 +252,10 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
         Ok(())
     }
 
-    /// For the force–crush plot: the indices among [`Component::columns`]
-    /// of a crush element's force and of its deflection, both positive in
-    /// compression; `None` (the default): not a crush element.
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        None
-    }
-
-    /// The time the component failed in the run, if it did; `None` (the
-    /// default) for one that cannot fail.
-    fn failure_time(&self) -> Option<f64> {
-        None
-    }
-
-    /// For a contact element (a crush element that only pushes): whether
-    /// it is in contact now, or since when it is not; `None` (the default)
-    /// for a component without contact.
-    fn contact(&self) -> Option<Contact> {
-        None
-    }
-
-    /// The abscissae, in increasing order, at which the value's derivative
-    /// jumps (the points of a table interpolated linearly); none (the
-    /// default) for a smooth component. For a component whose input's
-    /// argument is the time, the integrator ends a step at each of them
-    /// rather than step across.
-    fn breakpoints(&self) -> &[f64] {
-        &[]
-    }
-
-    /// The power the component dissipates \[W\] at its value input's
-    /// arguments `args` (and its internal states, for one that has them);
-    /// `None` (the default) for a component that dissipates nothing, at
-    /// any arguments. Its integral, less the growth of
-    /// [`Component::stored_energy`] for a component that returns the
-    /// power it absorbs instead, is the energy it dissipated, carried as
-    /// an internal state of the run and reported by name. Whether it is
-    /// `Some` must not depend on the arguments: it is asked once, at zero
-    /// arguments, to lay out the run's states.
-    fn dissipated_power(&self, _args: &[f64]) -> Option<f64> {
-        None
-    }
-
-    /// The elastic energy \[J\] a dissipative component stores at its
-    /// value input's arguments `args` in its current regime, for one whose
-    /// [`Component::dissipated_power`] is the power it absorbs, part of
-    /// which it stores and may give back (a crush spring, a weld); 0 (the
-    /// default) for one whose power is dissipated as it is absorbed. The
-    /// energy reported as dissipated is the integral of that power less
-    /// what this energy has grown by since the start: the work absorbed
-    /// less the elastic energy still stored. An event may change it (a
-    /// spring that separates or breaks releases it); the dissipated energy
-    /// then steps by as much.
-    fn stored_energy(&self, _args: &[f64]) -> Result<f64, OutOfRange> {
-        Ok(0.0)
+    /// What the summary and the plots read of the component's run
+    /// ([`Report`]); nothing (the default) for most components.
+    fn report(&self) -> Report {
+        Report::default()
     }
 
     /// How smooth the component's ports are within a step of the
@@ -361,6 +265,87 @@ pub trait Component: ComponentClone + fmt::Debug + Send {
     /// solve for it.
     fn smoothness(&self) -> Smoothness {
         Smoothness::Unknown
+    }
+}
+
+/// The events of a component that changes regime (see
+/// [`Component::events`]): a change of regime is an event, so that each
+/// port is smooth within a step.
+pub trait Events {
+    /// The events, in index order, with their directions.
+    fn list(&self) -> &'static [Event];
+
+    /// The event functions at its value input's arguments `args`, one per
+    /// [`Events::list`] entry, into `g`. One that does not apply in the
+    /// current regime is held at a constant of the sign that cannot trigger
+    /// it.
+    fn event_values(&self, args: &[f64], g: &mut [f64]) -> Result<(), OutOfRange>;
+
+    /// Event function `k` alone at `args`, the same value as
+    /// [`Events::event_values`] gives it: what locating a crossing of
+    /// it evaluates. `scratch` holds one value per event; by default every
+    /// event function, into `scratch`.
+    fn event_value(&self, k: usize, args: &[f64], scratch: &mut [f64]) -> Result<f64, OutOfRange> {
+        self.event_values(args, scratch)?;
+        Ok(scratch[k])
+    }
+
+    /// Applies event `k` at time `t` and its value input's arguments `args`;
+    /// returns a description of the change, or an empty one for an event
+    /// that changes no regime (a kink of a curve crossed, see
+    /// [`held`]), which the run's event log leaves out.
+    fn on_event(&mut self, k: usize, t: f64, args: &[f64]) -> Result<String, OutOfRange>;
+
+    /// Puts the component in its initial regime for a run that starts with
+    /// its value input's arguments `args` (`None` when the dynamics does
+    /// not call that input).
+    fn start(&mut self, args: Option<&[f64]>) -> Result<(), OutOfRange>;
+}
+
+/// The internal states `z` of a component (see [`Component::states`]):
+/// first-order states with `ż = g(z, args)` that the integrator carries
+/// beside `q` and `q̇`. A run starts them at [`States::initial_states`].
+pub trait States {
+    /// The states, with their units: each is a trajectory column
+    /// `NAME.STATE [unit]`.
+    fn list(&self) -> &'static [Column];
+
+    /// The initial values of the states, into `z` (the scenario's, or the
+    /// component's documented default).
+    fn initial_states(&self, z: &mut [f64]);
+
+    /// Takes the current values of the states, which
+    /// [`Component::value`] and the other methods then read. The problem
+    /// calls it before every evaluation at a state of the run.
+    fn set_states(&mut self, z: &[f64]);
+
+    /// `ż = g(z, args)` at its value input's arguments `args` and the
+    /// states last set, into `rates`.
+    fn state_rates(&self, args: &[f64], rates: &mut [f64]) -> Result<(), OutOfRange>;
+}
+
+/// How a component dissipates energy (see [`Component::energy`]).
+pub trait Dissipation {
+    /// The power the component dissipates \[W\] at its value input's
+    /// arguments `args` (and its internal states, for one that has them).
+    /// Its integral, less the growth of [`Dissipation::stored_energy`] for
+    /// a component that returns the power it absorbs instead, is the
+    /// energy it dissipated, carried as an internal state of the run and
+    /// reported by name.
+    fn dissipated_power(&self, args: &[f64]) -> f64;
+
+    /// The elastic energy \[J\] a dissipative component stores at its
+    /// value input's arguments `args` in its current regime, for one whose
+    /// [`Dissipation::dissipated_power`] is the power it absorbs, part of
+    /// which it stores and may give back (a crush spring, a weld); 0 (the
+    /// default) for one whose power is dissipated as it is absorbed. The
+    /// energy reported as dissipated is the integral of that power less
+    /// what this energy has grown by since the start: the work absorbed
+    /// less the elastic energy still stored. An event may change it (a
+    /// spring that separates or breaks releases it); the dissipated energy
+    /// then steps by as much.
+    fn stored_energy(&self, _args: &[f64]) -> Result<f64, OutOfRange> {
+        Ok(0.0)
     }
 }
 
@@ -384,7 +369,14 @@ pub enum Smoothness {
     /// of it, in increasing order (the points of a table interpolated
     /// linearly): kinks as [`Smoothness::Kinks`], with straight lines
     /// between them.
-    Linear(Vec<f64>),
+    Linear {
+        /// The values of the first argument where the slope jumps.
+        points: Vec<f64>,
+        /// Whether the integrator ends a step at each of them, rather than
+        /// step across, for an input whose argument is the time (a table
+        /// with `stop_at_kinks`).
+        stops: bool,
+    },
 }
 
 impl Smoothness {
@@ -392,13 +384,42 @@ impl Smoothness {
     /// jump, for [`Smoothness::Kinks`] and [`Smoothness::Linear`].
     pub fn kinks(&self) -> Option<&[f64]> {
         match self {
-            Smoothness::Kinks(points) | Smoothness::Linear(points) => Some(points),
+            Smoothness::Kinks(points) | Smoothness::Linear { points, .. } => Some(points),
             Smoothness::Unknown | Smoothness::Smooth => None,
+        }
+    }
+
+    /// The values of the first argument at which the integrator ends a
+    /// step, for an input whose argument is the time: the points of a
+    /// [`Smoothness::Linear`] that `stops`; none otherwise.
+    pub fn stops(&self) -> &[f64] {
+        match self {
+            Smoothness::Linear {
+                points,
+                stops: true,
+            } => points,
+            _ => &[],
         }
     }
 }
 
-/// The state of a contact element's contact (see [`Component::contact`]).
+/// What a component tells the summary and the plots about its run (see
+/// [`Component::report`]): each field `None` for a component it does not
+/// concern.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Report {
+    /// For the force–crush plot: the indices among [`Component::columns`]
+    /// of a crush element's force and of its deflection, both positive in
+    /// compression.
+    pub force_deflection: Option<(usize, usize)>,
+    /// The time the component failed in the run, if it did.
+    pub failed_at: Option<f64>,
+    /// For a contact element (a crush element that only pushes): whether
+    /// it is in contact now, or since when it is not.
+    pub contact: Option<Contact>,
+}
+
+/// The state of a contact element's contact (see [`Report::contact`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Contact {
     /// In contact now.
@@ -508,11 +529,11 @@ impl ComponentSection {
     }
 }
 
-/// Asserts that [`Component::event_value`] gives each event function of
-/// `component` at `args` bit for bit as [`Component::event_values`] does.
+/// Asserts that [`Events::event_value`] gives each event function of
+/// `component` at `args` bit for bit as [`Events::event_values`] does.
 #[cfg(test)]
-pub(crate) fn assert_event_value_is_event_values(component: &dyn Component, args: &[f64]) {
-    let n = component.events().len();
+pub(crate) fn assert_event_value_is_event_values(component: &dyn Events, args: &[f64]) {
+    let n = component.list().len();
     let mut all = vec![0.0; n];
     component.event_values(args, &mut all).unwrap();
     for (k, value) in all.iter().enumerate() {

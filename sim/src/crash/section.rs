@@ -164,8 +164,8 @@ impl<'a> Binder<'a> {
         let mut arguments = vec![None; self.components.len()];
         for (c, named) in self.components.iter().enumerate() {
             let component = &named.component;
-            let stateful = !component.events().is_empty() || !component.states().is_empty();
-            if !stateful && component.columns().is_empty() && !dissipative(component.as_ref()) {
+            let stateful = !named.events().is_empty() || !named.states().is_empty();
+            if !stateful && component.columns().is_empty() && component.energy().is_none() {
                 continue;
             }
             let value = Some(Binding {
@@ -204,11 +204,4 @@ impl<'a> Binder<'a> {
             )),
         }
     }
-}
-
-/// Whether `component` dissipates energy ([`Component::dissipated_power`]
-/// at zero arguments of the number it takes).
-fn dissipative(component: &dyn Component) -> bool {
-    let n = component.arguments().map_or(0, |(n, _)| n);
-    component.dissipated_power(&vec![0.0; n]).is_some()
 }

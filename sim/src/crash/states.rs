@@ -1,7 +1,7 @@
 //! The internal states of a scenario's components, laid out in one vector
 //! for the integrator: first each component's own states
 //! ([`super::Component::states`]), in component order, then the energy each
-//! dissipative component ([`super::Component::dissipated_power`]) has
+//! dissipative component ([`super::Component::energy`]) has
 //! dissipated since the start of the run. The energies are quadratures
 //! ([`Internal::quadratures`]): integrated with each step, they do not
 //! control its size.
@@ -30,15 +30,17 @@ impl StateLayout {
     pub fn of(components: &[NamedComponent], arguments: &[Option<(usize, usize)>]) -> StateLayout {
         let mut layout = StateLayout::default();
         for (c, named) in components.iter().enumerate() {
-            let count = named.component.states().len();
+            let count = named.states().len();
             if count > 0 && arguments[c].is_some() {
                 layout.states.push((c, layout.len, count));
                 layout.len += count;
             }
         }
         for (c, named) in components.iter().enumerate() {
-            let Some((_, n)) = arguments[c] else { continue };
-            if named.component.dissipated_power(&vec![0.0; n]).is_some() {
+            if arguments[c].is_none() {
+                continue;
+            }
+            if named.component.energy().is_some() {
                 layout.energies.push((c, layout.len));
                 layout.len += 1;
             }
@@ -69,7 +71,9 @@ impl StateLayout {
         let mut z = z.with_quadratures(self.energies.len());
         for &(c, offset, count) in &self.states {
             let slice = &mut z.as_mut_slice()[offset..offset + count];
-            components[c].component.initial_states(slice);
+            if let Some(states) = components[c].component.states() {
+                states.initial_states(slice);
+            }
         }
         Ok(z)
     }
@@ -78,7 +82,9 @@ impl StateLayout {
     pub fn load(&self, components: &mut [NamedComponent], z: &Internal) {
         for &(c, offset, count) in &self.states {
             let slice = &z.as_slice()[offset..offset + count];
-            components[c].component.set_states(slice);
+            if let Some(states) = components[c].component.states_mut() {
+                states.set_states(slice);
+            }
         }
     }
 
@@ -111,7 +117,7 @@ impl StateLayout {
         let mut columns = Vec::new();
         for &(c, _, _) in &self.states {
             let named = &components[c];
-            columns.extend(named.component.states().iter().map(|column| {
+            columns.extend(named.states().iter().map(|column| {
                 let name = format!("{}.{}", named.name, column.quantity);
                 (name, Some(column.unit.to_string()))
             }));

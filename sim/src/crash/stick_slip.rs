@@ -24,6 +24,7 @@
 
 use super::{Binder, Column, Component, Event, Port, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::non_negative;
 use crate::ode::Direction;
@@ -122,7 +123,39 @@ impl Component for StickSlip {
         })
     }
 
-    fn events(&self) -> &'static [Event] {
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        Some(self)
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.force(args).0;
+        out[1] = out[0] * args[0];
+        Ok(())
+    }
+}
+
+impl Events for StickSlip {
+    fn list(&self) -> &'static [Event] {
         EVENTS
     }
 
@@ -162,20 +195,12 @@ impl Component for StickSlip {
         };
         Ok(())
     }
+}
 
-    fn columns(&self) -> &'static [Column] {
-        COLUMNS
-    }
-
-    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
-        out[0] = self.force(args).0;
-        out[1] = out[0] * args[0];
-        Ok(())
-    }
-
+impl Dissipation for StickSlip {
     /// `F·v`: 0 while sticking.
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.force(args).0 * args[0])
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        self.force(args).0 * args[0]
     }
 }
 

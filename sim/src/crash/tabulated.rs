@@ -16,6 +16,7 @@
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::{Binder, Component, Port, Section, Smoothness};
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
 use crate::table::Table;
@@ -60,29 +61,37 @@ impl Component for Tabulated {
         }
     }
 
-    // None: it keeps no state.
-    no_events!();
-
-    fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
-        Ok(())
+    fn events(&self) -> Option<&dyn Events> {
+        None
     }
 
-    /// The points where the slope of a table interpolated linearly jumps,
-    /// when it asks for steps to end there; none for the monotone cubic.
-    fn breakpoints(&self) -> &[f64] {
-        match self.stop_at_kinks {
-            true => self.curve.kinks(),
-            false => &[],
-        }
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        None
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        None
     }
 
     /// Linear between the points of a table interpolated linearly (and
     /// beyond its ends); a monotone cubic is smooth between its corners
-    /// ([`Curve::corners`]).
+    /// ([`Curve::corners`]). Steps end at the points of a table
+    /// interpolated linearly when it asks for it (`stop_at_kinks`).
     fn smoothness(&self) -> Smoothness {
         match self.curve.is_smooth() {
             true => Smoothness::Kinks(self.curve.corners()),
-            false => Smoothness::Linear(self.curve.corners()),
+            false => Smoothness::Linear {
+                points: self.curve.corners(),
+                stops: self.stop_at_kinks,
+            },
         }
     }
 }

@@ -2,10 +2,12 @@
 //! component is (this file and one line of the `components!` list): a
 //! linear spring that breaks when its extension reaches a threshold. Its
 //! one event must fire in a simulation, which shows that a new component's
-//! events reach the integrator without any other change.
+//! events reach the integrator without any other change. It has one
+//! capability, [`Events`]: its other accessors say `None`.
 
-use super::{Binder, Component, Event, Port, Section};
+use super::{Binder, Component, Event, Port, Report, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;
@@ -45,7 +47,36 @@ impl Component for Spring {
         })
     }
 
-    fn events(&self) -> &'static [Event] {
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        Some(self)
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        None
+    }
+
+    fn report(&self) -> Report {
+        Report {
+            failed_at: self.broken_at,
+            ..Report::default()
+        }
+    }
+}
+
+impl Events for Spring {
+    fn list(&self) -> &'static [Event] {
         EVENTS
     }
 
@@ -65,10 +96,6 @@ impl Component for Spring {
     fn start(&mut self, _args: Option<&[f64]>) -> Result<(), OutOfRange> {
         self.broken_at = None;
         Ok(())
-    }
-
-    fn failure_time(&self) -> Option<f64> {
-        self.broken_at
     }
 }
 

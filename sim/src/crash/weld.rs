@@ -20,8 +20,9 @@
 
 use super::held::{self, Crossed, Held};
 use super::integral::integral;
-use super::{Binder, Column, Component, Event, Port, Section, Smoothness};
+use super::{Binder, Column, Component, Event, Port, Report, Section, Smoothness};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange};
 use crate::entry::{non_negative, positive};
@@ -217,7 +218,56 @@ impl Component for Weld {
         })
     }
 
-    fn events(&self) -> &'static [Event] {
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        Some(self)
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
+    }
+
+    fn report(&self) -> Report {
+        Report {
+            failed_at: self.failed_at,
+            ..Report::default()
+        }
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The moment `M` (damping included) and the angle `θ`.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.moment(args)?.0;
+        out[1] = args[0];
+        Ok(())
+    }
+
+    /// Smooth when it holds the segment of its curve (`stop_at_kinks`):
+    /// its failure and the kinks of its curve are then events.
+    fn smoothness(&self) -> Smoothness {
+        match self.stop_at_kinks {
+            true => Smoothness::Smooth,
+            false => Smoothness::Unknown,
+        }
+    }
+}
+
+impl Events for Weld {
+    fn list(&self) -> &'static [Event] {
         EVENTS
     }
 
@@ -253,27 +303,14 @@ impl Component for Weld {
         self.held = Held::at(&self.intact, angle, self.stop_at_kinks);
         Ok(())
     }
+}
 
-    fn failure_time(&self) -> Option<f64> {
-        self.failed_at
-    }
-
-    fn columns(&self) -> &'static [Column] {
-        COLUMNS
-    }
-
-    /// The moment `M` (damping included) and the angle `θ`.
-    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
-        out[0] = self.moment(args)?.0;
-        out[1] = args[0];
-        Ok(())
-    }
-
+impl Dissipation for Weld {
     /// The power the weld absorbs, `M·θ̇` (damping included), of which
-    /// [`Component::stored_energy`] says what its spring stores; NaN where
+    /// [`Dissipation::stored_energy`] says what its spring stores; NaN where
     /// its curve cannot be evaluated (the moment then reports it).
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
-        Some(self.moment(args).map_or(f64::NAN, |(m, _, _)| m * args[1]))
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
+        self.moment(args).map_or(f64::NAN, |(m, _, _)| m * args[1])
     }
 
     /// `∫₀^θ M(x) dx` of the current curve (intact, or post-failure; none
@@ -291,15 +328,6 @@ impl Component for Weld {
                 integral(moment, 0.0, args[0], breaks)
             }
             None => Ok(0.0),
-        }
-    }
-
-    /// Smooth when it holds the segment of its curve (`stop_at_kinks`):
-    /// its failure and the kinks of its curve are then events.
-    fn smoothness(&self) -> Smoothness {
-        match self.stop_at_kinks {
-            true => Smoothness::Smooth,
-            false => Smoothness::Unknown,
         }
     }
 }

@@ -58,7 +58,7 @@ impl KinkedInputs {
             if let Some(kinks) = smoothness.kinks()
                 && !kinks.is_empty()
             {
-                let linear = matches!(smoothness, Smoothness::Linear(_));
+                let linear = matches!(smoothness, Smoothness::Linear { .. });
                 let kinks = kinks.to_vec();
                 kinked.push(Kinked {
                     input,

@@ -34,7 +34,7 @@ impl TimeStops {
     ) -> TimeStops {
         let mut points = Vec::new();
         for component in time_components(system, inputs, time_sites) {
-            points.extend_from_slice(inputs.components[component].component.breakpoints());
+            points.extend_from_slice(inputs.components[component].component.smoothness().stops());
         }
         points.sort_by(f64::total_cmp);
         points.dedup();

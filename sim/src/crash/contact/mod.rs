@@ -24,7 +24,7 @@
 //! The `NAME.power` column is the damping's power, `(c + k·D·δⁿ/v₀)·δ̇²`.
 //! The energy it reports as dissipated is the work it absorbs, `∫ P·δ̇ dt`,
 //! less what its spring still stores, `k·δ^(n+1)/(n+1)` in contact
-//! ([`Component::stored_energy`]): the damping's work, plus, for a contact
+//! ([`Dissipation::stored_energy`]): the damping's work, plus, for a contact
 //! that lets go with `δ > 0` (the linear laws), the spring energy it holds
 //! then, lost as the wall relaxes out of contact.
 //!
@@ -41,8 +41,9 @@ mod hunt_crossley;
 mod lankarani_nikravesh;
 mod linear;
 
-use super::{Binder, Column, Component, Contact, Event, Port, Section};
+use super::{Binder, Column, Component, Contact, Event, Port, Report, Section};
 use crate::crash::section::Ports;
+use crate::crash::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;
@@ -297,7 +298,55 @@ impl Component for ContactElement {
         })
     }
 
-    fn events(&self) -> &'static [Event] {
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+
+    fn events_mut(&mut self) -> Option<&mut dyn Events> {
+        Some(self)
+    }
+
+    fn states(&self) -> Option<&dyn States> {
+        None
+    }
+
+    fn states_mut(&mut self) -> Option<&mut dyn States> {
+        None
+    }
+
+    fn energy(&self) -> Option<&dyn Dissipation> {
+        Some(self)
+    }
+
+    fn columns(&self) -> &'static [Column] {
+        COLUMNS
+    }
+
+    /// The compressive force `P`, the penetration `δ` and the dissipated power.
+    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
+        out[0] = self.compressive(args).0;
+        out[1] = self.penetration(args).0;
+        out[2] = self.power(args);
+        Ok(())
+    }
+
+    /// Its force and deflection for the force–crush plot, and its contact.
+    fn report(&self) -> Report {
+        let contact = match (self.in_contact, self.separated_at) {
+            (true, _) => Contact::Touching,
+            (false, Some(t)) => Contact::EndedAt(t),
+            (false, None) => Contact::Never,
+        };
+        Report {
+            force_deflection: Some((0, 1)),
+            contact: Some(contact),
+            ..Report::default()
+        }
+    }
+}
+
+impl Events for ContactElement {
+    fn list(&self) -> &'static [Event] {
         EVENTS
     }
 
@@ -341,35 +390,13 @@ impl Component for ContactElement {
         self.in_contact = self.closing(delta, rate) >= 0.0;
         Ok(())
     }
+}
 
-    fn columns(&self) -> &'static [Column] {
-        COLUMNS
-    }
-
-    /// The compressive force `P`, the penetration `δ` and the dissipated power.
-    fn column_values(&self, args: &[f64], out: &mut [f64]) -> Result<(), OutOfRange> {
-        out[0] = self.compressive(args).0;
-        out[1] = self.penetration(args).0;
-        out[2] = self.power(args);
-        Ok(())
-    }
-
-    fn force_deflection(&self) -> Option<(usize, usize)> {
-        Some((0, 1))
-    }
-
-    fn contact(&self) -> Option<Contact> {
-        Some(match (self.in_contact, self.separated_at) {
-            (true, _) => Contact::Touching,
-            (false, Some(t)) => Contact::EndedAt(t),
-            (false, None) => Contact::Never,
-        })
-    }
-
+impl Dissipation for ContactElement {
     /// The power it absorbs, `P·δ̇`; 0 out of contact.
-    fn dissipated_power(&self, args: &[f64]) -> Option<f64> {
+    fn dissipated_power(&self, args: &[f64]) -> f64 {
         let (force, _, _) = self.compressive(args);
-        Some(force * self.penetration(args).1)
+        force * self.penetration(args).1
     }
 
     /// Its spring's energy `k·|δ|^(n+1)/(n+1)` in contact; 0 out of it.
