@@ -14,7 +14,6 @@
 //! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
 //! its envelopes; [`progress::Progress`] the host's view of it).
 
-
 pub mod error;
 pub mod eval;
 #[cfg(feature = "fit")]
