@@ -4,7 +4,7 @@
 //! generated code are reviewed like any other (a test fails when a file
 //! is stale, another checks that the `lagrangian!` macro expands to the
 //! same code). Equation documents and audits are beside, in
-//! `generated/<spec>/`.
+//! `generated/<spec>/` (the crate's lints are the workspace's).
 
 /// Generated from `specs/car_to_car.lpm`.
 #[rustfmt::skip] // formatted by prettyplease

@@ -58,8 +58,7 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
          //! generated code are reviewed like any other (a test fails when a file\n\
          //! is stale, another checks that the `lagrangian!` macro expands to the\n\
          //! same code). Equation documents and audits are beside, in\n\
-         //! `generated/<spec>/`.\n\n\
-         #![warn(missing_docs)]\n\n",
+         //! `generated/<spec>/` (the crate's lints are the workspace's).\n\n",
     );
     for (stem, relative) in &specs {
         let source = std::fs::read_to_string(root.join(relative))
