@@ -9,7 +9,7 @@
 //! compiler `lagrangian-core`), the model runtime (`lagrangian-model`: the
 //! trait, input functions, the interpreter) and, with the default feature
 //! `sim`, the crash-simulation library (`lagrangian-sim`: `scenario`,
-//! `simulate`, `ode`, `crash`, `pulse`, `report`) and its studies
+//! `simulate`, `ode`, `components`, `pulse`, `report`) and its studies
 //! (`lagrangian-studies`: `sweep`, `fit`, `plot`).
 //! With `default-features = false` it is the macro and the model runtime
 //! only, which depend on nalgebra and nothing heavy; `lagrangian::nalgebra`

@@ -7,8 +7,8 @@
 
 use crate::variables::Quantity;
 use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem, WithDimension};
-use lagrangian_sim::crash::BoundInputs;
-use lagrangian_sim::crash::constant::Constant;
+use lagrangian_sim::components::BoundInputs;
+use lagrangian_sim::components::constant::Constant;
 use lagrangian_sim::ode::tr_bdf2::AccelerationJacobians;
 use lagrangian_sim::ode::{self, EventAction, OdeProblem, OdeVector, PhaseState};
 use lagrangian_sim::scenario::{Columns, Scenario};

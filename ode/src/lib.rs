@@ -99,7 +99,7 @@ pub trait OdeProblem<Y: OdeVector> {
     /// problem whose `F` has kinks in time inside the step may evaluate a
     /// stand-in that is smooth over the step, equals `F` at both ends of it
     /// and has the same effect on the step's end to the method's order (the
-    /// crash problem's time tables: `lagrangian_sim::crash::StandIn`), so that
+    /// crash problem's time tables: `lagrangian_sim::components::StandIn`), so that
     /// the method's error estimate is not ruined by the kink. Ignored by
     /// default.
     fn step_window(&mut self, window: Option<(f64, f64)>) {

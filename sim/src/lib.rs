@@ -2,7 +2,7 @@
 //!
 //! * [`scenario`]: a TOML scenario — parameters, initial state, solver
 //!   settings, and the crash components that supply the model's inputs
-//!   ([`crash`]) — resolved against a model.
+//!   ([`components`]) — resolved against a model.
 //! * [`simulate`]: static equilibrium, integration with events ([`ode`]),
 //!   output samples and the summary metrics of a run; [`report`] writes them.
 //! * [`linearize`]: the state-space matrices `A`, `B` of a model about its
@@ -30,7 +30,10 @@
 
 #[cfg(test)]
 mod component_runs;
-pub mod crash;
+pub mod components;
+/// The former name of [`components`], kept for code that names it.
+#[doc(hidden)]
+pub use components as crash;
 pub mod curve;
 pub(crate) mod entry;
 pub mod failure;

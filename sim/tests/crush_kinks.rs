@@ -5,8 +5,8 @@
 //! cross them, with rejections. Either way the force is the curve's.
 
 use lagrangian_model::Interpreted;
-use lagrangian_sim::crash::Events;
-use lagrangian_sim::crash::crush::{CrushElement, LoadingCurve, Unloading};
+use lagrangian_sim::components::Events;
+use lagrangian_sim::components::crush::{CrushElement, LoadingCurve, Unloading};
 use lagrangian_sim::curve::{ForceCurve, Outside, SecantCurve};
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationResult, simulate};

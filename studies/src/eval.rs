@@ -19,7 +19,7 @@ use lagrangian_model::{
     ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, NoInputs,
     WithDimension,
 };
-use lagrangian_sim::crash::BoundInputs;
+use lagrangian_sim::components::BoundInputs;
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
 use lagrangian_sim::simulate::FailureKind;

@@ -1,4 +1,4 @@
-"""Reference for sim/src/crash/bouc_wen.rs: the area of a Bouc-Wen loop.
+"""Reference for sim/src/components/bouc_wen.rs: the area of a Bouc-Wen loop.
 
 A Bouc-Wen spring (F = a k u + (1 - a) Fy z, k = Fy/uy,
 uy z' = A u' - beta |u'| |z|^(n-1) z - gamma u' |z|^n) is driven through

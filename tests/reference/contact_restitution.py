@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Independent SciPy reference for the contact laws of
-``sim/src/crash/contact/``: the coefficient of restitution each law achieves
+``sim/src/components/contact/``: the coefficient of restitution each law achieves
 for a requested one.
 
 What it is
@@ -31,7 +31,7 @@ From the repository root, with scipy and numpy::
 
     python3 tests/reference/contact_restitution.py
 
-It prints the table the Rust test ``sim/src/crash/contact/tests.rs`` holds
+It prints the table the Rust test ``sim/src/components/contact/tests.rs`` holds
 (``REFERENCE``); the tests need no Python.
 """
 

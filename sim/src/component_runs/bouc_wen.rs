@@ -1,5 +1,5 @@
 //! Runs of the `bouc_wen` component through the simulator (moved out of
-//! `crash::bouc_wen`, which must not reach the run engine above it).
+//! `components::bouc_wen`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};

@@ -2,8 +2,8 @@
 //! for the one requested, against an independent SciPy integration; their
 //! power; their sections' checks.
 
-use crate::crash::contact::*;
-use crate::crash::{Component, Contact, Dissipation, Events, Port};
+use crate::components::contact::*;
+use crate::components::{Component, Contact, Dissipation, Events, Port};
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
 use lagrangian_model::Interpreted;

@@ -1,5 +1,5 @@
 //! Runs of the `crush::energy` component through the simulator (moved out of
-//! `crash::crush::energy`, which must not reach the run engine above it).
+//! `components::crush::energy`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};

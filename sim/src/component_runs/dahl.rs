@@ -1,5 +1,5 @@
 //! Runs of the `dahl` component through the simulator (moved out of
-//! `crash::dahl`, which must not reach the run engine above it).
+//! `components::dahl`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;

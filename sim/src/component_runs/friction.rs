@@ -1,7 +1,7 @@
 //! Runs of the `friction` component through the simulator (moved out of
-//! `crash::friction`, which must not reach the run engine above it).
+//! `components::friction`, which must not reach the run engine above it).
 
-use crate::crash::friction::*;
+use crate::components::friction::*;
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;
 use lagrangian_model::Interpreted;

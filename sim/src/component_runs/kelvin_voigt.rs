@@ -1,5 +1,5 @@
 //! Runs of the `kelvin_voigt` component through the simulator (moved out of
-//! `crash::kelvin_voigt`, which must not reach the run engine above it).
+//! `components::kelvin_voigt`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;

@@ -1,5 +1,5 @@
 //! Runs of the `lugre` component through the simulator (moved out of
-//! `crash::lugre`, which must not reach the run engine above it).
+//! `components::lugre`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};

@@ -1,5 +1,5 @@
 //! Runs of the `maxwell` component through the simulator (moved out of
-//! `crash::maxwell`, which must not reach the run engine above it).
+//! `components::maxwell`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;

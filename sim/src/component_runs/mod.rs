@@ -1,6 +1,6 @@
 //! The components' tests that run the simulator: each file takes one
 //! component (or family) through a scenario and a run. They live above both
-//! the components and the run engine, so that `crash` never reaches up.
+//! the components and the run engine, so that `components` never reaches up.
 
 mod bouc_wen;
 mod contact;

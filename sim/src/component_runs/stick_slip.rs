@@ -1,5 +1,5 @@
 //! Runs of the `stick_slip` component through the simulator (moved out of
-//! `crash::stick_slip`, which must not reach the run engine above it).
+//! `components::stick_slip`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;

@@ -1,5 +1,5 @@
 //! Runs of the `test_spring` components through the simulator (moved out of
-//! `crash::test_spring`, which must not reach the run engine above it).
+//! `components::test_spring`, which must not reach the run engine above it).
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;

@@ -1,8 +1,8 @@
 //! Runs of the `weld` component through the simulator (moved out of
-//! `crash::weld`, which must not reach the run engine above it).
+//! `components::weld`, which must not reach the run engine above it).
 
-use crate::crash::weld::*;
-use crate::crash::{Component, Events};
+use crate::components::weld::*;
+use crate::components::{Component, Events};
 use crate::curve::Curve;
 use crate::curve::Outside;
 
@@ -53,7 +53,7 @@ fn each_event_function_alone_is_the_one_of_all() {
     let angles = [-0.2, -0.05, 0.0, 0.01, 0.049, 0.06, 0.075, 0.2];
     let check = |weld: &Weld| {
         for angle in angles {
-            crate::crash::assert_event_value_is_event_values(weld, &[angle, 1.0]);
+            crate::components::assert_event_value_is_event_values(weld, &[angle, 1.0]);
         }
     };
     // Intact, intact on the next segment, failed, and without holding.

@@ -24,8 +24,8 @@ mod report;
 pub use modes::{Mode, ModeKind, modes};
 pub use report::{FIELDS, Field, json, markdown, projection_note};
 
-use crate::crash::constant::Constant;
-use crate::crash::{Binding, BoundInputs, NamedComponent, Port};
+use crate::components::constant::Constant;
+use crate::components::{Binding, BoundInputs, NamedComponent, Port};
 use crate::fault::Fault;
 use crate::ode::PhaseState;
 use crate::ode::tr_bdf2::AccelerationJacobians;

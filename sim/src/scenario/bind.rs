@@ -1,10 +1,10 @@
 //! Binding a model's input functions to the scenario's crash components:
 //! each `[components.NAME]` section builds its components into a
-//! [`Binder`] (see [`crate::crash`]), then `--set` constants override, then
+//! [`Binder`] (see [`crate::components`]), then `--set` constants override, then
 //! the components with events learn where their arguments are.
 
-use crate::crash::section::Binder;
-use crate::crash::{BoundInputs, ComponentSection};
+use crate::components::section::Binder;
+use crate::components::{BoundInputs, ComponentSection};
 use crate::model_names::ModelNames;
 use crate::table::Table;
 use std::collections::BTreeMap;

@@ -1,9 +1,9 @@
 //! The scenario file as written: the TOML sections and their defaults.
 //! Each kind of component has its own section, in its file of
-//! [`crate::crash`].
+//! [`crate::components`].
 
 use super::Choice;
-use crate::crash::ComponentSection;
+use crate::components::ComponentSection;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 

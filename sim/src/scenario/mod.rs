@@ -18,7 +18,7 @@
 //!
 //! Every name is checked against the spec, with a suggestion for typos.
 //!
-//! A `crush` component (see [`crate::crash::crush`]) gives its spring's
+//! A `crush` component (see [`crate::components::crush`]) gives its spring's
 //! loading curve in one of two forms, never both:
 //!
 //! ```toml
@@ -61,7 +61,7 @@ mod resolve;
 mod scale;
 mod signal;
 
-use crate::crash::BoundInputs;
+use crate::components::BoundInputs;
 use crate::failure::FailureKind;
 pub use crate::model_names::ModelNames;
 use crate::ode::{Method, Options};
@@ -345,7 +345,7 @@ fn culprit<'a>(
 /// Reads every data file a scenario's components name, and checks that
 /// what they read is there, before anything is bound.
 fn load_tables(
-    components: &BTreeMap<String, crate::crash::ComponentSection>,
+    components: &BTreeMap<String, crate::components::ComponentSection>,
     base: &Path,
 ) -> Result<BTreeMap<String, Table>, String> {
     let mut tables = BTreeMap::new();

@@ -6,7 +6,7 @@ use super::choice::parse_choice;
 use super::file::{ClassChoice, File, InitialSection, MetricsSection};
 use super::options::{SampleAccelerations, TimeKinks};
 use super::{Channel, Column, ModelNames, Role, Scenario, Signal};
-use crate::crash::ComponentSection;
+use crate::components::ComponentSection;
 use crate::entry::{finite, index_of, number, positive, unknown};
 use crate::ode::{Method, Options};
 use crate::pulse::cfc::{CLASS_BY_MEASUREMENT, DEFAULT_CLASS, STANDARD_CLASSES};

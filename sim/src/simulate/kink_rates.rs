@@ -22,7 +22,7 @@
 //! solved at every sample to the accuracy of the interpolation.
 
 use super::CrashProblem;
-use crate::crash::{BoundInputs, StandIn};
+use crate::components::{BoundInputs, StandIn};
 use crate::ode::{DenseStep, PhaseState};
 use lagrangian_model::LagrangianSystem;
 use nalgebra::SVector;

@@ -4,7 +4,7 @@
 //! By default (`"smoothed"`) every input of time with a kink inside the
 //! step an adaptive explicit method tries — a time table interpolated
 //! linearly — takes its smooth stand-in over that step
-//! ([`crate::crash::StandIn`]: the cubic with the table's values at both
+//! ([`crate::components::StandIn`]: the cubic with the table's values at both
 //! ends and its integral and first moment over the step), so that the
 //! step's error estimate measures the dynamics and not the kink. `"exact"`
 //! has the stages read the table as it is: a step across a kink is then
@@ -14,7 +14,7 @@
 //! ends at its kinks), and the monotone cubic has none but where its rows
 //! end; the output samples read every input as it is.
 
-use crate::crash::{BoundInputs, Port, Smoothness, StandIn};
+use crate::components::{BoundInputs, Port, Smoothness, StandIn};
 use lagrangian_model::{InputFunctions, LagrangianSystem};
 
 /// An input of time with kinks.

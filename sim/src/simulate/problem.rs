@@ -3,7 +3,7 @@
 use super::SolverError;
 use super::constrained::Workspace;
 use super::kinks::KinkedInputs;
-use crate::crash::{BoundInputs, StandIn};
+use crate::components::{BoundInputs, StandIn};
 use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, Internal, OdeProblem, PhaseState};

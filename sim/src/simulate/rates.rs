@@ -36,11 +36,11 @@
 //! alone, not on whether the samples are kept: a run's summary is the same
 //! either way.
 //!
-//! [`Component::smoothness`]: crate::crash::Component::smoothness
+//! [`Component::smoothness`]: crate::components::Component::smoothness
 
 use super::CrashProblem;
 use super::kink_rates::KinkCorrection;
-use crate::crash::{BoundInputs, Smoothness};
+use crate::components::{BoundInputs, Smoothness};
 use crate::ode::{DenseStep, Part, PhaseState};
 use crate::scenario::options::SampleAccelerations;
 use lagrangian_model::LagrangianSystem;

@@ -8,7 +8,7 @@
 //! argument equals the time at two probe times (at the zero state) is one —
 //! what a spec's `barrier(t)` compiles to.
 
-use crate::crash::BoundInputs;
+use crate::components::BoundInputs;
 use lagrangian_model::{LagrangianSystem, NoInputs};
 use nalgebra::SVector;
 

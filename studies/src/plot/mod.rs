@@ -33,7 +33,7 @@ pub struct PlotSetup {
     pub pitch: Vec<usize>,
     /// Each crush element's name and the columns of its force and its
     /// deflection in [`lagrangian_sim::simulate::Sample::components`]
-    /// ([`lagrangian_sim::crash::BoundInputs::force_deflection_columns`]).
+    /// ([`lagrangian_sim::components::BoundInputs::force_deflection_columns`]).
     pub force_deflection: Vec<(String, usize, usize)>,
     /// The unit `g` the deceleration and acceleration panels are in [m/s²]:
     /// standard gravity ([`lagrangian_sim::pulse::STANDARD_GRAVITY`]) as the summary's.

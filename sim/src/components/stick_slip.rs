@@ -23,8 +23,8 @@
 //! and `normal_force` `N` \[N\].
 
 use super::{Binder, Column, Component, Event, Port, Section};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::non_negative;
 use crate::ode::Direction;

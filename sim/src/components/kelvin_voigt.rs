@@ -9,8 +9,8 @@
 //! `stiffness` `k` [N/m] and `damping` `c` [N·s/m], both ≥ 0.
 
 use super::{Binder, Column, Component, Port, Section, Smoothness};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::non_negative;
 use serde::Deserialize;

@@ -25,8 +25,8 @@
 //! taking the sliding velocity alone, or the input's second argument.
 
 use super::{Binder, Column, Component, Port, Section};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{non_negative, positive};
 use serde::Deserialize;

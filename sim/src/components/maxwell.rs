@@ -19,8 +19,8 @@
 //! initial dashpot displacement `dashpot0` (0).
 
 use super::{Binder, Column, Component, Port, Section, Smoothness};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, finite_combination, positive};
 use serde::Deserialize;

@@ -21,8 +21,8 @@
 use super::held::{self, Crossed, Held};
 use super::integral::integral;
 use super::{Binder, Column, Component, Event, Port, Report, Section, Smoothness};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange};
 use crate::entry::{non_negative, positive};

@@ -16,7 +16,7 @@
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::crash::{Dissipation, Events, States};
+use crate::components::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
 use crate::table::Table;

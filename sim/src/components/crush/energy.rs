@@ -4,7 +4,7 @@
 //! The element reports the power it absorbs, `P·δ̇` (0 separated), and the
 //! elastic energy it stores in contact ([`CrushElement::stored`]); the
 //! energy reported as dissipated is the work absorbed less the elastic
-//! energy still stored (see [`crate::crash::Dissipation::stored_energy`]).
+//! energy still stored (see [`crate::components::Dissipation::stored_energy`]).
 //!
 //! * The damper stores nothing: it dissipates `D·δ̇ = c(|δ̇|)·δ̇²`.
 //! * With plastic unloading the spring stores, in compression, the energy
@@ -22,7 +22,7 @@
 //! area of the force–deflection loop.
 
 use super::{CrushElement, Phase, Unloading};
-use crate::crash::integral::integral;
+use crate::components::integral::integral;
 use crate::curve::OutOfRange;
 
 impl CrushElement {

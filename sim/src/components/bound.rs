@@ -723,7 +723,7 @@ fn same_bits(a: &[f64], b: &[f64]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::crash::crush::{CrushElement, LoadingCurve, Unloading};
+    use crate::components::crush::{CrushElement, LoadingCurve, Unloading};
     use crate::curve::SecantCurve;
 
     #[test]
@@ -764,7 +764,7 @@ mod tests {
     /// an error outside its rows under `error` (where it is not constant).
     #[test]
     fn a_column_of_zeros_answers_as_its_component_does() {
-        use crate::crash::tabulated::Tabulated;
+        use crate::components::tabulated::Tabulated;
         use crate::curve::{Curve, Outside};
         let column = |outside| {
             let curve = Curve::new(vec![0.0, 1.0], vec![0.0, 0.0], outside).unwrap();
@@ -784,7 +784,7 @@ mod tests {
         };
         let constant = NamedComponent {
             name: "push".into(),
-            component: Box::new(crate::crash::constant::Constant { value: 3.5 }),
+            component: Box::new(crate::components::constant::Constant { value: 3.5 }),
         };
         let inputs = BoundInputs::new(
             vec![
@@ -802,10 +802,10 @@ mod tests {
         assert_eq!(inputs.value(2, &[1.0, 2.0]), 3.5);
         // A constant given a new value (an FMU's input) answers it.
         let mut inputs = inputs;
-        let new_value = Box::new(crate::crash::constant::Constant { value: -1.0 });
+        let new_value = Box::new(crate::components::constant::Constant { value: -1.0 });
         assert!(inputs.replace(2, new_value));
         assert_eq!(inputs.value(2, &[1.0, 2.0]), -1.0);
-        assert!(!inputs.replace(3, Box::new(crate::crash::constant::Constant { value: 0.0 })));
+        assert!(!inputs.replace(3, Box::new(crate::components::constant::Constant { value: 0.0 })));
         assert_eq!(inputs.value(0, &[7.0]).to_bits(), 0.0f64.to_bits());
         assert!(inputs.value(0, &[f64::NAN]).is_nan());
         assert_eq!(inputs.take_failure(), None);
@@ -871,7 +871,7 @@ mod tests {
     /// A Bouc–Wen spring's state is named, with its value.
     #[test]
     fn a_state_rate_that_is_not_finite_names_the_state() {
-        use crate::crash::bouc_wen::BoucWen;
+        use crate::components::bouc_wen::BoucWen;
         let spring = BoucWen::new(1e3, 0.01, 0.1, 1.0, 0.5, 0.5, 2.0, 1e200);
         let named = NamedComponent {
             name: "hinge".into(),

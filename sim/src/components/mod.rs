@@ -64,7 +64,7 @@
 //!
 //! A new component touches one new file and two lines of this one:
 //!
-//! 1. Write `sim/src/crash/KIND.rs` with
+//! 1. Write `sim/src/components/KIND.rs` with
 //!    * the component: `#[derive(Clone, Debug)]`, `impl Component` with
 //!      `kind`, `arguments`, `value` and the five accessors `events`,
 //!      `events_mut`, `states`, `states_mut` and `energy`, each `None` or
@@ -108,8 +108,8 @@
 /// [`States::set_states`] takes the integrator's.
 macro_rules! one_state {
     ($state:ident: $quantity:literal [$unit:literal], from $initial:ident) => {
-        fn list(&self) -> &'static [$crate::crash::Column] {
-            const STATES: &[$crate::crash::Column] = &[$crate::crash::Column {
+        fn list(&self) -> &'static [$crate::components::Column] {
+            const STATES: &[$crate::components::Column] = &[$crate::components::Column {
                 quantity: $quantity,
                 unit: $unit,
             }];

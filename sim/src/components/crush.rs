@@ -45,8 +45,8 @@
 
 use super::held::{self, Crossed, Held};
 use super::{Binder, Column, Component, Contact, Event, Port, Report, Section, Smoothness};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use crate::entry::non_negative;
@@ -948,7 +948,7 @@ mod tests {
         let check = |e: &CrushElement| {
             for x in crushes {
                 for v in rates {
-                    crate::crash::assert_event_value_is_event_values(e, &[x, v]);
+                    crate::components::assert_event_value_is_event_values(e, &[x, v]);
                 }
             }
         };

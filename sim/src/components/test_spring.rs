@@ -6,8 +6,8 @@
 //! capability, [`Events`]: its other accessors say `None`.
 
 use super::{Binder, Component, Event, Port, Report, Section};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;

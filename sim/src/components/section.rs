@@ -1,7 +1,7 @@
 //! What a component's section builds into: the [`Binder`] that collects the
 //! scenario's components and binds the model's input functions to their
 //! ports, and the [`Ports`] a section names. Each `[components.NAME]`
-//! section's `build` (see [`crate::crash`]) reaches only this module and
+//! section's `build` (see [`crate::components`]) reaches only this module and
 //! [`crate::entry`], never the scenario above.
 
 use super::constant::Constant;
@@ -74,7 +74,7 @@ impl<'a> Binder<'a> {
     }
 
     /// The data file that section `[components.{name}]` loaded
-    /// ([`crate::crash::Section::load_table`]).
+    /// ([`crate::components::Section::load_table`]).
     pub(crate) fn table(&self, name: &str) -> Result<&'a Table, String> {
         let tables: &'a BTreeMap<String, Table> = self.tables;
         tables

@@ -42,8 +42,8 @@ mod lankarani_nikravesh;
 mod linear;
 
 use super::{Binder, Column, Component, Contact, Event, Port, Report, Section};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;

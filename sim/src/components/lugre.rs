@@ -22,8 +22,8 @@
 //! `sigma1` (0), `sigma2` (0) and the initial `z0` (0).
 
 use super::{Binder, Column, Component, Port, Section};
-use crate::crash::section::Ports;
-use crate::crash::{Dissipation, Events, States};
+use crate::components::section::Ports;
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, non_negative, positive};
 use serde::Deserialize;

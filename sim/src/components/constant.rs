@@ -5,7 +5,7 @@
 //! INPUT=VALUE` adds one too.
 
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::crash::{Dissipation, Events, States};
+use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::finite;
 use serde::Deserialize;
