@@ -805,7 +805,10 @@ mod tests {
         let new_value = Box::new(crate::components::constant::Constant { value: -1.0 });
         assert!(inputs.replace(2, new_value));
         assert_eq!(inputs.value(2, &[1.0, 2.0]), -1.0);
-        assert!(!inputs.replace(3, Box::new(crate::components::constant::Constant { value: 0.0 })));
+        assert!(!inputs.replace(
+            3,
+            Box::new(crate::components::constant::Constant { value: 0.0 })
+        ));
         assert_eq!(inputs.value(0, &[7.0]).to_bits(), 0.0f64.to_bits());
         assert!(inputs.value(0, &[f64::NAN]).is_nan());
         assert_eq!(inputs.take_failure(), None);
