@@ -13,7 +13,9 @@ pub mod generate;
 pub mod linearize;
 pub mod metrics;
 pub mod simulate;
-pub mod status;
 mod study_error;
 pub mod sweep;
 pub mod warnings;
+
+/// The exit statuses, shared with the Python package (`lagrangian-studies`).
+pub use lagrangian_studies::status;

@@ -2,6 +2,7 @@
 //! each host turns into its own (`lpm`: a message and an exit status, one
 //! conversion; Python: an exception).
 
+use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
 use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
@@ -160,6 +161,23 @@ impl StudyError {
         };
         *message = format!("{}: {why}", message.trim_end());
         self
+    }
+
+    /// The exit status of the error's kind (`lpm`'s; the Python package
+    /// raises the exception class of its code).
+    pub fn status(&self) -> ExitStatus {
+        match self {
+            StudyError::Spec(_) => ExitStatus::Spec,
+            StudyError::Io(_) => ExitStatus::Io,
+            StudyError::Scenario(e) => e.kind.failure().map_or(ExitStatus::Io, ExitStatus::Failed),
+            StudyError::DataFile(_) => ExitStatus::Failed(FailureKind::DataFile),
+            StudyError::Evaluation(_) => ExitStatus::Evaluation,
+            StudyError::Run { kind, .. } => ExitStatus::Failed(*kind),
+            StudyError::EveryRunFailed(_) => ExitStatus::EveryRunFailed,
+            StudyError::Interrupted { .. } => ExitStatus::Interrupted,
+            StudyError::Fit(_) => ExitStatus::FitFailed,
+            StudyError::BadRequest(_) => ExitStatus::Usage,
+        }
     }
 
     /// The lines a verbose host prints after the message.
