@@ -56,6 +56,10 @@ pub enum StudyError {
     /// A fit that failed.
     #[error("{0}")]
     Fit(String),
+    /// Code generated from a spec (a compiled FMU binary) that cargo did
+    /// not build: the spec's status, printed after `error: `.
+    #[error("{0}")]
+    Build(String),
     /// A request that does not make sense (what `lpm` calls a bad command
     /// line).
     #[error("{0}")]
@@ -157,6 +161,7 @@ impl StudyError {
             | StudyError::Evaluation(m)
             | StudyError::EveryRunFailed(m)
             | StudyError::Fit(m)
+            | StudyError::Build(m)
             | StudyError::BadRequest(m) => m,
         };
         *message = format!("{}: {why}", message.trim_end());
@@ -176,6 +181,7 @@ impl StudyError {
             StudyError::EveryRunFailed(_) => ExitStatus::EveryRunFailed,
             StudyError::Interrupted { .. } => ExitStatus::Interrupted,
             StudyError::Fit(_) => ExitStatus::FitFailed,
+            StudyError::Build(_) => ExitStatus::Spec,
             StudyError::BadRequest(_) => ExitStatus::Usage,
         }
     }
