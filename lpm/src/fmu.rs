@@ -60,7 +60,3 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         exported.platform
     )))
 }
-
-/// The exporter's entry points the Python package calls (until it depends
-/// on the FMU crate itself).
-pub use lagrangian_fmi::exporter::{export, runtime_file};
