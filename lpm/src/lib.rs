@@ -1,6 +1,7 @@
 //! The `lpm` command line as a library: each subcommand's options and
-//! `run`, the exit statuses ([`status::ExitStatus`]) and failures, shared by
-//! the `lpm` binary and the Python package.
+//! `run`, its failures, and the exit statuses ([`status::ExitStatus`], the
+//! studies' table, which the Python package shares without depending on
+//! `lpm`), for the `lpm` binary and its tests.
 
 pub mod audit;
 pub mod chain;

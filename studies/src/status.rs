@@ -2,7 +2,7 @@
 //! simulation library (`lagrangian_sim::failure`, which holds their codes
 //! and meanings). Here, below every host, so that `lpm` and the Python
 //! package (which names its exception classes after them) share one table
-//! ([`crate::error::StudyError::status`] gives a service error's).
+//! (`StudyError::status` gives a service error's).
 //! `lpm --help` prints the table from [`ExitStatus::ALL`], and a test holds
 //! the book's table, docs/book/reference/errors.md, to it.
 
