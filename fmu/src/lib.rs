@@ -24,11 +24,16 @@
 //! that no panic reaches the host, no freed or foreign handle is read and
 //! no call runs out of order; and [`export_fmi2!`], which exports them
 //! under their C names from an FMU binary ([`export`]).
+//!
+//! With the feature `export`, the exporter too (`exporter`): the FMU of a
+//! spec and scenario, written by `lpm export-fmu` and the Python package.
 
 pub mod common;
 pub mod component;
 pub mod cs;
 pub mod export;
+#[cfg(feature = "export")]
+pub mod exporter;
 pub mod ffi;
 pub mod guard;
 pub mod instance;

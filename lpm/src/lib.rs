@@ -1,6 +1,7 @@
 //! The `lpm` command line as a library: each subcommand's options and
-//! `run`, the exit statuses ([`status::ExitStatus`]) and failures, shared by
-//! the `lpm` binary and the Python package.
+//! `run`, its failures, and the exit statuses ([`status::ExitStatus`], the
+//! studies' table, which the Python package shares without depending on
+//! `lpm`), for the `lpm` binary and its tests.
 
 pub mod audit;
 pub mod chain;
@@ -13,7 +14,9 @@ pub mod generate;
 pub mod linearize;
 pub mod metrics;
 pub mod simulate;
-pub mod status;
 mod study_error;
 pub mod sweep;
 pub mod warnings;
+
+/// The exit statuses, shared with the Python package (`lagrangian-studies`).
+pub use lagrangian_studies::status;

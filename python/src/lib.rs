@@ -9,9 +9,9 @@
 use lagrangian_core::Compiled;
 use lagrangian_core::emit::{Notation, render_equations, render_markdown};
 use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
+use lagrangian_studies::error::StudyError;
 use lagrangian_studies::mass::State;
-use lpm::failure::Failure;
-use lpm::status::ExitStatus;
+use lagrangian_studies::status::ExitStatus;
 use numpy::{
     IntoPyArray, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
     PyUntypedArrayMethods,
@@ -29,20 +29,21 @@ mod ensembles;
 /// The exception class of each exit status, registered by the Python layer.
 static ERRORS: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
 
-/// The exception of `failure`'s exit status, with its message.
-fn raise(failure: impl Into<Failure>) -> PyErr {
-    let failure: Failure = failure.into();
+/// The exception of `error`'s exit status, with its message.
+fn raise(error: impl Into<StudyError>) -> PyErr {
+    let error: StudyError = error.into();
+    let message = error.to_string().trim_end().to_string();
     Python::attach(|py| {
-        let code = failure.status.code();
+        let code = error.status().code();
         let class = ERRORS
             .get(py)
             .and_then(|errors| errors.bind(py).get_item(code).ok().flatten());
         match class {
-            Some(class) => match class.call1((failure.message().to_string(), code)) {
+            Some(class) => match class.call1((message, code)) {
                 Ok(error) => PyErr::from_value(error),
                 Err(e) => e,
             },
-            None => PyRuntimeError::new_err(failure.message().to_string()),
+            None => PyRuntimeError::new_err(message),
         }
     })
 }
@@ -80,9 +81,8 @@ struct NativeModel {
 }
 
 /// A spec's text compiled, its errors rendered against `file`.
-fn compile(source: &str, file: &str) -> Result<Compiled, Failure> {
-    Compiled::from_source(source)
-        .map_err(|e| Failure::rendered(ExitStatus::Spec, e.render(file, source)))
+fn compile(source: &str, file: &str) -> Result<Compiled, StudyError> {
+    Compiled::from_source(source).map_err(|e| StudyError::Spec(e.render(file, source)))
 }
 
 /// The rows of a batch of states: `t` (k), `q` and `qd` (k × n).
@@ -115,7 +115,7 @@ impl NativeModel {
     fn inputs(
         &self,
         values: HashMap<String, f64>,
-    ) -> Result<(InterpretedModel, Box<dyn InputFunctions>), Failure> {
+    ) -> Result<(InterpretedModel, Box<dyn InputFunctions>), StudyError> {
         let settings: Vec<String> = (values.iter())
             .map(|(name, value)| format!("{name}={value:e}"))
             .collect();
@@ -135,7 +135,11 @@ impl NativeModel {
             &PyReadonlyArray2<'_, f64>,
         ),
         inputs: HashMap<String, f64>,
-        mut each: impl FnMut(&InterpretedModel, &dyn InputFunctions, State) -> Result<Vec<f64>, Failure>,
+        mut each: impl FnMut(
+            &InterpretedModel,
+            &dyn InputFunctions,
+            State,
+        ) -> Result<Vec<f64>, StudyError>,
     ) -> PyResult<Vec<f64>> {
         let batch = self.batch(t, q, qd).map_err(raise)?;
         let (model, inputs) = self.inputs(inputs).map_err(raise)?;
@@ -152,13 +156,13 @@ impl NativeModel {
         t: &'a PyReadonlyArray1<'_, f64>,
         q: &'a PyReadonlyArray2<'_, f64>,
         qd: &'a PyReadonlyArray2<'_, f64>,
-    ) -> Result<Batch<'a>, Failure> {
+    ) -> Result<Batch<'a>, StudyError> {
         let model = self.model();
         let n = model.dimension();
         let shape = |a: &PyReadonlyArray2<'_, f64>| a.shape().to_vec();
         let k = t.len();
         if shape(q) != [k, n] || shape(qd) != [k, n] {
-            return Err(Failure::usage(format!(
+            return Err(StudyError::usage(format!(
                 "the states need {n} coordinates ({}) and {n} velocities each; got q of shape {:?} and qd of shape {:?} for {k} times",
                 model.coordinates().join(", "),
                 shape(q),
@@ -167,11 +171,11 @@ impl NativeModel {
         }
         let slice = |a: &'a PyReadonlyArray2<'_, f64>| {
             a.as_slice()
-                .map_err(|_| Failure::usage("states must be C-contiguous float64 arrays"))
+                .map_err(|_| StudyError::usage("states must be C-contiguous float64 arrays"))
         };
         Ok(Batch {
             t: t.as_slice()
-                .map_err(|_| Failure::usage("times must be a contiguous float64 array"))?,
+                .map_err(|_| StudyError::usage("times must be a contiguous float64 array"))?,
             q: slice(q)?,
             qd: slice(qd)?,
             n,
@@ -234,7 +238,8 @@ impl NativeModel {
 
     /// Sets a parameter by name.
     fn set_parameter(&mut self, name: &str, value: f64) -> PyResult<()> {
-        (self.model().set_parameter(name, value)).map_err(|e| raise(Failure::usage(e.to_string())))
+        (self.model().set_parameter(name, value))
+            .map_err(|e| raise(StudyError::usage(e.to_string())))
     }
 
     /// `M` (k × n × n) and `f` (k × n) at each row of the batch.
@@ -303,7 +308,7 @@ impl NativeModel {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = self.each_row((&t, &q, &qd), inputs, |model, inputs, (t, q, qd)| {
             let energies = (model.evaluate_energies(t, q, qd, inputs))
-                .map_err(|e| Failure::evaluation(e.to_string()))?;
+                .map_err(|e| StudyError::evaluation(e.to_string()))?;
             Ok(energies.values().to_vec())
         })?;
         let k = rows.len() / Energies::FIELDS.len();
@@ -318,7 +323,7 @@ impl NativeModel {
             "text" => Ok(render_equations(&mut compiled, Notation::Text)),
             "latex" => Ok(render_equations(&mut compiled, Notation::Latex)),
             "markdown" => Ok(render_markdown(&mut compiled, &self.file)),
-            other => Err(raise(Failure::usage(format!(
+            other => Err(raise(StudyError::usage(format!(
                 "format `{other}`: choose text, latex or markdown"
             )))),
         }
@@ -362,7 +367,9 @@ fn export_fmu(
     runtime: Option<PathBuf>,
 ) -> PyResult<u64> {
     let exported = py
-        .detach(|| lpm::fmu::export(&spec, scenario.as_deref(), &out, runtime.as_deref()))
+        .detach(|| {
+            lagrangian_fmi::exporter::export(&spec, scenario.as_deref(), &out, runtime.as_deref())
+        })
         .map_err(raise)?;
     Ok(exported.bytes)
 }
@@ -371,7 +378,7 @@ fn export_fmu(
 /// as the package ships it.
 #[pyfunction]
 fn fmu_runtime_file() -> String {
-    lpm::fmu::runtime_file()
+    lagrangian_fmi::exporter::runtime_file()
 }
 
 /// The module `lagrangian._lagrangian`.

@@ -2,6 +2,7 @@
 //! each host turns into its own (`lpm`: a message and an exit status, one
 //! conversion; Python: an exception).
 
+use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
 use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
@@ -55,6 +56,10 @@ pub enum StudyError {
     /// A fit that failed.
     #[error("{0}")]
     Fit(String),
+    /// Code generated from a spec (a compiled FMU binary) that cargo did
+    /// not build: the spec's status, printed after `error: `.
+    #[error("{0}")]
+    Build(String),
     /// A request that does not make sense (what `lpm` calls a bad command
     /// line).
     #[error("{0}")]
@@ -156,10 +161,29 @@ impl StudyError {
             | StudyError::Evaluation(m)
             | StudyError::EveryRunFailed(m)
             | StudyError::Fit(m)
+            | StudyError::Build(m)
             | StudyError::BadRequest(m) => m,
         };
         *message = format!("{}: {why}", message.trim_end());
         self
+    }
+
+    /// The exit status of the error's kind (`lpm`'s; the Python package
+    /// raises the exception class of its code).
+    pub fn status(&self) -> ExitStatus {
+        match self {
+            StudyError::Spec(_) => ExitStatus::Spec,
+            StudyError::Io(_) => ExitStatus::Io,
+            StudyError::Scenario(e) => e.kind.failure().map_or(ExitStatus::Io, ExitStatus::Failed),
+            StudyError::DataFile(_) => ExitStatus::Failed(FailureKind::DataFile),
+            StudyError::Evaluation(_) => ExitStatus::Evaluation,
+            StudyError::Run { kind, .. } => ExitStatus::Failed(*kind),
+            StudyError::EveryRunFailed(_) => ExitStatus::EveryRunFailed,
+            StudyError::Interrupted { .. } => ExitStatus::Interrupted,
+            StudyError::Fit(_) => ExitStatus::FitFailed,
+            StudyError::Build(_) => ExitStatus::Spec,
+            StudyError::BadRequest(_) => ExitStatus::Usage,
+        }
     }
 
     /// The lines a verbose host prints after the message.

@@ -12,7 +12,8 @@
 //! [`spec`] (compile a spec, find its scenario), [`simulate`] (one run and
 //! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
 //! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
-//! its envelopes; [`progress::Progress`] the host's view of it).
+//! its envelopes; [`progress::Progress`] the host's view of it), and the
+//! exit statuses a host ends with ([`status::ExitStatus`]).
 
 pub mod error;
 pub mod eval;
@@ -27,6 +28,7 @@ pub mod progress;
 #[cfg(feature = "plot")]
 pub mod simulate;
 pub mod spec;
+pub mod status;
 #[cfg(feature = "sweep")]
 pub mod sweep;
 #[cfg(all(feature = "sweep", feature = "plot"))]

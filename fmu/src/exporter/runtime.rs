@@ -1,12 +1,12 @@
 //! The check of an FMU binary before it is packed: a shared library (ELF,
 //! Mach-O or PE, of the kind a host loads) for the platform the FMU's
 //! `binaries/<platform>` folder names, whose dynamic symbol table exports
-//! every FMI 2.0 function ([`lagrangian_fmi::export::FMI2_FUNCTIONS`]). So
+//! every FMI 2.0 function ([`crate::export::FMI2_FUNCTIONS`]). So
 //! `--runtime /etc/passwd`, a library of another platform, or the Python
 //! extension (which exports none) is refused before anything is written.
 
-use crate::failure::Failure;
-use lagrangian_fmi::export::FMI2_FUNCTIONS;
+use crate::export::FMI2_FUNCTIONS;
+use lagrangian_studies::error::StudyError;
 use object::{Architecture, BinaryFormat, Object, ObjectKind};
 use std::path::Path;
 
@@ -28,9 +28,9 @@ fn expected() -> (BinaryFormat, Architecture) {
 
 /// `Ok` if `bytes` (the file `path`, named by `whence`: `--runtime`, …) is
 /// a shared library of this platform that exports every FMI 2.0 function.
-pub fn check(path: &Path, whence: &str, bytes: &[u8]) -> Result<(), Failure> {
+pub fn check(path: &Path, whence: &str, bytes: &[u8]) -> Result<(), StudyError> {
     let refuse = |why: String| {
-        Failure::usage(format!(
+        StudyError::usage(format!(
             "the FMU runtime {} ({whence}) {why}: name the lagrangian-fmu library ({}, built by \
              `cargo build -p lagrangian-fmu`) with --runtime PATH or {}",
             path.display(),
@@ -127,7 +127,7 @@ mod tests {
         let Err(failure) = check(Path::new("x.so"), "--runtime", bytes) else {
             panic!("accepted");
         };
-        failure.message().to_string()
+        failure.to_string()
     }
 
     #[test]

@@ -1,7 +1,10 @@
 //! The exit statuses of `lpm`: its own, and one per failure kind of the
 //! simulation library (`lagrangian_sim::failure`, which holds their codes
-//! and meanings). `lpm --help` prints the table from [`ExitStatus::ALL`],
-//! and a test holds the book's table, docs/book/reference/errors.md, to it.
+//! and meanings). Here, below every host, so that `lpm` and the Python
+//! package (which names its exception classes after them) share one table
+//! (`StudyError::status` gives a service error's).
+//! `lpm --help` prints the table from [`ExitStatus::ALL`], and a test holds
+//! the book's table, docs/book/reference/errors.md, to it.
 
 use lagrangian_sim::simulate::FailureKind;
 

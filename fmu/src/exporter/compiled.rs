@@ -5,11 +5,10 @@
 //! by cargo against this source tree's crates, and its library packed as
 //! the FMU's binary; the scenario is still read from the resources.
 
-use crate::failure::Failure;
-use crate::status::ExitStatus;
+use crate::resources::guid;
 use lagrangian_core::Compiled;
 use lagrangian_core::emit::emit_file;
-use lagrangian_fmi::resources::guid;
+use lagrangian_studies::error::StudyError;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -28,15 +27,11 @@ pub struct Build {
 
 /// Builds the FMU binary of the spec `text` (from `file`), compiled; returns
 /// the path of the library cargo wrote.
-pub fn build(file: &Path, text: &str, options: &Build) -> Result<PathBuf, Failure> {
+pub fn build(file: &Path, text: &str, options: &Build) -> Result<PathBuf, StudyError> {
     let source = source_tree(options.source.as_deref())?;
     let target = target_directory(&source);
-    let compiled = Compiled::from_source(text).map_err(|e| {
-        Failure::rendered(
-            ExitStatus::Spec,
-            e.render(&file.display().to_string(), text),
-        )
-    })?;
+    let compiled = Compiled::from_source(text)
+        .map_err(|e| StudyError::Spec(e.render(&file.display().to_string(), text)))?;
     let name = crate_name(&compiled.model.name, text);
     let dir = target.join("lpm-export-fmu").join(&name);
     write_crate(&dir, &name, file, compiled, &source)?;
@@ -45,7 +40,7 @@ pub fn build(file: &Path, text: &str, options: &Build) -> Result<PathBuf, Failur
 
 /// The source tree: `given`, else `$LPM_SOURCE`, else the workspace lpm
 /// was built in; it must hold the FMU and model crates.
-fn source_tree(given: Option<&Path>) -> Result<PathBuf, Failure> {
+fn source_tree(given: Option<&Path>) -> Result<PathBuf, StudyError> {
     let built_in = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let (dir, whence) = match (given, std::env::var_os(SOURCE_VARIABLE)) {
         (Some(dir), _) => (dir.to_path_buf(), "--source"),
@@ -58,7 +53,7 @@ fn source_tree(given: Option<&Path>) -> Result<PathBuf, Failure> {
         // path (`tree/fmu`, not `tree/lpm/../fmu`).
         return Ok(dir.canonicalize().unwrap_or(dir));
     }
-    Err(Failure::usage(format!(
+    Err(StudyError::usage(format!(
         "--compiled builds against the lagrangian source tree, and {} ({whence}) is not one \
          (no fmu/Cargo.toml and model/Cargo.toml): name it with --source DIR or {SOURCE_VARIABLE}",
         dir.display()
@@ -102,7 +97,7 @@ fn write_crate(
     file: &Path,
     compiled: Compiled,
     source: &Path,
-) -> Result<(), Failure> {
+) -> Result<(), StudyError> {
     let (model, n) = (
         compiled.model.name.clone(),
         compiled.model.coordinates.len(),
@@ -151,19 +146,24 @@ fn library(model: &str, n: usize, file: &Path) -> String {
     )
 }
 
-fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), StudyError> {
     if std::fs::read(path).is_ok_and(|old| old == bytes) {
         return Ok(());
     }
     let parent = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(parent)
         .and_then(|()| std::fs::write(path, bytes))
-        .map_err(|e| Failure::io(format!("cannot write {}: {e}", path.display())))
+        .map_err(|e| StudyError::io(format!("cannot write {}: {e}", path.display())))
 }
 
 /// Runs `cargo build` on the crate in `dir` and returns the library it
 /// built; cargo's messages go to the standard error as it runs.
-fn cargo_build(dir: &Path, target: &Path, profile: &str, name: &str) -> Result<PathBuf, Failure> {
+fn cargo_build(
+    dir: &Path,
+    target: &Path,
+    profile: &str,
+    name: &str,
+) -> Result<PathBuf, StudyError> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let manifest = dir.join("Cargo.toml");
     let output = Command::new(&cargo)
@@ -177,24 +177,21 @@ fn cargo_build(dir: &Path, target: &Path, profile: &str, name: &str) -> Result<P
         .stderr(Stdio::inherit())
         .output()
         .map_err(|e| {
-            Failure::usage(format!(
+            StudyError::usage(format!(
                 "--compiled runs cargo, and `{}` cannot be run ({e}): install Rust \
                  (https://rustup.rs) or name cargo with $CARGO",
                 cargo.to_string_lossy()
             ))
         })?;
     if !output.status.success() {
-        return Err(Failure::new(
-            ExitStatus::Spec,
-            format!(
-                "cargo build of the compiled FMU binary ({}) failed ({}); its messages are above",
-                manifest.display(),
-                output.status
-            ),
-        ));
+        return Err(StudyError::Build(format!(
+            "cargo build of the compiled FMU binary ({}) failed ({}); its messages are above",
+            manifest.display(),
+            output.status
+        )));
     }
     built_library(&output.stdout, name).ok_or_else(|| {
-        Failure::io(format!(
+        StudyError::io(format!(
             "cargo built {} but named no library of it",
             manifest.display()
         ))
@@ -220,6 +217,7 @@ fn built_library(messages: &[u8], name: &str) -> Option<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use lagrangian_studies::status::ExitStatus;
 
     #[test]
     fn the_crate_is_named_for_the_model_and_the_spec() {
@@ -249,8 +247,8 @@ mod tests {
         let error = source_tree(Some(Path::new("/nonexistent/tree")))
             .err()
             .unwrap();
-        let message = error.message();
-        assert_eq!(error.status, ExitStatus::Usage);
+        let message = error.to_string();
+        assert_eq!(error.status(), ExitStatus::Usage);
         assert!(message.contains("(--source) is not one"), "{message}");
         assert!(message.contains("--source DIR or LPM_SOURCE"), "{message}");
     }

@@ -1,10 +1,10 @@
 //! modelDescription.xml (FMI 2.0) of an exported model: both interfaces,
-//! the units, the variables of [`lagrangian_fmi::variables`] with their
+//! the units, the variables of [`crate::variables`] with their
 //! value references, and the model structure FMPy's validator checks
 //! (every output in `<Outputs>`, the state derivatives in state order in
 //! `<Derivatives>`, the calculated unknowns in `<InitialUnknowns>`).
 
-use lagrangian_fmi::variables::{Causality, Variable, Variables};
+use crate::variables::{Causality, Variable, Variables};
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
