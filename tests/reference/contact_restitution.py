@@ -31,7 +31,7 @@ From the repository root, with scipy and numpy::
 
     python3 tests/reference/contact_restitution.py
 
-It prints the table the Rust test ``sim/src/components/contact/tests.rs`` holds
+It prints the table the Rust test ``sim/src/component_runs/contact.rs`` holds
 (``REFERENCE``); the tests need no Python.
 """
 
