@@ -5,7 +5,6 @@
 //! INPUT=VALUE` adds one too.
 
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::finite;
 use serde::Deserialize;
@@ -44,25 +43,7 @@ impl Component for Constant {
         self.value(port, &[]).ok()
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        None
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        None
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        None
-    }
+    capabilities!(events: no, states: no, energy: no);
 
     fn smoothness(&self) -> Smoothness {
         Smoothness::Smooth

@@ -46,7 +46,7 @@
 use super::held::{self, Crossed, Held};
 use super::{Binder, Column, Component, Contact, Event, Port, Report, Section, Smoothness};
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
+use crate::components::{Dissipation, Events};
 use crate::curve::outside;
 use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use crate::entry::non_negative;
@@ -398,25 +398,7 @@ impl Component for CrushElement {
         }
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        Some(self)
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        Some(self)
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: yes, states: no, energy: yes);
 
     fn columns(&self) -> &'static [Column] {
         COLUMNS

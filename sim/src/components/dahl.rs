@@ -22,7 +22,7 @@
 
 use super::{Binder, Column, Component, Port, Section};
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
+use crate::components::{Dissipation, States};
 use crate::curve::OutOfRange;
 use crate::entry::{finite, finite_combination, positive};
 use serde::Deserialize;
@@ -83,25 +83,7 @@ impl Component for Dahl {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        None
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        None
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        Some(self)
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        Some(self)
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: no, states: yes, energy: yes);
 
     fn columns(&self) -> &'static [Column] {
         COLUMNS

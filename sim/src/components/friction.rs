@@ -25,8 +25,8 @@
 //! taking the sliding velocity alone, or the input's second argument.
 
 use super::{Binder, Column, Component, Port, Section};
+use crate::components::Dissipation;
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::{non_negative, positive};
 use serde::Deserialize;
@@ -122,25 +122,7 @@ impl Component for Friction {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        None
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        None
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: no, states: no, energy: yes);
 
     fn columns(&self) -> &'static [Column] {
         COLUMNS

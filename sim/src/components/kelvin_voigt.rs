@@ -9,8 +9,8 @@
 //! `stiffness` `k` [N/m] and `damping` `c` [N·s/m], both ≥ 0.
 
 use super::{Binder, Column, Component, Port, Section, Smoothness};
+use crate::components::Dissipation;
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::non_negative;
 use serde::Deserialize;
@@ -65,25 +65,7 @@ impl Component for KelvinVoigt {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        None
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        None
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: no, states: no, energy: yes);
 
     fn columns(&self) -> &'static [Column] {
         COLUMNS

@@ -68,7 +68,9 @@
 //!    * the component: `#[derive(Clone, Debug)]`, `impl Component` with
 //!      `kind`, `arguments`, `value` and the five accessors `events`,
 //!      `events_mut`, `states`, `states_mut` and `energy`, each `None` or
-//!      `Some(self)`; `constant`, `columns`, `column_values`, `smoothness`
+//!      `Some(self)`, written as one line
+//!      `capabilities!(events: yes, states: no, energy: no);`; `constant`,
+//!      `columns`, `column_values`, `smoothness`
 //!      and `report` have defaults. One with columns lists them in a
 //!      `const COLUMNS: &[Column]` and overrides `columns` and
 //!      `column_values`;
@@ -99,6 +101,65 @@
 //! events, the summary and the plots reach every component through
 //! [`Component`], its capabilities and `Section`. `test_spring.rs`, registered for tests only, is a complete
 //! example with an event that fires in a simulation.
+
+/// A component's capability accessors, written in its `impl Component`
+/// (`capabilities!(events: yes, states: no, energy: yes);`): `yes` returns the
+/// component itself as its [`Events`], [`States`] or [`Dissipation`] (which it
+/// then implements), `no` returns `None`. One line keeps each choice visible
+/// and the shared and mutable accessors of a capability in step.
+macro_rules! capabilities {
+    (events: $events:ident, states: $states:ident, energy: $energy:ident) => {
+        capabilities!(@events $events);
+        capabilities!(@states $states);
+        capabilities!(@energy $energy);
+    };
+    (@events yes) => {
+        fn events(&self) -> Option<&dyn $crate::components::Events> {
+            Some(self)
+        }
+
+        fn events_mut(&mut self) -> Option<&mut dyn $crate::components::Events> {
+            Some(self)
+        }
+    };
+    (@events no) => {
+        fn events(&self) -> Option<&dyn $crate::components::Events> {
+            None
+        }
+
+        fn events_mut(&mut self) -> Option<&mut dyn $crate::components::Events> {
+            None
+        }
+    };
+    (@states yes) => {
+        fn states(&self) -> Option<&dyn $crate::components::States> {
+            Some(self)
+        }
+
+        fn states_mut(&mut self) -> Option<&mut dyn $crate::components::States> {
+            Some(self)
+        }
+    };
+    (@states no) => {
+        fn states(&self) -> Option<&dyn $crate::components::States> {
+            None
+        }
+
+        fn states_mut(&mut self) -> Option<&mut dyn $crate::components::States> {
+            None
+        }
+    };
+    (@energy yes) => {
+        fn energy(&self) -> Option<&dyn $crate::components::Dissipation> {
+            Some(self)
+        }
+    };
+    (@energy no) => {
+        fn energy(&self) -> Option<&dyn $crate::components::Dissipation> {
+            None
+        }
+    };
+}
 
 /// The plumbing of a component with one internal state, written in its
 /// `impl States` (`one_state!(z: "z" ["m"], from z0);`): the state's column

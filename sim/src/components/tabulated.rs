@@ -16,7 +16,6 @@
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::{Binder, Component, Port, Section, Smoothness};
-use crate::components::{Dissipation, Events, States};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
 use crate::table::Table;
@@ -61,25 +60,7 @@ impl Component for Tabulated {
         }
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        None
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        None
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        None
-    }
+    capabilities!(events: no, states: no, energy: no);
 
     /// Linear between the points of a table interpolated linearly (and
     /// beyond its ends); a monotone cubic is smooth between its corners

@@ -6,8 +6,8 @@
 //! capability, [`Events`]: its other accessors say `None`.
 
 use super::{Binder, Component, Event, Port, Report, Section};
+use crate::components::Events;
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;
@@ -47,25 +47,7 @@ impl Component for Spring {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        Some(self)
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        Some(self)
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        None
-    }
+    capabilities!(events: yes, states: no, energy: no);
 
     fn report(&self) -> Report {
         Report {

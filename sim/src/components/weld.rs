@@ -22,7 +22,7 @@ use super::held::{self, Crossed, Held};
 use super::integral::integral;
 use super::{Binder, Column, Component, Event, Port, Report, Section, Smoothness};
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
+use crate::components::{Dissipation, Events};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange};
 use crate::entry::{non_negative, positive};
@@ -218,25 +218,7 @@ impl Component for Weld {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        Some(self)
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        Some(self)
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: yes, states: no, energy: yes);
 
     fn report(&self) -> Report {
         Report {

@@ -43,7 +43,7 @@ mod linear;
 
 use super::{Binder, Column, Component, Contact, Event, Port, Report, Section};
 use crate::components::section::Ports;
-use crate::components::{Dissipation, Events, States};
+use crate::components::{Dissipation, Events};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
 use crate::ode::Direction;
@@ -298,25 +298,7 @@ impl Component for ContactElement {
         })
     }
 
-    fn events(&self) -> Option<&dyn Events> {
-        Some(self)
-    }
-
-    fn events_mut(&mut self) -> Option<&mut dyn Events> {
-        Some(self)
-    }
-
-    fn states(&self) -> Option<&dyn States> {
-        None
-    }
-
-    fn states_mut(&mut self) -> Option<&mut dyn States> {
-        None
-    }
-
-    fn energy(&self) -> Option<&dyn Dissipation> {
-        Some(self)
-    }
+    capabilities!(events: yes, states: no, energy: yes);
 
     fn columns(&self) -> &'static [Column] {
         COLUMNS
