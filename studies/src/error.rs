@@ -114,6 +114,7 @@ impl StudyError {
             file: None,
             location: None,
             message: message.into(),
+            key: None,
         })
     }
 

@@ -88,6 +88,10 @@ impl Setting {
             });
         }
         if names.inputs.iter().any(|i| i == key) {
+            if !number.is_finite() {
+                let value = crate::entry::number(number);
+                return Err(format!("--set {key} = {value}: must be a finite number"));
+            }
             return Ok(Setting::InputConstant {
                 name,
                 value: number,

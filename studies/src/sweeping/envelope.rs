@@ -120,7 +120,10 @@ fn channels(names: &[String], prepared: &Prepared) -> Result<Vec<Signal>, StudyE
     let first = first.map_err(|e| StudyError::scenario(&e))?;
     let names_of_run = base.names.with_components(&first.inputs);
     (names.iter())
-        .map(|name| Signal::parse("--envelope", name, &names_of_run).map_err(StudyError::usage))
+        .map(|name| {
+            Signal::parse("--envelope", name, &names_of_run)
+                .map_err(|e| StudyError::usage(e.to_string()))
+        })
         .collect()
 }
 
