@@ -4,7 +4,7 @@
 
 use crate::error::StudyError;
 use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
-use crate::plot::{Series, panels_svg};
+use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
@@ -304,7 +304,7 @@ fn relative(target: &Path, dir: &Path) -> PathBuf {
     out
 }
 
-fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, String> {
+fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotError> {
     let panels: Vec<(String, String, String, Vec<Series>)> = target
         .channels
         .iter()

@@ -152,7 +152,8 @@ pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<St
         out.display()
     );
     if let Some(plot) = &request.plot {
-        let svg = bands_svg("Envelopes over the runs", &bands(envelope)).map_err(StudyError::io)?;
+        let svg = bands_svg("Envelopes over the runs", &bands(envelope))
+            .map_err(|e| StudyError::io(e.to_string()))?;
         lagrangian_sim::report::write_atomically(plot, svg.as_bytes())
             .map_err(|e| StudyError::io(format!("cannot write {}: {e}", plot.display())))?;
         line.push_str(&format!(" and {}", plot.display()));
