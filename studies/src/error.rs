@@ -194,3 +194,22 @@ impl StudyError {
         }
     }
 }
+
+// What each error of the libraries below is to a host: the kind of
+// failure (and so the exit status), with its message as it is.
+
+/// `--fit` names that do not resolve: a bad request.
+#[cfg(feature = "fit")]
+impl From<crate::fit::ParameterError> for StudyError {
+    fn from(e: crate::fit::ParameterError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// A fit that failed.
+#[cfg(feature = "fit")]
+impl From<crate::fit::FitError> for StudyError {
+    fn from(e: crate::fit::FitError) -> StudyError {
+        StudyError::Fit(e.to_string())
+    }
+}
