@@ -4,7 +4,7 @@
 
 use crate::error::StudyError;
 use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
-use crate::plot::{Series, panels_svg};
+use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
@@ -67,7 +67,6 @@ pub fn fitting(
     let text = std::fs::read_to_string(&scenario_path)
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
     let target = read_time_histories(&options.target).map_err(|e| StudyError::channels(&e))?;
-    let usage = |e: String| StudyError::usage(e);
     let document =
         Scenario::document(&text, &names, &options.set).map_err(StudyError::invalid_scenario)?;
     let fit_names = if options.fit.is_empty() {
@@ -75,8 +74,7 @@ pub fn fitting(
     } else {
         options.fit.clone()
     };
-    let parameters =
-        Parameters::resolve(&fit_names, &document, &names, model.parameters()).map_err(usage)?;
+    let parameters = Parameters::resolve(&fit_names, &document, &names, model.parameters())?;
     let base = BaseScenario {
         text,
         file: Some(scenario_path.clone()),
@@ -120,7 +118,7 @@ impl WithDimension for Fit<'_> {
     type Output = Result<FitReport, StudyError>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        fit(&system, self.setup, self.progress).map_err(StudyError::Fit)
+        Ok(fit(&system, self.setup, self.progress)?)
     }
 }
 
@@ -304,7 +302,7 @@ fn relative(target: &Path, dir: &Path) -> PathBuf {
     out
 }
 
-fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, String> {
+fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotError> {
     let panels: Vec<(String, String, String, Vec<Series>)> = target
         .channels
         .iter()

@@ -47,7 +47,7 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
         runs: 0..plan.len(),
         threads: 1,
     };
-    let rows = run_sweep(&system, job, &|| {}).unwrap();
+    let rows = run_sweep(&system, job, &|| {});
     let first = run_scenario(&base, &settings, &plan.point(0)).unwrap();
     let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
     let csv = String::from_utf8(sweep_csv(&Layout::new(axes, &first), &rows).unwrap()).unwrap();

@@ -35,6 +35,28 @@ pub struct RunFailure {
     pub message: String,
 }
 
+/// Why a plan's axes do not fit the base scenario ([`Settings::new`]).
+#[derive(Debug, thiserror::Error)]
+pub enum SettingsError {
+    /// The scenario's text is not TOML.
+    #[error("scenario: {0}")]
+    Scenario(#[source] toml::de::Error),
+    /// A key both swept and set by `--set`.
+    #[error("`{key}` is both swept and fixed by --set; drop one")]
+    SweptAndSet {
+        /// The key.
+        key: String,
+    },
+    /// A factor (`KEY*=`) of an entry it cannot scale.
+    #[error("{message}")]
+    Factor {
+        /// The axis' key.
+        key: String,
+        /// Why, as the scenario says it.
+        message: String,
+    },
+}
+
 /// The base value a factor multiplies: a number, or a list or table whose
 /// every number it multiplies (`initial.velocities*=…` scales the speed of
 /// every coordinate the table names).
@@ -63,21 +85,17 @@ impl Settings {
         plan: &Plan,
         base: &BaseScenario,
         parameter_defaults: &[f64],
-    ) -> Result<Settings, String> {
-        let document: toml::Table = base
-            .text
-            .parse()
-            .map_err(|e: toml::de::Error| format!("scenario: {e}"))?;
+    ) -> Result<Settings, SettingsError> {
+        let document: toml::Table = base.text.parse().map_err(SettingsError::Scenario)?;
         let mut axes = Vec::new();
         for axis in plan.axes() {
             let overridden = base.settings.iter().any(|s| {
                 split_setting(s).is_ok_and(|(k, _)| k.trim_end_matches('*').trim() == axis.key)
             });
             if overridden {
-                return Err(format!(
-                    "`{}` is both swept and fixed by --set; drop one",
-                    axis.key
-                ));
+                return Err(SettingsError::SweptAndSet {
+                    key: axis.key.clone(),
+                });
             }
             let scaled = match axis.assignment {
                 Assignment::Set => None,
@@ -131,8 +149,13 @@ fn scaled_base(
     document: &toml::Table,
     names: &ModelNames,
     parameter_defaults: &[f64],
-) -> Result<Scaled, String> {
-    factor_base(&axis.key, document, names, parameter_defaults).map(Scaled)
+) -> Result<Scaled, SettingsError> {
+    (factor_base(&axis.key, document, names, parameter_defaults).map(Scaled)).map_err(|e| {
+        SettingsError::Factor {
+            key: axis.key.clone(),
+            message: e.to_string(),
+        }
+    })
 }
 
 /// The scenario of one run.
@@ -263,13 +286,13 @@ impl<T> Batch<T> {
 /// yes they take no new run, and the runs under way finish and reach
 /// `sink`, so the rows delivered are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
-/// `sink` ends it.
-pub fn stream_sweep<const N: usize, S>(
+/// `sink` ends it, and is what it returns.
+pub fn stream_sweep<const N: usize, S, E>(
     system: &S,
     job: SweepJob<'_>,
     stop: &(dyn Fn() -> bool + Sync),
-    sink: &mut dyn FnMut(Row) -> Result<(), String>,
-) -> Result<usize, String>
+    sink: &mut dyn FnMut(Row) -> Result<(), E>,
+) -> Result<usize, E>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
@@ -282,13 +305,13 @@ pub(crate) type MakeRun<'f, S, T> =
 
 /// [`stream_sweep`] with what each run makes given by `make`: its results
 /// reach `sink` in run order.
-pub(crate) fn stream_runs<const N: usize, S, T: Send>(
+pub(crate) fn stream_runs<const N: usize, S, T: Send, E>(
     system: &S,
     job: SweepJob<'_>,
     stop: &(dyn Fn() -> bool + Sync),
     make: MakeRun<'_, S, T>,
-    sink: &mut dyn FnMut(T) -> Result<(), String>,
-) -> Result<usize, String>
+    sink: &mut dyn FnMut(T) -> Result<(), E>,
+) -> Result<usize, E>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
@@ -375,17 +398,18 @@ pub fn run_sweep<const N: usize, S>(
     system: &S,
     job: SweepJob<'_>,
     progress: &(dyn Fn() + Sync),
-) -> Result<Vec<Row>, String>
+) -> Vec<Row>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
     let mut rows = Vec::with_capacity(job.runs.len());
-    stream_sweep(system, job, &|| false, &mut |row| {
+    let streamed = stream_sweep(system, job, &|| false, &mut |row| {
         progress();
         rows.push(row);
-        Ok(())
-    })?;
-    Ok(rows)
+        Ok::<(), std::convert::Infallible>(())
+    });
+    let Ok(_) = streamed;
+    rows
 }
 
 #[cfg(test)]
@@ -405,9 +429,9 @@ mod tests {
         }
     }
 
-    fn settings(text: &str, grid: &[&str]) -> Result<Settings, String> {
+    fn settings(text: &str, grid: &[&str]) -> Result<Settings, SettingsError> {
         let grid: Vec<String> = grid.iter().map(|s| s.to_string()).collect();
-        Settings::new(&Plan::grid(&grid)?, &base(text), &[2.0, 100.0])
+        Settings::new(&Plan::grid(&grid).unwrap(), &base(text), &[2.0, 100.0])
     }
 
     #[test]
@@ -431,7 +455,9 @@ mod tests {
     #[test]
     fn a_factor_of_something_other_than_numbers_is_an_error() {
         let text = "[metrics]\npitch = [\"xb\"]\n";
-        let error = settings(text, &["metrics.pitch*=2"]).unwrap_err();
+        let error = settings(text, &["metrics.pitch*=2"])
+            .unwrap_err()
+            .to_string();
         assert!(
             error.contains("a factor scales a number, or a list or table of numbers"),
             "{error}"
