@@ -77,12 +77,13 @@ impl Layout {
     fn summary<'a>(&self, mut cells: impl Iterator<Item = &'a str>) -> Result<Summary, String> {
         let mut summary = Summary::EMPTY;
         for metric in Summary::METRICS {
-            summary.set(metric.name, cells.next().unwrap_or(""))?;
+            summary.set(metric.name, cells.next().unwrap_or("")).map_err(|e| e.to_string())?;
         }
         for (name, role, unit, cfc) in &self.channels {
             let values = (metric_names(*role).iter())
                 .map(|_| <Option<f64> as Field>::parse(cells.next().unwrap_or("")))
-                .collect::<Result<_, _>>()?;
+                .collect::<Result<_, _>>()
+                .map_err(|e| e.to_string())?;
             let extreme_at_end = cells.next() == Some("1");
             summary.channels.0.push(ChannelSummary {
                 name: name.clone(),
