@@ -3,7 +3,7 @@
 //! path in the places the one parse of the file recorded; and which
 //! `--set` setting gave the value an error is about.
 
-use super::overrides::split_setting;
+use super::overrides::Override;
 use crate::entry::{EntryError, KeyPath};
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -98,21 +98,10 @@ fn floor_char_boundary(text: &str, at: usize) -> usize {
     at
 }
 
-/// The key path `setting` (`key=value`, `key*=factor`) sets: a plain key
-/// is a parameter's, `parameters.NAME`.
-fn setting_path(setting: &str) -> Option<KeyPath> {
-    let (key, _) = split_setting(setting).ok()?;
-    let key = key.trim_end_matches('*').trim();
-    Some(match key.contains('.') {
-        true => KeyPath::new(key),
-        false => KeyPath::new("parameters").join(key),
-    })
-}
-
 /// The last of `settings` that set the entry `error` is about, or a table
 /// above it: the value it is about is the setting's.
-pub(super) fn setting_of<'a>(error: &EntryError, settings: &'a [String]) -> Option<&'a String> {
-    let set_by = |s: &&String| setting_path(s).is_some_and(|path| path.contains(&error.key));
+pub(super) fn setting_of<'a>(error: &EntryError, settings: &'a [Override]) -> Option<&'a Override> {
+    let set_by = |s: &&Override| s.path().contains(&error.key);
     settings.iter().rev().find(set_by)
 }
 
@@ -120,9 +109,8 @@ pub(super) fn setting_of<'a>(error: &EntryError, settings: &'a [String]) -> Opti
 /// setting: `--set KEY=VALUE: what is wrong` in place of the entry and its
 /// value when the setting set that very entry, else `--set KEY=VALUE:
 /// message` (the message names what the setting made).
-pub(super) fn blamed(setting: &str, error: &EntryError) -> String {
-    let setting = setting.trim();
-    let plain = setting_path(setting).as_ref() == Some(&error.key) && error.names_key_first();
+pub(super) fn blamed(setting: &Override, error: &EntryError) -> String {
+    let plain = setting.path() == error.key && error.names_key_first();
     match plain && !error.reason.is_empty() {
         true => format!("--set {setting}: {}", error.reason),
         false => format!("--set {setting}: {error}"),
@@ -157,7 +145,7 @@ mod tests {
 
     #[test]
     fn a_setting_is_blamed_for_the_entry_it_set() {
-        let set = ["initial.speed=4".to_string(), "k*=2".to_string()];
+        let set = Override::parse_all(&["initial.speed=4", "k*=2"]).unwrap();
         let speed = EntryError::value(KeyPath::new("initial.speed"), "4", "too fast");
         assert_eq!(setting_of(&speed, &set), Some(&set[0]));
         assert_eq!(blamed(&set[0], &speed), "--set initial.speed=4: too fast");

@@ -74,12 +74,11 @@ use file::File;
 use lagrangian_model::LagrangianSystem;
 use locate::Places;
 use options::{SampleAccelerations, TimeKinks};
-pub use overrides::Setting;
-pub use overrides::split_setting;
 use overrides::with_settings;
+pub use overrides::{Change, Override, OverrideError, Setting};
 use resolve::resolve;
 pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};
-pub use scale::{as_number, factor_base, scaled_inline, toml_number};
+pub use scale::{ScaleError, as_number, factor_base, scaled_inline, toml_number};
 use serde::Deserialize;
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
@@ -242,7 +241,7 @@ impl Scenario {
     pub fn load(
         path: &Path,
         names: &ModelNames,
-        settings: &[String],
+        settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::Unreadable,
@@ -255,7 +254,7 @@ impl Scenario {
     }
 
     /// A scenario with nothing but defaults (no file).
-    pub fn defaults(names: &ModelNames, settings: &[String]) -> Result<Scenario, ScenarioError> {
+    pub fn defaults(names: &ModelNames, settings: &[Override]) -> Result<Scenario, ScenarioError> {
         Scenario::parse("", None, names, settings)
     }
 
@@ -264,10 +263,13 @@ impl Scenario {
     pub fn document(
         text: &str,
         names: &ModelNames,
-        settings: &[String],
-    ) -> Result<toml::Table, String> {
-        let document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
-        Ok(with_settings(document, names, settings)?.0)
+        settings: &[Override],
+    ) -> Result<toml::Table, ScenarioError> {
+        let document: toml::Table = (text.parse()).map_err(|e| toml_error(None, text, &e))?;
+        let settled = with_settings(document, names, settings);
+        Ok(settled
+            .map_err(|e| ScenarioError::invalid(None, e.to_string()))?
+            .0)
     }
 
     /// Resolves scenario `text` (from `file`, which relative paths start from).
@@ -280,7 +282,7 @@ impl Scenario {
         text: &str,
         file: Option<&Path>,
         names: &ModelNames,
-        settings: &[String],
+        settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
         let error = |message: String| ScenarioError::invalid(file, message);
         // The one parse of the text: the document with the places of its
@@ -291,7 +293,7 @@ impl Scenario {
         let document =
             toml::Table::deserialize(positioned()).map_err(|e| toml_error(file, text, &e))?;
         let (settled, constants) = with_settings(document.clone(), names, settings)
-            .map_err(|m| ScenarioError::invalid(None, m))?;
+            .map_err(|e| ScenarioError::invalid(None, e.to_string()))?;
         let parsed: File = settled.try_into().map_err(|e: toml::de::Error| {
             // The settled document has no positions; the parsed text has
             // them when the problem is in the file rather than in a setting.
@@ -339,7 +341,7 @@ impl Scenario {
 fn culprit<'a>(
     document: toml::Table,
     names: &ModelNames,
-    settings: &'a [String],
+    settings: &'a [Override],
     message: &str,
 ) -> Option<&'a str> {
     let mut first_failing = None;
@@ -350,9 +352,9 @@ fn culprit<'a>(
             .0;
         if let Err(e) = current.clone().try_into::<File>() {
             if e.message() == message {
-                return Some(setting.trim());
+                return Some(setting.text());
             }
-            first_failing.get_or_insert(setting.trim());
+            first_failing.get_or_insert(setting.text());
         }
     }
     first_failing

@@ -13,12 +13,16 @@ pub fn factor_base(
     document: &toml::Table,
     names: &ModelNames,
     parameter_defaults: &[f64],
-) -> Result<toml::Value, String> {
+) -> Result<toml::Value, ScaleError> {
+    let error = |reason: String| ScaleError {
+        key: key.to_string(),
+        reason,
+    };
     if !key.contains('.') {
         let Some(k) = names.parameters.iter().position(|p| p == key) else {
-            return Err(format!(
-                "`{key}*=`: a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
-            ));
+            return Err(error(format!(
+                "a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
+            )));
         };
         let in_file = document
             .get("parameters")
@@ -27,7 +31,9 @@ pub fn factor_base(
         let base = in_file
             .or(parameter_defaults.get(k).copied())
             .ok_or_else(|| {
-                format!("`{key}*=`: the value of parameter `{key}` is not known to scale it")
+                error(format!(
+                    "the value of parameter `{key}` is not known to scale it"
+                ))
             })?;
         return Ok(toml::Value::Float(base));
     }
@@ -37,15 +43,24 @@ pub fn factor_base(
         value = table.and_then(|t| t.get(part));
         table = value.and_then(toml::Value::as_table);
     }
-    let value =
-        value.ok_or_else(|| format!("`{key}*=`: the scenario has no such entry to scale"))?;
+    let value = value.ok_or_else(|| error("the scenario has no such entry to scale".into()))?;
     if all_numbers(value) {
         Ok(value.clone())
     } else {
-        Err(format!(
-            "`{key}*=`: a factor scales a number, or a list or table of numbers, not `{value}`"
-        ))
+        Err(error(format!(
+            "a factor scales a number, or a list or table of numbers, not `{value}`"
+        )))
     }
+}
+
+/// A factor `KEY*=` with nothing to scale: `` `KEY*=`: reason ``.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("`{key}*=`: {reason}")]
+pub struct ScaleError {
+    /// The parameter name or dotted key the factor is on.
+    pub key: String,
+    /// Why it has nothing to scale.
+    pub reason: String,
 }
 
 /// `value` with every number multiplied by `x`, as inline TOML.
