@@ -4,7 +4,7 @@
 
 use lagrangian_core::Compiled;
 use lagrangian_model::InterpretedModel;
-use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use std::path::{Path, PathBuf};
 
 /// The spec's file name in `resources/`.
@@ -107,14 +107,14 @@ pub fn load_texts(
     let compiled = Compiled::from_source(spec).map_err(|e| e.render(&file, spec))?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
-    let resolve = |settings: &[String]| match scenario {
+    let resolve = |settings: &[Override]| match scenario {
         Some((path, text)) => Scenario::parse(text, Some(path), &names, settings),
         None => Scenario::defaults(&names, settings),
     };
     let first = resolve(&[]).map_err(|e| e.to_string())?;
     let unbound = crate::variables::unbound_inputs(&first);
-    let constants: Vec<String> = (unbound.iter())
-        .map(|&i| format!("{}=0", model.input_names()[i]))
+    let constants: Vec<Override> = (unbound.iter())
+        .map(|&i| Override::number(&model.input_names()[i], 0.0))
         .collect();
     let scenario_for_host = match constants.is_empty() {
         true => first,

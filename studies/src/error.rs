@@ -5,7 +5,7 @@
 use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
-use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
+use lagrangian_sim::scenario::{OverrideError, ScenarioError, ScenarioErrorKind};
 use lagrangian_sim::simulate::{FailureKind, SimulationError};
 use lagrangian_sim::table::TableError;
 
@@ -198,6 +198,14 @@ impl StudyError {
 
 // What each error of the libraries below is to a host: the kind of
 // failure (and so the exit status), with its message as it is.
+
+/// An override that cannot be read or does not fit: a scenario problem,
+/// as a scenario entry that does not fit is.
+impl From<OverrideError> for StudyError {
+    fn from(e: OverrideError) -> StudyError {
+        StudyError::Scenario(e.into())
+    }
+}
 
 /// A sweep's axes that make no plan: a bad request.
 #[cfg(feature = "sweep")]

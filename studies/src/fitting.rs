@@ -9,7 +9,7 @@ use crate::spec::{compile, find_scenario};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
 
@@ -27,7 +27,7 @@ pub struct FitRequest {
     /// `stiffness`, `damping`.
     pub fit: Vec<String>,
     /// Settings applied before fitting, as `simulate`'s.
-    pub set: Vec<String>,
+    pub set: Vec<Override>,
     /// Number of starts (the scenario's values, then perturbations); 0 is 1.
     pub starts: usize,
     /// Seed of the perturbed starts.
@@ -68,7 +68,7 @@ pub fn fitting(
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
     let target = read_time_histories(&options.target).map_err(|e| StudyError::channels(&e))?;
     let document =
-        Scenario::document(&text, &names, &options.set).map_err(StudyError::invalid_scenario)?;
+        Scenario::document(&text, &names, &options.set).map_err(|e| StudyError::scenario(&e))?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {

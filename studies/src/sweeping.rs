@@ -15,7 +15,7 @@ use crate::sweep::{
 };
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, spec_named_by};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -43,7 +43,7 @@ pub struct SweepRequest {
     /// Seed of the sampled design (run i's values depend only on seed and i).
     pub seed: u64,
     /// Settings for every run, as `simulate`'s.
-    pub set: Vec<String>,
+    pub set: Vec<Override>,
     /// The output table: .csv or .parquet (needed unless `plan_only`).
     pub out: Option<PathBuf>,
     /// Its format, `csv` or `parquet` (default: from `out`'s extension).
@@ -70,7 +70,7 @@ pub struct SweepRequest {
 /// The spec a scenario names with its `spec` key (relative to the scenario).
 fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, StudyError> {
     spec_named_by(scenario, text)
-        .map_err(StudyError::usage)?
+        .map_err(|e| StudyError::usage(e.to_string()))?
         .ok_or_else(|| {
             StudyError::usage(format!(
                 "{} has no `spec = \"…\"` entry; name the spec with --spec",

@@ -36,7 +36,7 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
         text,
         file: None,
         names,
-        settings: vec!["simulation.t_end=0.2".to_string()],
+        settings: vec![lagrangian_sim::scenario::Override::number("simulation.t_end", 0.2)],
     };
     let plan = Plan::grid(&["m2=1.5,2.5".to_string()]).unwrap();
     let settings = Settings::new(&plan, &base, &defaults).unwrap();

@@ -78,7 +78,9 @@ use overrides::with_settings;
 pub use overrides::{Change, Override, OverrideError, Setting};
 use resolve::resolve;
 pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};
-pub use scale::{ScaleError, as_number, factor_base, scaled_inline, toml_number};
+pub use scale::{
+    ScaleError, as_number, factor_base, number_value, scaled_inline, scaled_value, toml_number,
+};
 use serde::Deserialize;
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
@@ -265,7 +267,8 @@ impl Scenario {
         names: &ModelNames,
         settings: &[Override],
     ) -> Result<toml::Table, ScenarioError> {
-        let document: toml::Table = (text.parse()).map_err(|e| toml_error(None, text, &e))?;
+        let document: toml::Table = (text.parse())
+            .map_err(|e: toml::de::Error| ScenarioError::invalid(None, e.to_string()))?;
         let settled = with_settings(document, names, settings);
         Ok(settled
             .map_err(|e| ScenarioError::invalid(None, e.to_string()))?

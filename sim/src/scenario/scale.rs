@@ -81,6 +81,31 @@ pub fn scaled_inline(value: &toml::Value, x: f64) -> String {
     }
 }
 
+/// `value` with every number multiplied by `x`: what [`scaled_inline`]
+/// writes, as a value.
+pub fn scaled_value(value: &toml::Value, x: f64) -> toml::Value {
+    match value {
+        toml::Value::Array(items) => {
+            toml::Value::Array(items.iter().map(|v| scaled_value(v, x)).collect())
+        }
+        toml::Value::Table(table) => toml::Value::Table(
+            (table.iter())
+                .map(|(k, v)| (k.clone(), scaled_value(v, x)))
+                .collect(),
+        ),
+        other => number_value(as_number(other).unwrap_or(f64::NAN) * x),
+    }
+}
+
+/// A number as a TOML value that reads back exactly, as [`toml_number`]
+/// writes it: a whole number as an integer, else a float.
+pub fn number_value(x: f64) -> toml::Value {
+    match x.fract() == 0.0 && x.abs() < 1e15 {
+        true => toml::Value::Integer(x as i64),
+        false => toml::Value::Float(x),
+    }
+}
+
 /// A number as TOML reads it back exactly: a whole number as an integer
 /// (so that integer entries such as `simulation.max_steps` can be scaled;
 /// float entries accept integers), else the shortest round-tripping float.

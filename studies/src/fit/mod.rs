@@ -16,7 +16,7 @@ mod statistics;
 use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::pulse::channels::{Quantity, TimeHistories};
 use lagrangian_sim::pulse::interpolate;
-use lagrangian_sim::scenario::{BaseScenario, ScenarioError};
+use lagrangian_sim::scenario::{BaseScenario, Override, ScenarioError};
 use lagrangian_sim::simulate::{SimulationError, simulate};
 pub use parameters::{ParameterError, Parameters};
 use problem::Problem;
@@ -255,13 +255,13 @@ pub struct FitReport {
 pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     base: &BaseScenario,
-    settings: &[String],
+    settings: &[Override],
     target: &TimeHistories,
 ) -> Result<Vec<Vec<f64>>, FitError> {
     let mut all = settings.to_vec();
-    all.push(format!(
-        "simulation.t_end={:?}",
-        target.t[target.t.len() - 1]
+    all.push(Override::number(
+        "simulation.t_end",
+        target.t[target.t.len() - 1],
     ));
     let scenario = base
         .resolve(&all)

@@ -14,7 +14,7 @@
 //! logarithms of its first value and its increments (it stays ordered),
 //! anything else as is.
 
-use lagrangian_sim::scenario::ModelNames;
+use lagrangian_sim::scenario::{ModelNames, Override};
 
 /// Why the names of `--fit` do not resolve to entries: the name, and what
 /// the scenario and the model have instead.
@@ -566,6 +566,21 @@ impl Parameters {
                 } else {
                     format!("{}={:?}", slot.key, v[0])
                 }
+            })
+            .collect()
+    }
+
+    /// The overrides that put `values` (one per entry) into the scenario:
+    /// what [`Parameters::settings`] writes, as values.
+    pub fn overrides(&self, values: &[f64]) -> Vec<Override> {
+        let slots = self.slots.iter().zip(self.slot_values(values));
+        slots
+            .map(|(slot, v)| match slot.is_list {
+                true => {
+                    let items = v.iter().map(|&x| toml::Value::Float(x)).collect();
+                    Override::value(&slot.key, toml::Value::Array(items))
+                }
+                false => Override::value(&slot.key, toml::Value::Float(v[0])),
             })
             .collect()
     }

@@ -135,7 +135,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         S: LagrangianSystem<N>,
     {
         self.simulations.fetch_add(1, Ordering::Relaxed);
-        let settings = self.setup.parameters.settings(values);
+        let settings = self.setup.parameters.overrides(values);
         simulated_channels(system, &self.setup.base, &settings, &self.setup.target)
     }
 

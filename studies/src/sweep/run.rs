@@ -5,8 +5,8 @@ use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
 use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::scenario::ScenarioError;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
-use lagrangian_sim::scenario::{as_number, factor_base, scaled_inline, toml_number};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
+use lagrangian_sim::scenario::{as_number, factor_base, number_value, scaled_value};
 use lagrangian_sim::simulate::{FailureKind, SimulationError, Summary, simulate_summary};
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -63,13 +63,6 @@ pub enum SettingsError {
 #[derive(Clone, Debug)]
 struct Scaled(toml::Value);
 
-impl Scaled {
-    /// The base value times `x`, written as an inline TOML value.
-    fn times(&self, x: f64) -> String {
-        scaled_inline(&self.0, x)
-    }
-}
-
 /// The plan's axes, resolved against the base scenario: turns run values
 /// into `key=value` settings.
 #[derive(Clone, Debug)]
@@ -89,9 +82,7 @@ impl Settings {
         let document: toml::Table = base.text.parse().map_err(SettingsError::Scenario)?;
         let mut axes = Vec::new();
         for axis in plan.axes() {
-            let overridden = base.settings.iter().any(|s| {
-                split_setting(s).is_ok_and(|(k, _)| k.trim_end_matches('*').trim() == axis.key)
-            });
+            let overridden = base.settings.iter().any(|s| s.key == axis.key);
             if overridden {
                 return Err(SettingsError::SweptAndSet {
                     key: axis.key.clone(),
@@ -129,16 +120,16 @@ impl Settings {
     }
 
     /// The settings that give the axes `values`.
-    pub fn for_values(&self, values: &[f64]) -> Vec<String> {
+    pub fn for_values(&self, values: &[f64]) -> Vec<Override> {
         self.axes
             .iter()
             .zip(values)
             .map(|((axis, scaled), &x)| {
                 let value = match scaled {
-                    None => toml_number(x),
-                    Some(base) => base.times(x),
+                    None => number_value(x),
+                    Some(Scaled(base)) => scaled_value(base, x),
                 };
-                format!("{}={value}", axis.key)
+                Override::value(&axis.key, value)
             })
             .collect()
     }
@@ -438,10 +429,11 @@ mod tests {
     fn a_factor_scales_every_number_of_a_table() {
         let text = "[initial]\nvelocities = { xb = 15.5, xe = 15.5 }\n";
         let s = settings(text, &["initial.velocities*=0.5,2"]).unwrap();
-        assert_eq!(
-            s.for_values(&[2.0]),
-            [r#"initial.velocities={ "xb" = 31, "xe" = 31 }"#]
-        );
+        let texts = |values: &[f64]| {
+            let overrides = s.for_values(values);
+            overrides.iter().map(|o| o.text().to_string()).collect::<Vec<_>>()
+        };
+        assert_eq!(texts(&[2.0]), ["initial.velocities={ xb = 31, xe = 31 }"]);
         let scenario = base(text).resolve(&s.for_values(&[0.5])).unwrap();
         assert_eq!(scenario.initial_velocities, [(0, 7.75), (1, 7.75)]);
     }
@@ -449,7 +441,10 @@ mod tests {
     #[test]
     fn tied_factors_scale_parameters_from_the_file_or_the_spec_default() {
         let s = settings("[parameters]\nk = 300.0\n", &["m,k*=1:2:2"]).unwrap();
-        assert_eq!(s.for_values(&[1.5, 1.5]), ["m=3", "k=450"]);
+        let texts: Vec<String> = (s.for_values(&[1.5, 1.5]).iter())
+            .map(|o| o.text().to_string())
+            .collect();
+        assert_eq!(texts, ["m=3", "k=450"]);
     }
 
     #[test]
