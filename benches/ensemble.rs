@@ -33,7 +33,7 @@ fn throughput<S: LagrangianSystem<3> + Clone + Send>(
         runs: 0..runs,
         threads,
     };
-    let rows = run_sweep(model, job, &|| {}).unwrap();
+    let rows = run_sweep(model, job, &|| {});
     let elapsed = start.elapsed().as_secs_f64();
     (
         runs as f64 / elapsed,

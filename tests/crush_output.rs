@@ -15,7 +15,7 @@
 //! And the refusals: an output that reads a velocity or an input, a
 //! misspelt output, a model that does not say what its outputs read.
 
-use lagrangian::scenario::{ModelNames, Scenario};
+use lagrangian::scenario::{ModelNames, Override, Scenario};
 use lagrangian::simulate::{SimulationResult, Summary, simulate, simulate_summary};
 use lagrangian::{Interpreted, LagrangianSystem};
 use lagrangian_core::Compiled;
@@ -39,7 +39,9 @@ fn load<const N: usize, S: LagrangianSystem<N>>(
     scenario: &str,
     settings: &[String],
 ) -> Result<Scenario, String> {
-    Scenario::load(Path::new(scenario), &ModelNames::of(model), settings).map_err(|e| e.to_string())
+    let settings = Override::parse_all(settings).map_err(|e| e.to_string())?;
+    Scenario::load(Path::new(scenario), &ModelNames::of(model), &settings)
+        .map_err(|e| e.to_string())
 }
 
 /// The pole's closed form (see the module documentation): parameters

@@ -6,7 +6,7 @@ use lagrangian::LagrangianSystem;
 use lagrangian::fit::{FitReport, FitSetup, Identifiability, Parameters, fit};
 use lagrangian::pulse::channels::{Channel, Quantity, TimeHistories};
 use lagrangian::scenario::BaseScenario;
-use lagrangian::scenario::{ModelNames, Scenario};
+use lagrangian::scenario::{ModelNames, Override, Scenario};
 use lagrangian::simulate::simulate;
 use std::path::Path;
 
@@ -24,7 +24,7 @@ fn base(settings: Vec<String>) -> BaseScenario {
         text: std::fs::read_to_string(SCENARIO).unwrap(),
         file: Some(SCENARIO.into()),
         names: ModelNames::of(&Yaris::default()),
-        settings,
+        settings: Override::parse_all(&settings).unwrap(),
     }
 }
 
@@ -51,6 +51,7 @@ fn noisy_pulse(settings: &[String]) -> TimeHistories {
     let names = ModelNames::of(&model);
     let mut all = settings.to_vec();
     all.push("simulation.t_end=0.1".into());
+    let all = Override::parse_all(&all).unwrap();
     let scenario = Scenario::load(Path::new(SCENARIO), &names, &all).unwrap();
     let crush = scenario.crush.clone().unwrap();
     let result = simulate(&model, &scenario).unwrap();
@@ -167,6 +168,7 @@ fn largest_crush(settings: &[String]) -> f64 {
     let names = ModelNames::of(&model);
     let mut all = settings.to_vec();
     all.push("simulation.t_end=0.1".into());
+    let all = Override::parse_all(&all).unwrap();
     let scenario = Scenario::load(Path::new(SCENARIO), &names, &all).unwrap();
     let crush = scenario.crush.clone().unwrap();
     let result = simulate(&model, &scenario).unwrap();

@@ -4,7 +4,7 @@
 
 use lagrangian_core::{Compiled, SpecErrors};
 use lagrangian_model::InterpretedModel;
-use lagrangian_sim::scenario::{ModelNames, Scenario, ScenarioError};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario, ScenarioError};
 use std::path::{Path, PathBuf};
 
 /// The spec's file name in `resources/`.
@@ -162,14 +162,14 @@ pub fn load_texts(
     })?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
-    let resolve = |settings: &[String]| match scenario {
+    let resolve = |settings: &[Override]| match scenario {
         Some((path, text)) => Scenario::parse(text, Some(path), &names, settings),
         None => Scenario::defaults(&names, settings),
     };
     let first = resolve(&[]).map_err(ResourceError::Scenario)?;
     let unbound = crate::variables::unbound_inputs(&first);
-    let constants: Vec<String> = (unbound.iter())
-        .map(|&i| format!("{}=0", model.input_names()[i]))
+    let constants: Vec<Override> = (unbound.iter())
+        .map(|&i| Override::number(&model.input_names()[i], 0.0))
         .collect();
     let scenario_for_host = match constants.is_empty() {
         true => first,

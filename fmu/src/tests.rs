@@ -42,7 +42,7 @@ fn reference_max_crush(settings: &[String]) -> f64 {
     let loaded = paper();
     let names = lagrangian_sim::scenario::ModelNames::of_interpreted(&loaded.model);
     let path = root().join("specs/scenarios/yaris_full_frontal.toml");
-    let scenario = lagrangian_sim::scenario::Scenario::load(&path, &names, settings).unwrap();
+    let scenario = lagrangian_sim::scenario::Scenario::load(&path, &names, &lagrangian_sim::scenario::Override::parse_all(settings).unwrap()).unwrap();
     loaded.model.with_dimension(Run(&scenario)).unwrap()
 }
 

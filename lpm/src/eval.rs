@@ -4,6 +4,7 @@
 
 use crate::failure::{Failure, Outcome};
 use lagrangian_model::InterpretedModel;
+use lagrangian_sim::scenario::Override;
 use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::simulate::constrained::DEFAULT_STABILIZATION;
 use lagrangian_studies::error::StudyError;
@@ -62,9 +63,15 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     let state = parse_state("--state", &args.state, model.coordinates())?;
     let (q, qd) = state.split_at(model.dimension());
     let (inputs, set, stabilization) = match &args.scenario {
-        Some(path) => scenario_inputs(&mut model, path, &args.set, (args.time, q, qd))?,
+        Some(path) => {
+            let set = Failure::overrides(&args.set)?;
+            scenario_inputs(&mut model, path, &set, (args.time, q, qd))?
+        }
         None => {
-            let (inputs, set) = apply_settings(&mut model, &args.set)?;
+            // Without a scenario, an override that cannot be read is a bad
+            // command line, as one that names no parameter is.
+            let set = Override::parse_all(&args.set).map_err(|e| Failure::usage(e.to_string()))?;
+            let (inputs, set) = apply_settings(&mut model, &set)?;
             (inputs, set, DEFAULT_STABILIZATION)
         }
     };

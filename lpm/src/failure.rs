@@ -4,7 +4,7 @@
 use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
-use lagrangian_sim::scenario::ScenarioError;
+use lagrangian_sim::scenario::{Override, ScenarioError};
 use lagrangian_sim::simulate::{FailureKind, SimulationError};
 use lagrangian_sim::table::TableError;
 
@@ -104,6 +104,12 @@ impl Failure {
     pub fn scenario(e: &ScenarioError) -> Failure {
         let status = e.kind.failure().map_or(ExitStatus::Io, ExitStatus::Failed);
         Failure::new(status, e.to_string())
+    }
+
+    /// The `--set` overrides, each read once here; one that cannot be read
+    /// fails as a scenario entry that does not fit would (4).
+    pub fn overrides(set: &[String]) -> Result<Vec<Override>, Failure> {
+        Override::parse_all(set).map_err(|e| Failure::scenario(&e.into()))
     }
 
     /// A time-history file that cannot be read (1) or used (7).

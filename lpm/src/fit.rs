@@ -46,16 +46,16 @@ pub struct Args {
 
 impl Args {
     /// The fit these options ask for.
-    pub fn request(&self) -> FitRequest {
-        FitRequest {
+    pub fn request(&self) -> Result<FitRequest, Failure> {
+        Ok(FitRequest {
             spec: self.spec.clone(),
             target: self.target.clone(),
             scenario: self.scenario.clone(),
             fit: self.fit.clone(),
-            set: self.set.clone(),
+            set: Failure::overrides(&self.set)?,
             starts: self.starts,
             seed: self.seed,
-        }
+        })
     }
 }
 
@@ -74,7 +74,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         bar.set_position(simulations as u64);
         bar.set_message(format!("cost {cost:.4e}"));
     };
-    let fitting = fitting(&options.request(), &progress)?;
+    let fitting = fitting(&options.request()?, &progress)?;
     bar.finish_and_clear();
 
     let out = out_dir(options.out.clone(), &options.spec, "-fit");

@@ -57,9 +57,10 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
         Some(p) => Some(p.clone()),
         None => find_scenario(&args.spec)?,
     };
+    let set = Failure::overrides(&args.set)?;
     let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, &args.set),
-        None => Scenario::defaults(&names, &args.set),
+        Some(path) => Scenario::load(path, &names, &set),
+        None => Scenario::defaults(&names, &set),
     }
     .map_err(|e| Failure::scenario(&e))?;
     let coordinates = model.coordinates().to_vec();

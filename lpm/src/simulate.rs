@@ -2,6 +2,7 @@
 
 use crate::failure::{Failure, Outcome};
 use lagrangian_sim::ode::Method;
+use lagrangian_sim::scenario::Override;
 use lagrangian_sim::report::text_summary;
 use lagrangian_studies::simulate::{simulate_spec, write_outputs};
 use lagrangian_studies::spec::out_dir;
@@ -51,31 +52,31 @@ fn methods() -> clap::builder::PossibleValuesParser {
     clap::builder::PossibleValuesParser::new(names.into_iter().chain(aliases))
 }
 
-/// The settings the command line adds to the scenario's.
-fn settings(options: &Args) -> Vec<String> {
-    let mut settings = options.set.clone();
+/// The overrides the command line adds to the scenario's: `--set`, then
+/// the flags'.
+fn settings(options: &Args) -> Result<Vec<Override>, Failure> {
+    let mut settings = Failure::overrides(&options.set)?;
     settings.extend(flag_settings(options).into_iter().map(|(_, s)| s));
-    settings
+    Ok(settings)
 }
 
-/// The settings `--t-end`, `--rtol`, `--atol` and `--method` stand for,
+/// The overrides `--t-end`, `--rtol`, `--atol` and `--method` stand for,
 /// each with the flag as written in messages (`--rtol 0.9`).
-fn flag_settings(options: &Args) -> Vec<(String, String)> {
+fn flag_settings(options: &Args) -> Vec<(String, Override)> {
     let mut settings = Vec::new();
-    if let Some(t) = options.t_end {
-        settings.push((format!("--t-end {t}"), format!("simulation.t_end={t}")));
-    }
-    if let Some(r) = options.rtol {
-        settings.push((format!("--rtol {r}"), format!("simulation.rtol={r}")));
-    }
-    if let Some(a) = options.atol {
-        settings.push((format!("--atol {a}"), format!("simulation.atol={a}")));
+    let numbers = [
+        ("--t-end", "simulation.t_end", options.t_end),
+        ("--rtol", "simulation.rtol", options.rtol),
+        ("--atol", "simulation.atol", options.atol),
+    ];
+    for (flag, key, value) in numbers {
+        if let Some(x) = value {
+            settings.push((format!("{flag} {x}"), Override::number(key, x)));
+        }
     }
     if let Some(m) = &options.method {
-        settings.push((
-            format!("--method {m}"),
-            format!("simulation.method=\"{m}\""),
-        ));
+        let method = Override::value("simulation.method", toml::Value::String(m.clone()));
+        settings.push((format!("--method {m}"), method));
     }
     settings
 }
@@ -84,7 +85,7 @@ fn flag_settings(options: &Args) -> Vec<(String, String)> {
 /// setting (`--rtol 0.9: …`, not `--set simulation.rtol=0.9: …`).
 fn naming_flags(failure: Failure, options: &Args) -> Failure {
     for (flag, setting) in flag_settings(options) {
-        let named = format!("--set {setting}:");
+        let named = format!("--set {}:", setting.text());
         if let Some(rest) = failure.message().strip_prefix(&named) {
             return Failure::new(failure.status, format!("{flag}:{rest}"));
         }
@@ -94,7 +95,7 @@ fn naming_flags(failure: Failure, options: &Args) -> Failure {
 
 /// Runs `lpm simulate`.
 pub fn run(options: Args) -> Result<Outcome, Failure> {
-    let settings = settings(&options);
+    let settings = settings(&options)?;
     let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)
         .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");

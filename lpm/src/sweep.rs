@@ -131,9 +131,9 @@ pub struct EnvelopeArgs {
 
 impl Args {
     /// The sweep these options ask for.
-    pub fn request(&self) -> SweepRequest {
+    pub fn request(&self) -> Result<SweepRequest, Failure> {
         let envelope = &self.envelope;
-        SweepRequest {
+        Ok(SweepRequest {
             scenario: self.scenario.clone(),
             spec: self.spec.clone(),
             grid: self.grid.clone(),
@@ -144,7 +144,7 @@ impl Args {
                 DesignArg::Random => Design::Random,
             },
             seed: self.seed,
-            set: self.set.clone(),
+            set: Failure::overrides(&self.set)?,
             out: self.out.clone(),
             format: self.format.clone(),
             shard: self.shard.clone(),
@@ -160,7 +160,7 @@ impl Args {
                 envelope_plot: envelope.envelope_plot.clone(),
                 weights: envelope.weights.clone(),
             },
-        }
+        })
     }
 }
 
@@ -172,7 +172,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         bar: OnceLock::new(),
         stop: OnceLock::new(),
     };
-    let text = lagrangian_studies::sweeping::run(&options.request(), &progress)?;
+    let text = lagrangian_studies::sweeping::run(&options.request()?, &progress)?;
     Ok(Outcome::success(text))
 }
 

@@ -185,7 +185,7 @@ fn the_solve_of_eval_is_the_first_samples_in_full_precision() {
     let model = lagrangian_core::interpret(&spec).unwrap();
     let names = ModelNames::of_interpreted(&model);
     let file = root.join("specs/scenarios/four_bar_linkage.toml");
-    let scenario = Scenario::load(&file, &names, &["simulation.t_end=0.01".into()]).unwrap();
+    let scenario = Scenario::load(&file, &names, &[lagrangian_sim::scenario::Override::number("simulation.t_end", 0.01)]).unwrap();
     let system = Interpreted::<3>::new(model.clone()).unwrap();
     let result = lagrangian_sim::simulate::simulate(&system, &scenario).unwrap();
     let first = &result.samples[0];

@@ -5,6 +5,7 @@
 //! of `KEY=VALUES` strings) and shapes the results.
 
 use crate::raise;
+use lagrangian_sim::scenario::Override;
 use lagrangian_studies::error::StudyError;
 use lagrangian_studies::fitting::{self, FitRequest};
 use lagrangian_studies::sweeping::envelope::EnvelopeOptions;
@@ -63,7 +64,7 @@ impl SweepOptions {
             vary: self.vary,
             design: memory::design(&self.design)?,
             seed: self.seed,
-            set: self.set,
+            set: Override::parse_all(&self.set)?,
             out: self.out,
             format: self.format,
             shard: self.shard,
@@ -215,7 +216,7 @@ pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
         target: options.target,
         scenario: options.scenario,
         fit: options.fit,
-        set: options.set,
+        set: Override::parse_all(&options.set).map_err(raise)?,
         starts: options.starts,
         seed: options.seed,
     };

@@ -9,6 +9,7 @@
 use lagrangian_core::Compiled;
 use lagrangian_core::emit::{Notation, render_equations, render_markdown};
 use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
+use lagrangian_sim::scenario::Override;
 use lagrangian_studies::error::StudyError;
 use lagrangian_studies::mass::State;
 use lagrangian_studies::status::ExitStatus;
@@ -116,8 +117,8 @@ impl NativeModel {
         &self,
         values: HashMap<String, f64>,
     ) -> Result<(InterpretedModel, Box<dyn InputFunctions>), StudyError> {
-        let settings: Vec<String> = (values.iter())
-            .map(|(name, value)| format!("{name}={value:e}"))
+        let settings: Vec<Override> = (values.iter())
+            .map(|(name, value)| Override::number(name, *value))
             .collect();
         let mut model = self.model().clone();
         let (inputs, _) = lagrangian_studies::eval::apply_settings(&mut model, &settings)?;
@@ -343,6 +344,7 @@ fn simulate(
     scenario: Option<PathBuf>,
     settings: Vec<String>,
 ) -> PyResult<Simulation> {
+    let settings = Override::parse_all(&settings).map_err(raise)?;
     let simulated = py
         .detach(|| {
             lagrangian_studies::simulate::simulate_spec(&spec, scenario.as_deref(), &settings)

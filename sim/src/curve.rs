@@ -39,10 +39,12 @@ impl Outside {
     pub const NAMES: &'static str = "hold, extrapolate, zero, error";
 }
 
-/// The `outside` policy written as `text` at `what`.
-pub(crate) fn outside(what: &str, text: &str) -> Result<Outside, String> {
-    Outside::parse(text)
-        .ok_or_else(|| format!("{what}: outside = `{text}`; use one of {}", Outside::NAMES))
+/// The `outside` policy written as `text` in the section at `section`.
+pub(crate) fn outside(section: &str, text: &str) -> Result<Outside, crate::entry::EntryError> {
+    Outside::parse(text).ok_or_else(|| {
+        let reason = format!("outside = `{text}`; use one of {}", Outside::NAMES);
+        crate::entry::EntryError::at(section.into(), reason)
+    })
 }
 
 /// A problem with a curve's table.

@@ -11,7 +11,7 @@ use lagrangian_model::linalg::Ldlt;
 use lagrangian_model::{Interpreted, LagrangianSystem};
 use lagrangian_sim::linearize::{At, ModeKind, linearize, markdown};
 use lagrangian_sim::ode::{OdeProblem, PhaseState};
-use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use lagrangian_sim::simulate::{CrashProblem, SimulationResult, simulate};
 use nalgebra::{SMatrix, SVector};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -58,7 +58,7 @@ fn model<const N: usize>(source: &str) -> (Interpreted<N>, ModelNames) {
 
 fn scenario(text: &str, names: &ModelNames, settings: &[&str]) -> Scenario {
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    Scenario::parse(text, None, names, &settings).unwrap()
+    Scenario::parse(text, None, names, &Override::parse_all(&settings).unwrap()).unwrap()
 }
 
 fn run<const N: usize>(source: &str, text: &str, settings: &[&str]) -> SimulationResult {
@@ -235,7 +235,8 @@ fn a_constraint_column_that_does_not_exist_gets_a_suggestion() {
     let (_, names) = model::<3>(&spec("four_bar_linkage"));
     let settings: Vec<String> = Vec::new();
     let text = "[metrics]\nforce = [\"loop_x.lamda\"]\n";
-    let error = Scenario::parse(text, None, &names, &settings).unwrap_err();
+    let error =
+        Scenario::parse(text, None, &names, &Override::parse_all(&settings).unwrap()).unwrap_err();
     let message = error.to_string();
     assert!(message.contains("loop_x.lambda"), "{message}");
 }

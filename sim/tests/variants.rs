@@ -5,7 +5,7 @@
 //! the conservation of momentum and energy.
 
 use lagrangian_model::{Interpreted, LagrangianSystem};
-use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 use std::path::Path;
 
@@ -20,7 +20,12 @@ fn run<const N: usize>(name: &str, settings: &[&str]) -> SimulationResult {
     let system = Interpreted::<N>::new(model).unwrap();
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
     let file = format!("{ROOT}/specs/scenarios/{name}.toml");
-    let scenario = Scenario::load(Path::new(&file), &names, &settings).unwrap();
+    let scenario = Scenario::load(
+        Path::new(&file),
+        &names,
+        &Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap();
     let result = simulate(&system, &scenario).unwrap();
     assert_eq!(result.model, system.model_name());
     result

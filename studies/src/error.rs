@@ -5,7 +5,7 @@
 use crate::status::ExitStatus;
 use lagrangian_sim::fault::{Fault, named_values};
 use lagrangian_sim::pulse::channels::ChannelError;
-use lagrangian_sim::scenario::{ScenarioError, ScenarioErrorKind};
+use lagrangian_sim::scenario::{OverrideError, ScenarioError, ScenarioErrorKind};
 use lagrangian_sim::simulate::{FailureKind, SimulationError};
 use lagrangian_sim::table::TableError;
 
@@ -114,6 +114,7 @@ impl StudyError {
             file: None,
             location: None,
             message: message.into(),
+            key: None,
         })
     }
 
@@ -192,5 +193,111 @@ impl StudyError {
             StudyError::Run { details, .. } => details,
             _ => &[],
         }
+    }
+}
+
+// What each error of the libraries below is to a host: the kind of
+// failure (and so the exit status), with its message as it is.
+
+/// An override that cannot be read or does not fit: a scenario problem,
+/// as a scenario entry that does not fit is.
+impl From<OverrideError> for StudyError {
+    fn from(e: OverrideError) -> StudyError {
+        StudyError::Scenario(e.into())
+    }
+}
+
+/// A sweep's axes that make no plan: a bad request.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::PlanError> for StudyError {
+    fn from(e: crate::sweep::PlanError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// A shard that cannot be told: a bad request.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::ShardError> for StudyError {
+    fn from(e: crate::sweep::ShardError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// Axes that do not fit the scenario: a bad request.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::SettingsError> for StudyError {
+    fn from(e: crate::sweep::SettingsError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// Weights that cannot be used: a bad request.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::WeightsError> for StudyError {
+    fn from(e: crate::sweep::WeightsError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// A table that cannot be written: an I/O error.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::WriteError> for StudyError {
+    fn from(e: crate::sweep::WriteError) -> StudyError {
+        StudyError::io(e.to_string())
+    }
+}
+
+/// A journal that cannot be made, appended to or read: an I/O error (one
+/// resumed that belongs to another sweep is a data file's, said where it
+/// is read).
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::JournalError> for StudyError {
+    fn from(e: crate::sweep::JournalError) -> StudyError {
+        StudyError::io(e.to_string())
+    }
+}
+
+/// Shards' tables that do not merge: a data file's error.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::MergeError> for StudyError {
+    fn from(e: crate::sweep::MergeError) -> StudyError {
+        StudyError::data_file(e.to_string())
+    }
+}
+
+/// A run that does not add to the envelope of a sweep under way ends the
+/// sweep's stream of rows: an I/O error, as a row that cannot be written.
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::EnvelopeError> for StudyError {
+    fn from(e: crate::sweep::EnvelopeError) -> StudyError {
+        StudyError::io(e.to_string())
+    }
+}
+
+/// A partial envelope that cannot be written (an I/O error), or read and
+/// merged (a data file's error).
+#[cfg(feature = "sweep")]
+impl From<crate::sweep::EnvelopeFileError> for StudyError {
+    fn from(e: crate::sweep::EnvelopeFileError) -> StudyError {
+        match e {
+            crate::sweep::EnvelopeFileError::Write(_) => StudyError::io(e.to_string()),
+            _ => StudyError::data_file(e.to_string()),
+        }
+    }
+}
+
+/// `--fit` names that do not resolve: a bad request.
+#[cfg(feature = "fit")]
+impl From<crate::fit::ParameterError> for StudyError {
+    fn from(e: crate::fit::ParameterError) -> StudyError {
+        StudyError::usage(e.to_string())
+    }
+}
+
+/// A fit that failed.
+#[cfg(feature = "fit")]
+impl From<crate::fit::FitError> for StudyError {
+    fn from(e: crate::fit::FitError) -> StudyError {
+        StudyError::Fit(e.to_string())
     }
 }

@@ -21,7 +21,7 @@ use lagrangian_model::{
 };
 use lagrangian_sim::components::BoundInputs;
 use lagrangian_sim::fault::Fault;
-use lagrangian_sim::scenario::{ModelNames, Scenario, Setting};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario, Setting};
 use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::simulate::constrained;
 
@@ -195,7 +195,7 @@ pub type Bound = (Box<dyn InputFunctions>, Vec<usize>, Baumgarte);
 pub fn scenario_inputs(
     model: &mut InterpretedModel,
     path: &std::path::Path,
-    settings: &[String],
+    settings: &[Override],
     (t, q, qd): mass::State,
 ) -> Result<Bound, StudyError> {
     let names = ModelNames::of_interpreted(model);
@@ -227,13 +227,13 @@ pub fn scenario_inputs(
 /// input the dynamics calls needs a value.
 pub fn apply_settings(
     model: &mut InterpretedModel,
-    settings: &[String],
+    settings: &[Override],
 ) -> Result<(Box<dyn InputFunctions>, Vec<usize>), StudyError> {
     let names = ModelNames::of_interpreted(model);
     let mut inputs = vec![None; names.inputs.len()];
     let mut set = Vec::new();
     for setting in settings {
-        match Setting::parse(setting, &names).map_err(StudyError::usage)? {
+        match setting.setting(&names).map_err(|e| StudyError::usage(e.to_string()))? {
             Setting::Parameter { name, value } => {
                 model
                     .set_parameter(&name, value)

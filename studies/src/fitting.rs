@@ -4,12 +4,12 @@
 
 use crate::error::StudyError;
 use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
-use crate::plot::{Series, panels_svg};
+use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
 
@@ -27,7 +27,7 @@ pub struct FitRequest {
     /// `stiffness`, `damping`.
     pub fit: Vec<String>,
     /// Settings applied before fitting, as `simulate`'s.
-    pub set: Vec<String>,
+    pub set: Vec<Override>,
     /// Number of starts (the scenario's values, then perturbations); 0 is 1.
     pub starts: usize,
     /// Seed of the perturbed starts.
@@ -67,16 +67,14 @@ pub fn fitting(
     let text = std::fs::read_to_string(&scenario_path)
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
     let target = read_time_histories(&options.target).map_err(|e| StudyError::channels(&e))?;
-    let usage = |e: String| StudyError::usage(e);
     let document =
-        Scenario::document(&text, &names, &options.set).map_err(StudyError::invalid_scenario)?;
+        Scenario::document(&text, &names, &options.set).map_err(|e| StudyError::scenario(&e))?;
     let fit_names = if options.fit.is_empty() {
         vec!["stiffness".to_string(), "damping".to_string()]
     } else {
         options.fit.clone()
     };
-    let parameters =
-        Parameters::resolve(&fit_names, &document, &names, model.parameters()).map_err(usage)?;
+    let parameters = Parameters::resolve(&fit_names, &document, &names, model.parameters())?;
     let base = BaseScenario {
         text,
         file: Some(scenario_path.clone()),
@@ -120,7 +118,7 @@ impl WithDimension for Fit<'_> {
     type Output = Result<FitReport, StudyError>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        fit(&system, self.setup, self.progress).map_err(StudyError::Fit)
+        Ok(fit(&system, self.setup, self.progress)?)
     }
 }
 
@@ -304,7 +302,7 @@ fn relative(target: &Path, dir: &Path) -> PathBuf {
     out
 }
 
-fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, String> {
+fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotError> {
     let panels: Vec<(String, String, String, Vec<Series>)> = target
         .channels
         .iter()

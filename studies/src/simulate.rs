@@ -8,7 +8,7 @@ use lagrangian_core::Compiled;
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::report::{Units, summary_json, trajectory_csv, write_all_atomically};
-use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
 use std::path::{Path, PathBuf};
 
@@ -38,7 +38,7 @@ impl Simulated {
 pub fn simulate_spec(
     spec: &Path,
     scenario: Option<&Path>,
-    settings: &[String],
+    settings: &[Override],
 ) -> Result<Simulated, StudyError> {
     let (compiled, model, scenario_path, scenario) = load_spec(spec, scenario, settings)?;
     let result = dispatch(model.clone(), &scenario).map_err(|failure| {
@@ -67,7 +67,7 @@ pub fn simulate_spec(
 pub fn load_spec(
     spec: &Path,
     scenario: Option<&Path>,
-    settings: &[String],
+    settings: &[Override],
 ) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), StudyError> {
     let compiled = compile(spec)?;
     let model = crate::spec::interpreted(&compiled);

@@ -9,14 +9,13 @@ use crate::error::StudyError;
 pub use crate::progress::Progress;
 use crate::spec::compile;
 use crate::sweep::{
-    Design, Envelope, EnvelopeJob, Journal, Layout, Plan, Row, Settings, Shard, SweepJob,
-    journal_path, merged_rows, read_groups, run_scenario, shard_from_environment, stream_envelope,
-    stream_sweep, write_csv, write_parquet,
+    Design, Envelope, EnvelopeJob, Journal, Layout, Plan, PlanError, Row, Settings, Shard,
+    ShardError, SweepJob, journal_path, merged_rows, read_groups, run_scenario,
+    shard_from_environment, stream_envelope, stream_sweep, write_csv, write_parquet,
 };
 use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, spec_named_by};
-use std::cell::RefCell;
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, spec_named_by};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -44,7 +43,7 @@ pub struct SweepRequest {
     /// Seed of the sampled design (run i's values depend only on seed and i).
     pub seed: u64,
     /// Settings for every run, as `simulate`'s.
-    pub set: Vec<String>,
+    pub set: Vec<Override>,
     /// The output table: .csv or .parquet (needed unless `plan_only`).
     pub out: Option<PathBuf>,
     /// Its format, `csv` or `parquet` (default: from `out`'s extension).
@@ -71,7 +70,7 @@ pub struct SweepRequest {
 /// The spec a scenario names with its `spec` key (relative to the scenario).
 fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, StudyError> {
     spec_named_by(scenario, text)
-        .map_err(StudyError::usage)?
+        .map_err(|e| StudyError::usage(e.to_string()))?
         .ok_or_else(|| {
             StudyError::usage(format!(
                 "{} has no `spec = \"…\"` entry; name the spec with --spec",
@@ -81,15 +80,13 @@ fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, StudyError> {
 }
 
 /// The plan of the command line: a grid or a sampled design.
-fn plan(options: &SweepRequest) -> Result<Plan, String> {
+fn plan(options: &SweepRequest) -> Result<Plan, PlanError> {
     let design = options.design;
     match (options.grid.is_empty(), options.samples) {
         (false, None) if options.vary.is_empty() => Plan::grid(&options.grid),
         (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, design),
-        (true, None) => {
-            Err("give --grid KEY=VALUES or --samples N with --vary KEY=LOW:HIGH".into())
-        }
-        _ => Err("--grid cannot be combined with --samples/--vary".into()),
+        (true, None) => Err(PlanError::NoDesign),
+        _ => Err(PlanError::GridAndSamples),
     }
 }
 
@@ -109,18 +106,14 @@ fn wants_parquet(options: &SweepRequest, out: &Path) -> Result<bool, StudyError>
 }
 
 /// The shard of `--shard`, `--shard auto` or `--shard-index`/`--shard-count`.
-fn shard(options: &SweepRequest) -> Result<Shard, String> {
+fn shard(options: &SweepRequest) -> Result<Shard, ShardError> {
     let count = options.shard_count.map(|n| n as usize);
     match (options.shard.as_deref(), options.shard_index, count) {
         (Some("auto"), _, count) => shard_from_environment(&|name| std::env::var(name).ok(), count),
-        (Some(_), _, Some(_)) => {
-            Err("--shard-count goes with --shard auto or --shard-index, not --shard I/N".into())
-        }
+        (Some(_), _, Some(_)) => Err(ShardError::CountWithFraction),
         (Some(text), _, None) => Shard::parse(text),
         (None, Some(index), Some(count)) => Shard::zero_based(index, count),
-        (None, None, Some(_)) => {
-            Err("--shard-count goes with --shard auto or --shard-index".into())
-        }
+        (None, None, Some(_)) => Err(ShardError::CountAlone),
         (None, _, None) => Ok(Shard::ALL),
     }
 }
@@ -177,9 +170,9 @@ struct Prepared {
 }
 
 fn prepare(options: &SweepRequest) -> Result<Prepared, StudyError> {
-    let plan = plan(options).map_err(StudyError::usage)?;
+    let plan = plan(options)?;
     let (model, base) = load(options)?;
-    let settings = Settings::new(&plan, &base, model.parameters()).map_err(StudyError::usage)?;
+    let settings = Settings::new(&plan, &base, model.parameters())?;
     // A key the scenario does not know fails here, before any run starts.
     let first = match plan.is_empty() {
         false => run_scenario(&base, &settings, &plan.point(0)),
@@ -201,7 +194,7 @@ fn prepare(options: &SweepRequest) -> Result<Prepared, StudyError> {
 /// with `merge` the merge of its shards' tables: the text `lpm sweep`
 /// prints. `progress` sees the runs of a sweep (not of a plan or a merge).
 pub fn run(options: &SweepRequest, progress: &dyn Progress) -> Result<String, StudyError> {
-    let shard = shard(options).map_err(StudyError::usage)?;
+    let shard = shard(options)?;
     let out = options.out.clone();
     let parquet = out.as_deref().map(|out| wants_parquet(options, out));
     let prepared = prepare(options)?;
@@ -268,12 +261,12 @@ fn sweep(
     let stop = || progress.stop_requested();
     let start = Instant::now();
     let mut tally = Tally::default();
-    let mut sink = |row: Row| -> Result<(), String> {
+    let mut sink = |row: Row| -> Result<(), StudyError> {
         if row.run < journaled {
             return Ok(());
         }
         journal.append(&row).map_err(|e| {
-            format!("{e}; the runs finished before are kept in it: make room and run the same command with --resume")
+            StudyError::io(format!("{e}; the runs finished before are kept in it: make room and run the same command with --resume"))
         })?;
         tally.count(&row);
         progress.run_done();
@@ -416,7 +409,7 @@ fn open_journal(
         ))),
         _ => Journal::create(path, layout)
             .map(|j| (j, 0))
-            .map_err(StudyError::io),
+            .map_err(StudyError::from),
     }
 }
 
@@ -428,26 +421,27 @@ fn finish_output(
     layout: &Layout,
     parquet: bool,
 ) -> Result<(), StudyError> {
-    let io = |e: String| StudyError::io(e);
     if parquet {
-        let groups = read_groups(journal, layout, PARQUET_GROUP_ROWS).map_err(io)?;
-        write_beside(out, |file| write_parquet(layout, groups, file)).map_err(io)?;
+        let groups = read_groups(journal, layout, PARQUET_GROUP_ROWS)?;
+        let groups = groups.map(|group| group.map_err(StudyError::from));
+        write_beside(out, |file| write_parquet(layout, groups, file))?;
         std::fs::remove_file(journal)
-            .map_err(|e| io(format!("cannot remove {}: {e}", journal.display())))
+            .map_err(|e| StudyError::io(format!("cannot remove {}: {e}", journal.display())))
     } else {
         std::fs::rename(journal, out)
-            .map_err(|e| io(format!("cannot write {}: {e}", out.display())))
+            .map_err(|e| StudyError::io(format!("cannot write {}: {e}", out.display())))
     }
 }
 
 /// Writes `out` through a temporary file beside it
 /// ([`write_atomically_with`]), renamed into place when `write` succeeds
 /// and the bytes are on the disk, removed on any failure (a full disk
-/// included): `out` is whole or absent.
+/// included): `out` is whole or absent. A failure of `write` is returned
+/// as it is, any other is an I/O error.
 fn write_beside(
     out: &Path,
-    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> Result<(), String>,
-) -> Result<(), String> {
+    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> Result<(), StudyError>,
+) -> Result<(), StudyError> {
     let mut failure = None;
     write_atomically_with(out, |file| {
         let mut buffered = std::io::BufWriter::new(file);
@@ -457,14 +451,16 @@ fn write_beside(
         }
         buffered.flush()
     })
-    .map_err(|e| failure.unwrap_or_else(|| format!("cannot write {}: {e}", out.display())))
+    .map_err(|e| {
+        failure.unwrap_or_else(|| StudyError::io(format!("cannot write {}: {e}", out.display())))
+    })
 }
 
 /// `rows` in groups of `size` (the last one shorter); an error ends them.
-fn in_groups(
-    mut rows: impl Iterator<Item = Result<Row, String>>,
+fn in_groups<E>(
+    mut rows: impl Iterator<Item = Result<Row, E>>,
     size: usize,
-) -> impl Iterator<Item = Result<Vec<Row>, String>> {
+) -> impl Iterator<Item = Result<Vec<Row>, E>> {
     std::iter::from_fn(move || {
         let mut group = Vec::new();
         for row in rows.by_ref() {
@@ -488,18 +484,7 @@ fn merge(
     out: &Path,
     parquet: bool,
 ) -> Result<String, StudyError> {
-    let mut failure = None;
-    let written = write_beside(out, |file| {
-        merge_into(parts, prepared, parquet, file).map_err(|e| {
-            let message = e.to_string().trim_end().to_string();
-            failure = Some(e);
-            message
-        })
-    });
-    if let Some(failure) = failure {
-        return Err(failure);
-    }
-    written.map_err(StudyError::io)?;
+    write_beside(out, |file| merge_into(parts, prepared, parquet, file))?;
     Ok(format!(
         "merged {} runs from {} parts into {}\n",
         prepared.plan.len(),
@@ -515,25 +500,15 @@ fn merge_into(
     parquet: bool,
     file: impl std::io::Write + Send,
 ) -> Result<(), StudyError> {
-    let data = StudyError::DataFile;
-    let rows = merged_rows(parts, &prepared.layout, &prepared.plan).map_err(data)?;
     // A part that fails its checks is a data error, one that cannot be
-    // written an I/O error.
-    let bad_part = RefCell::new(None);
-    let rows = rows.inspect(|row| {
-        if let Err(e) = row {
-            bad_part.replace(Some(e.clone()));
-        }
-    });
+    // written an I/O error (the `From`s of their errors).
+    let rows = merged_rows(parts, &prepared.layout, &prepared.plan)?;
+    let rows = rows.map(|row| row.map_err(StudyError::from));
     let layout = &prepared.layout;
-    let written = match parquet {
+    match parquet {
         true => write_parquet(layout, in_groups(rows, PARQUET_GROUP_ROWS), file),
         false => write_csv(layout, rows, file),
-    };
-    if let Some(e) = bad_part.into_inner() {
-        return Err(data(e));
     }
-    written.map_err(StudyError::io)
 }
 
 /// Runs timed by `--plan`.
@@ -614,7 +589,7 @@ const PARQUET_GROUP_ROWS: usize = 1 << 16;
 struct Sweep<'a> {
     job: SweepJob<'a>,
     stop: &'a (dyn Fn() -> bool + Sync),
-    sink: &'a mut dyn FnMut(Row) -> Result<(), String>,
+    sink: &'a mut dyn FnMut(Row) -> Result<(), StudyError>,
     envelope: Option<Enveloping<'a>>,
 }
 
@@ -630,7 +605,7 @@ impl WithDimension for Sweep<'_> {
     type Output = Result<usize, StudyError>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
-        let streamed = match self.envelope {
+        match self.envelope {
             None => stream_sweep(&system, self.job, self.stop, self.sink),
             Some(Enveloping {
                 job,
@@ -648,7 +623,6 @@ impl WithDimension for Sweep<'_> {
                 };
                 stream_envelope(&system, self.job, job, envelope, self.stop, &mut sink)
             }
-        };
-        streamed.map_err(StudyError::io)
+        }
     }
 }

@@ -36,7 +36,7 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
         text,
         file: None,
         names,
-        settings: vec!["simulation.t_end=0.2".to_string()],
+        settings: vec![lagrangian_sim::scenario::Override::number("simulation.t_end", 0.2)],
     };
     let plan = Plan::grid(&["m2=1.5,2.5".to_string()]).unwrap();
     let settings = Settings::new(&plan, &base, &defaults).unwrap();
@@ -47,7 +47,7 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
         runs: 0..plan.len(),
         threads: 1,
     };
-    let rows = run_sweep(&system, job, &|| {}).unwrap();
+    let rows = run_sweep(&system, job, &|| {});
     let first = run_scenario(&base, &settings, &plan.point(0)).unwrap();
     let axes: Vec<String> = plan.axes().iter().map(|a| a.column()).collect();
     let csv = String::from_utf8(sweep_csv(&Layout::new(axes, &first), &rows).unwrap()).unwrap();

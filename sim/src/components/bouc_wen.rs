@@ -34,6 +34,7 @@ use super::{Binder, Column, Component, Port, Section};
 use crate::components::section::Ports;
 use crate::components::{Dissipation, States};
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::{finite, finite_combination, non_negative, positive};
 use serde::Deserialize;
 
@@ -190,13 +191,14 @@ pub(crate) struct BoucWenSection {
 
 impl BoucWenSection {
     /// The spring, its entries checked.
-    fn spring(&self, name: &str) -> Result<BoucWen, String> {
+    fn spring(&self, name: &str) -> Result<BoucWen, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let a = non_negative(&key("a"), self.a)?;
         if a >= 1.0 {
-            return Err(format!(
-                "{} = {a}: must be below 1 (the post-yield stiffness ratio)",
-                key("a")
+            return Err(EntryError::value(
+                key("a").into(),
+                format!("{a}"),
+                "must be below 1 (the post-yield stiffness ratio)",
             ));
         }
         let (beta, gamma) = (
@@ -204,9 +206,12 @@ impl BoucWenSection {
             finite(&key("gamma"), self.gamma)?,
         );
         if beta + gamma <= 0.0 {
-            return Err(format!(
-                "components.{name}: beta + gamma = {}: must be positive, or the hysteresis loop is unbounded",
-                beta + gamma
+            return Err(EntryError::at(
+                format!("components.{name}").into(),
+                format!(
+                    "beta + gamma = {}: must be positive, or the hysteresis loop is unbounded",
+                    beta + gamma
+                ),
             ));
         }
         let spring = BoucWen::new(
@@ -228,7 +233,7 @@ impl BoucWen {
     /// `Err` naming the entries when a coefficient of `F`, `ż` or `P`
     /// overflows although each entry is finite (a `uy` of 1e-320): the run
     /// would meet it as a force or rate that is not finite at once.
-    fn check_coefficients(&self, section: &str) -> Result<(), String> {
+    fn check_coefficients(&self, section: &str) -> Result<(), EntryError> {
         let (fy, uy, big_a) = (self.fy, self.uy, self.big_a);
         let (beta, gamma) = (self.beta, self.gamma);
         let checks = [
@@ -266,7 +271,7 @@ impl BoucWen {
 }
 
 impl Section for BoucWenSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let spring = self.spring(name)?;
         let c = binder.add(name.to_string(), Box::new(spring));
         binder.bind_ports(&self.inputs, "force", c, name)

@@ -521,7 +521,8 @@ impl BoundInputs {
     /// The components' internal states at the start of a run, which it
     /// also gives them.
     pub fn initial_internal(&mut self) -> Result<Internal, Fault> {
-        let z = (self.layout.initial(&self.components)).map_err(Fault::Component)?;
+        let z =
+            (self.layout.initial(&self.components)).map_err(|e| Fault::Component(e.to_string()))?;
         self.load(&z);
         Ok(z)
     }

@@ -5,8 +5,10 @@
 //! INPUT=VALUE` adds one too.
 
 use super::{Binder, Component, Port, Section, Smoothness};
+use crate::components::section::Named;
 use crate::curve::OutOfRange;
 use crate::entry::finite;
+use crate::entry::{EntryError, KeyPath};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -58,12 +60,15 @@ pub(crate) struct ConstantSection {
 }
 
 impl Section for ConstantSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         for (input, value) in &self.values {
-            let key = format!("components.{name}.values.{input}");
+            let key = KeyPath::new("components")
+                .join(name)
+                .join("values")
+                .join(input);
             let value = finite(&key, *value)?;
             let c = binder.add(format!("{name}.{input}"), Box::new(Constant { value }));
-            binder.bind(&key, input, (c, Port::Value))?;
+            binder.bind((&key, Named::ByKey), input, (c, Port::Value))?;
         }
         Ok(())
     }

@@ -50,6 +50,7 @@ use crate::components::{Dissipation, Events};
 use crate::curve::outside;
 use crate::curve::{Curve, ForceCurve, OutOfRange, Outside, SecantCurve, TableError};
 use crate::entry::non_negative;
+use crate::entry::{EntryError, KeyPath};
 use crate::ode::Direction;
 use serde::Deserialize;
 
@@ -574,7 +575,7 @@ fn hold() -> String {
 }
 
 impl Section for CrushSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let element = self.element(name)?;
         let c = binder.add(name.to_string(), Box::new(element));
         binder.bind_ports(&self.inputs, "force", c, name)
@@ -588,7 +589,7 @@ const FORCE: [&str; 2] = ["force_breakpoints", "force_values"];
 
 impl CrushSection {
     /// The element `[components.{name}]` describes.
-    fn element(&self, name: &str) -> Result<CrushElement, String> {
+    fn element(&self, name: &str) -> Result<CrushElement, EntryError> {
         let policy = outside(&format!("components.{name}"), &self.outside)?;
         let damping = SecantCurve::new(&self.damping_breakpoints, &self.damping_values, policy)
             .map_err(|e| table_error(name, ["damping_breakpoints", "damping_values"], &e))?;
@@ -607,20 +608,26 @@ impl CrushSection {
     }
 
     /// The loading curve, from the one form the section gives.
-    fn loading(&self, name: &str, policy: Outside) -> Result<LoadingCurve, String> {
+    fn loading(&self, name: &str, policy: Outside) -> Result<LoadingCurve, EntryError> {
         let secant = [&self.stiffness_breakpoints, &self.stiffness_values];
         let force = [&self.force_breakpoints, &self.force_values];
         let given = |lists: [&Option<Vec<f64>>; 2]| lists.iter().any(|l| l.is_some());
         match (given(secant), given(force)) {
-            (true, true) => Err(format!(
-                "components.{name}: {} (a secant stiffness curve) and {} (a force–deflection curve) are two forms of the spring's loading curve; give one of them",
-                SECANT.join(", "),
-                FORCE.join(", ")
+            (true, true) => Err(EntryError::at(
+                KeyPath::component(name),
+                format!(
+                    "{} (a secant stiffness curve) and {} (a force–deflection curve) are two forms of the spring's loading curve; give one of them",
+                    SECANT.join(", "),
+                    FORCE.join(", ")
+                ),
             )),
-            (false, false) => Err(format!(
-                "components.{name}: the spring's loading curve is missing: give {} (a force–deflection curve) or {} (a secant stiffness curve, F = k(δ)·δ)",
-                FORCE.join(" and "),
-                SECANT.join(" and ")
+            (false, false) => Err(EntryError::at(
+                KeyPath::component(name),
+                format!(
+                    "the spring's loading curve is missing: give {} (a force–deflection curve) or {} (a secant stiffness curve, F = k(δ)·δ)",
+                    FORCE.join(" and "),
+                    SECANT.join(" and ")
+                ),
             )),
             (true, false) => {
                 let (b, v) = both(name, SECANT, secant)?;
@@ -640,37 +647,45 @@ impl CrushSection {
     }
 
     /// The gap: finite, ≥ 0, and only for a compression-only element.
-    fn gap(&self, name: &str) -> Result<f64, String> {
+    fn gap(&self, name: &str) -> Result<f64, EntryError> {
         let gap = non_negative(&format!("components.{name}.gap"), self.gap)?;
         if gap > 0.0 && !self.contact_only {
-            return Err(format!(
-                "components.{name}.gap = {gap} needs contact_only = true: an element that pulls has no gap to open"
+            return Err(EntryError::sentence(
+                KeyPath::component(name).join("gap"),
+                format!(
+                    "= {gap} needs contact_only = true: an element that pulls has no gap to open"
+                ),
             ));
         }
         Ok(gap)
     }
 
-    fn unloading(&self, name: &str) -> Result<Unloading, String> {
+    fn unloading(&self, name: &str) -> Result<Unloading, EntryError> {
         match (self.unloading.as_str(), self.unloading_stiffness) {
             ("elastic", _) => Ok(Unloading::Elastic),
             ("plastic", Some(k)) if k > 0.0 && k.is_finite() => {
                 Ok(Unloading::Plastic { stiffness: k })
             }
-            ("plastic", _) => Err(format!(
-                "components.{name}: plastic unloading needs a positive unloading_stiffness [N/m]"
+            ("plastic", _) => Err(EntryError::at(
+                KeyPath::component(name),
+                "plastic unloading needs a positive unloading_stiffness [N/m]",
             )),
-            (other, _) => Err(format!(
-                "components.{name}: unloading = `{other}`; use elastic or plastic"
+            (other, _) => Err(EntryError::at(
+                KeyPath::component(name),
+                format!("unloading = `{other}`; use elastic or plastic"),
             )),
         }
     }
 
-    fn compression_sign(&self, name: &str) -> Result<f64, String> {
+    fn compression_sign(&self, name: &str) -> Result<f64, EntryError> {
         match self.compression.as_str() {
             "positive" => Ok(1.0),
             "negative" => Ok(-1.0),
-            other => Err(format!(
-                "components.{name}: compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+            other => Err(EntryError::at(
+                KeyPath::component(name),
+                format!(
+                    "compression = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+                ),
             )),
         }
     }
@@ -681,7 +696,11 @@ impl CrushSection {
 /// ([`energy`]), so where `S′ > k_u` the unloading line would give back
 /// more than loading stored and the dissipated energy would fall, below
 /// zero in the end.
-fn check_unloading(name: &str, loading: &LoadingCurve, unloading: Unloading) -> Result<(), String> {
+fn check_unloading(
+    name: &str,
+    loading: &LoadingCurve,
+    unloading: Unloading,
+) -> Result<(), EntryError> {
     let Unloading::Plastic { stiffness } = unloading else {
         return Ok(());
     };
@@ -691,12 +710,15 @@ fn check_unloading(name: &str, loading: &LoadingCurve, unloading: Unloading) -> 
     if tangent <= stiffness {
         return Ok(());
     }
-    Err(format!(
-        "components.{name}: unloading_stiffness = {stiffness:e} N/m is softer than the loading \
+    Err(EntryError::at(
+        KeyPath::component(name),
+        format!(
+            "unloading_stiffness = {stiffness:e} N/m is softer than the loading \
          curve, whose tangent stiffness is {tangent:.4e} N/m at a deflection of {delta:.4} m: \
          unloading from there would return more energy than loading stored (a negative \
          dissipated energy); plastic unloading needs an unloading_stiffness of at least \
          {tangent:.4e} N/m"
+        ),
     ))
 }
 
@@ -729,24 +751,25 @@ fn both<'a>(
     name: &str,
     keys: [&str; 2],
     lists: [&'a Option<Vec<f64>>; 2],
-) -> Result<(&'a [f64], &'a [f64]), String> {
+) -> Result<(&'a [f64], &'a [f64]), EntryError> {
+    let at = |k: usize| KeyPath::component(name).join(keys[k]);
     match lists {
         [Some(b), Some(v)] => Ok((b, v)),
-        [Some(_), None] => Err(format!(
-            "components.{name}.{} is missing: {} needs its values",
-            keys[1], keys[0]
+        [Some(_), None] => Err(EntryError::sentence(
+            at(1),
+            format!("is missing: {} needs its values", keys[0]),
         )),
-        [None, _] => Err(format!(
-            "components.{name}.{} is missing: {} needs its breakpoints",
-            keys[0], keys[1]
+        [None, _] => Err(EntryError::sentence(
+            at(0),
+            format!("is missing: {} needs its breakpoints", keys[1]),
         )),
     }
 }
 
 /// A table's problem, at the key of the list it is in.
-fn table_error(name: &str, keys: [&str; 2], e: &TableError) -> String {
+fn table_error(name: &str, keys: [&str; 2], e: &TableError) -> EntryError {
     let key = keys[usize::from(e.in_values())];
-    format!("components.{name}.{key}: {e}")
+    EntryError::at(KeyPath::component(name).join(key), e.to_string())
 }
 
 #[cfg(test)]
@@ -773,7 +796,9 @@ mod tests {
         );
         assert!(returned > stored, "{returned} vs {stored}");
         let soft = Unloading::Plastic { stiffness: 2.0e6 };
-        let e = check_unloading("front", &loading, soft).unwrap_err();
+        let e = check_unloading("front", &loading, soft)
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with(
                 "components.front: unloading_stiffness = 2e6 N/m is softer than the loading curve, \
@@ -952,7 +977,7 @@ mod tests {
     fn section(text: &str) -> Result<CrushElement, String> {
         let head = "inputs = { force = \"crush\" }\ncompression = \"positive\"\ndamping_breakpoints = [1.0]\ndamping_values = [0.0, 0.0]\n";
         let section: CrushSection = toml::from_str(&format!("{head}{text}")).unwrap();
-        section.element("fe")
+        section.element("fe").map_err(|e| e.to_string())
     }
 
     #[test]

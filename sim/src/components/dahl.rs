@@ -24,6 +24,7 @@ use super::{Binder, Column, Component, Port, Section};
 use crate::components::section::Ports;
 use crate::components::{Dissipation, States};
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::{finite, finite_combination, positive};
 use serde::Deserialize;
 
@@ -130,7 +131,7 @@ pub(crate) struct DahlSection {
 }
 
 impl Section for DahlSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let z0 = finite(&key("z0"), self.z0)?;
         let law = Dahl {

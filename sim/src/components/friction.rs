@@ -28,6 +28,7 @@ use super::{Binder, Column, Component, Port, Section};
 use crate::components::Dissipation;
 use crate::components::section::Ports;
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::{non_negative, positive};
 use serde::Deserialize;
 
@@ -166,7 +167,7 @@ fn two() -> f64 {
 }
 
 impl Section for FrictionSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let friction = self.friction(name)?;
         let c = binder.add(name.to_string(), Box::new(friction));
         binder.bind_ports(&self.inputs, "force", c, name)
@@ -175,22 +176,29 @@ impl Section for FrictionSection {
 
 impl FrictionSection {
     /// The friction `[components.{name}]` describes.
-    fn friction(&self, name: &str) -> Result<Friction, String> {
+    fn friction(&self, name: &str) -> Result<Friction, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let coulomb = non_negative(&key("coefficient"), self.coefficient)?;
         let stiction = self.static_coefficient.unwrap_or(coulomb);
         let stiction = non_negative(&key("static_coefficient"), stiction)?;
         if stiction < coulomb {
-            return Err(format!(
-                "components.{name}.static_coefficient = {stiction}: the static coefficient μ_s must be at least the kinetic one (coefficient = {coulomb})"
+            return Err(EntryError::value(
+                key("static_coefficient").into(),
+                format!("{stiction}"),
+                format!(
+                    "the static coefficient μ_s must be at least the kinetic one (coefficient = {coulomb})"
+                ),
             ));
         }
         let stribeck_velocity = match (self.stribeck_velocity, stiction > coulomb) {
             (Some(v), _) => positive(&key("stribeck_velocity"), v)?,
             (None, false) => 1.0,
             (None, true) => {
-                return Err(format!(
-                    "components.{name}.stribeck_velocity is missing: the friction falls from the static coefficient {stiction} to {coulomb} over it [m/s]"
+                return Err(EntryError::sentence(
+                    key("stribeck_velocity").into(),
+                    format!(
+                        "is missing: the friction falls from the static coefficient {stiction} to {coulomb} over it [m/s]"
+                    ),
                 ));
             }
         };

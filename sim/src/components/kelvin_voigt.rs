@@ -12,6 +12,7 @@ use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::components::Dissipation;
 use crate::components::section::Ports;
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::non_negative;
 use serde::Deserialize;
 
@@ -100,7 +101,7 @@ pub(crate) struct KelvinVoigtSection {
 }
 
 impl Section for KelvinVoigtSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let element = KelvinVoigt {
             stiffness: non_negative(&key("stiffness"), self.stiffness)?,

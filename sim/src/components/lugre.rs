@@ -25,6 +25,7 @@ use super::{Binder, Column, Component, Port, Section};
 use crate::components::section::Ports;
 use crate::components::{Dissipation, States};
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::{finite, non_negative, positive};
 use serde::Deserialize;
 
@@ -155,14 +156,15 @@ pub(crate) struct LuGreSection {
 
 impl LuGreSection {
     /// The friction law, its entries checked.
-    fn law(&self, name: &str) -> Result<LuGre, String> {
+    fn law(&self, name: &str) -> Result<LuGre, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let fc = positive(&key("fc"), self.fc)?;
         let fs = positive(&key("fs"), self.fs)?;
         if fs < fc {
-            return Err(format!(
-                "{} = {fs}: must be at least fc = {fc} (the break-away force is the largest)",
-                key("fs")
+            return Err(EntryError::value(
+                key("fs").into(),
+                format!("{fs}"),
+                format!("must be at least fc = {fc} (the break-away force is the largest)"),
             ));
         }
         let z0 = finite(&key("z0"), self.z0)?;
@@ -180,7 +182,7 @@ impl LuGreSection {
 }
 
 impl Section for LuGreSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let law = self.law(name)?;
         let c = binder.add(name.to_string(), Box::new(law));
         binder.bind_ports(&self.inputs, "force", c, name)

@@ -22,6 +22,7 @@ use super::{Binder, Column, Component, Port, Section, Smoothness};
 use crate::components::section::Ports;
 use crate::components::{Dissipation, States};
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::{finite, finite_combination, positive};
 use serde::Deserialize;
 
@@ -129,7 +130,7 @@ pub(crate) struct MaxwellSection {
 }
 
 impl Section for MaxwellSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let element = Maxwell::new(
             positive(&key("stiffness"), self.stiffness)?,

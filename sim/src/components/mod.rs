@@ -209,6 +209,7 @@ mod test_spring;
 pub mod weld;
 
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::ode::Direction;
 use crate::table::Table;
 pub use bound::{Binding, BoundInputs, NamedComponent};
@@ -516,13 +517,13 @@ pub(crate) trait Section {
     /// Reads the data file the section names, if any, and checks that what
     /// it needs is there — before anything is bound, so that a missing file
     /// is reported as such. The default: no data file.
-    fn load_table(&self, _name: &str, _base: &Path) -> Result<Option<Table>, String> {
+    fn load_table(&self, _name: &str, _base: &Path) -> Result<Option<Table>, EntryError> {
         Ok(None)
     }
 
     /// Checks the section `[components.{name}]`, adds its components to
     /// `binder` and binds the model's inputs to their ports.
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String>;
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError>;
 }
 
 /// The registry: from `KIND => module::Section` lines, the serde enum of
@@ -578,7 +579,7 @@ components! {
 impl ComponentSection {
     /// Builds the section `[components.{name}]` into `binder` (see
     /// [`Section::build`]).
-    pub(crate) fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    pub(crate) fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let first = binder.component_count();
         self.section().build(name, binder)?;
         debug_assert!(

@@ -6,7 +6,7 @@
 
 use super::constant::Constant;
 use super::{Binding, BoundInputs, Component, NamedComponent, Port};
-use crate::entry::{finite, index_of};
+use crate::entry::{EntryError, KeyPath, index_of};
 use crate::model_names::ModelNames;
 use crate::table::Table;
 use serde::Deserialize;
@@ -22,6 +22,16 @@ pub(crate) struct Ports {
     force: String,
     stiffness: Option<String>,
     damping: Option<String>,
+}
+
+/// Where an entry that binds an input names it: as its value
+/// (`inputs = { force = "F" }`) or as its key (`columns = { F = "force" }`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Named {
+    /// `key = "INPUT"`.
+    ByValue,
+    /// `INPUT = …`.
+    ByKey,
 }
 
 /// The scenario's components as they are built, and the model's inputs as
@@ -47,7 +57,7 @@ impl<'a> Binder<'a> {
 
     /// The components and the inputs bound to them, once every section has
     /// built and `--set` constants have overridden.
-    pub(crate) fn finish(self) -> Result<BoundInputs, String> {
+    pub(crate) fn finish(self) -> Result<BoundInputs, EntryError> {
         let event_arguments = self.event_arguments()?;
         Ok(BoundInputs::new(
             self.components,
@@ -75,41 +85,48 @@ impl<'a> Binder<'a> {
 
     /// The data file that section `[components.{name}]` loaded
     /// ([`crate::components::Section::load_table`]).
-    pub(crate) fn table(&self, name: &str) -> Result<&'a Table, String> {
+    pub(crate) fn table(&self, name: &str) -> Result<&'a Table, EntryError> {
         let tables: &'a BTreeMap<String, Table> = self.tables;
-        tables
-            .get(name)
-            .ok_or_else(|| format!("components.{name}: its table was not loaded"))
+        tables.get(name).ok_or_else(|| {
+            EntryError::at(
+                KeyPath::new("components").join(name),
+                "its table was not loaded",
+            )
+        })
     }
 
-    /// Binds the input named at scenario entry `key` to `port` of component
-    /// `index`; the input must take the number of arguments the component
-    /// reads.
+    /// Binds the input named at scenario entry `key` (its value, or its
+    /// key's last part when `Named::ByKey`) to `port` of component `index`;
+    /// the input must take the number of arguments the component reads.
     pub(crate) fn bind(
         &mut self,
-        key: &str,
+        (key, named): (&KeyPath, Named),
         input: &str,
         (index, port): (usize, Port),
-    ) -> Result<(), String> {
+    ) -> Result<(), EntryError> {
         let names = self.names;
-        let k = index_of(&format!("{key}: input"), input, &names.inputs)?;
+        let bad = |reason: String| match named {
+            Named::ByValue => EntryError::text(key.clone(), input, reason),
+            Named::ByKey => EntryError::at(key.clone(), reason),
+        };
+        let k = index_of(key, "input", input, &names.inputs).map_err(|e| bad(e.reason))?;
         if self.bindings[k].is_some() {
-            return Err(format!(
-                "{key}: input `{input}` is already supplied by another component"
-            ));
+            return Err(bad(format!(
+                "input `{input}` is already supplied by another component"
+            )));
         }
         let component = &self.components[index].component;
         if let (Some((needed, meaning)), Some(has)) = (component.arguments(), names.arity(k))
             && needed != has
         {
             let plural = |n: usize| if n == 1 { "" } else { "s" };
-            return Err(format!(
-                "{key}: input {} has {has} argument{}, but a {} component needs an input of {needed} argument{} ({meaning})",
+            return Err(bad(format!(
+                "input {} has {has} argument{}, but a {} component needs an input of {needed} argument{} ({meaning})",
                 names.signature(k),
                 plural(has),
                 component.kind(),
                 plural(needed),
-            ));
+            )));
         }
         self.bindings[k] = Some(Binding {
             component: index,
@@ -127,31 +144,40 @@ impl<'a> Binder<'a> {
         value: &str,
         index: usize,
         owner: &str,
-    ) -> Result<(), String> {
-        let key =
-            |entry: &str, input: &str| format!("components.{owner}.inputs.{entry} = \"{input}\"");
+    ) -> Result<(), EntryError> {
+        let inputs = KeyPath::new("components").join(owner).join("inputs");
         let f = &ports.force;
-        self.bind(&key(value, f), f, (index, Port::Value))?;
+        self.bind(
+            (&inputs.join(value), Named::ByValue),
+            f,
+            (index, Port::Value),
+        )?;
         if let Some(s) = &ports.stiffness {
-            self.bind(&key("stiffness", s), s, (index, Port::Stiffness))?;
+            self.bind(
+                (&inputs.join("stiffness"), Named::ByValue),
+                s,
+                (index, Port::Stiffness),
+            )?;
         }
         if let Some(d) = &ports.damping {
-            self.bind(&key("damping", d), d, (index, Port::Damping))?;
+            self.bind(
+                (&inputs.join("damping"), Named::ByValue),
+                d,
+                (index, Port::Damping),
+            )?;
         }
         Ok(())
     }
 
-    /// Gives `input` the constant `value` of `--set input=value`, whatever
-    /// the file binds it to.
-    pub(crate) fn set_constant(&mut self, input: &str, value: f64) -> Result<(), String> {
-        finite(&format!("--set {input}"), value)?;
-        let k = index_of("--set: input", input, &self.names.inputs)?;
+    /// Gives input `k` the constant `value` of `--set input=value`, whatever
+    /// the file binds it to (the override checked the name and the value).
+    pub(crate) fn set_constant(&mut self, k: usize, value: f64) {
+        let input = &self.names.inputs[k];
         let c = self.add(format!("--set {input}"), Box::new(Constant { value }));
         self.bindings[k] = Some(Binding {
             component: c,
             port: Port::Value,
         });
-        Ok(())
     }
 
     /// For each component: where its events and columns find the arguments
@@ -160,7 +186,7 @@ impl<'a> Binder<'a> {
     /// or whose value input `--set` overrode or the dynamics does not call.
     /// A component with events needs that input called at one place; one
     /// with columns only has none where it is called at several.
-    fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, String> {
+    fn event_arguments(&self) -> Result<Vec<Option<(usize, usize)>>, EntryError> {
         let mut arguments = vec![None; self.components.len()];
         for (c, named) in self.components.iter().enumerate() {
             let component = &named.component;
@@ -185,7 +211,7 @@ impl<'a> Binder<'a> {
 
     /// The offset and number of the arguments of input `k`'s one call in
     /// the dynamics (`None`: no call), for stateful component `owner`.
-    fn only_call(&self, k: usize, owner: &str) -> Result<Option<(usize, usize)>, String> {
+    fn only_call(&self, k: usize, owner: &str) -> Result<Option<(usize, usize)>, EntryError> {
         let mut offset = 0;
         let mut found = Vec::new();
         for &(site, arity) in &self.names.input_sites {
@@ -197,10 +223,13 @@ impl<'a> Binder<'a> {
         match found.as_slice() {
             [] => Ok(None),
             [one] => Ok(Some(*one)),
-            _ => Err(format!(
-                "component `{owner}` keeps state (hysteresis, failure), but its input `{}` is called at {} places with different arguments; give each call its own input function",
-                self.names.inputs[k],
-                found.len()
+            _ => Err(EntryError::about(
+                KeyPath::new("components").join(owner),
+                format!(
+                    "component `{owner}` keeps state (hysteresis, failure), but its input `{}` is called at {} places with different arguments; give each call its own input function",
+                    self.names.inputs[k],
+                    found.len()
+                ),
             )),
         }
     }

@@ -61,13 +61,8 @@ impl StateLayout {
     /// The initial `z`: each component's initial states, no energy
     /// dissipated; an error when there are more than the integrator
     /// carries.
-    pub fn initial(&self, components: &[NamedComponent]) -> Result<Internal, String> {
-        let z = Internal::zeros(self.len).ok_or_else(|| {
-            format!(
-                "the scenario's components have {} internal states (with one dissipated energy per dissipative component); a run carries at most {INTERNAL_CAPACITY}",
-                self.len
-            )
-        })?;
+    pub fn initial(&self, components: &[NamedComponent]) -> Result<Internal, TooManyStates> {
+        let z = Internal::zeros(self.len).ok_or(TooManyStates { states: self.len })?;
         let mut z = z.with_quadratures(self.energies.len());
         for &(c, offset, count) in &self.states {
             let slice = &mut z.as_mut_slice()[offset..offset + count];
@@ -128,4 +123,14 @@ impl StateLayout {
         }
         columns
     }
+}
+
+/// More internal states than a run carries.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "the scenario's components have {states} internal states (with one dissipated energy per dissipative component); a run carries at most {INTERNAL_CAPACITY}"
+)]
+pub struct TooManyStates {
+    /// The states the components have, dissipated energies included.
+    pub states: usize,
 }

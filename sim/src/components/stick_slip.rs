@@ -26,6 +26,7 @@ use super::{Binder, Column, Component, Event, Port, Section};
 use crate::components::section::Ports;
 use crate::components::{Dissipation, Events};
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::non_negative;
 use crate::ode::Direction;
 use serde::Deserialize;
@@ -199,14 +200,18 @@ pub(crate) struct StickSlipSection {
 }
 
 impl Section for StickSlipSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let kinetic = non_negative(&key("coefficient"), self.coefficient)?;
         let stiction = self.static_coefficient.unwrap_or(kinetic);
         let stiction = non_negative(&key("static_coefficient"), stiction)?;
         if stiction < kinetic {
-            return Err(format!(
-                "components.{name}.static_coefficient = {stiction}: the static coefficient μ_s must be at least the kinetic one (coefficient = {kinetic})"
+            return Err(EntryError::value(
+                key("static_coefficient").into(),
+                format!("{stiction}"),
+                format!(
+                    "the static coefficient μ_s must be at least the kinetic one (coefficient = {kinetic})"
+                ),
             ));
         }
         let normal = non_negative(&key("normal_force"), self.normal_force)?;

@@ -16,8 +16,10 @@
 //! and one component per column it binds, named `NAME.INPUT`.
 
 use super::{Binder, Component, Port, Section, Smoothness};
+use crate::components::section::Named;
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
+use crate::entry::{EntryError, KeyPath};
 use crate::table::Table;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -109,12 +111,14 @@ fn linear() -> String {
 
 /// Whether `interpolation` asks for the monotone cubic (`pchip`) rather
 /// than straight lines (`linear`).
-fn smooth(name: &str, interpolation: &str) -> Result<bool, String> {
+fn smooth(name: &str, interpolation: &str) -> Result<bool, EntryError> {
     match interpolation {
         "linear" => Ok(false),
         "pchip" => Ok(true),
-        other => Err(format!(
-            "components.{name}.interpolation = \"{other}\": expected one of linear, pchip"
+        other => Err(EntryError::text(
+            format!("components.{name}.interpolation").into(),
+            other,
+            "expected one of linear, pchip",
         )),
     }
 }
@@ -122,8 +126,10 @@ fn smooth(name: &str, interpolation: &str) -> Result<bool, String> {
 impl Section for TableSection {
     /// Reads the file (relative to `base`) and checks that every column it
     /// names is there, against increasing times.
-    fn load_table(&self, name: &str, base: &Path) -> Result<Option<Table>, String> {
-        let at = |e: &dyn std::fmt::Display| format!("components.{name}: {e}");
+    fn load_table(&self, name: &str, base: &Path) -> Result<Option<Table>, EntryError> {
+        let at = |e: &dyn std::fmt::Display| {
+            EntryError::at(KeyPath::new("components").join(name), e.to_string())
+        };
         let table = Table::load(&base.join(&self.file)).map_err(|e| at(&e))?;
         for column in self.columns.values() {
             table
@@ -133,14 +139,16 @@ impl Section for TableSection {
         Ok(Some(table))
     }
 
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let policy = outside(&format!("components.{name}"), &self.outside)?;
         let smooth = smooth(name, &self.interpolation)?;
         let table = binder.table(name)?;
         for (input, column) in &self.columns {
             let curve = table
                 .curve(&self.time_column, column, policy)
-                .map_err(|e| format!("components.{name}: {e}"))?;
+                .map_err(|e| {
+                    EntryError::at(KeyPath::new("components").join(name), e.to_string())
+                })?;
             let curve = if smooth { curve.smooth() } else { curve };
             let c = binder.add(
                 format!("{name}.{input}"),
@@ -149,8 +157,11 @@ impl Section for TableSection {
                     stop_at_kinks: self.stop_at_kinks,
                 }),
             );
-            let key = format!("components.{name}.columns.{input}");
-            binder.bind(&key, input, (c, Port::Value))?;
+            let key = KeyPath::new("components")
+                .join(name)
+                .join("columns")
+                .join(input);
+            binder.bind((&key, Named::ByKey), input, (c, Port::Value))?;
         }
         Ok(())
     }

@@ -9,6 +9,7 @@ use super::{Binder, Component, Event, Port, Report, Section};
 use crate::components::Events;
 use crate::components::section::Ports;
 use crate::curve::OutOfRange;
+use crate::entry::EntryError;
 use crate::entry::positive;
 use crate::ode::Direction;
 use serde::Deserialize;
@@ -91,7 +92,7 @@ pub(crate) struct SpringSection {
 }
 
 impl Section for SpringSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let spring = Spring {
             stiffness: positive(&format!("components.{name}.stiffness"), self.stiffness)?,
             breaks_at: positive(&format!("components.{name}.breaks_at"), self.breaks_at)?,

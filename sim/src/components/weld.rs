@@ -25,6 +25,7 @@ use crate::components::section::Ports;
 use crate::components::{Dissipation, Events};
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange};
+use crate::entry::{EntryError, KeyPath};
 use crate::entry::{non_negative, positive};
 use crate::ode::Direction;
 use serde::Deserialize;
@@ -344,7 +345,7 @@ fn extrapolate() -> String {
 }
 
 impl Section for WeldSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let weld = self.weld(name)?;
         let c = binder.add(name.to_string(), Box::new(weld));
         binder.bind_ports(&self.inputs, "moment", c, name)
@@ -353,7 +354,7 @@ impl Section for WeldSection {
 
 impl WeldSection {
     /// The weld `[components.{name}]` describes.
-    fn weld(&self, name: &str) -> Result<Weld, String> {
+    fn weld(&self, name: &str) -> Result<Weld, EntryError> {
         let policy = outside(&format!("components.{name}"), &self.outside)?;
         let make = |points: &[[f64; 2]], what: &str| {
             Curve::new(
@@ -361,7 +362,7 @@ impl WeldSection {
                 points.iter().map(|p| p[1]).collect(),
                 policy,
             )
-            .map_err(|e| format!("components.{name}: {what}: {e}"))
+            .map_err(|e| EntryError::at(KeyPath::component(name), format!("{what}: {e}")))
         };
         let key = |entry: &str| format!("components.{name}.{entry}");
         non_negative(&key("damping"), self.damping)?;

@@ -1,7 +1,7 @@
 //! Linearizations of small specs against closed forms.
 
 use super::*;
-use crate::scenario::ModelNames;
+use crate::scenario::{ModelNames, Override};
 use lagrangian_model::Interpreted;
 use std::f64::consts::TAU;
 
@@ -25,7 +25,7 @@ fn close(found: f64, expected: f64, tolerance: f64) {
 #[test]
 fn a_pendulum_swings_at_the_square_root_of_g_over_l() {
     let (pendulum, names) = model::<1>(PENDULUM);
-    let scenario = Scenario::defaults(&names, &["l=0.7".into()]).unwrap();
+    let scenario = Scenario::defaults(&names, &[Override::parse("l=0.7").unwrap()]).unwrap();
     let l = linearize(&pendulum, &scenario, &At::Equilibrium).unwrap();
     assert_eq!(l.state_names, ["theta", "dot(theta)"]);
     assert_eq!(l.source, StateMatrixSource::CentralDifferences);
@@ -56,7 +56,11 @@ fn upside_down_the_pendulum_is_unstable() {
 #[test]
 fn a_spring_mass_damper_has_its_damping_ratio_and_input_column() {
     let (spring, names) = model::<1>(SPRING);
-    let settings = ["m=2".into(), "k=50".into(), "c=3".into()];
+    let settings = [
+        Override::parse("m=2").unwrap(),
+        Override::parse("k=50").unwrap(),
+        Override::parse("c=3").unwrap(),
+    ];
     let scenario = Scenario::defaults(&names, &settings).unwrap();
     let l = linearize(&spring, &scenario, &At::Equilibrium).unwrap();
     let (m, k, c) = (2.0, 50.0, 3.0);
@@ -87,7 +91,14 @@ fn a_spring_mass_damper_has_its_damping_ratio_and_input_column() {
 #[test]
 fn heavy_damping_makes_two_overdamped_modes() {
     let (spring, names) = model::<1>(SPRING);
-    let scenario = Scenario::defaults(&names, &["c=25".into(), "push=3".into()]).unwrap();
+    let scenario = Scenario::defaults(
+        &names,
+        &[
+            Override::parse("c=25").unwrap(),
+            Override::parse("push=3").unwrap(),
+        ],
+    )
+    .unwrap();
     let l = linearize(&spring, &scenario, &At::Equilibrium).unwrap();
     // k = 100, m = 1, c = 25: λ = (−25 ± 15)/2.
     let frequencies: Vec<f64> = l.modes.iter().map(|m| m.frequency_hz * TAU).collect();
@@ -112,7 +123,7 @@ fn two_free_masses_on_a_spring_have_a_rigid_body_mode() {
     // Kamal's car without a scenario: the crush springs are unbound inputs
     // (columns of B, held at 0), so only the engine mounts join the masses.
     let (kamal, names) = model::<2>(KAMAL);
-    let scenario = Scenario::defaults(&names, &["c_eb=0".into()]).unwrap();
+    let scenario = Scenario::defaults(&names, &[Override::parse("c_eb=0").unwrap()]).unwrap();
     let l = linearize(&kamal, &scenario, &At::Equilibrium).unwrap();
     assert_eq!(l.source, StateMatrixSource::DerivedJacobians);
     let kinds: Vec<ModeKind> = l.modes.iter().map(|m| m.kind).collect();

@@ -1,6 +1,6 @@
 //! A scenario file with settings that every run of a sweep or a fit shares.
 
-use super::{ModelNames, Scenario, ScenarioError};
+use super::{ModelNames, Override, Scenario, ScenarioError};
 use std::path::PathBuf;
 
 /// The scenario every run of a sweep or a fit starts from.
@@ -13,12 +13,12 @@ pub struct BaseScenario {
     /// The names of the model it is resolved against.
     pub names: ModelNames,
     /// `--set` settings applied to every run before a run's own.
-    pub settings: Vec<String>,
+    pub settings: Vec<Override>,
 }
 
 impl BaseScenario {
     /// The scenario with the base's settings, then `settings`, applied.
-    pub fn resolve(&self, settings: &[String]) -> Result<Scenario, ScenarioError> {
+    pub fn resolve(&self, settings: &[Override]) -> Result<Scenario, ScenarioError> {
         let mut all = self.settings.clone();
         all.extend_from_slice(settings);
         Scenario::parse(&self.text, self.file.as_deref(), &self.names, &all)

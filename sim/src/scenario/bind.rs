@@ -5,6 +5,7 @@
 
 use crate::components::section::Binder;
 use crate::components::{BoundInputs, ComponentSection};
+use crate::entry::EntryError;
 use crate::model_names::ModelNames;
 use crate::table::Table;
 use std::collections::BTreeMap;
@@ -13,15 +14,15 @@ pub(super) fn bind_components(
     sections: &BTreeMap<String, ComponentSection>,
     tables: &BTreeMap<String, Table>,
     names: &ModelNames,
-    constants: BTreeMap<String, f64>,
-) -> Result<BoundInputs, String> {
+    constants: BTreeMap<usize, f64>,
+) -> Result<BoundInputs, EntryError> {
     let mut binder = Binder::new(names, tables);
     for (name, section) in sections {
         section.build(name, &mut binder)?;
     }
     // --set constants override whatever the file binds.
-    for (input, value) in constants {
-        binder.set_constant(&input, value)?;
+    for (k, value) in constants {
+        binder.set_constant(k, value);
     }
     binder.finish()
 }

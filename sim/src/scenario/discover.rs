@@ -1,14 +1,19 @@
 //! Which scenario goes with a spec, and which spec with a scenario: the
 //! `spec = "…"` key of a scenario file, relative to the file.
 
+use super::{ScenarioError, ScenarioErrorKind};
 use std::path::{Path, PathBuf};
 
 /// The spec a scenario's text names with its `spec` key, relative to the
 /// scenario file `path`; `None` without the key.
-pub fn spec_named_by(path: &Path, text: &str) -> Result<Option<PathBuf>, String> {
-    let table: toml::Table = text
-        .parse()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+pub fn spec_named_by(path: &Path, text: &str) -> Result<Option<PathBuf>, ScenarioError> {
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| ScenarioError {
+        kind: ScenarioErrorKind::Invalid,
+        file: Some(path.to_path_buf()),
+        location: None,
+        message: e.to_string(),
+        key: None,
+    })?;
     let base = path.parent().unwrap_or(Path::new("."));
     Ok(table
         .get("spec")

@@ -1,112 +1,120 @@
-//! Where an entry of a scenario file is: the `line:column` a message about
-//! `metrics.crush = "x"` points at. The TOML document the scenario is
-//! resolved from has no positions, so the entry is found in the text.
+//! Where an entry of a scenario file is: the `line:column` an
+//! [`EntryError`] about `metrics.crush = "x"` points at, found by its key
+//! path in the places the one parse of the file recorded; and which
+//! `--set` setting gave the value an error is about.
 
-/// `(line, column)`, from 1, of the entry `message` starts with
-/// (`section.key = "value": …` or `section.key: …`): the quoted value when
-/// the message quotes one and the text has it on the entry's lines, else
-/// the key. `None` when the text has no such entry, or when one of the
-/// `settings` (`key=value`) set it: then the value is not the file's.
-pub(super) fn locate(text: &str, message: &str, settings: &[String]) -> Option<(usize, usize)> {
-    if setting_of(message, settings).is_some() {
-        return None;
-    }
-    let end = message.find([' ', ':'])?;
-    let key = &message[..end];
-    let (section, name) = key.rsplit_once('.')?;
-    let value = quoted_value(&message[end..]);
-    let lines: Vec<&str> = text.lines().collect();
-    let start = entry_line(&lines, section, name)?;
-    if let Some(value) = value {
-        let quoted = format!("\"{value}\"");
-        // The value may be on a later line of a multi-line array.
-        for (k, line) in lines.iter().enumerate().skip(start).take(20) {
-            if let Some(column) = line.find(&quoted) {
-                return Some((k + 1, line[..column].chars().count() + 1));
-            }
-        }
-    }
-    let column = lines[start].len() - lines[start].trim_start().len();
-    Some((start + 1, column + 1))
+use super::overrides::Override;
+use crate::entry::{EntryError, KeyPath};
+use std::collections::BTreeMap;
+use std::ops::Range;
+use toml::de::{DeTable, DeValue};
+
+/// Where each entry of a scenario file is: its key's and its value's byte
+/// ranges, and for a list the ranges of its string items, by key path.
+pub(super) struct Places<'t> {
+    text: &'t str,
+    entries: BTreeMap<KeyPath, Place>,
 }
 
-/// The last of `settings` (`key=value`, `key*=factor`) that set the entry
-/// `message` starts with (`section.key = "value": …`, `section.key: …`),
-/// or a table above it: the value it is about is the setting's.
-pub(super) fn setting_of<'a>(message: &str, settings: &'a [String]) -> Option<&'a String> {
-    let end = message.find([' ', ':'])?;
-    let key = &message[..end];
-    let set_by = |s: &&String| {
-        let set = s
-            .split('=')
-            .next()
-            .unwrap_or("")
-            .trim()
-            .trim_end_matches('*')
-            .trim();
-        // A plain key sets a parameter: `parameters.NAME`.
-        let set = match set.contains('.') {
-            true => set.to_string(),
-            false => format!("parameters.{set}"),
+/// Where one entry is in the text.
+struct Place {
+    key: Range<usize>,
+    value: Range<usize>,
+    /// The string items of a list value, with their ranges.
+    items: Vec<(String, Range<usize>)>,
+}
+
+impl<'t> Places<'t> {
+    /// The places of every entry of `document`, parsed from `text`.
+    pub(super) fn new(text: &'t str, document: &DeTable) -> Places<'t> {
+        let mut entries = BTreeMap::new();
+        record(&KeyPath::default(), document, &mut entries);
+        Places { text, entries }
+    }
+
+    /// `(line, column)`, from 1, of the entry `error` is about: its string
+    /// value (or the list item that is) when the error quotes one, else its
+    /// key; `None` when the file has no such entry.
+    pub(super) fn locate(&self, error: &EntryError) -> Option<(usize, usize)> {
+        let place = self.entries.get(&error.key)?;
+        let at = match error.quoted_value() {
+            Some(value) if string_at(self.text, &place.value) == Some(value) => place.value.start,
+            Some(value) => (place.items.iter())
+                .find(|(item, _)| item == value)
+                .map_or(place.key.start, |(_, range)| range.start),
+            None => place.key.start,
         };
-        set == key || key.starts_with(&format!("{set}."))
-    };
+        Some(line_column(self.text, at))
+    }
+}
+
+/// Records the places of `table`'s entries, below `path`.
+fn record(path: &KeyPath, table: &DeTable, entries: &mut BTreeMap<KeyPath, Place>) {
+    for (key, value) in table.iter() {
+        let path = path.join(key.get_ref());
+        let items = match value.get_ref() {
+            DeValue::Array(items) => (items.iter())
+                .filter_map(|item| match item.get_ref() {
+                    DeValue::String(s) => Some((s.to_string(), item.span())),
+                    _ => None,
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        if let DeValue::Table(inner) = value.get_ref() {
+            record(&path, inner, entries);
+        }
+        let place = Place {
+            key: key.span(),
+            value: value.span(),
+            items,
+        };
+        entries.insert(path, place);
+    }
+}
+
+/// The string a value's range holds, without its quotes, when it is a
+/// basic string on one line.
+fn string_at<'t>(text: &'t str, range: &Range<usize>) -> Option<&'t str> {
+    let value = text.get(range.clone())?;
+    value.strip_prefix('"')?.strip_suffix('"')
+}
+
+/// `(line, column)`, from 1, of byte `at` of `text`; the column counts
+/// characters.
+pub(super) fn line_column(text: &str, at: usize) -> (usize, usize) {
+    let before = &text[..floor_char_boundary(text, at)];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+/// The largest char boundary of `text` at or below `at`.
+fn floor_char_boundary(text: &str, at: usize) -> usize {
+    let mut at = at.min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
+
+/// The last of `settings` that set the entry `error` is about, or a table
+/// above it: the value it is about is the setting's.
+pub(super) fn setting_of<'a>(error: &EntryError, settings: &'a [Override]) -> Option<&'a Override> {
+    let set_by = |s: &&Override| s.path().contains(&error.key);
     settings.iter().rev().find(set_by)
 }
 
-/// `message` about an entry that `setting` set, as an error of the
+/// `error`, about an entry that `setting` set, as an error of the
 /// setting: `--set KEY=VALUE: what is wrong` in place of the entry and its
-/// value (`parameters.k = inf: …`) when the setting gave that value, else
-/// `--set KEY*=FACTOR: message` (the message names what the setting made).
-pub(super) fn blamed(setting: &str, message: &str) -> String {
-    let setting = setting.trim();
-    let key = setting.split('=').next().unwrap_or("").trim();
-    let key = match key.contains('.') {
-        true => key.to_string(),
-        false => format!("parameters.{key}"),
-    };
-    let end = message.find([' ', ':']);
-    // The message is about the very entry set to that value.
-    let plain = end.is_some_and(|end| message[..end] == key);
-    let rest = end.map(|end| &message[end..]);
-    let reason = rest.map(|rest| {
-        let rest = rest.trim_start();
-        let rest = rest.strip_prefix('=').map_or(rest, |r| {
-            // ` = value: reason`: the reason after the value.
-            r.split_once(": ").map_or("", |(_, reason)| reason)
-        });
-        rest.strip_prefix(':').unwrap_or(rest).trim_start()
-    });
-    match reason {
-        Some(reason) if plain && !reason.is_empty() => format!("--set {setting}: {reason}"),
-        _ => format!("--set {setting}: {message}"),
+/// value when the setting set that very entry, else `--set KEY=VALUE:
+/// message` (the message names what the setting made).
+pub(super) fn blamed(setting: &Override, error: &EntryError) -> String {
+    let plain = setting.path() == error.key && error.names_key_first();
+    match plain && !error.reason.is_empty() {
+        true => format!("--set {setting}: {}", error.reason),
+        false => format!("--set {setting}: {error}"),
     }
-}
-
-/// The value in ` = "value"` at the start of the rest of a message.
-fn quoted_value(rest: &str) -> Option<&str> {
-    let rest = rest.trim_start().strip_prefix('=')?.trim_start();
-    let rest = rest.strip_prefix('"')?;
-    rest.find('"').map(|end| &rest[..end])
-}
-
-/// The index of the line that sets `name` in `[section]`.
-fn entry_line(lines: &[&str], section: &str, name: &str) -> Option<usize> {
-    let mut current = String::new();
-    for (k, line) in lines.iter().enumerate() {
-        let line = line.trim();
-        if let Some(header) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
-            current = header.trim().to_string();
-            continue;
-        }
-        let Some((key, _)) = line.split_once('=') else {
-            continue;
-        };
-        if current == section && key.trim().trim_matches('"') == name {
-            return Some(k);
-        }
-    }
-    None
 }
 
 #[cfg(test)]
@@ -116,13 +124,34 @@ mod tests {
     #[test]
     fn an_entry_is_found_at_its_value_or_its_key() {
         let text = "spec = \"x.lpm\"\n[metrics]\ncrush = \"-r\"\nacceleration = [\n  \"a\",\n  \"occupant\",\n]\n[initial]\nspeed = 3.0\n";
-        let at = |m: &str| locate(text, m, &[]);
-        assert_eq!(at("metrics.crush = \"-r\": bad"), Some((3, 9)));
-        assert_eq!(at("metrics.acceleration = \"occupant\": x"), Some((6, 3)));
-        assert_eq!(at("initial.speed = 3: x"), Some((9, 1)));
-        assert_eq!(at("initial.moving: x"), None);
-        assert_eq!(at("no key here"), None);
-        let set = ["initial.speed=4".to_string()];
-        assert_eq!(locate(text, "initial.speed = 4: x", &set), None);
+        let document = DeTable::parse(text).unwrap();
+        let places = Places::new(text, document.get_ref());
+        let at = |e: EntryError| places.locate(&e);
+        let key = KeyPath::new;
+        assert_eq!(
+            at(EntryError::text(key("metrics.crush"), "-r", "bad")),
+            Some((3, 9))
+        );
+        let occupant = EntryError::text(key("metrics.acceleration"), "occupant", "x");
+        assert_eq!(at(occupant), Some((6, 3)));
+        assert_eq!(
+            at(EntryError::value(key("initial.speed"), "3", "x")),
+            Some((9, 1))
+        );
+        assert_eq!(at(EntryError::at(key("initial.moving"), "x")), None);
+        // A table is at its header's key.
+        assert_eq!(at(EntryError::at(key("metrics"), "x")), Some((2, 2)));
+    }
+
+    #[test]
+    fn a_setting_is_blamed_for_the_entry_it_set() {
+        let set = Override::parse_all(&["initial.speed=4", "k*=2"]).unwrap();
+        let speed = EntryError::value(KeyPath::new("initial.speed"), "4", "too fast");
+        assert_eq!(setting_of(&speed, &set), Some(&set[0]));
+        assert_eq!(blamed(&set[0], &speed), "--set initial.speed=4: too fast");
+        let k = EntryError::value(KeyPath::new("parameters.k"), "inf", "must be finite");
+        assert_eq!(setting_of(&k, &set), Some(&set[1]));
+        let other = EntryError::at(KeyPath::new("initial.moving"), "x");
+        assert_eq!(setting_of(&other, &set), None);
     }
 }

@@ -62,6 +62,7 @@ mod scale;
 mod signal;
 
 use crate::components::BoundInputs;
+pub use crate::entry::{EntryError, KeyPath};
 use crate::failure::FailureKind;
 pub use crate::model_names::ModelNames;
 use crate::ode::{Method, Options};
@@ -71,13 +72,16 @@ pub use choice::Choice;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
 use lagrangian_model::LagrangianSystem;
+use locate::Places;
 use options::{SampleAccelerations, TimeKinks};
-pub use overrides::Setting;
-pub use overrides::split_setting;
 use overrides::with_settings;
+pub use overrides::{Change, Override, OverrideError, Setting};
 use resolve::resolve;
 pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};
-pub use scale::{as_number, factor_base, scaled_inline, toml_number};
+pub use scale::{
+    ScaleError, as_number, factor_base, number_value, scaled_inline, scaled_value, toml_number,
+};
+use serde::Deserialize;
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -129,6 +133,8 @@ pub struct ScenarioError {
     pub location: Option<(usize, usize)>,
     /// What is wrong, on one line, naming the key and the value.
     pub message: String,
+    /// The entry of the scenario the problem is in, where it is one.
+    pub key: Option<KeyPath>,
 }
 
 impl ScenarioError {
@@ -138,6 +144,7 @@ impl ScenarioError {
             file: file.map(Path::to_path_buf),
             location: None,
             message,
+            key: None,
         }
     }
 }
@@ -236,19 +243,20 @@ impl Scenario {
     pub fn load(
         path: &Path,
         names: &ModelNames,
-        settings: &[String],
+        settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::Unreadable,
             file: Some(path.to_path_buf()),
             location: None,
             message: format!("cannot read: {e}"),
+            key: None,
         })?;
         Scenario::parse(&text, Some(path), names, settings)
     }
 
     /// A scenario with nothing but defaults (no file).
-    pub fn defaults(names: &ModelNames, settings: &[String]) -> Result<Scenario, ScenarioError> {
+    pub fn defaults(names: &ModelNames, settings: &[Override]) -> Result<Scenario, ScenarioError> {
         Scenario::parse("", None, names, settings)
     }
 
@@ -257,10 +265,14 @@ impl Scenario {
     pub fn document(
         text: &str,
         names: &ModelNames,
-        settings: &[String],
-    ) -> Result<toml::Table, String> {
-        let document: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string())?;
-        Ok(with_settings(document, names, settings)?.0)
+        settings: &[Override],
+    ) -> Result<toml::Table, ScenarioError> {
+        let document: toml::Table = (text.parse())
+            .map_err(|e: toml::de::Error| ScenarioError::invalid(None, e.to_string()))?;
+        let settled = with_settings(document, names, settings);
+        Ok(settled
+            .map_err(|e| ScenarioError::invalid(None, e.to_string()))?
+            .0)
     }
 
     /// Resolves scenario `text` (from `file`, which relative paths start from).
@@ -273,18 +285,22 @@ impl Scenario {
         text: &str,
         file: Option<&Path>,
         names: &ModelNames,
-        settings: &[String],
+        settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
         let error = |message: String| ScenarioError::invalid(file, message);
-        let document: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| toml_error(file, text, &e))?;
+        // The one parse of the text: the document with the places of its
+        // entries.
+        let spanned = toml::de::DeTable::parse(text).map_err(|e| toml_error(file, text, &e))?;
+        let places = Places::new(text, spanned.get_ref());
+        let positioned = || toml::de::Deserializer::from(spanned.clone());
+        let document =
+            toml::Table::deserialize(positioned()).map_err(|e| toml_error(file, text, &e))?;
         let (settled, constants) = with_settings(document.clone(), names, settings)
-            .map_err(|m| ScenarioError::invalid(None, m))?;
+            .map_err(|e| ScenarioError::invalid(None, e.to_string()))?;
         let parsed: File = settled.try_into().map_err(|e: toml::de::Error| {
-            // The document has no positions; the text has them when the
-            // problem is in the file rather than in a setting.
-            match toml::from_str::<File>(text) {
+            // The settled document has no positions; the parsed text has
+            // them when the problem is in the file rather than in a setting.
+            match File::deserialize(positioned()) {
                 Err(located) if located.message() == e.message() => {
                     toml_error(file, text, &located)
                 }
@@ -298,18 +314,23 @@ impl Scenario {
             }
         })?;
         let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
-        let tables = load_tables(&parsed.components, base).map_err(|message| ScenarioError {
+        let located = |e: EntryError| match locate::setting_of(&e, settings) {
+            Some(setting) => ScenarioError {
+                key: Some(e.key.clone()),
+                ..ScenarioError::invalid(None, locate::blamed(setting, &e))
+            },
+            None => ScenarioError {
+                location: places.locate(&e),
+                key: Some(e.key.clone()),
+                ..error(e.to_string())
+            },
+        };
+        let tables = load_tables(&parsed.components, base).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::DataFile,
-            ..error(message)
+            ..located(e)
         })?;
         resolve(parsed, base, names, constants, &tables)
-            .map_err(|message| match locate::setting_of(&message, settings) {
-                Some(setting) => ScenarioError::invalid(None, locate::blamed(setting, &message)),
-                None => ScenarioError {
-                    location: locate::locate(text, &message, settings),
-                    ..error(message)
-                },
-            })
+            .map_err(located)
             .map(|mut s| {
                 s.file = file.map(Path::to_path_buf);
                 s
@@ -323,7 +344,7 @@ impl Scenario {
 fn culprit<'a>(
     document: toml::Table,
     names: &ModelNames,
-    settings: &'a [String],
+    settings: &'a [Override],
     message: &str,
 ) -> Option<&'a str> {
     let mut first_failing = None;
@@ -334,9 +355,9 @@ fn culprit<'a>(
             .0;
         if let Err(e) = current.clone().try_into::<File>() {
             if e.message() == message {
-                return Some(setting.trim());
+                return Some(setting.text());
             }
-            first_failing.get_or_insert(setting.trim());
+            first_failing.get_or_insert(setting.text());
         }
     }
     first_failing
@@ -347,7 +368,7 @@ fn culprit<'a>(
 fn load_tables(
     components: &BTreeMap<String, crate::components::ComponentSection>,
     base: &Path,
-) -> Result<BTreeMap<String, Table>, String> {
+) -> Result<BTreeMap<String, Table>, EntryError> {
     let mut tables = BTreeMap::new();
     for (name, section) in components {
         if let Some(table) = section.section().load_table(name, base)? {
@@ -360,12 +381,7 @@ fn load_tables(
 /// A TOML error at its `line:column` in `text`, with a suggestion for a
 /// misspelt key or value.
 fn toml_error(file: Option<&Path>, text: &str, e: &toml::de::Error) -> ScenarioError {
-    let location = e.span().map(|span| {
-        let before = &text[..span.start.min(text.len())];
-        let line = before.matches('\n').count() + 1;
-        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        (line, column)
-    });
+    let location = e.span().map(|span| locate::line_column(text, span.start));
     ScenarioError {
         location,
         ..ScenarioError::invalid(file, with_suggestion(e.message()))

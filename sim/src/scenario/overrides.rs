@@ -1,23 +1,74 @@
-//! `--set key=value` overrides, applied to the scenario document before it is read.
+//! Overrides of a scenario — `--set KEY=VALUE`, `KEY*=FACTOR`, a sweep's
+//! axis value, a fitted parameter, a Python keyword — read once where they
+//! come in ([`Override`]) and applied to the scenario document before it is
+//! read.
 
 use super::ModelNames;
 use super::scale::{factor_base, scaled_inline};
-use crate::entry::unknown;
+use crate::entry::{KeyPath, number, unknown};
 use std::collections::BTreeMap;
+use std::fmt;
+use std::str::FromStr;
+
+/// One change to a scenario: a plain key names a parameter or an input
+/// (set to a number), a dotted key an entry of the scenario file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Override {
+    /// A parameter or input name, or a dotted scenario key.
+    pub key: String,
+    /// What it does to the key's value.
+    pub change: Change,
+    /// As written (`k=2`, `k*=1.1`), for messages.
+    text: String,
+}
+
+/// What an [`Override`] does to its key's value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Change {
+    /// `KEY=VALUE`: the value, as TOML reads it (a bare word is a string;
+    /// a number for a plain key).
+    Set(toml::Value),
+    /// `KEY*=FACTOR`: every number of the value (a number, or a list or
+    /// table of numbers) multiplied by the factor, finite.
+    Scale(f64),
+}
+
+/// An override that cannot be read or does not fit the model or the
+/// scenario: the override as written, and what is wrong.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct OverrideError {
+    /// The override as written (`k=two`).
+    pub setting: String,
+    /// The message, which names it.
+    message: String,
+}
+
+impl OverrideError {
+    fn new(setting: &str, message: String) -> OverrideError {
+        OverrideError {
+            setting: setting.trim().to_string(),
+            message,
+        }
+    }
+}
 
 /// `--set key=value` split at the first `=`, both sides trimmed.
-pub fn split_setting(setting: &str) -> Result<(&str, &str), String> {
-    let (key, value) = setting
-        .split_once('=')
-        .ok_or_else(|| format!("--set `{setting}` is not of the form key=value"))?;
+pub(crate) fn split_setting(setting: &str) -> Result<(&str, &str), OverrideError> {
+    let (key, value) = setting.split_once('=').ok_or_else(|| {
+        OverrideError::new(
+            setting,
+            format!("--set `{setting}` is not of the form key=value"),
+        )
+    })?;
     Ok((key.trim(), value.trim()))
 }
 
 /// The value of `--set name=value` for a parameter or an input's constant.
-pub fn setting_number(name: &str, value: &str) -> Result<f64, String> {
-    value
-        .parse()
-        .map_err(|_| format!("--set {name}: `{value}` is not a number"))
+fn setting_number(setting: &str, name: &str, value: &str) -> Result<f64, OverrideError> {
+    (value.parse()).map_err(|_| {
+        OverrideError::new(setting, format!("--set {name}: `{value}` is not a number"))
+    })
 }
 
 /// `text` read as a TOML value, if it is one.
@@ -28,7 +79,90 @@ fn toml_value(text: &str) -> Option<toml::Value> {
         .and_then(|mut t| t.remove("v"))
 }
 
-/// What one `--set key=value` sets.
+impl Override {
+    /// Reads `KEY=VALUE` or `KEY*=FACTOR`: a plain key takes a number, a
+    /// factor a finite number, a dotted key any TOML value (a bare word is
+    /// a string).
+    pub fn parse(setting: &str) -> Result<Override, OverrideError> {
+        let (key, value) = split_setting(setting)?;
+        let text = setting.trim().to_string();
+        if let Some(key) = key.strip_suffix('*') {
+            let key = key.trim();
+            let factor = setting_number(setting, &format!("{key}*"), value)?;
+            if !factor.is_finite() {
+                let message = format!("--set {key}*: `{value}` is not a finite factor");
+                return Err(OverrideError::new(setting, message));
+            }
+            let change = Change::Scale(factor);
+            let key = key.to_string();
+            return Ok(Override { key, change, text });
+        }
+        let value = match key.contains('.') {
+            true => toml_value(value).unwrap_or_else(|| toml::Value::String(value.to_string())),
+            false => toml::Value::Float(setting_number(setting, key, value)?),
+        };
+        let (key, change) = (key.to_string(), Change::Set(value));
+        Ok(Override { key, change, text })
+    }
+
+    /// `key=value` for a number: a parameter, an input's constant or a
+    /// numeric entry.
+    pub fn number(key: &str, value: f64) -> Override {
+        Override {
+            key: key.to_string(),
+            change: Change::Set(toml::Value::Float(value)),
+            text: format!("{key}={value}"),
+        }
+    }
+
+    /// `key=value` for a TOML value of a dotted entry, or a number of a
+    /// plain key.
+    pub fn value(key: &str, value: toml::Value) -> Override {
+        let text = format!("{key}={value}");
+        let change = Change::Set(value);
+        let key = key.to_string();
+        Override { key, change, text }
+    }
+
+    /// Each of `settings` read ([`Override::parse`]), the first problem
+    /// returned.
+    pub fn parse_all<S: AsRef<str>>(settings: &[S]) -> Result<Vec<Override>, OverrideError> {
+        settings
+            .iter()
+            .map(|s| Override::parse(s.as_ref()))
+            .collect()
+    }
+
+    /// The override as written: `k=2`, `k*=1.1`.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The scenario entry it changes: a plain key is a parameter's,
+    /// `parameters.NAME`.
+    pub fn path(&self) -> KeyPath {
+        match self.key.contains('.') {
+            true => KeyPath::new(&self.key),
+            false => KeyPath::new("parameters").join(&self.key),
+        }
+    }
+}
+
+impl FromStr for Override {
+    type Err = OverrideError;
+
+    fn from_str(setting: &str) -> Result<Override, OverrideError> {
+        Override::parse(setting)
+    }
+}
+
+impl fmt::Display for Override {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+/// What one override sets, once the model's names are known.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Setting {
     /// A spec parameter.
@@ -42,7 +176,7 @@ pub enum Setting {
     InputConstant {
         /// Its name.
         name: String,
-        /// The value.
+        /// The value, finite.
         value: f64,
     },
     /// An entry of the scenario file, by its dotted key.
@@ -63,76 +197,67 @@ pub enum Setting {
     },
 }
 
-impl Setting {
-    /// Reads `key=value`: a plain key names a parameter or an input of
-    /// `names` (an error, with a suggestion, if neither), a dotted key a
-    /// scenario entry.
-    pub fn parse(setting: &str, names: &ModelNames) -> Result<Setting, String> {
-        let (key, value) = split_setting(setting)?;
-        if let Some(key) = key.strip_suffix('*') {
-            return Setting::factor(key.trim(), value, names);
-        }
-        if key.contains('.') {
-            let value = toml_value(value).unwrap_or_else(|| toml::Value::String(value.to_string()));
-            return Ok(Setting::Entry {
-                key: key.to_string(),
-                value,
-            });
-        }
-        let number = setting_number(key, value)?;
+impl Override {
+    /// What it sets in the model named by `names`: a plain key names a
+    /// parameter or an input (an error, with a suggestion, if neither).
+    pub fn setting(&self, names: &ModelNames) -> Result<Setting, OverrideError> {
+        let key = self.key.as_str();
+        let error = |message: String| OverrideError::new(&self.text, message);
+        let value = match &self.change {
+            Change::Scale(factor) => return self.factor(*factor, names),
+            Change::Set(value) if key.contains('.') => {
+                let (key, value) = (key.to_string(), value.clone());
+                return Ok(Setting::Entry { key, value });
+            }
+            Change::Set(value) => super::as_number(value)
+                .ok_or_else(|| error(format!("--set {key}: `{value}` is not a number")))?,
+        };
         let name = key.to_string();
         if names.parameters.iter().any(|p| p == key) {
-            return Ok(Setting::Parameter {
-                name,
-                value: number,
-            });
+            return Ok(Setting::Parameter { name, value });
         }
         if names.inputs.iter().any(|i| i == key) {
-            return Ok(Setting::InputConstant {
-                name,
-                value: number,
-            });
+            if !value.is_finite() {
+                let value = number(value);
+                return Err(error(format!(
+                    "--set {key} = {value}: must be a finite number"
+                )));
+            }
+            return Ok(Setting::InputConstant { name, value });
         }
-        let known = names
-            .parameters
-            .iter()
+        let known = (names.parameters.iter())
             .chain(&names.inputs)
             .map(String::as_str);
-        Err(unknown("--set: parameter or input", key, known))
+        Err(error(unknown("--set: parameter or input", key, known)))
     }
-}
 
-impl Setting {
     /// `KEY*=FACTOR` for a parameter or a dotted entry.
-    fn factor(key: &str, value: &str, names: &ModelNames) -> Result<Setting, String> {
-        let factor = setting_number(&format!("{key}*"), value)?;
-        if !factor.is_finite() {
-            return Err(format!("--set {key}*: `{value}` is not a finite factor"));
-        }
+    fn factor(&self, factor: f64, names: &ModelNames) -> Result<Setting, OverrideError> {
+        let key = self.key.as_str();
         if !key.contains('.') && !names.parameters.iter().any(|p| p == key) {
             let known = names.parameters.iter().map(String::as_str);
-            return Err(unknown(
+            let message = unknown(
                 "--set: a factor applies to a parameter or a dotted scenario entry; parameter",
                 key,
                 known,
-            ));
+            );
+            return Err(OverrideError::new(&self.text, message));
         }
-        Ok(Setting::Scale {
-            key: key.to_string(),
-            factor,
-        })
+        let key = key.to_string();
+        Ok(Setting::Scale { key, factor })
     }
 }
 
-/// Applies one `--set key=value` to the document (input constants go to
+/// Applies one override to the document (input constants go to
 /// `constants`, which are not part of it).
-fn apply_setting(
+fn apply(
     document: &mut toml::Table,
-    setting: &str,
+    setting: &Override,
     names: &ModelNames,
     constants: &mut BTreeMap<String, f64>,
-) -> Result<(), String> {
-    match Setting::parse(setting, names)? {
+) -> Result<(), OverrideError> {
+    let error = |message: String| OverrideError::new(setting.text(), message);
+    match setting.setting(names)? {
         Setting::Parameter { name, value } => {
             let parameters = document
                 .entry("parameters")
@@ -144,22 +269,24 @@ fn apply_setting(
         Setting::InputConstant { name, value } => {
             constants.insert(name, value);
         }
-        Setting::Entry { key, value } => set_entry(document, &key, value)?,
+        Setting::Entry { key, value } => set_entry(document, &key, value).map_err(error)?,
         Setting::Scale { key, factor } => {
             let base = factor_base(&key, document, names, &names.parameter_defaults)
-                .map_err(|e| format!("--set {e}"))?;
+                .map_err(|e| error(format!("--set {e}")))?;
             let value = toml_value(&scaled_inline(&base, factor))
-                .ok_or_else(|| format!("`{key}*=`: the scaled value is not TOML"))?;
-            match key.contains('.') {
-                true => set_entry(document, &key, value)?,
-                false => set_entry(document, &format!("parameters.{key}"), value)?,
-            }
+                .ok_or_else(|| error(format!("`{key}*=`: the scaled value is not TOML")))?;
+            let key = match key.contains('.') {
+                true => key,
+                false => format!("parameters.{key}"),
+            };
+            set_entry(document, &key, value).map_err(error)?;
         }
     }
     Ok(())
 }
 
-/// Sets the entry at dotted `key`, making the tables on the way.
+/// Sets the entry at dotted `key`, making the tables on the way; else the
+/// message of a part of the key that is not a table.
 fn set_entry(document: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
     let mut table = document;
     let parts: Vec<&str> = key.split('.').collect();
@@ -181,11 +308,17 @@ fn set_entry(document: &mut toml::Table, key: &str, value: toml::Value) -> Resul
 pub(super) fn with_settings(
     mut document: toml::Table,
     names: &ModelNames,
-    settings: &[String],
-) -> Result<(toml::Table, BTreeMap<String, f64>), String> {
+    settings: &[Override],
+) -> Result<(toml::Table, BTreeMap<String, f64>), OverrideError> {
     let mut constants = BTreeMap::new();
     for setting in settings {
-        apply_setting(&mut document, setting, names, &mut constants)?;
+        apply(&mut document, setting, names, &mut constants)?;
     }
     Ok((document, constants))
+}
+
+impl From<OverrideError> for super::ScenarioError {
+    fn from(e: OverrideError) -> super::ScenarioError {
+        super::ScenarioError::invalid(None, e.to_string())
+    }
 }

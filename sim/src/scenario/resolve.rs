@@ -7,7 +7,7 @@ use super::file::{ClassChoice, File, InitialSection, MetricsSection};
 use super::options::{SampleAccelerations, TimeKinks};
 use super::{Channel, Column, ModelNames, Role, Scenario, Signal};
 use crate::components::ComponentSection;
-use crate::entry::{finite, index_of, number, positive, unknown};
+use crate::entry::{EntryError, KeyPath, finite, index_of, number, positive, unknown};
 use crate::ode::{Method, Options};
 use crate::pulse::cfc::{CLASS_BY_MEASUREMENT, DEFAULT_CLASS, STANDARD_CLASSES};
 use crate::table::Table;
@@ -25,7 +25,7 @@ pub(super) fn resolve(
     names: &ModelNames,
     constants: BTreeMap<String, f64>,
     tables: &BTreeMap<String, Table>,
-) -> Result<Scenario, String> {
+) -> Result<Scenario, EntryError> {
     let s = &file.simulation;
     let (method, options) = solver_settings(s)?;
     let accelerations: SampleAccelerations =
@@ -33,18 +33,18 @@ pub(super) fn resolve(
     let time_kinks: TimeKinks = parse_choice("simulation.time_kinks", &s.time_kinks)?;
 
     let parameters = parameter_overrides(&file.parameters, names)?;
-    let coordinate = |what: &str, name: &str| index_of(what, name, &names.coordinates);
+    let coordinate = |key: &str, name: &str| index_of(key, "coordinate", name, &names.coordinates);
     // `initial.{section}`: values by coordinate name.
     let initial = |section: &str, values: &BTreeMap<String, f64>| {
         values
             .iter()
             .map(|(n, v)| {
                 Ok((
-                    coordinate(&format!("initial.{section}: coordinate"), n)?,
+                    coordinate(&format!("initial.{section}"), n)?,
                     initial_value(&format!("initial.{section}.{n}"), *v)?,
                 ))
             })
-            .collect::<Result<Vec<_>, String>>()
+            .collect::<Result<Vec<_>, EntryError>>()
     };
     let initial_coordinates = initial("coordinates", &file.initial.coordinates)?;
     let mut initial_velocities = initial("velocities", &file.initial.velocities)?;
@@ -54,8 +54,8 @@ pub(super) fn resolve(
         .initial
         .equilibrium
         .iter()
-        .map(|n| coordinate("initial.equilibrium: coordinate", n))
-        .collect::<Result<_, String>>()?;
+        .map(|n| coordinate("initial.equilibrium", n))
+        .collect::<Result<_, EntryError>>()?;
     let crush = (file.metrics.crush.as_deref())
         .map(|text| crush_channel(text, names))
         .transpose()?;
@@ -63,14 +63,18 @@ pub(super) fn resolve(
         .metrics
         .pitch
         .iter()
-        .map(|n| coordinate("metrics.pitch: coordinate", n))
-        .collect::<Result<_, String>>()?;
+        .map(|n| coordinate("metrics.pitch", n))
+        .collect::<Result<_, EntryError>>()?;
     if let Some(weld) = &file.metrics.weld {
         check_weld_metric(weld, &file.components)?;
     }
     for name in &file.metrics.contact {
         check_contact_metric(name, &file.components)?;
     }
+    // The overrides checked that each names an input.
+    let constants = (constants.into_iter())
+        .filter_map(|(n, v)| Some((names.inputs.iter().position(|i| *i == n)?, v)))
+        .collect();
     let inputs = bind_components(&file.components, tables, names, constants)?;
     let channels = channels(&file.metrics, &names.with_components(&inputs))?;
     Ok(Scenario {
@@ -100,11 +104,12 @@ pub(super) fn resolve(
 /// `[constraints] alpha`, `beta`: finite and not negative.
 fn stabilization(
     section: &super::file::ConstraintsSection,
-) -> Result<lagrangian_model::constrained::Baumgarte, String> {
+) -> Result<lagrangian_model::constrained::Baumgarte, EntryError> {
     for (name, value) in [("alpha", section.alpha), ("beta", section.beta)] {
         if !(value.is_finite() && value >= 0.0) {
-            return Err(format!(
-                "constraints.{name} must be finite and not negative (a rate in 1/s), not {value}"
+            return Err(EntryError::sentence(
+                KeyPath::new("constraints").join(name),
+                format!("must be finite and not negative (a rate in 1/s), not {value}"),
             ));
         }
     }
@@ -134,15 +139,18 @@ pub const MAX_INITIAL_MAGNITUDE: f64 = 1e9;
 
 /// An initial coordinate or velocity: finite and at most
 /// [`MAX_INITIAL_MAGNITUDE`] in size; else an error naming `key`.
-pub(crate) fn initial_value(key: &str, value: f64) -> Result<f64, String> {
+pub(crate) fn initial_value(key: &str, value: f64) -> Result<f64, EntryError> {
     let value = finite(key, value)?;
     if value.abs() <= MAX_INITIAL_MAGNITUDE {
         return Ok(value);
     }
-    Err(format!(
-        "{key} = {}: beyond ±{MAX_INITIAL_MAGNITUDE:e} (in the coordinate's unit), where no run resolves the motion of a mechanical model (numbers there are {:.1e} apart)",
+    Err(EntryError::value(
+        key.into(),
         number(value),
-        spacing(value)
+        format!(
+            "beyond ±{MAX_INITIAL_MAGNITUDE:e} (in the coordinate's unit), where no run resolves the motion of a mechanical model (numbers there are {:.1e} apart)",
+            spacing(value)
+        ),
     ))
 }
 
@@ -159,34 +167,43 @@ fn spacing(x: f64) -> f64 {
 fn moving_with_the_vehicle(
     initial: &InitialSection,
     names: &ModelNames,
-) -> Result<Vec<(usize, f64)>, String> {
+) -> Result<Vec<(usize, f64)>, EntryError> {
     let speed = match (initial.speed, initial.moving.is_empty()) {
         (None, true) => return Ok(Vec::new()),
         (Some(speed), false) => initial_value("initial.speed", speed)?,
         (Some(speed), true) => {
-            return Err(format!(
-                "initial.speed = {}: name the coordinates that move with the vehicle in initial.moving (e.g. moving = [\"-{}\"] when the crush coordinate decreases)",
+            return Err(EntryError::value(
+                KeyPath::new("initial.speed"),
                 number(speed),
-                names.coordinates.first().map_or("x", String::as_str)
+                format!(
+                    "name the coordinates that move with the vehicle in initial.moving (e.g. moving = [\"-{}\"] when the crush coordinate decreases)",
+                    names.coordinates.first().map_or("x", String::as_str)
+                ),
             ));
         }
         (None, false) => {
-            return Err(
-                "initial.moving names coordinates but initial.speed gives them no speed".into(),
-            );
+            return Err(EntryError::sentence(
+                KeyPath::new("initial.moving"),
+                "names coordinates but initial.speed gives them no speed",
+            ));
         }
     };
     let mut velocities = Vec::new();
     for entry in &initial.moving {
         let (sign, name) = signed(entry);
-        let k = index_of("initial.moving: coordinate", name, &names.coordinates)?;
+        let moving = KeyPath::new("initial.moving");
+        let k = index_of(&moving, "coordinate", name, &names.coordinates)?;
         if initial.velocities.contains_key(name) {
-            return Err(format!(
-                "initial.velocities.{name} and initial.moving both set the velocity of `{name}`; keep one"
+            return Err(EntryError::sentence(
+                KeyPath::new("initial.velocities").join(name),
+                format!("and initial.moving both set the velocity of `{name}`; keep one"),
             ));
         }
         if velocities.iter().any(|&(i, _)| i == k) {
-            return Err(format!("initial.moving names `{name}` twice"));
+            return Err(EntryError::sentence(
+                moving,
+                format!("names `{name}` twice"),
+            ));
         }
         velocities.push((k, sign * speed));
     }
@@ -198,9 +215,9 @@ fn moving_with_the_vehicle(
 /// (`"y + 0.977"`, `"intrusion"`), so that its rate and acceleration follow
 /// from the motion: exactly for coordinates, by differences along the
 /// motion for outputs (`simulate::output_motion`).
-fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, String> {
+fn crush_channel(text: &str, names: &ModelNames) -> Result<Signal, EntryError> {
     let signal = Signal::parse("metrics.crush", text, names)?;
-    let bad = |why: String| format!("metrics.crush = \"{text}\": {why}");
+    let bad = |why: String| EntryError::text(KeyPath::new("metrics.crush"), text, why);
     for &(_, column) in &signal.terms {
         match column {
             Column::Coordinate(_) => {}
@@ -247,7 +264,7 @@ fn output_of_position(k: usize, names: &ModelNames) -> Result<(), String> {
 /// `force`; the pitch coordinates are displacement channels too (the
 /// summary flags a pitch still growing at the end of the run), unless
 /// listed.
-fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>, String> {
+fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>, EntryError> {
     let mut channels: Vec<Channel> = Vec::new();
     for pitch in &metrics.pitch {
         if !metrics.displacement.contains(pitch) {
@@ -264,25 +281,33 @@ fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>
             let key = format!("metrics.{}", role.name());
             let signal = Signal::parse(&key, text, names)?;
             if channels.iter().any(|c| c.signal.name == signal.name) {
-                return Err(format!("{key} = \"{text}\": the channel is listed twice"));
+                return Err(EntryError::text(
+                    key.into(),
+                    text,
+                    "the channel is listed twice",
+                ));
             }
             let cfc = channel_class(metrics, role, text)?;
             channels.push(Channel { role, signal, cfc });
         }
     }
     if let Some(name) = (metrics.classes.keys()).find(|&k| !metrics.acceleration.contains(k)) {
-        return Err(format!(
-            "metrics.classes.\"{name}\": not a channel of metrics.acceleration ({}); a filter class \
+        let key = KeyPath::new("metrics.classes").join_quoted(name);
+        return Err(EntryError::at(
+            key,
+            format!(
+                "not a channel of metrics.acceleration ({}); a filter class \
              is given to an acceleration channel, by its name as listed there",
-            match metrics.acceleration.is_empty() {
-                true => "there is none".to_string(),
-                false => metrics
-                    .acceleration
-                    .iter()
-                    .map(|c| format!("`{c}`"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            }
+                match metrics.acceleration.is_empty() {
+                    true => "there is none".to_string(),
+                    false => metrics
+                        .acceleration
+                        .iter()
+                        .map(|c| format!("`{c}`"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                }
+            ),
         ));
     }
     Ok(channels)
@@ -290,22 +315,32 @@ fn channels(metrics: &MetricsSection, names: &ModelNames) -> Result<Vec<Channel>
 
 /// The filter class of channel `text` of `role`: its `metrics.classes`
 /// entry (a J211 class, or what it measures), else [`DEFAULT_CLASS`].
-fn channel_class(metrics: &MetricsSection, role: Role, text: &str) -> Result<f64, String> {
-    let key = format!("metrics.classes.\"{text}\"");
-    match metrics.classes.get(text).filter(|_| role == Role::Acceleration) {
+fn channel_class(metrics: &MetricsSection, role: Role, text: &str) -> Result<f64, EntryError> {
+    let key = KeyPath::new("metrics.classes").join_quoted(text);
+    match metrics
+        .classes
+        .get(text)
+        .filter(|_| role == Role::Acceleration)
+    {
         None => Ok(DEFAULT_CLASS),
         Some(ClassChoice::Class(cfc)) if STANDARD_CLASSES.contains(cfc) => Ok(*cfc),
-        Some(ClassChoice::Class(cfc)) => Err(format!(
-            "{key} = {cfc}: not a filter class of SAE J211-1 (60, 180, 600 or 1000)"
+        Some(ClassChoice::Class(cfc)) => Err(EntryError::value(
+            key,
+            format!("{cfc}"),
+            "not a filter class of SAE J211-1 (60, 180, 600 or 1000)",
         )),
         Some(ClassChoice::Measurement(what)) => (CLASS_BY_MEASUREMENT.iter())
             .find(|(name, _)| name == what)
             .map(|&(_, cfc)| cfc)
             .ok_or_else(|| {
                 let known = CLASS_BY_MEASUREMENT.map(|(name, cfc)| format!("{name} ({cfc})"));
-                format!(
-                    "{key} = \"{what}\": not a measurement J211-1 gives a class for; one of {}, or a class number",
-                    known.join(", ")
+                EntryError::text(
+                    key,
+                    what,
+                    format!(
+                        "not a measurement J211-1 gives a class for; one of {}, or a class number",
+                        known.join(", ")
+                    ),
                 )
             }),
     }
@@ -315,25 +350,30 @@ fn channel_class(metrics: &MetricsSection, role: Role, text: &str) -> Result<f64
 fn check_contact_metric(
     name: &str,
     components: &BTreeMap<String, ComponentSection>,
-) -> Result<(), String> {
+) -> Result<(), EntryError> {
     let crush: Vec<&str> = (components.iter())
         .filter(|(_, c)| c.kind() == "crush")
         .map(|(n, _)| n.as_str())
         .collect();
     match components.get(name) {
         Some(c) if c.kind() == "crush" => Ok(()),
-        Some(c) => Err(format!(
-            "metrics.contact = \"{name}\": component `{name}` is a {} component; metrics.contact names crush components ({})",
-            c.kind(),
-            match crush.is_empty() {
-                true => "the scenario has none".to_string(),
-                false => crush.join(", "),
-            }
+        Some(c) => Err(EntryError::text(
+            KeyPath::new("metrics.contact"),
+            name,
+            format!(
+                "component `{name}` is a {} component; metrics.contact names crush components ({})",
+                c.kind(),
+                match crush.is_empty() {
+                    true => "the scenario has none".to_string(),
+                    false => crush.join(", "),
+                }
+            ),
         )),
-        None => Err(format!(
-            "metrics.contact = \"{name}\": {}",
+        None => Err(EntryError::text(
+            KeyPath::new("metrics.contact"),
+            name,
             unknown("crush component", name, crush.iter().copied())
-                .replace("does not exist in the spec", "is not in the scenario")
+                .replace("does not exist in the spec", "is not in the scenario"),
         )),
     }
 }
@@ -342,7 +382,7 @@ fn check_contact_metric(
 fn check_weld_metric(
     weld: &str,
     components: &BTreeMap<String, ComponentSection>,
-) -> Result<(), String> {
+) -> Result<(), EntryError> {
     let welds: Vec<&str> = components
         .iter()
         .filter(|(_, c)| matches!(c, ComponentSection::weld(_)))
@@ -355,18 +395,25 @@ fn check_weld_metric(
     };
     match components.get(weld) {
         Some(ComponentSection::weld(_)) => Ok(()),
-        Some(other) => Err(format!(
-            "metrics.weld = \"{weld}\": component `{weld}` is a {} component; metrics.weld names a weld component ({allowed})",
-            other.kind()
+        Some(other) => Err(EntryError::text(
+            KeyPath::new("metrics.weld"),
+            weld,
+            format!(
+                "component `{weld}` is a {} component; metrics.weld names a weld component ({allowed})",
+                other.kind()
+            ),
         )),
         None => {
-            let mut message =
-                format!("metrics.weld = \"{weld}\": the scenario has no component `{weld}`");
+            let mut message = format!("the scenario has no component `{weld}`");
             match closest(weld, welds.iter().copied()) {
                 Some(best) => message.push_str(&format!("; did you mean `{best}`?")),
                 None => message.push_str(&format!(" ({allowed})")),
             }
-            Err(message)
+            Err(EntryError::text(
+                KeyPath::new("metrics.weld"),
+                weld,
+                message,
+            ))
         }
     }
 }
@@ -380,14 +427,17 @@ pub const LOOSEST_RTOL: f64 = 0.1;
 pub const ATOL_PER_SCALE: f64 = 1e-3;
 
 /// `simulation.rtol` in (0, [`LOOSEST_RTOL`]].
-fn relative_tolerance(rtol: f64) -> Result<f64, String> {
+fn relative_tolerance(rtol: f64) -> Result<f64, EntryError> {
     if rtol > 0.0 && rtol <= LOOSEST_RTOL {
         return Ok(rtol);
     }
-    Err(format!(
-        "simulation.rtol = {}: must be in (0, {LOOSEST_RTOL}]: a looser relative tolerance gives no \
-         accurate result (1e-6 to 1e-10 is usual)",
-        number(rtol)
+    Err(EntryError::value(
+        KeyPath::new("simulation.rtol"),
+        number(rtol),
+        format!(
+            "must be in (0, {LOOSEST_RTOL}]: a looser relative tolerance gives no \
+             accurate result (1e-6 to 1e-10 is usual)"
+        ),
     ))
 }
 
@@ -399,7 +449,7 @@ fn absolute_tolerance(
     atol: f64,
     coordinates: &[(usize, f64)],
     velocities: &[(usize, f64)],
-) -> Result<f64, String> {
+) -> Result<f64, EntryError> {
     let largest = coordinates
         .iter()
         .chain(velocities)
@@ -408,34 +458,37 @@ fn absolute_tolerance(
     if atol <= limit {
         return Ok(atol);
     }
-    Err(format!(
-        "simulation.atol = {}: must be small against the state's scale, at most {limit:.2e} \
-         ({ATOL_PER_SCALE:e} × the largest initial coordinate or velocity, {}, or 1)",
+    Err(EntryError::value(
+        KeyPath::new("simulation.atol"),
         number(atol),
-        number(largest)
+        format!(
+            "must be small against the state's scale, at most {limit:.2e} \
+             ({ATOL_PER_SCALE:e} × the largest initial coordinate or velocity, {}, or 1)",
+            number(largest)
+        ),
     ))
 }
 
 /// The method and solver options of `[simulation]`, each value checked
 /// (positive step sizes and times, rtol in (0, [`LOOSEST_RTOL`]], atol
 /// positive, at most [`MAX_SAMPLES`] output samples).
-fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Options), String> {
+fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Options), EntryError> {
     let method: Method = s.method.parse().map_err(|_| {
-        format!(
-            "simulation.method = `{}`; use {}",
-            s.method,
-            Method::NAMES.join(", ")
-        )
+        let reason = format!("= `{}`; use {}", s.method, Method::NAMES.join(", "));
+        EntryError::sentence(KeyPath::new("simulation.method"), reason)
     })?;
     positive("simulation.t_end", s.t_end)?;
     positive("simulation.output_interval", s.output_interval)?;
     let samples = s.t_end / s.output_interval;
     if samples > MAX_SAMPLES {
-        return Err(format!(
-            "simulation.output_interval = {}: gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
+        return Err(EntryError::value(
+            KeyPath::new("simulation.output_interval"),
             number(s.output_interval),
-            number(samples.round()),
-            number(s.t_end)
+            format!(
+                "gives {} samples over t_end = {} s, more than {MAX_SAMPLES:e}; use a longer interval",
+                number(samples.round()),
+                number(s.t_end)
+            ),
         ));
     }
     relative_tolerance(s.rtol)?;
@@ -465,7 +518,7 @@ fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Option
     };
     options
         .validate::<std::convert::Infallible>()
-        .map_err(|e| format!("simulation: {e}"))?;
+        .map_err(|e| EntryError::at(KeyPath::new("simulation"), e.to_string()))?;
     Ok((method, options))
 }
 
@@ -474,12 +527,12 @@ fn solver_settings(s: &super::file::SimulationSection) -> Result<(Method, Option
 fn parameter_overrides(
     values: &BTreeMap<String, f64>,
     names: &ModelNames,
-) -> Result<Vec<(usize, f64)>, String> {
+) -> Result<Vec<(usize, f64)>, EntryError> {
     values
         .iter()
         .map(|(name, value)| {
             Ok((
-                index_of("parameters: parameter", name, &names.parameters)?,
+                index_of("parameters", "parameter", name, &names.parameters)?,
                 finite(&format!("parameters.{name}"), *value)?,
             ))
         })

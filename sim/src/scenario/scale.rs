@@ -13,12 +13,16 @@ pub fn factor_base(
     document: &toml::Table,
     names: &ModelNames,
     parameter_defaults: &[f64],
-) -> Result<toml::Value, String> {
+) -> Result<toml::Value, ScaleError> {
+    let error = |reason: String| ScaleError {
+        key: key.to_string(),
+        reason,
+    };
     if !key.contains('.') {
         let Some(k) = names.parameters.iter().position(|p| p == key) else {
-            return Err(format!(
-                "`{key}*=`: a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
-            ));
+            return Err(error(format!(
+                "a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
+            )));
         };
         let in_file = document
             .get("parameters")
@@ -27,7 +31,9 @@ pub fn factor_base(
         let base = in_file
             .or(parameter_defaults.get(k).copied())
             .ok_or_else(|| {
-                format!("`{key}*=`: the value of parameter `{key}` is not known to scale it")
+                error(format!(
+                    "the value of parameter `{key}` is not known to scale it"
+                ))
             })?;
         return Ok(toml::Value::Float(base));
     }
@@ -37,15 +43,24 @@ pub fn factor_base(
         value = table.and_then(|t| t.get(part));
         table = value.and_then(toml::Value::as_table);
     }
-    let value =
-        value.ok_or_else(|| format!("`{key}*=`: the scenario has no such entry to scale"))?;
+    let value = value.ok_or_else(|| error("the scenario has no such entry to scale".into()))?;
     if all_numbers(value) {
         Ok(value.clone())
     } else {
-        Err(format!(
-            "`{key}*=`: a factor scales a number, or a list or table of numbers, not `{value}`"
-        ))
+        Err(error(format!(
+            "a factor scales a number, or a list or table of numbers, not `{value}`"
+        )))
     }
+}
+
+/// A factor `KEY*=` with nothing to scale: `` `KEY*=`: reason ``.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("`{key}*=`: {reason}")]
+pub struct ScaleError {
+    /// The parameter name or dotted key the factor is on.
+    pub key: String,
+    /// Why it has nothing to scale.
+    pub reason: String,
 }
 
 /// `value` with every number multiplied by `x`, as inline TOML.
@@ -63,6 +78,31 @@ pub fn scaled_inline(value: &toml::Value, x: f64) -> String {
             format!("{{ {} }}", entries.join(", "))
         }
         other => toml_number(as_number(other).unwrap_or(f64::NAN) * x),
+    }
+}
+
+/// `value` with every number multiplied by `x`: what [`scaled_inline`]
+/// writes, as a value.
+pub fn scaled_value(value: &toml::Value, x: f64) -> toml::Value {
+    match value {
+        toml::Value::Array(items) => {
+            toml::Value::Array(items.iter().map(|v| scaled_value(v, x)).collect())
+        }
+        toml::Value::Table(table) => toml::Value::Table(
+            (table.iter())
+                .map(|(k, v)| (k.clone(), scaled_value(v, x)))
+                .collect(),
+        ),
+        other => number_value(as_number(other).unwrap_or(f64::NAN) * x),
+    }
+}
+
+/// A number as a TOML value that reads back exactly, as [`toml_number`]
+/// writes it: a whole number as an integer, else a float.
+pub fn number_value(x: f64) -> toml::Value {
+    match x.fract() == 0.0 && x.abs() < 1e15 {
+        true => toml::Value::Integer(x as i64),
+        false => toml::Value::Float(x),
     }
 }
 

@@ -5,7 +5,7 @@
 //! combination of them such as `"xa - xb"` or `"-r"`.
 
 use super::ModelNames;
-use crate::entry::unknown;
+use crate::entry::{EntryError, unknown};
 
 /// A column of a run's samples that a signal reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -126,7 +126,7 @@ impl Signal {
 
     /// Reads `text` against the model's names; `key` names the entry in
     /// messages (`metrics.crush`).
-    pub fn parse(key: &str, text: &str, names: &ModelNames) -> Result<Signal, String> {
+    pub fn parse(key: &str, text: &str, names: &ModelNames) -> Result<Signal, EntryError> {
         let mut terms = Vec::new();
         let mut units: Vec<Option<String>> = Vec::new();
         let mut offset = 0.0;
@@ -140,21 +140,29 @@ impl Signal {
             units.push(unit);
         }
         if terms.is_empty() {
-            return Err(format!(
-                "{key} = \"{text}\": a constant reads no column of the run; name one (e.g. \"y + 0.977\")"
+            return Err(EntryError::text(
+                key.into(),
+                text,
+                "a constant reads no column of the run; name one (e.g. \"y + 0.977\")",
             ));
         }
         if !offset.is_finite() {
-            return Err(format!(
-                "{key} = \"{text}\": its constant is not a finite number"
+            return Err(EntryError::text(
+                key.into(),
+                text,
+                "its constant is not a finite number",
             ));
         }
         let unit = units.first().cloned().flatten();
         if let Some(other) = units.iter().find(|u| **u != units[0]) {
-            return Err(format!(
-                "{key} = \"{text}\": adds quantities of different units ({} and {})",
-                units[0].as_deref().unwrap_or("none"),
-                other.as_deref().unwrap_or("none")
+            return Err(EntryError::text(
+                key.into(),
+                text,
+                format!(
+                    "adds quantities of different units ({} and {})",
+                    units[0].as_deref().unwrap_or("none"),
+                    other.as_deref().unwrap_or("none")
+                ),
             ));
         }
         Ok(Signal {
@@ -311,8 +319,8 @@ pub struct Channel {
 }
 
 /// `a - 2*b + c` as `[(1, "a"), (−2, "b"), (1, "c")]`.
-fn split_terms<'t>(key: &str, text: &'t str) -> Result<Vec<(f64, &'t str)>, String> {
-    let bad = |why: &str| format!("{key} = \"{text}\": {why}");
+fn split_terms<'t>(key: &str, text: &'t str) -> Result<Vec<(f64, &'t str)>, EntryError> {
+    let bad = |why: &str| EntryError::text(key.into(), text, why);
     let mut terms = Vec::new();
     let mut rest = text.trim();
     let mut sign = 1.0;
@@ -369,7 +377,7 @@ fn column(
     text: &str,
     name: &str,
     names: &ModelNames,
-) -> Result<(Column, Option<String>), String> {
+) -> Result<(Column, Option<String>), EntryError> {
     let coordinate = |k: usize, suffix: &str| {
         let unit = names.coordinate_units.get(k).cloned().flatten();
         unit.map(|u| format!("{u}{suffix}"))
@@ -399,9 +407,10 @@ fn column(
         return Ok((Column::Velocity(k), coordinate(k, "/s")));
     }
     let known = known_columns(names);
-    Err(format!(
-        "{key} = \"{text}\": {}",
-        unknown("column", name, known.iter().map(String::as_str))
+    Err(EntryError::text(
+        key.into(),
+        text,
+        unknown("column", name, known.iter().map(String::as_str)),
     ))
 }
 

@@ -1,15 +1,25 @@
 //! Scenario files that do not fit their spec or hold values out of range.
 
-use super::overrides::setting_number;
 use super::*;
 
 const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
 
+/// `text` with the overrides `settings` read and applied, or the message
+/// of the first problem.
+fn parse_with(
+    text: &str,
+    file: Option<&Path>,
+    names: &ModelNames,
+    settings: &[&str],
+) -> Result<Scenario, String> {
+    let settings = Override::parse_all(settings).map_err(|e| e.to_string())?;
+    Scenario::parse(text, file, names, &settings).map_err(|e| e.to_string())
+}
+
 /// The message with which `text` (and `settings`) is refused for `spec`.
 fn error_for(spec: &str, text: &str, settings: &[&str]) -> String {
     let names = ModelNames::of_interpreted(&lagrangian_core::interpret(spec).unwrap());
-    let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    match Scenario::parse(text, None, &names, &settings) {
+    match parse_with(text, None, &names, settings) {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(e) => e.to_string(),
     }
@@ -141,7 +151,7 @@ fn components_need_inputs_of_as_many_arguments_as_they_read() {
     );
     // A constant takes any arguments.
     let names = ModelNames::of_interpreted(&lagrangian_core::interpret(&no_arguments).unwrap());
-    Scenario::parse(PUSH, None, &names, &["push=2".to_string()]).unwrap();
+    parse_with(PUSH, None, &names, &["push=2"]).unwrap();
 }
 
 #[test]
@@ -196,21 +206,38 @@ fn the_weld_metric_names_a_weld_component() {
 }
 
 #[test]
-fn settings_split_at_the_first_equals_sign() {
-    assert_eq!(split_setting(" k = 2 "), Ok(("k", "2")));
+fn overrides_split_at_the_first_equals_sign() {
+    let read = |s: &str| Override::parse(s).map_err(|e| e.to_string());
+    let k = read(" k = 2 ").unwrap();
     assert_eq!(
-        split_setting("components.c.file=\"a=b.csv\""),
-        Ok(("components.c.file", "\"a=b.csv\""))
+        (k.key.as_str(), &k.change),
+        ("k", &Change::Set(toml::Value::Float(2.0)))
+    );
+    let file = read("components.c.file=\"a=b.csv\"").unwrap();
+    let quoted = Change::Set(toml::Value::String("a=b.csv".into()));
+    assert_eq!(
+        (file.key.as_str(), &file.change),
+        ("components.c.file", &quoted)
     );
     assert_eq!(
-        split_setting("k"),
+        read("k"),
         Err("--set `k` is not of the form key=value".to_string())
     );
-    assert_eq!(setting_number("k", "2e3"), Ok(2e3));
     assert_eq!(
-        setting_number("k", "two"),
+        read("k=2e3").unwrap().change,
+        Change::Set(toml::Value::Float(2e3))
+    );
+    assert_eq!(
+        read("k=two"),
         Err("--set k: `two` is not a number".to_string())
     );
+    assert_eq!(read("k*=1.5").unwrap().change, Change::Scale(1.5));
+    assert_eq!(
+        read("k*=inf"),
+        Err("--set k*: `inf` is not a finite factor".to_string())
+    );
+    assert_eq!(read("k*=2").unwrap().path(), KeyPath::new("parameters.k"));
+    assert_eq!(read(" k = 2 ").unwrap().text(), "k = 2");
 }
 
 /// `simulation.step` is RK4's fixed step and the adaptive methods' first step.
@@ -242,8 +269,7 @@ fn the_impact_speed_goes_to_every_coordinate_that_moves_with_the_vehicle() {
         [(0, -15.5), (1, 15.5), (2, 15.5)]
     );
     // Sweepable as any entry.
-    let settings = ["initial.speed=10".to_string()];
-    let scenario = Scenario::parse(text, None, &names, &settings).unwrap();
+    let scenario = parse_with(text, None, &names, &["initial.speed=10"]).unwrap();
     assert_eq!(scenario.initial_velocities[1], (1, 10.0));
 }
 
@@ -413,11 +439,8 @@ fn tolerances_outside_a_sensible_range_name_their_key_and_value() {
 fn setting_errors_name_the_setting() {
     let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
     let refused = |settings: &[&str]| {
-        let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
         let file = Some(Path::new("scenarios/x.toml"));
-        Scenario::parse(PUSH, file, &names, &settings)
-            .unwrap_err()
-            .to_string()
+        parse_with(PUSH, file, &names, settings).unwrap_err()
     };
     assert_eq!(
         refused(&["initial.speed="]),
@@ -452,10 +475,7 @@ fn setting_errors_name_the_setting() {
 #[test]
 fn a_factor_setting_scales_parameters_and_entries() {
     let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
-    let parse = |text: &str, settings: &[&str]| {
-        let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-        Scenario::parse(text, None, &names, &settings)
-    };
+    let parse = |text: &str, settings: &[&str]| parse_with(text, None, &names, settings);
     let k = names.parameters.iter().position(|p| p == "k").unwrap();
     // The spec's k = 100.
     let s = parse(PUSH, &["k*=2.5"]).unwrap();

@@ -266,7 +266,12 @@ mod tests {
             "/../specs/scenarios/yaris_full_frontal.toml"
         ));
         let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-        let scenario = Scenario::load(file, &names, &settings).unwrap();
+        let scenario = Scenario::load(
+            file,
+            &names,
+            &crate::scenario::Override::parse_all(&settings).unwrap(),
+        )
+        .unwrap();
         simulate(&system, &scenario).unwrap()
     }
 

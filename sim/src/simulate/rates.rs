@@ -228,7 +228,13 @@ mod tests {
         let file = dir.map(|dir| dir.join("s.toml"));
         ["interpolated", "exact"].map(|choice| {
             let setting = [format!("simulation.accelerations={choice}")];
-            let scenario = Scenario::parse(text, file.as_deref(), &names, &setting).unwrap();
+            let scenario = Scenario::parse(
+                text,
+                file.as_deref(),
+                &names,
+                &crate::scenario::Override::parse_all(&setting).unwrap(),
+            )
+            .unwrap();
             simulate(&model, &scenario).unwrap()
         })
     }
@@ -341,7 +347,12 @@ mod tests {
         ));
         let choice = |settings: &[&str]| {
             let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-            let scenario = Scenario::load(file, &names, &settings).unwrap();
+            let scenario = Scenario::load(
+                file,
+                &names,
+                &crate::scenario::Override::parse_all(&settings).unwrap(),
+            )
+            .unwrap();
             let problem = CrashProblem::new(&system, scenario.inputs.clone());
             DenseAccelerations::of(&problem, scenario.accelerations)
         };

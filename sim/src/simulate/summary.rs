@@ -28,16 +28,27 @@ pub trait Field: Sized {
     fn value(&self) -> Value;
     /// The field from a table cell as [`Value`]'s text writes it (`""` for
     /// a missing measurement).
-    fn parse(cell: &str) -> Result<Self, String>;
+    fn parse(cell: &str) -> Result<Self, CellError>;
 }
 
-fn parse_real(cell: &str) -> Result<Option<f64>, String> {
+/// A table cell that does not read back as a summary field.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CellError {
+    /// A number's cell holds other text.
+    #[error("`{0}` is not a number")]
+    NotANumber(String),
+    /// A count's cell holds other text.
+    #[error("`{0}` is not a count")]
+    NotACount(String),
+    /// The column names no metric.
+    #[error("`{0}` is not a metric")]
+    UnknownMetric(String),
+}
+
+fn parse_real(cell: &str) -> Result<Option<f64>, CellError> {
     match cell {
         "" => Ok(None),
-        text => text
-            .parse()
-            .map(Some)
-            .map_err(|_| format!("`{text}` is not a number")),
+        text => (text.parse().map(Some)).map_err(|_| CellError::NotANumber(text.to_string())),
     }
 }
 
@@ -46,7 +57,7 @@ impl Field for Option<f64> {
     fn value(&self) -> Value {
         Value::Real(*self)
     }
-    fn parse(cell: &str) -> Result<Self, String> {
+    fn parse(cell: &str) -> Result<Self, CellError> {
         parse_real(cell)
     }
 }
@@ -56,7 +67,7 @@ impl Field for f64 {
     fn value(&self) -> Value {
         Value::Real(Some(*self))
     }
-    fn parse(cell: &str) -> Result<Self, String> {
+    fn parse(cell: &str) -> Result<Self, CellError> {
         Ok(parse_real(cell)?.unwrap_or(f64::NAN))
     }
 }
@@ -66,8 +77,9 @@ impl Field for usize {
     fn value(&self) -> Value {
         Value::Count(*self)
     }
-    fn parse(cell: &str) -> Result<Self, String> {
-        cell.parse().map_err(|_| format!("`{cell}` is not a count"))
+    fn parse(cell: &str) -> Result<Self, CellError> {
+        cell.parse()
+            .map_err(|_| CellError::NotACount(cell.to_string()))
     }
 }
 
@@ -224,10 +236,10 @@ macro_rules! summary {
             }
 
             /// Sets metric `name` from the text of its table cell.
-            pub fn set(&mut self, name: &str, cell: &str) -> Result<(), String> {
+            pub fn set(&mut self, name: &str, cell: &str) -> Result<(), CellError> {
                 match name {
                     $(stringify!($name) => self.$name = Field::parse(cell)?,)*
-                    _ => return Err(format!("`{name}` is not a metric")),
+                    _ => return Err(CellError::UnknownMetric(name.to_string())),
                 }
                 Ok(())
             }
@@ -363,7 +375,7 @@ mod tests {
         }
         assert_eq!(
             summary.set("max_crush", "1.0"),
-            Err("`max_crush` is not a metric".to_string())
+            Err(CellError::UnknownMetric("max_crush".into()))
         );
     }
 

@@ -42,7 +42,12 @@ fn a_car_that_starts_short_of_the_barrier_is_not_pulled_across_the_gap() {
     let system = Interpreted::<3>::new(model).unwrap();
     // 5 cm short of the barrier (r > 0 is a gap), closing at 15.56 m/s.
     let settings = ["initial.coordinates.r=0.05", "simulation.t_end=0.01"].map(String::from);
-    let scenario = Scenario::load(std::path::Path::new(FULL_FRONTAL), &names, &settings).unwrap();
+    let scenario = Scenario::load(
+        std::path::Path::new(FULL_FRONTAL),
+        &names,
+        &crate::scenario::Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap();
     let result = simulate(&system, &scenario).unwrap();
     let crush = result
         .input_columns
@@ -76,8 +81,12 @@ fn a_summary_only_run_reports_what_the_full_run_reports() {
     let system = Interpreted::<3>::new(model).unwrap();
     for method in ["dopri5", "tr-bdf2"] {
         let settings = [format!("simulation.method=\"{method}\"")];
-        let scenario =
-            Scenario::load(std::path::Path::new(FULL_FRONTAL), &names, &settings).unwrap();
+        let scenario = Scenario::load(
+            std::path::Path::new(FULL_FRONTAL),
+            &names,
+            &crate::scenario::Override::parse_all(&settings).unwrap(),
+        )
+        .unwrap();
         let full = simulate(&system, &scenario).unwrap();
         let summary = simulate_summary(&system, &scenario).unwrap();
         assert_eq!(summary, full.summary, "{method}");
@@ -201,7 +210,13 @@ fn impact(settings: &[&str]) -> (Interpreted<1>, Scenario) {
     let model = lagrangian_core::interpret(IMPACT).unwrap();
     let names = ModelNames::of_interpreted(&model);
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    let scenario = Scenario::parse(WALL, None, &names, &settings).unwrap();
+    let scenario = Scenario::parse(
+        WALL,
+        None,
+        &names,
+        &crate::scenario::Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap();
     (Interpreted::new(model).unwrap(), scenario)
 }
 
@@ -324,7 +339,13 @@ fn outputs_are_evaluated_in_summary_only_runs_too() {
     let q = SVector::from_column_slice(&last.q);
     let v = SVector::from_column_slice(&last.v);
     let channel = ["metrics.displacement=[\"y2_position\"]".to_string()];
-    let read = Scenario::parse(text, None, &names, &channel).unwrap();
+    let read = Scenario::parse(
+        text,
+        None,
+        &names,
+        &crate::scenario::Override::parse_all(&channel).unwrap(),
+    )
+    .unwrap();
     let needs = needs::Needs::of(&read, false, 0);
     assert!(needs.outputs && needs.accelerations && !needs.kept);
     let y = PhaseState::new(q, v);
@@ -361,7 +382,7 @@ fn a_channel_reads_a_components_column_in_a_summary_only_run_too() {
         WALL,
         None,
         &ModelNames::of(&system),
-        &["metrics.force=[\"wall.forse\"]".into()],
+        &[crate::scenario::Override::parse("metrics.force=[\"wall.forse\"]").unwrap()],
     );
     let error = error.unwrap_err().to_string();
     assert!(error.contains("did you mean `wall.force`?"), "{error}");
@@ -392,7 +413,15 @@ fn a_summary_only_run_evaluates_what_is_read() {
     let kept = needs::Needs::of(&bare, true, 0);
     let (values, _) = sample(&mut problem, 0.0, &y, &kept, 3, None).unwrap();
     assert!(values.potential.is_finite() && values.potential != 0.0);
-    let with = |setting: &str| Scenario::parse(text, None, &names, &[setting.into()]).unwrap();
+    let with = |setting: &str| {
+        Scenario::parse(
+            text,
+            None,
+            &names,
+            &[crate::scenario::Override::parse(setting).unwrap()],
+        )
+        .unwrap()
+    };
     let accelerations = with("metrics.acceleration=[\"theta1_ddot\"]");
     let needs = needs::Needs::of(&accelerations, false, 0);
     assert!(needs.accelerations && !needs.outputs && !needs.components);

@@ -16,13 +16,100 @@ mod statistics;
 use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::pulse::channels::{Quantity, TimeHistories};
 use lagrangian_sim::pulse::interpolate;
-use lagrangian_sim::scenario::BaseScenario;
-use lagrangian_sim::simulate::simulate;
-pub use parameters::Parameters;
+use lagrangian_sim::scenario::{BaseScenario, Override, ScenarioError};
+use lagrangian_sim::simulate::{SimulationError, simulate};
+pub use parameters::{ParameterError, Parameters};
 use problem::Problem;
 use serde::Serialize;
 use statistics::Determined;
 pub use statistics::{NEGLIGIBLE_INFLUENCE, RANK_TOLERANCE};
+
+/// Why a fit cannot be made, or failed: what of the target, the scenario
+/// or the simulations is wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum FitError {
+    /// The scenario with the fit's settings does not resolve.
+    #[error("{0}")]
+    Scenario(Box<ScenarioError>),
+    /// The scenario names no crush coordinate, which the target is
+    /// compared with.
+    #[error(
+        "the scenario names no crush coordinate (`[metrics] crush = \"-r\"`): the target channels are its pulse"
+    )]
+    NoCrush,
+    /// A simulation failed.
+    #[error("{0}")]
+    Simulation(Box<SimulationError>),
+    /// A simulation to the target's end with fewer than two samples.
+    #[error(
+        "the simulation to the target's end (t = {end} s) has {samples} sample: the target is shorter than an output interval"
+    )]
+    ShortSimulation {
+        /// The target's last time \[s\].
+        end: f64,
+        /// The samples of the simulation.
+        samples: usize,
+    },
+    /// A target of fewer than two times.
+    #[error("the target has {samples} sample{}; a fit needs at least 2 times", plural(.samples))]
+    TooFewTimes {
+        /// The target's times.
+        samples: usize,
+    },
+    /// A target that ends within the scenario's first output interval.
+    #[error(
+        "the target ends at t = {end} s, within the scenario's first output interval ({interval} s): a fit needs target times after t = {interval} s (or a shorter simulation.output_interval)"
+    )]
+    WithinFirstInterval {
+        /// The target's last time \[s\].
+        end: f64,
+        /// The scenario's output interval \[s\].
+        interval: f64,
+    },
+    /// A target of no more values than fitted entries.
+    #[error(
+        "the target has {values} values ({samples} times × {channels} channels) for {entries} fitted entries: a fit needs more values than entries (a finer target or fewer entries)"
+    )]
+    TooFewValues {
+        /// The target's values.
+        values: usize,
+        /// Its times.
+        samples: usize,
+        /// Its channels.
+        channels: usize,
+        /// The fitted entries.
+        entries: usize,
+    },
+    /// A target that starts before 0.
+    #[error("the target starts at t = {t} s; the simulation starts at 0 (first contact)")]
+    StartsBeforeZero {
+        /// The target's first time \[s\].
+        t: f64,
+    },
+    /// A target channel that is zero throughout.
+    #[error("target column `{header}` is zero throughout")]
+    ZeroChannel {
+        /// The channel's column header.
+        header: String,
+    },
+    /// The scenario's own values do not simulate to the target.
+    #[error("the scenario's own values do not simulate: {0}")]
+    StartFails(#[source] Box<FitError>),
+    /// No fitted entry changes the simulated target.
+    #[error("none of the parameters changes the simulated target")]
+    NoInfluence,
+    /// A simulated target with infinite or NaN values.
+    #[error("the simulated target is not finite")]
+    NotFinite,
+    /// The optimizer ran no start.
+    #[error("no start")]
+    NoStart,
+}
+
+/// `s` unless `n` is 1.
+fn plural(n: &usize) -> &'static str {
+    if *n == 1 { "" } else { "s" }
+}
 
 /// What to fit and how.
 #[derive(Clone, Debug)]
@@ -168,26 +255,25 @@ pub struct FitReport {
 pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
     base: &BaseScenario,
-    settings: &[String],
+    settings: &[Override],
     target: &TimeHistories,
-) -> Result<Vec<Vec<f64>>, String> {
+) -> Result<Vec<Vec<f64>>, FitError> {
     let mut all = settings.to_vec();
-    all.push(format!(
-        "simulation.t_end={:?}",
-        target.t[target.t.len() - 1]
+    all.push(Override::number(
+        "simulation.t_end",
+        target.t[target.t.len() - 1],
     ));
-    let scenario = base.resolve(&all).map_err(|e| e.to_string())?;
-    let crush = scenario.crush.clone().ok_or(
-        "the scenario names no crush coordinate (`[metrics] crush = \"-r\"`): the target channels are its pulse",
-    )?;
-    let result = simulate(system, &scenario).map_err(|e| e.to_string())?;
+    let scenario = base
+        .resolve(&all)
+        .map_err(|e| FitError::Scenario(Box::new(e)))?;
+    let crush = scenario.crush.clone().ok_or(FitError::NoCrush)?;
+    let result = simulate(system, &scenario).map_err(|e| FitError::Simulation(Box::new(e)))?;
     let t: Vec<f64> = result.samples.iter().map(|s| s.t).collect();
     if t.len() < 2 {
-        return Err(format!(
-            "the simulation to the target's end (t = {} s) has {} sample: the target is shorter than an output interval",
-            target.t[target.t.len() - 1],
-            t.len()
-        ));
+        return Err(FitError::ShortSimulation {
+            end: target.t[target.t.len() - 1],
+            samples: t.len(),
+        });
     }
     Ok(target
         .channels
@@ -228,46 +314,43 @@ pub fn check_target_extent(
     target: &TimeHistories,
     base: &BaseScenario,
     entries: usize,
-) -> Result<(), String> {
+) -> Result<(), FitError> {
     let samples = target.t.len();
     if samples < 2 {
-        return Err(format!(
-            "the target has {samples} sample{}; a fit needs at least 2 times",
-            if samples == 1 { "" } else { "s" }
-        ));
+        return Err(FitError::TooFewTimes { samples });
     }
     let interval = base
         .resolve(&[])
-        .map_err(|e| e.to_string())?
+        .map_err(|e| FitError::Scenario(Box::new(e)))?
         .output_interval;
     let end = target.t[samples - 1];
     if end <= interval {
-        return Err(format!(
-            "the target ends at t = {end} s, within the scenario's first output interval ({interval} s): a fit needs target times after t = {interval} s (or a shorter simulation.output_interval)"
-        ));
+        return Err(FitError::WithinFirstInterval { end, interval });
     }
-    let values = samples * target.channels.len();
+    let channels = target.channels.len();
+    let values = samples * channels;
     if values <= entries {
-        return Err(format!(
-            "the target has {values} values ({samples} times × {} channels) for {entries} fitted entries: a fit needs more values than entries (a finer target or fewer entries)",
-            target.channels.len()
-        ));
+        return Err(FitError::TooFewValues {
+            values,
+            samples,
+            channels,
+            entries,
+        });
     }
     Ok(())
 }
 
 /// Checks the target's values: it starts at or after 0, and no channel is
 /// zero throughout (each scales its residuals by its RMS).
-fn check_target_values(target: &TimeHistories) -> Result<(), String> {
+fn check_target_values(target: &TimeHistories) -> Result<(), FitError> {
     if target.t.first().is_some_and(|&t| t < 0.0) {
-        return Err(format!(
-            "the target starts at t = {} s; the simulation starts at 0 (first contact)",
-            target.t[0]
-        ));
+        return Err(FitError::StartsBeforeZero { t: target.t[0] });
     }
     for c in &target.channels {
         if rms(c.values.iter().copied()) == 0.0 {
-            return Err(format!("target column `{}` is zero throughout", c.header));
+            return Err(FitError::ZeroChannel {
+                header: c.header.clone(),
+            });
         }
     }
     Ok(())
@@ -315,7 +398,7 @@ pub fn fit<const N: usize, S>(
     system: &S,
     setup: &FitSetup,
     progress: &(dyn Fn(usize, f64) + Sync),
-) -> Result<FitReport, String>
+) -> Result<FitReport, FitError>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {

@@ -14,7 +14,108 @@
 //! logarithms of its first value and its increments (it stays ordered),
 //! anything else as is.
 
-use lagrangian_sim::scenario::ModelNames;
+use lagrangian_sim::scenario::{ModelNames, Override};
+
+/// Why the names of `--fit` do not resolve to entries: the name, and what
+/// the scenario and the model have instead.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParameterError {
+    /// A curve's word, and the scenario has no crush component.
+    #[error("--fit {name}: the scenario has no crush component (type = \"crush\")")]
+    NoCrushComponent {
+        /// The name given.
+        name: String,
+    },
+    /// A curve's word that no crush component has.
+    #[error(
+        "--fit {name}: no crush component of the scenario has a {name} curve (`{name}_values`); the curves it has: {}",
+        quoted(.curves)
+    )]
+    NoSuchCurve {
+        /// The name given.
+        name: String,
+        /// The curves the scenario has.
+        curves: Vec<String>,
+    },
+    /// A curve's word that several crush components have.
+    #[error(
+        "--fit {name}: several crush components have a {name} curve; name one: {}",
+        quoted(.curves)
+    )]
+    SeveralCurves {
+        /// The name given.
+        name: String,
+        /// The curves of that word.
+        curves: Vec<String>,
+    },
+    /// A crush component's curve that it does not have.
+    #[error(
+        "--fit {name}: crush component `{component}` has no {what} curve (`{what}_values`); the curves it has: {}",
+        quoted(.curves)
+    )]
+    ComponentLacksCurve {
+        /// The name given.
+        name: String,
+        /// The component.
+        component: String,
+        /// The curve's word.
+        what: String,
+        /// The curves it has.
+        curves: Vec<String>,
+    },
+    /// A name that is nothing the fit knows.
+    #[error(
+        "--fit {name}: not a spec parameter ({}), a crush curve of the scenario ({}), or an entry of the scenario{}",
+        quoted(.parameters),
+        quoted_or_none(.curves),
+        suggestion(.closest)
+    )]
+    Unknown {
+        /// The name given.
+        name: String,
+        /// The spec's parameters.
+        parameters: Vec<String>,
+        /// The scenario's crush curves.
+        curves: Vec<String>,
+        /// The accepted name closest to it.
+        closest: Option<String>,
+    },
+    /// An entry that is neither a number nor a list.
+    #[error("--fit {name}: `{key}` is not a number ({value})")]
+    NotANumber {
+        /// The name given.
+        name: String,
+        /// The scenario key.
+        key: String,
+        /// Its value, as TOML.
+        value: String,
+    },
+    /// A list with something other than numbers.
+    #[error("--fit {name}: `{key}` holds something other than numbers")]
+    NotNumbers {
+        /// The name given.
+        name: String,
+        /// The scenario key.
+        key: String,
+    },
+    /// Breakpoints that are not positive and increasing.
+    #[error("--fit {name}: `{key}` must be positive and increasing")]
+    NotIncreasing {
+        /// The name given.
+        name: String,
+        /// The scenario key.
+        key: String,
+    },
+    /// An entry named twice.
+    #[error("--fit: `{label}` is named twice")]
+    NamedTwice {
+        /// The entry's label.
+        label: String,
+    },
+    /// No entry.
+    #[error("--fit: nothing to fit")]
+    Nothing,
+}
 
 /// How an entry's value maps to the unconstrained variable of the fit.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -170,6 +271,19 @@ fn quoted(names: &[String]) -> String {
     quoted.join(", ")
 }
 
+/// [`quoted`], or `it has none`.
+fn quoted_or_none(names: &[String]) -> String {
+    match names.is_empty() {
+        true => "it has none".to_string(),
+        false => quoted(names),
+    }
+}
+
+/// `; did you mean `best`?`, or nothing.
+fn suggestion(closest: &Option<String>) -> String {
+    (closest.as_ref()).map_or(String::new(), |best| format!("; did you mean `{best}`?"))
+}
+
 /// The scenario key of the values a curve name stands for
 /// (`front_end.stiffness`: the `stiffness_values` of crush component
 /// `front_end`; a bare `stiffness`: those of the only crush component with
@@ -178,26 +292,27 @@ fn quoted(names: &[String]) -> String {
 fn crush_values_key(
     name: &str,
     document: &toml::Table,
-) -> Result<Option<(String, String)>, String> {
+) -> Result<Option<(String, String)>, ParameterError> {
     let curves = curve_names(document);
     let is_word = |w: &str| CURVES.iter().any(|(what, _, _)| *what == w);
-    let names_of = |c: &[&CurveName]| quoted(&c.iter().map(|c| c.name()).collect::<Vec<_>>());
+    let names_of = |c: &[&CurveName]| c.iter().map(|c| c.name()).collect::<Vec<_>>();
     let all: Vec<&CurveName> = curves.iter().collect();
+    let name_given = name.to_string();
     if is_word(name) {
         let holders: Vec<&CurveName> = curves.iter().filter(|c| c.what == name).collect();
         return match holders.as_slice() {
             [one] => Ok(Some(one.entry())),
-            [] if crush_components(document).is_empty() => Err(format!(
-                "--fit {name}: the scenario has no crush component (type = \"crush\")"
-            )),
-            [] => Err(format!(
-                "--fit {name}: no crush component of the scenario has a {name} curve (`{name}_values`); the curves it has: {}",
-                names_of(&all)
-            )),
-            many => Err(format!(
-                "--fit {name}: several crush components have a {name} curve; name one: {}",
-                names_of(many)
-            )),
+            [] if crush_components(document).is_empty() => {
+                Err(ParameterError::NoCrushComponent { name: name_given })
+            }
+            [] => Err(ParameterError::NoSuchCurve {
+                name: name_given,
+                curves: names_of(&all),
+            }),
+            many => Err(ParameterError::SeveralCurves {
+                name: name_given,
+                curves: names_of(many),
+            }),
         };
     }
     let Some((component, what)) = name.split_once('.') else {
@@ -213,32 +328,28 @@ fn crush_values_key(
         Some(curve) => Ok(Some(curve.entry())),
         None => {
             let own: Vec<&CurveName> = curves.iter().filter(|c| c.component == component).collect();
-            Err(format!(
-                "--fit {name}: crush component `{component}` has no {what} curve (`{what}_values`); the curves it has: {}",
-                names_of(&own)
-            ))
+            Err(ParameterError::ComponentLacksCurve {
+                name: name_given,
+                component: component.to_string(),
+                what: what.to_string(),
+                curves: names_of(&own),
+            })
         }
     }
 }
 
 /// The error for a `--fit` name that is nothing the fit knows, with the
 /// names it accepts (and the closest of them).
-fn unknown_name(name: &str, document: &toml::Table, model: &ModelNames) -> String {
+fn unknown_name(name: &str, document: &toml::Table, model: &ModelNames) -> ParameterError {
     let curves: Vec<String> = curve_names(document).iter().map(CurveName::name).collect();
     let accepted = accepted_names(document, model);
-    let mut message = format!(
-        "--fit {name}: not a spec parameter ({}), a crush curve of the scenario ({}), or an entry of the scenario",
-        quoted(&model.parameters),
-        match curves.is_empty() {
-            true => "it has none".to_string(),
-            false => quoted(&curves),
-        }
-    );
-    if let Some(best) = lagrangian_model::names::closest(name, accepted.iter().map(String::as_str))
-    {
-        message.push_str(&format!("; did you mean `{best}`?"));
+    let closest = lagrangian_model::names::closest(name, accepted.iter().map(String::as_str));
+    ParameterError::Unknown {
+        name: name.to_string(),
+        parameters: model.parameters.clone(),
+        curves,
+        closest: closest.map(str::to_string),
     }
-    message
 }
 
 impl Parameters {
@@ -249,7 +360,7 @@ impl Parameters {
         document: &toml::Table,
         model: &ModelNames,
         defaults: &[f64],
-    ) -> Result<Parameters, String> {
+    ) -> Result<Parameters, ParameterError> {
         let mut parameters = Parameters {
             entries: Vec::new(),
             slots: Vec::new(),
@@ -272,8 +383,10 @@ impl Parameters {
             match value {
                 toml::Value::Array(items) => parameters.push_list(name, key, &prefix, items)?,
                 other => {
-                    let base = number(other).ok_or_else(|| {
-                        format!("--fit {name}: `{key}` is not a number ({other})")
+                    let base = number(other).ok_or_else(|| ParameterError::NotANumber {
+                        name: name.to_string(),
+                        key: key.clone(),
+                        value: other.to_string(),
                     })?;
                     parameters.push_scalar(key.clone(), key, base);
                 }
@@ -285,10 +398,12 @@ impl Parameters {
             .iter()
             .find(|e| !seen.insert(e.label.clone()))
         {
-            return Err(format!("--fit: `{}` is named twice", dup.label));
+            return Err(ParameterError::NamedTwice {
+                label: dup.label.clone(),
+            });
         }
         if parameters.entries.is_empty() {
-            return Err("--fit: nothing to fit".into());
+            return Err(ParameterError::Nothing);
         }
         Ok(parameters)
     }
@@ -302,12 +417,15 @@ impl Parameters {
         key: String,
         prefix: &str,
         items: &[toml::Value],
-    ) -> Result<(), String> {
+    ) -> Result<(), ParameterError> {
         let base: Vec<f64> = items
             .iter()
             .map(number)
             .collect::<Option<_>>()
-            .ok_or_else(|| format!("--fit {name}: `{key}` holds something other than numbers"))?;
+            .ok_or_else(|| ParameterError::NotNumbers {
+                name: name.to_string(),
+                key: key.clone(),
+            })?;
         let ordered = key.ends_with("breakpoints");
         for (i, _) in base.iter().enumerate() {
             let label = if prefix.is_empty() {
@@ -331,9 +449,10 @@ impl Parameters {
         if ordered
             && (base.windows(2).any(|w| w[1] <= w[0]) || base.first().is_some_and(|&b| b <= 0.0))
         {
-            return Err(format!(
-                "--fit {name}: `{key}` must be positive and increasing"
-            ));
+            return Err(ParameterError::NotIncreasing {
+                name: name.to_string(),
+                key,
+            });
         }
         self.slots.push(Slot {
             key,
@@ -451,6 +570,21 @@ impl Parameters {
             .collect()
     }
 
+    /// The overrides that put `values` (one per entry) into the scenario:
+    /// what [`Parameters::settings`] writes, as values.
+    pub fn overrides(&self, values: &[f64]) -> Vec<Override> {
+        let slots = self.slots.iter().zip(self.slot_values(values));
+        slots
+            .map(|(slot, v)| match slot.is_list {
+                true => {
+                    let items = v.iter().map(|&x| toml::Value::Float(x)).collect();
+                    Override::value(&slot.key, toml::Value::Array(items))
+                }
+                false => Override::value(&slot.key, toml::Value::Float(v[0])),
+            })
+            .collect()
+    }
+
     /// Writes `values` into the scenario document (for the fitted scenario file).
     pub fn write_into(&self, document: &mut toml::Table, values: &[f64], model: &ModelNames) {
         for (slot, v) in self.slots.iter().zip(self.slot_values(values)) {
@@ -552,13 +686,15 @@ mod tests {
     fn unknown_and_ambiguous_names_are_refused() {
         let doc: toml::Table = SCENARIO.parse().unwrap();
         let e = Parameters::resolve(&["stifness".into()], &doc, &names(), &[1.0, 1.0]).unwrap_err();
+        let e = e.to_string();
         assert!(e.contains("not a spec parameter (`m`, `k_f`)"), "{e}");
         assert!(e.ends_with("did you mean `stiffness`?"), "{e}");
         let e = Parameters::resolve(&["k_f".into(), "k_f".into()], &doc, &names(), &[1.0, 1.0])
             .unwrap_err();
-        assert_eq!(e, "--fit: `k_f` is named twice");
+        assert_eq!(e.to_string(), "--fit: `k_f` is named twice");
         let none: toml::Table = "".parse().unwrap();
         let e = Parameters::resolve(&["damping".into()], &none, &names(), &[1.0, 1.0]).unwrap_err();
+        let e = e.to_string();
         assert!(e.contains("no crush component"), "{e}");
     }
 
@@ -608,7 +744,10 @@ mod tests {
         "#
         .parse()
         .unwrap();
-        let resolve = |name: &str| Parameters::resolve(&[name.into()], &doc, &names(), &[1.0, 1.0]);
+        let resolve = |name: &str| {
+            Parameters::resolve(&[name.into()], &doc, &names(), &[1.0, 1.0])
+                .map_err(|e| e.to_string())
+        };
         let suggested = |message: &str| -> Vec<String> {
             let (_, list) = message.rsplit_once(": ").unwrap();
             list.split(", ")

@@ -1,7 +1,7 @@
 //! The least-squares problem of a fit: residuals from simulations, forward
 //! difference Jacobians in parallel, and the Levenberg–Marquardt starts.
 
-use super::{FitSetup, StartReport, rms, simulated_channels};
+use super::{FitError, FitSetup, StartReport, rms, simulated_channels};
 use lagrangian_model::LagrangianSystem;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra034::{DMatrix, DVector, Dyn, Owned};
@@ -46,7 +46,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         system: &S,
         setup: &'a FitSetup,
         progress: &'a (dyn Fn(usize, f64) + Sync),
-    ) -> Result<Self, String>
+    ) -> Result<Self, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -75,7 +75,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         let start = problem.u0.clone();
         let r0 = problem
             .residuals(&start)
-            .map_err(|e| format!("the scenario's own values do not simulate: {e}"))?;
+            .map_err(|e| FitError::StartFails(Box::new(e)))?;
         let all: Vec<usize> = (0..start.len()).collect();
         let columns = problem.columns::<N>(&start, &all, &r0);
         let norms: Vec<f64> = columns
@@ -87,7 +87,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
             .filter(|&i| norms[i] > 1e-12 * largest && norms[i] > 0.0)
             .collect();
         if problem.free.is_empty() {
-            return Err("none of the parameters changes the simulated target".into());
+            return Err(FitError::NoInfluence);
         }
         Ok(problem)
     }
@@ -118,7 +118,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     }
 
     /// The simulated channels for physical `values`.
-    pub fn channels_of<const N: usize>(&self, values: &[f64]) -> Result<Vec<Vec<f64>>, String>
+    pub fn channels_of<const N: usize>(&self, values: &[f64]) -> Result<Vec<Vec<f64>>, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -130,17 +130,17 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         &self,
         system: &S,
         values: &[f64],
-    ) -> Result<Vec<Vec<f64>>, String>
+    ) -> Result<Vec<Vec<f64>>, FitError>
     where
         S: LagrangianSystem<N>,
     {
         self.simulations.fetch_add(1, Ordering::Relaxed);
-        let settings = self.setup.parameters.settings(values);
+        let settings = self.setup.parameters.overrides(values);
         simulated_channels(system, &self.setup.base, &settings, &self.setup.target)
     }
 
     /// Residuals for the full unconstrained vector.
-    fn residuals_with<const N: usize>(&self, system: &S, full: &[f64]) -> Result<Vec<f64>, String>
+    fn residuals_with<const N: usize>(&self, system: &S, full: &[f64]) -> Result<Vec<f64>, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -158,7 +158,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
             r.extend(s.iter().zip(&c.values).map(|(s, y)| (s - y) / scale));
         }
         if r.iter().any(|x| !x.is_finite()) {
-            return Err("the simulated target is not finite".into());
+            return Err(FitError::NotFinite);
         }
         let cost = 0.5 * r.iter().map(|x| x * x).sum::<f64>();
         let mut best = self.best.lock().unwrap_or_else(|e| e.into_inner());
@@ -169,7 +169,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         Ok(r)
     }
 
-    fn residuals<const N: usize>(&self, full: &[f64]) -> Result<Vec<f64>, String>
+    fn residuals<const N: usize>(&self, full: &[f64]) -> Result<Vec<f64>, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -206,7 +206,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     }
 
     /// Residuals at free variables `u`.
-    pub fn residuals_at<const N: usize>(&self, u: &[f64]) -> Result<Vec<f64>, String>
+    pub fn residuals_at<const N: usize>(&self, u: &[f64]) -> Result<Vec<f64>, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -223,7 +223,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
     }
 
     /// Levenberg–Marquardt from `starts` starting points; the best result.
-    pub fn minimize<const N: usize>(&self, starts: usize, seed: u64) -> Result<Outcome, String>
+    pub fn minimize<const N: usize>(&self, starts: usize, seed: u64) -> Result<Outcome, FitError>
     where
         S: LagrangianSystem<N>,
     {
@@ -269,7 +269,7 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
                 best = Some((cost, u));
             }
         }
-        let (cost, u) = best.ok_or("no start")?;
+        let (cost, u) = best.ok_or(FitError::NoStart)?;
         // Held entries keep their values exactly (not through exp(ln p)).
         let base = self.setup.parameters.base_values();
         let values = self

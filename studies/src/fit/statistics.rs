@@ -12,6 +12,7 @@
 //! `D = ∂p/∂u`. (A pseudo-inverse would give an entry along an unseen
 //! direction a small variance instead of none: the opposite of the truth.)
 
+use super::FitError;
 use super::problem::{Outcome, Problem};
 use lagrangian_model::LagrangianSystem;
 use nalgebra::DMatrix;
@@ -54,7 +55,7 @@ pub(super) struct Uncertainty {
 pub(super) fn uncertainty<const N: usize, S>(
     problem: &Problem<'_, S>,
     outcome: &Outcome,
-) -> Result<Uncertainty, String>
+) -> Result<Uncertainty, FitError>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {

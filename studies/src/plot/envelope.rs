@@ -3,7 +3,7 @@
 //! as a line over it.
 
 use super::panels::ms;
-use super::{COLORS, Line, Style, TITLE_HEIGHT, WIDE_PANEL_SIZE, bounds};
+use super::{COLORS, Line, PlotError, Style, TITLE_HEIGHT, WIDE_PANEL_SIZE, bounds};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -34,7 +34,7 @@ impl Band {
 }
 
 /// The envelope plot as SVG text: one panel per band, side by side.
-pub fn bands_svg(title: &str, bands: &[Band]) -> Result<String, String> {
+pub fn bands_svg(title: &str, bands: &[Band]) -> Result<String, PlotError> {
     let columns = bands.len().max(1) as u32;
     let size = (
         WIDE_PANEL_SIZE.0 * columns,
@@ -43,13 +43,13 @@ pub fn bands_svg(title: &str, bands: &[Band]) -> Result<String, String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let root = (root.titled(title, ("sans-serif", 22))).map_err(|e| e.to_string())?;
+        root.fill(&WHITE).map_err(PlotError::drawing)?;
+        let root = (root.titled(title, ("sans-serif", 22))).map_err(PlotError::drawing)?;
         let areas = root.split_evenly((1, columns as usize));
         for (k, (area, band)) in areas.iter().zip(bands).enumerate() {
-            draw_band(area, band, COLORS[k % COLORS.len()]).map_err(|e| e.to_string())?;
+            draw_band(area, band, COLORS[k % COLORS.len()]).map_err(PlotError::drawing)?;
         }
-        root.present().map_err(|e| e.to_string())?;
+        root.present().map_err(PlotError::drawing)?;
     }
     Ok(svg)
 }

@@ -21,6 +21,24 @@ use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
+/// A figure the drawing library could not draw: its message (the
+/// library's error depends on the drawing backend's).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct PlotError {
+    /// What the drawing library says.
+    pub message: String,
+}
+
+impl PlotError {
+    /// The error of the drawing library's `e`.
+    fn drawing(e: impl std::fmt::Display) -> PlotError {
+        PlotError {
+            message: e.to_string(),
+        }
+    }
+}
+
 /// What to draw beyond the raw coordinates.
 #[derive(Clone, Debug, Default)]
 pub struct PlotSetup {
@@ -135,7 +153,7 @@ const WIDE_PANEL_SIZE: (u32, u32) = (700, 460);
 const TITLE_HEIGHT: u32 = 40;
 
 /// The figure as SVG text.
-pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String, String> {
+pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String, PlotError> {
     let panels = panels::panels_of(result, setup);
     draw_grid(&setup.title, &panels, COLUMNS, PANEL_SIZE)
 }
@@ -144,7 +162,7 @@ pub fn figure_svg(result: &SimulationResult, setup: &PlotSetup) -> Result<String
 pub fn panels_svg(
     title: &str,
     panels: &[(String, String, String, Vec<Series>)],
-) -> Result<String, String> {
+) -> Result<String, PlotError> {
     let panels: Vec<Panel> = (panels.iter())
         .map(|(name, x_label, y_label, series)| Panel {
             title: name.clone(),
@@ -165,7 +183,7 @@ fn draw_grid(
     panels: &[Panel],
     columns: usize,
     panel_size: (u32, u32),
-) -> Result<String, String> {
+) -> Result<String, PlotError> {
     let rows = panels.len().div_ceil(columns).max(1);
     let size = (
         panel_size.0 * columns as u32,
@@ -174,14 +192,14 @@ fn draw_grid(
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        root.fill(&WHITE).map_err(PlotError::drawing)?;
         let root = root
             .titled(title, ("sans-serif", 22))
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
         for (area, panel) in root.split_evenly((rows, columns)).iter().zip(panels) {
-            draw_panel(area, panel).map_err(|e| e.to_string())?;
+            draw_panel(area, panel).map_err(PlotError::drawing)?;
         }
-        root.present().map_err(|e| e.to_string())?;
+        root.present().map_err(PlotError::drawing)?;
     }
     Ok(svg)
 }

@@ -19,6 +19,65 @@ use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::scenario::Signal;
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 
+/// Why runs, or envelopes, do not add into one envelope.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EnvelopeError {
+    /// A run (or the first run of an envelope merged) on other output
+    /// times than the runs added before.
+    #[error(
+        "--envelope: run {run} has other output times ({times}) than run {first} ({first_times}); envelopes need every run on the same times (do not sweep the end time or the output interval)"
+    )]
+    OtherTimes {
+        /// The run added.
+        run: usize,
+        /// Its output times.
+        times: Times,
+        /// The lowest run added before.
+        first: usize,
+        /// Its output times.
+        first_times: Times,
+    },
+    /// An envelope of other channels merged.
+    #[error(
+        "--envelope: the channels {} cannot merge with {}",
+        .theirs.join(","),
+        .ours.join(",")
+    )]
+    OtherChannels {
+        /// The channels of the envelope merged.
+        theirs: Vec<String>,
+        /// The channels of the envelope merged into.
+        ours: Vec<String>,
+    },
+}
+
+/// Output times in a message: how many, and the last.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Times {
+    /// How many output times.
+    pub samples: usize,
+    /// The last \[s\]; `None` for none.
+    pub end: Option<f64>,
+}
+
+impl Times {
+    fn of(t: &[f64]) -> Times {
+        Times {
+            samples: t.len(),
+            end: t.last().copied(),
+        }
+    }
+}
+
+impl std::fmt::Display for Times {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.end {
+            Some(end) => write!(f, "{} samples to {end} s", self.samples),
+            None => f.write_str("no samples"),
+        }
+    }
+}
+
 /// One run's channels at its output times.
 #[derive(Clone, Debug, PartialEq)]
 pub struct History {
@@ -178,7 +237,7 @@ impl Envelope {
 
     /// Adds run `run` with weight `weight`; its output times must be those
     /// of the runs added before.
-    pub fn add(&mut self, run: usize, weight: f64, history: &History) -> Result<(), String> {
+    pub fn add(&mut self, run: usize, weight: f64, history: &History) -> Result<(), EnvelopeError> {
         match self.first_run {
             None => self.start(&history.t),
             Some(first) if history.t != self.t => {
@@ -205,13 +264,12 @@ impl Envelope {
 
     /// Adds the runs of `other`, an envelope of the same channels over
     /// other runs: the result is that of adding its runs one by one.
-    pub fn merge(&mut self, other: &Envelope) -> Result<(), String> {
+    pub fn merge(&mut self, other: &Envelope) -> Result<(), EnvelopeError> {
         if other.names != self.names {
-            return Err(format!(
-                "--envelope: the channels {} cannot merge with {}",
-                other.names.join(","),
-                self.names.join(",")
-            ));
+            return Err(EnvelopeError::OtherChannels {
+                theirs: other.names.clone(),
+                ours: self.names.clone(),
+            });
         }
         let Some(other_first) = other.first_run else {
             return Ok(());
@@ -271,16 +329,13 @@ pub struct Accumulated {
     pub runs: usize,
 }
 
-fn different_times(run: usize, t: &[f64], first: usize, first_t: &[f64]) -> String {
-    let describe = |t: &[f64]| match t.last() {
-        Some(end) => format!("{} samples to {end} s", t.len()),
-        None => "no samples".to_string(),
-    };
-    format!(
-        "--envelope: run {run} has other output times ({}) than run {first} ({}); envelopes need every run on the same times (do not sweep the end time or the output interval)",
-        describe(t),
-        describe(first_t)
-    )
+fn different_times(run: usize, t: &[f64], first: usize, first_t: &[f64]) -> EnvelopeError {
+    EnvelopeError::OtherTimes {
+        run,
+        times: Times::of(t),
+        first,
+        first_times: Times::of(first_t),
+    }
 }
 
 /// What [`stream_envelope`] needs beyond the runs: the channels and the
@@ -323,15 +378,16 @@ fn run_with_history<const N: usize, S: LagrangianSystem<N> + Clone>(
 /// [`super::stream_sweep`] that also adds every finished run to
 /// `envelope`, in run order, with its weight from `what.weights`. Failed
 /// runs have no history and stay out of the envelope. `sink` sees each row
-/// with the envelope that holds every run up to it.
-pub fn stream_envelope<const N: usize, S>(
+/// with the envelope that holds every run up to it. An error of `sink`, or
+/// a run whose output times are not those of the runs before, ends it.
+pub fn stream_envelope<const N: usize, S, E: From<EnvelopeError>>(
     system: &S,
     job: SweepJob<'_>,
     what: EnvelopeJob<'_>,
     envelope: &mut Envelope,
     stop: &(dyn Fn() -> bool + Sync),
-    sink: &mut dyn FnMut(Row, &Envelope) -> Result<(), String>,
-) -> Result<usize, String>
+    sink: &mut dyn FnMut(Row, &Envelope) -> Result<(), E>,
+) -> Result<usize, E>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
@@ -448,10 +504,15 @@ mod tests {
     fn merging_other_channels_or_other_times_is_an_error() {
         let mut e = of(&runs()[..1]);
         let mut other = Envelope::named(vec!["y".into()]);
-        assert!(e.merge(&other).unwrap_err().contains("the channels y"));
+        assert!(
+            e.merge(&other)
+                .unwrap_err()
+                .to_string()
+                .contains("the channels y")
+        );
         other = envelope();
         other.add(7, 1.0, &history(&[0.0], &[1.0])).unwrap();
-        let error = e.merge(&other).unwrap_err();
+        let error = e.merge(&other).unwrap_err().to_string();
         assert!(error.contains("run 7 has other output times"), "{error}");
     }
 
@@ -459,7 +520,10 @@ mod tests {
     fn a_run_on_other_output_times_is_an_error_naming_both_runs() {
         let mut e = envelope();
         e.add(0, 1.0, &history(&[0.0, 0.1], &[1.0, 2.0])).unwrap();
-        let error = e.add(1, 1.0, &history(&[0.0], &[1.0])).unwrap_err();
+        let error = e
+            .add(1, 1.0, &history(&[0.0], &[1.0]))
+            .unwrap_err()
+            .to_string();
         assert!(
             error.contains(
                 "run 1 has other output times (1 samples to 0 s) than run 0 (2 samples to 0.1 s)"

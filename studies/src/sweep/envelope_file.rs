@@ -11,7 +11,7 @@
 //! as Rust's shortest round-tripping text (`"0.1"`, `"NaN"`), read back
 //! exactly; an exact sum is its [`ExactSum::terms`].
 
-use super::envelope::{Accumulated, ChannelEnvelope, Envelope};
+use super::envelope::{Accumulated, ChannelEnvelope, Envelope, EnvelopeError};
 use super::exact_sum::ExactSum;
 use super::plan::Plan;
 use super::weights::Weights;
@@ -25,6 +25,163 @@ pub const ENVELOPE_FORMAT: &str = "lagrangian-sweep-envelope";
 
 /// The version this code writes and reads.
 pub const ENVELOPE_VERSION: u32 = 1;
+
+/// Why a partial envelope cannot be written, read, or merged into the
+/// envelope of the whole sweep.
+#[derive(Debug, thiserror::Error)]
+pub enum EnvelopeFileError {
+    /// The JSON cannot be written.
+    #[error("cannot write the envelope: {0}")]
+    Write(#[source] serde_json::Error),
+    /// A partial envelope that cannot be read, or does not belong to this
+    /// sweep or merge with the others.
+    #[error("{}: {problem}", .path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        problem: FileProblem,
+    },
+    /// Runs in none of the partial envelopes.
+    #[error(
+        "--envelope: runs {from}..{to} (of {total}) are in no part's envelope: give every shard's table, each with its envelope beside it"
+    )]
+    Missing {
+        /// The first run missing.
+        from: usize,
+        /// The run after the last missing.
+        to: usize,
+        /// The plan's number of runs.
+        total: usize,
+    },
+}
+
+/// What is wrong with a partial envelope ([`EnvelopeFileError::File`]).
+#[derive(Debug, thiserror::Error)]
+pub enum FileProblem {
+    /// The file cannot be read.
+    #[error("cannot read: {0}")]
+    Read(#[source] std::io::Error),
+    /// The file is not JSON with a format and a version.
+    #[error("not a partial envelope of lpm sweep: {0}")]
+    NotJson(#[source] serde_json::Error),
+    /// JSON of another format.
+    #[error("not a partial envelope of lpm sweep (its format is {format:?}, not {expected:?})", expected = ENVELOPE_FORMAT)]
+    Format {
+        /// The file's `format`.
+        format: String,
+    },
+    /// A version this code does not read.
+    #[error(
+        "version {} of the envelope file; this lpm reads version {expected}",
+        .version.map_or("none".to_string(), |v| v.to_string()),
+        expected = ENVELOPE_VERSION
+    )]
+    Version {
+        /// The file's `version`.
+        version: Option<u32>,
+    },
+    /// The entries after the format and version do not read.
+    #[error("cannot read the envelope: {0}")]
+    Json(#[source] serde_json::Error),
+    /// A block of runs that is not in the sweep.
+    #[error("runs {start}..{end} ({done} done) are not a block of this sweep's {runs} runs")]
+    NotABlock {
+        /// The block's first run.
+        start: usize,
+        /// The run after its last.
+        end: usize,
+        /// How many of its runs are done.
+        done: usize,
+        /// The sweep's runs.
+        runs: usize,
+    },
+    /// The file belongs to another sweep.
+    #[error("not a part of this sweep: {0}")]
+    OtherSweep(MarkDifference),
+    /// A number written as text that does not read back.
+    #[error("`{text}` is not a number")]
+    NotANumber {
+        /// The text.
+        text: String,
+    },
+    /// A channel without one entry per output time.
+    #[error("channel {channel} does not have one entry per output time ({points})")]
+    Entries {
+        /// The channel.
+        channel: String,
+        /// The output times.
+        points: usize,
+    },
+    /// Accumulators of other channels than the file's.
+    #[error("its accumulators are not those of its channels")]
+    Accumulators,
+    /// A block its shard did not finish.
+    #[error(
+        "holds {done} of the runs {start}..{end}: its shard did not finish (run it again with --resume)"
+    )]
+    Unfinished {
+        /// How many runs are done.
+        done: usize,
+        /// The block's first run.
+        start: usize,
+        /// The run after its last.
+        end: usize,
+    },
+    /// Runs that an earlier file holds too.
+    #[error(
+        "runs {start}..{end} are also in {}: give each shard once",
+        .previous.as_ref().map_or(String::new(), |p| p.display().to_string())
+    )]
+    Overlap {
+        /// The first run held twice.
+        start: usize,
+        /// The run after the last held twice.
+        end: usize,
+        /// The file that holds them too.
+        previous: Option<PathBuf>,
+    },
+    /// An envelope that does not merge with the others.
+    #[error("{0}")]
+    Merge(#[source] EnvelopeError),
+}
+
+/// How a partial envelope's sweep differs from the sweep at hand.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MarkDifference {
+    /// Another number of runs, or other axes.
+    #[error(
+        "it belongs to a sweep of {runs} runs over {}, this one has {expected_runs} runs over {}",
+        .axes.join(", "),
+        .expected_axes.join(", ")
+    )]
+    Plan {
+        /// The file's plan's runs.
+        runs: usize,
+        /// The file's plan's axes.
+        axes: Vec<String>,
+        /// This sweep's runs.
+        expected_runs: usize,
+        /// This sweep's axes.
+        expected_axes: Vec<String>,
+    },
+    /// The runs held have other values.
+    #[error(
+        "its runs have other values than this sweep's (another --grid, --samples, --vary, --design or --seed)"
+    )]
+    Values,
+    /// Other channels.
+    #[error("its channels are {}, this sweep's {}", .channels.join(","), .expected.join(","))]
+    Channels {
+        /// The file's channels.
+        channels: Vec<String>,
+        /// This sweep's channels.
+        expected: Vec<String>,
+    },
+    /// The runs held have other weights.
+    #[error("its runs have other --weights than this sweep's")]
+    Weights,
+}
 
 /// The partial envelope beside a table: `part-1.csv` →
 /// `part-1.csv.envelope.json`.
@@ -82,28 +239,26 @@ impl SweepMark {
 
     /// What differs between this mark (of a file) and `expected` (of the
     /// sweep at hand); `None` when they agree.
-    fn difference(&self, expected: &SweepMark) -> Option<String> {
+    fn difference(&self, expected: &SweepMark) -> Option<MarkDifference> {
         if (self.plan_runs, &self.axes) != (expected.plan_runs, &expected.axes) {
-            return Some(format!(
-                "it belongs to a sweep of {} runs over {}, this one has {} runs over {}",
-                self.plan_runs,
-                self.axes.join(", "),
-                expected.plan_runs,
-                expected.axes.join(", ")
-            ));
+            return Some(MarkDifference::Plan {
+                runs: self.plan_runs,
+                axes: self.axes.clone(),
+                expected_runs: expected.plan_runs,
+                expected_axes: expected.axes.clone(),
+            });
         }
         if self.values != expected.values {
-            return Some("its runs have other values than this sweep's (another --grid, --samples, --vary, --design or --seed)".into());
+            return Some(MarkDifference::Values);
         }
         if self.channels != expected.channels {
-            return Some(format!(
-                "its channels are {}, this sweep's {}",
-                self.channels.join(","),
-                expected.channels.join(",")
-            ));
+            return Some(MarkDifference::Channels {
+                channels: self.channels.clone(),
+                expected: expected.channels.clone(),
+            });
         }
         if self.weights != expected.weights {
-            return Some("its runs have other --weights than this sweep's".into());
+            return Some(MarkDifference::Weights);
         }
         None
     }
@@ -187,8 +342,8 @@ fn numbers(x: &[f64]) -> Vec<String> {
     x.iter().map(|x| format!("{x:?}")).collect()
 }
 
-fn parse_numbers(text: &[String]) -> Result<Vec<f64>, String> {
-    let parse = |s: &String| s.parse().map_err(|_| format!("`{s}` is not a number"));
+fn parse_numbers(text: &[String]) -> Result<Vec<f64>, FileProblem> {
+    let parse = |s: &String| (s.parse()).map_err(|_| FileProblem::NotANumber { text: s.clone() });
     text.iter().map(parse).collect()
 }
 
@@ -206,10 +361,10 @@ impl ChannelText {
         }
     }
 
-    fn read(self, points: usize) -> Result<ChannelEnvelope, String> {
+    fn read(self, points: usize) -> Result<ChannelEnvelope, FileProblem> {
         let sums = (self.weighted_sum.iter())
             .map(|terms| parse_numbers(terms).map(|t| ExactSum::from_terms(&t)))
-            .collect::<Result<Vec<ExactSum>, String>>()?;
+            .collect::<Result<Vec<ExactSum>, FileProblem>>()?;
         let channel = ChannelEnvelope {
             min: parse_numbers(&self.min)?,
             min_run: self.min_run,
@@ -227,17 +382,17 @@ impl ChannelText {
         ];
         match lengths.iter().all(|&n| n == points) {
             true => Ok(channel),
-            false => Err(format!(
-                "channel {} does not have one entry per output time ({points})",
-                channel.name
-            )),
+            false => Err(FileProblem::Entries {
+                channel: channel.name,
+                points,
+            }),
         }
     }
 }
 
 impl PartialEnvelope {
     /// Writes the partial envelope as JSON to `out`.
-    pub fn write(&self, out: impl Write) -> Result<(), String> {
+    pub fn write(&self, out: impl Write) -> Result<(), EnvelopeFileError> {
         let envelope = &self.envelope;
         let text = FileText {
             format: ENVELOPE_FORMAT.to_string(),
@@ -251,7 +406,7 @@ impl PartialEnvelope {
             t: numbers(&envelope.t),
             channels: envelope.channels.iter().map(ChannelText::of).collect(),
         };
-        serde_json::to_writer(out, &text).map_err(|e| format!("cannot write the envelope: {e}"))
+        serde_json::to_writer(out, &text).map_err(EnvelopeFileError::Write)
     }
 
     /// Reads the partial envelope in `path` and checks that it belongs to
@@ -262,23 +417,27 @@ impl PartialEnvelope {
         plan: &Plan,
         channels: &[String],
         weights: &Weights,
-    ) -> Result<PartialEnvelope, String> {
-        let at = |why: String| format!("{}: {why}", path.display());
-        let bytes = std::fs::read(path).map_err(|e| at(format!("cannot read: {e}")))?;
+    ) -> Result<PartialEnvelope, EnvelopeFileError> {
+        let at = |problem: FileProblem| EnvelopeFileError::File {
+            path: path.to_path_buf(),
+            problem,
+        };
+        let bytes = std::fs::read(path).map_err(|e| at(FileProblem::Read(e)))?;
         let text = parse(&bytes).map_err(at)?;
         let [start, end] = text.block;
         if start > end || end > plan.len() || text.done > end - start {
-            return Err(at(format!(
-                "runs {start}..{end} ({} done) are not a block of this sweep's {} runs",
-                text.done,
-                plan.len()
-            )));
+            return Err(at(FileProblem::NotABlock {
+                start,
+                end,
+                done: text.done,
+                runs: plan.len(),
+            }));
         }
         let block = start..end;
         let held = start..start + text.done;
         let expected = SweepMark::of(plan, channels, weights, &held);
         if let Some(why) = text.sweep.difference(&expected) {
-            return Err(at(format!("not a part of this sweep: {why}")));
+            return Err(at(FileProblem::OtherSweep(why)));
         }
         let done = text.done;
         let envelope = envelope_of(text, channels).map_err(at)?;
@@ -292,37 +451,34 @@ impl PartialEnvelope {
 }
 
 /// The file's text, its format and version checked first.
-fn parse(bytes: &[u8]) -> Result<FileText, String> {
-    let header: Header = serde_json::from_slice(bytes)
-        .map_err(|e| format!("not a partial envelope of lpm sweep: {e}"))?;
+fn parse(bytes: &[u8]) -> Result<FileText, FileProblem> {
+    let header: Header = serde_json::from_slice(bytes).map_err(FileProblem::NotJson)?;
     if header.format.as_deref() != Some(ENVELOPE_FORMAT) {
-        return Err(format!(
-            "not a partial envelope of lpm sweep (its format is {:?}, not {ENVELOPE_FORMAT:?})",
-            header.format.unwrap_or_default()
-        ));
+        return Err(FileProblem::Format {
+            format: header.format.unwrap_or_default(),
+        });
     }
     if header.version != Some(ENVELOPE_VERSION) {
-        return Err(format!(
-            "version {} of the envelope file; this lpm reads version {ENVELOPE_VERSION}",
-            header.version.map_or("none".to_string(), |v| v.to_string())
-        ));
+        return Err(FileProblem::Version {
+            version: header.version,
+        });
     }
-    serde_json::from_slice(bytes).map_err(|e| format!("cannot read the envelope: {e}"))
+    serde_json::from_slice(bytes).map_err(FileProblem::Json)
 }
 
 /// The envelope of a file's text.
-fn envelope_of(text: FileText, channels: &[String]) -> Result<Envelope, String> {
+fn envelope_of(text: FileText, channels: &[String]) -> Result<Envelope, FileProblem> {
     let t = parse_numbers(&text.t)?;
     let read = (text.channels.into_iter())
         .map(|c| c.read(t.len()))
-        .collect::<Result<Vec<ChannelEnvelope>, String>>()?;
+        .collect::<Result<Vec<ChannelEnvelope>, FileProblem>>()?;
     let expected = if text.first_run.is_some() {
         channels.len()
     } else {
         0
     };
     if read.len() != expected || read.iter().zip(channels).any(|(c, name)| c.name != *name) {
-        return Err("its accumulators are not those of its channels".into());
+        return Err(FileProblem::Accumulators);
     }
     let accumulated = Accumulated {
         t,
@@ -345,18 +501,21 @@ pub fn merged_envelope(
     plan: &Plan,
     channels: &[String],
     weights: &Weights,
-) -> Result<Envelope, String> {
+) -> Result<Envelope, EnvelopeFileError> {
+    let at = |path: &Path, problem: FileProblem| EnvelopeFileError::File {
+        path: path.to_path_buf(),
+        problem,
+    };
     let mut parts = Vec::new();
     for path in paths {
         let part = PartialEnvelope::read(path, plan, channels, weights)?;
         if part.done < part.block.len() {
-            return Err(format!(
-                "{}: holds {} of the runs {}..{}: its shard did not finish (run it again with --resume)",
-                path.display(),
-                part.done,
-                part.block.start,
-                part.block.end
-            ));
+            let problem = FileProblem::Unfinished {
+                done: part.done,
+                start: part.block.start,
+                end: part.block.end,
+            };
+            return Err(at(path, problem));
         }
         parts.push((path, part));
     }
@@ -364,42 +523,41 @@ pub fn merged_envelope(
     check_blocks(&parts, plan.len())?;
     let mut whole = Envelope::named(channels.to_vec());
     for (path, part) in &parts {
-        (whole.merge(&part.envelope)).map_err(|e| format!("{}: {e}", path.display()))?;
+        (whole.merge(&part.envelope)).map_err(|e| at(path, FileProblem::Merge(e)))?;
     }
     Ok(whole)
 }
 
 /// The blocks, sorted, cover `0..total` each run once.
-fn check_blocks(parts: &[(&PathBuf, PartialEnvelope)], total: usize) -> Result<(), String> {
+fn check_blocks(
+    parts: &[(&PathBuf, PartialEnvelope)],
+    total: usize,
+) -> Result<(), EnvelopeFileError> {
+    let missing = |from, to| EnvelopeFileError::Missing { from, to, total };
     let mut next = 0;
     let mut previous: Option<&Path> = None;
     for (path, part) in parts.iter().filter(|(_, p)| !p.block.is_empty()) {
         let block = &part.block;
         if block.start < next {
-            return Err(format!(
-                "{}: runs {}..{} are also in {}: give each shard once",
-                path.display(),
-                block.start,
-                next.min(block.end),
-                previous.map_or(String::new(), |p| p.display().to_string())
-            ));
+            return Err(EnvelopeFileError::File {
+                path: path.to_path_buf(),
+                problem: FileProblem::Overlap {
+                    start: block.start,
+                    end: next.min(block.end),
+                    previous: previous.map(Path::to_path_buf),
+                },
+            });
         }
         if block.start > next {
-            return Err(missing_runs(next, block.start, total));
+            return Err(missing(next, block.start));
         }
         next = block.end;
         previous = Some(path.as_path());
     }
     match next < total {
-        true => Err(missing_runs(next, total, total)),
+        true => Err(missing(next, total)),
         false => Ok(()),
     }
-}
-
-fn missing_runs(from: usize, to: usize, total: usize) -> String {
-    format!(
-        "--envelope: runs {from}..{to} (of {total}) are in no part's envelope: give every shard's table, each with its envelope beside it"
-    )
 }
 
 #[cfg(test)]
@@ -478,7 +636,9 @@ mod tests {
         }
         let merge = |paths: &[&PathBuf]| {
             let paths: Vec<PathBuf> = paths.iter().map(|p| p.to_path_buf()).collect();
-            merged_envelope(&paths, &plan(), &channels(), &w).unwrap_err()
+            (merged_envelope(&paths, &plan(), &channels(), &w))
+                .unwrap_err()
+                .to_string()
         };
         let missing = merge(&[&a, &c]);
         assert!(
@@ -496,7 +656,9 @@ mod tests {
         let equal = Weights::Equal;
         let path = write(&dir, "part.json", &partial(0..2, &equal));
         let read = |plan: &Plan, channels: &[String], weights: &Weights| {
-            PartialEnvelope::read(&path, plan, channels, weights).unwrap_err()
+            (PartialEnvelope::read(&path, plan, channels, weights))
+                .unwrap_err()
+                .to_string()
         };
         let other_values = Plan::grid(&["v=1,5,3,4".to_string()]).unwrap();
         let other_count = Plan::grid(&["v=1,2,3".to_string()]).unwrap();
@@ -545,7 +707,9 @@ mod tests {
         let mut part = partial(0..3, &Weights::Equal);
         part.block = 0..4;
         let path = write(&dir, "part.json", &part);
-        let error = merged_envelope(&[path], &plan(), &channels(), &Weights::Equal).unwrap_err();
+        let error = merged_envelope(&[path], &plan(), &channels(), &Weights::Equal)
+            .unwrap_err()
+            .to_string();
         assert!(
             error.contains("holds 3 of the runs 0..4: its shard did not finish"),
             "{error}"

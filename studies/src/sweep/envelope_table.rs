@@ -5,7 +5,7 @@
 //! finite value).
 
 use super::envelope::Envelope;
-use super::table::{GroupColumns, column_type, parquet_error};
+use super::table::{GroupColumns, WriteError, column_type};
 use parquet::basic::{Repetition, Type as Physical};
 use parquet::data_type::{DoubleType, Int64Type};
 use parquet::file::properties::WriterProperties;
@@ -27,12 +27,9 @@ pub fn envelope_columns(envelope: &Envelope) -> Vec<String> {
 }
 
 /// Writes the CSV table of `envelope` to `out`.
-pub fn write_envelope_csv(envelope: &Envelope, out: impl Write) -> Result<(), String> {
+pub fn write_envelope_csv(envelope: &Envelope, out: impl Write) -> Result<(), WriteError> {
     let mut writer = csv::Writer::from_writer(out);
-    let fail = |e: csv::Error| format!("cannot write CSV: {e}");
-    writer
-        .write_record(envelope_columns(envelope))
-        .map_err(fail)?;
+    writer.write_record(envelope_columns(envelope))?;
     let means: Vec<Vec<f64>> = (0..envelope.channels.len())
         .map(|k| envelope.mean(k))
         .collect();
@@ -46,13 +43,13 @@ pub fn write_envelope_csv(envelope: &Envelope, out: impl Write) -> Result<(), St
             record.push(run(channel.max_run[i]));
             record.push(format!("{:?}", mean[i]));
         }
-        writer.write_record(record).map_err(fail)?;
+        writer.write_record(record)?;
     }
-    writer.flush().map_err(|e| format!("cannot write CSV: {e}"))
+    writer.flush().map_err(|e| WriteError::Csv(e.into()))
 }
 
 /// The Parquet schema of [`envelope_columns`].
-fn schema(envelope: &Envelope) -> Result<Type, String> {
+fn schema(envelope: &Envelope) -> Result<Type, WriteError> {
     let mut fields = Vec::new();
     for name in envelope_columns(envelope) {
         let field = match name.ends_with("_run") {
@@ -64,16 +61,19 @@ fn schema(envelope: &Envelope) -> Result<Type, String> {
     Type::group_type_builder("envelope")
         .with_fields(fields)
         .build()
-        .map_err(parquet_error)
+        .map_err(WriteError::Parquet)
 }
 
 /// Writes the Parquet table of `envelope` to `out` (one row group).
-pub fn write_envelope_parquet<W: Write + Send>(envelope: &Envelope, out: W) -> Result<(), String> {
+pub fn write_envelope_parquet<W: Write + Send>(
+    envelope: &Envelope,
+    out: W,
+) -> Result<(), WriteError> {
     let properties = Arc::new(WriterProperties::builder().build());
     let schema = Arc::new(schema(envelope)?);
-    let mut writer = SerializedFileWriter::new(out, schema, properties).map_err(parquet_error)?;
+    let mut writer = SerializedFileWriter::new(out, schema, properties)?;
     write_group(&mut writer, envelope)?;
-    writer.close().map_err(parquet_error)?;
+    writer.close()?;
     Ok(())
 }
 
@@ -81,9 +81,9 @@ pub fn write_envelope_parquet<W: Write + Send>(envelope: &Envelope, out: W) -> R
 fn write_group<W: Write + Send>(
     writer: &mut SerializedFileWriter<W>,
     envelope: &Envelope,
-) -> Result<(), String> {
+) -> Result<(), WriteError> {
     let mut columns = GroupColumns {
-        group: writer.next_row_group().map_err(parquet_error)?,
+        group: writer.next_row_group()?,
         written: 0,
     };
     columns.write::<DoubleType>(&envelope.t, None)?;
@@ -94,7 +94,7 @@ fn write_group<W: Write + Send>(
         write_runs(&mut columns, &channel.max_run)?;
         columns.write::<DoubleType>(&envelope.mean(k), None)?;
     }
-    columns.group.close().map_err(parquet_error)?;
+    columns.group.close()?;
     Ok(())
 }
 
@@ -102,7 +102,7 @@ fn write_group<W: Write + Send>(
 fn write_runs<W: Write + Send>(
     columns: &mut GroupColumns<'_, W>,
     runs: &[Option<usize>],
-) -> Result<(), String> {
+) -> Result<(), WriteError> {
     let present: Vec<i64> = runs.iter().flatten().map(|&r| r as i64).collect();
     let levels: Vec<i16> = runs.iter().map(|r| i16::from(r.is_some())).collect();
     columns.write::<Int64Type>(&present, Some(&levels))

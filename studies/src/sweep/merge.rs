@@ -8,15 +8,174 @@
 
 use super::plan::Plan;
 use super::run::Row;
-use super::table::{Layout, columns, parse_record};
+use super::table::{Layout, RecordError, abbreviated, columns, parse_record};
+use parquet::errors::ParquetError;
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::record::Field;
 use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
 
-/// A row and where it was read (`part-2.csv:14`, `part-2.parquet: row 12`).
-type Located = Result<(Row, String), String>;
+/// Why the shards' tables do not merge into the table of the sweep: the
+/// part and the row at fault, and what is missing, repeated or foreign.
+#[derive(Debug, thiserror::Error)]
+pub enum MergeError {
+    /// A part cannot be read.
+    #[error("cannot read {}: {source}", .path.display())]
+    Read {
+        /// The part.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A CSV part's header does not read.
+    #[error("{}:1: cannot read the header: {source}", .path.display())]
+    Header {
+        /// The part.
+        path: PathBuf,
+        /// Why.
+        source: csv::Error,
+    },
+    /// A Parquet part does not read.
+    #[error("{}: {source}", .path.display())]
+    Parquet {
+        /// The part.
+        path: PathBuf,
+        /// Why.
+        source: ParquetError,
+    },
+    /// A part whose columns are not this sweep's.
+    #[error(
+        "{}: the columns are not those of this sweep (`{}` …): it is not a part of this sweep",
+        .path.display(),
+        abbreviated(.columns)
+    )]
+    NotAPart {
+        /// The part.
+        path: PathBuf,
+        /// Its columns.
+        columns: Vec<String>,
+    },
+    /// A row that does not read, or is not the next run of the plan.
+    #[error("{at}: {problem}")]
+    Row {
+        /// Where it was read.
+        at: Location,
+        /// What is wrong with it.
+        problem: RowProblem,
+    },
+    /// The last runs of the plan, in no part.
+    #[error("{0}")]
+    Missing(MissingRuns),
+}
+
+/// Where a row was read: `part-2.csv:14`, `part-2.parquet: row 12`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Location {
+    /// A line of a CSV part, from 1 (the header's).
+    Line {
+        /// The part.
+        path: PathBuf,
+        /// The line.
+        line: usize,
+    },
+    /// A row of a Parquet part, from 1.
+    Row {
+        /// The part.
+        path: PathBuf,
+        /// The row.
+        row: usize,
+    },
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Location::Line { path, line } => write!(f, "{}:{line}", path.display()),
+            Location::Row { path, row } => write!(f, "{}: row {row}", path.display()),
+        }
+    }
+}
+
+/// What is wrong with a row of a part ([`MergeError::Row`]).
+#[derive(Debug, thiserror::Error)]
+pub enum RowProblem {
+    /// A CSV record that does not read.
+    #[error("{0}")]
+    Csv(#[source] csv::Error),
+    /// A Parquet row that does not read.
+    #[error("{0}")]
+    Parquet(#[source] ParquetError),
+    /// A Parquet value of a kind `lpm sweep` does not write.
+    #[error("unexpected value {value}")]
+    UnexpectedValue {
+        /// The value, as Parquet writes it.
+        value: String,
+    },
+    /// Cells that are not a row of this sweep's table.
+    #[error("{0}")]
+    Record(#[source] RecordError),
+    /// A run that an earlier part or row holds already.
+    #[error(
+        "run {run} is repeated (an earlier part or row holds it already): give each shard once"
+    )]
+    Repeated {
+        /// The run.
+        run: usize,
+    },
+    /// A run beyond the plan's.
+    #[error("run {run} is beyond this plan's {total} runs: the part belongs to another sweep")]
+    Beyond {
+        /// The run.
+        run: usize,
+        /// The plan's number of runs.
+        total: usize,
+    },
+    /// Runs before this row's, in no part.
+    #[error("{0}")]
+    Missing(MissingRuns),
+    /// A run with other values than the plan's.
+    #[error(
+        "run {run} has the values {values:?}, but this plan's run {run} has {expected:?}: the part belongs to another sweep"
+    )]
+    OtherValues {
+        /// The run.
+        run: usize,
+        /// Its values in the part.
+        values: Vec<f64>,
+        /// The plan's values of the run.
+        expected: Vec<f64>,
+    },
+}
+
+/// Runs `from..to` of a plan of `total`, in no part.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MissingRuns {
+    /// The first run missing.
+    pub from: usize,
+    /// The run after the last missing.
+    pub to: usize,
+    /// The plan's number of runs.
+    pub total: usize,
+}
+
+impl std::fmt::Display for MissingRuns {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let MissingRuns { from, to, total } = *self;
+        if to - from == 1 {
+            write!(f, "run {from} is missing")?;
+        } else {
+            write!(f, "runs {from}..{to} are missing")?;
+        }
+        write!(
+            f,
+            " (of {total}): no part holds them; give every shard's table"
+        )
+    }
+}
+
+/// A row and where it was read.
+type Located = Result<(Row, Location), MergeError>;
 
 /// The rows of one part, in file order.
 struct Part {
@@ -26,7 +185,7 @@ struct Part {
 impl Part {
     /// Opens a part written by `lpm sweep` (CSV or Parquet, told apart by
     /// the Parquet magic bytes) and checks its columns.
-    fn open(path: &Path, layout: &Layout) -> Result<Part, String> {
+    fn open(path: &Path, layout: &Layout) -> Result<Part, MergeError> {
         let rows = if is_parquet(path)? {
             parquet_rows(path, layout)?
         } else {
@@ -48,85 +207,115 @@ impl Part {
     }
 }
 
-fn is_parquet(path: &Path) -> Result<bool, String> {
+fn is_parquet(path: &Path) -> Result<bool, MergeError> {
+    let unreadable = |source| MergeError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
     let mut magic = [0u8; 4];
-    let mut file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let read = file
-        .read(&mut magic)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut file = File::open(path).map_err(unreadable)?;
+    let read = file.read(&mut magic).map_err(unreadable)?;
     Ok(read == 4 && &magic == b"PAR1")
 }
 
-fn wrong_columns(path: &Path, found: &[String]) -> String {
-    format!(
-        "{}: the columns are not those of this sweep (`{}` …): it is not a part of this sweep",
-        path.display(),
-        found.join(",").chars().take(80).collect::<String>()
-    )
+/// The error of a part whose columns are `found`, if they are not those
+/// of `layout`.
+fn check_columns(path: &Path, found: Vec<String>, layout: &Layout) -> Result<(), MergeError> {
+    match found == columns(layout) {
+        true => Ok(()),
+        false => Err(MergeError::NotAPart {
+            path: path.to_path_buf(),
+            columns: found,
+        }),
+    }
 }
 
-fn csv_rows(path: &Path, layout: &Layout) -> Result<Box<dyn Iterator<Item = Located>>, String> {
-    let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+/// `row` read at `at`, or the error of what is wrong with it.
+fn located(row: Result<Row, RowProblem>, at: Location) -> Located {
+    match row {
+        Ok(row) => Ok((row, at)),
+        Err(problem) => Err(MergeError::Row { at, problem }),
+    }
+}
+
+fn csv_rows(path: &Path, layout: &Layout) -> Result<Box<dyn Iterator<Item = Located>>, MergeError> {
+    let file = File::open(path).map_err(|source| MergeError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
         .flexible(true)
         .from_reader(BufReader::new(file));
     let header: Vec<String> = (reader.headers())
-        .map_err(|e| format!("{}:1: cannot read the header: {e}", path.display()))?
+        .map_err(|source| MergeError::Header {
+            path: path.to_path_buf(),
+            source,
+        })?
         .iter()
         .map(str::to_string)
         .collect();
-    if header != columns(layout) {
-        return Err(wrong_columns(path, &header));
-    }
-    let (path, layout) = (path.display().to_string(), layout.clone());
+    check_columns(path, header, layout)?;
+    let (path, layout) = (path.to_path_buf(), layout.clone());
     Ok(Box::new(reader.into_records().enumerate().map(
         move |(k, record)| {
-            let at = format!("{path}:{}", k + 2);
-            let row = record
-                .map_err(|e| e.to_string())
-                .and_then(|r| parse_record(&r, &layout));
-            row.map(|row| (row, at.clone()))
-                .map_err(|e| format!("{at}: {e}"))
+            let at = Location::Line {
+                path: path.clone(),
+                line: k + 2,
+            };
+            let row = (record.map_err(RowProblem::Csv))
+                .and_then(|r| parse_record(&r, &layout).map_err(RowProblem::Record));
+            located(row, at)
         },
     )))
 }
 
 /// The text `lpm sweep` writes in a CSV cell for a Parquet value.
-fn cell(field: &Field) -> Result<String, String> {
+fn cell(field: &Field) -> Result<String, RowProblem> {
     match field {
         Field::Null => Ok(String::new()),
         Field::Long(n) => Ok(n.to_string()),
         Field::Double(x) => Ok(format!("{x:?}")),
         Field::Str(s) => Ok(s.clone()),
-        other => Err(format!("unexpected value {other}")),
+        other => Err(RowProblem::UnexpectedValue {
+            value: other.to_string(),
+        }),
     }
 }
 
-fn parquet_rows(path: &Path, layout: &Layout) -> Result<Box<dyn Iterator<Item = Located>>, String> {
-    let fail = |e: parquet::errors::ParquetError| format!("{}: {e}", path.display());
-    let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let reader = SerializedFileReader::new(file).map_err(fail)?;
+fn parquet_rows(
+    path: &Path,
+    layout: &Layout,
+) -> Result<Box<dyn Iterator<Item = Located>>, MergeError> {
+    let file = File::open(path).map_err(|source| MergeError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let reader = SerializedFileReader::new(file).map_err(|source| MergeError::Parquet {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let schema = reader.metadata().file_metadata().schema_descr_ptr();
     let header: Vec<String> = (schema.columns().iter())
         .map(|c| c.name().to_string())
         .collect();
-    if header != columns(layout) {
-        return Err(wrong_columns(path, &header));
-    }
+    check_columns(path, header, layout)?;
     let rows = reader.into_iter();
-    let (path, layout) = (path.display().to_string(), layout.clone());
+    let (path, layout) = (path.to_path_buf(), layout.clone());
     Ok(Box::new(rows.enumerate().map(move |(k, row)| {
-        let at = format!("{path}: row {}", k + 1);
-        let cells = row.map_err(|e| e.to_string()).and_then(|row| {
+        let at = Location::Row {
+            path: path.clone(),
+            row: k + 1,
+        };
+        let cells = row.map_err(RowProblem::Parquet).and_then(|row| {
             (row.get_column_iter())
                 .map(|(_, field)| cell(field))
-                .collect::<Result<Vec<String>, String>>()
+                .collect::<Result<Vec<String>, RowProblem>>()
         });
-        cells
-            .and_then(|cells| parse_record(&csv::StringRecord::from(cells), &layout))
-            .map(|row| (row, at.clone()))
-            .map_err(|e| format!("{at}: {e}"))
+        let row = cells.and_then(|cells| {
+            parse_record(&csv::StringRecord::from(cells), &layout).map_err(RowProblem::Record)
+        });
+        located(row, at)
     })))
 }
 
@@ -138,10 +327,10 @@ pub fn merged_rows(
     parts: &[PathBuf],
     layout: &Layout,
     plan: &Plan,
-) -> Result<impl Iterator<Item = Result<Row, String>>, String> {
+) -> Result<impl Iterator<Item = Result<Row, MergeError>>, MergeError> {
     let mut opened = (parts.iter())
         .map(|path| Part::open(path, layout).map(|mut part| (part.first_run(), part)))
-        .collect::<Result<Vec<(Option<usize>, Part)>, String>>()?;
+        .collect::<Result<Vec<(Option<usize>, Part)>, MergeError>>()?;
     // Parts in the order of their first run; empty parts last.
     opened.sort_by_key(|(first, _)| first.unwrap_or(usize::MAX));
     let opened = opened.into_iter().map(|(_, part)| part);
@@ -155,8 +344,14 @@ pub fn merged_rows(
         }
         let checked = match rows.next() {
             Some(Err(e)) => Err(e),
-            Some(Ok((row, at))) => check(row, &at, next, plan),
-            None if next < total => Err(missing(next, total, total)),
+            Some(Ok((row, at))) => {
+                check(row, next, plan).map_err(|problem| MergeError::Row { at, problem })
+            }
+            None if next < total => Err(MergeError::Missing(MissingRuns {
+                from: next,
+                to: total,
+                total,
+            })),
             None => return None,
         };
         failed = checked.is_err();
@@ -167,39 +362,29 @@ pub fn merged_rows(
     }))
 }
 
-/// `row` (read at `at`) if it is run `expected` of `plan`.
-fn check(row: Row, at: &str, expected: usize, plan: &Plan) -> Result<Row, String> {
-    let total = plan.len();
-    if row.run < expected {
-        return Err(format!(
-            "{at}: run {} is repeated (an earlier part or row holds it already): give each shard once",
-            row.run
-        ));
+/// `row` if it is run `expected` of `plan`.
+fn check(row: Row, expected: usize, plan: &Plan) -> Result<Row, RowProblem> {
+    let (run, total) = (row.run, plan.len());
+    if run < expected {
+        return Err(RowProblem::Repeated { run });
     }
-    if row.run >= total {
-        return Err(format!(
-            "{at}: run {} is beyond this plan's {total} runs: the part belongs to another sweep",
-            row.run
-        ));
+    if run >= total {
+        return Err(RowProblem::Beyond { run, total });
     }
-    if row.run > expected {
-        return Err(format!("{at}: {}", missing(expected, row.run, total)));
+    if run > expected {
+        return Err(RowProblem::Missing(MissingRuns {
+            from: expected,
+            to: run,
+            total,
+        }));
     }
-    let values = plan.point(row.run);
-    if row.values != values {
-        return Err(format!(
-            "{at}: run {} has the values {:?}, but this plan's run {} has {values:?}: the part belongs to another sweep",
-            row.run, row.values, row.run
-        ));
+    let expected = plan.point(run);
+    if row.values != expected {
+        return Err(RowProblem::OtherValues {
+            run,
+            values: row.values,
+            expected,
+        });
     }
     Ok(row)
-}
-
-fn missing(from: usize, to: usize, total: usize) -> String {
-    let runs = if to - from == 1 {
-        format!("run {from} is missing")
-    } else {
-        format!("runs {from}..{to} are missing")
-    };
-    format!("{runs} (of {total}): no part holds them; give every shard's table")
 }

@@ -20,19 +20,25 @@ mod shared;
 mod table;
 mod weights;
 
-pub use envelope::{Accumulated, ChannelEnvelope, Envelope, EnvelopeJob, History, stream_envelope};
+pub use envelope::{
+    Accumulated, ChannelEnvelope, Envelope, EnvelopeError, EnvelopeJob, History, Times,
+    stream_envelope,
+};
 pub use envelope_file::{
-    ENVELOPE_FORMAT, ENVELOPE_VERSION, PartialEnvelope, SweepMark, merged_envelope,
-    partial_envelope_path,
+    ENVELOPE_FORMAT, ENVELOPE_VERSION, EnvelopeFileError, FileProblem, MarkDifference,
+    PartialEnvelope, SweepMark, merged_envelope, partial_envelope_path,
 };
 pub use envelope_table::{envelope_columns, write_envelope_csv, write_envelope_parquet};
 pub use exact_sum::ExactSum;
-pub use journal::{Journal, journal_path, read_groups};
-pub use merge::merged_rows;
-pub use plan::{Assignment, Axis, Design, Plan, SampledAxis, Shard};
-pub use run::{Row, RunFailure, Settings, SweepJob, run_scenario, run_sweep, stream_sweep};
-pub use scheduler::{Environment, SCHEDULERS, Scheduler, shard_from_environment};
-pub use table::{
-    Layout, columns, parse_record, record, sweep_csv, sweep_parquet, write_csv, write_parquet,
+pub use journal::{Journal, JournalError, LineProblem, journal_path, read_groups};
+pub use merge::{Location, MergeError, MissingRuns, RowProblem, merged_rows};
+pub use plan::{Assignment, Axis, Design, Plan, PlanError, SampledAxis, Shard, ShardError};
+pub use run::{
+    Row, RunFailure, Settings, SettingsError, SweepJob, run_scenario, run_sweep, stream_sweep,
 };
-pub use weights::Weights;
+pub use scheduler::{Environment, SCHEDULERS, Scheduler, SchedulerError, shard_from_environment};
+pub use table::{
+    Layout, RecordError, WriteError, columns, parse_record, record, sweep_csv, sweep_parquet,
+    write_csv, write_parquet,
+};
+pub use weights::{WeightOf, Weights, WeightsError, WeightsProblem};

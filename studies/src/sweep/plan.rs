@@ -6,6 +6,162 @@ use rand_chacha::rand_core::{Rng, SeedableRng};
 use std::fmt;
 use std::ops::Range;
 
+/// Why the axes of a sweep do not make a plan: the flag (`--grid`,
+/// `--vary`), the axis and the text at fault.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    /// Neither a grid nor a sampled design.
+    #[error("give --grid KEY=VALUES or --samples N with --vary KEY=LOW:HIGH")]
+    NoDesign,
+    /// A grid and a sampled design at once.
+    #[error("--grid cannot be combined with --samples/--vary")]
+    GridAndSamples,
+    /// An axis without `=`.
+    #[error("{flag} `{text}` is not of the form KEY=VALUES or KEY*=VALUES")]
+    NotAnAssignment {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis as given.
+        text: String,
+    },
+    /// An axis with an empty key.
+    #[error("{flag} `{text}` names no key before `=` or between commas")]
+    EmptyKey {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis as given.
+        text: String,
+    },
+    /// A value of an axis that is no number.
+    #[error("{flag} {axis}: `{text}` is not a number")]
+    NotANumber {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The value as given.
+        text: String,
+    },
+    /// A value of an axis that is infinite or NaN.
+    #[error("{flag} {axis}: `{text}` is not finite")]
+    NotFinite {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The value as given.
+        text: String,
+    },
+    /// The count of a grid range `low:high:count` that is not 2 or more.
+    #[error("--grid {axis}: `{count}` is not a count of at least 2 values")]
+    GridCount {
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The count as given.
+        count: String,
+    },
+    /// Grid values that are neither a list nor a range.
+    #[error("--grid {axis}: `{text}` is neither a list `a,b,c` nor a range `low:high:count`")]
+    GridValues {
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The values as given.
+        text: String,
+    },
+    /// A key on two axes.
+    #[error("`{key}` is swept twice")]
+    SweptTwice {
+        /// The key.
+        key: String,
+    },
+    /// `--grid` without an axis.
+    #[error("--grid needs at least one KEY=VALUES")]
+    NoGridAxis,
+    /// A grid of more than 2³² runs.
+    #[error("the grid has more than 2³² runs")]
+    GridTooLarge,
+    /// A sample count of 0 or more than 2³².
+    #[error("--samples {count}: give between 1 and 2³² runs")]
+    SampleCount {
+        /// The count given.
+        count: usize,
+    },
+    /// `--samples` without an axis.
+    #[error("--samples needs at least one --vary KEY=LOW:HIGH")]
+    NoSampledAxis,
+    /// A sampled range that is not `low:high` or `low:high:log`.
+    #[error("--vary {axis}: `{range}` is not a range `low:high` or `low:high:log`")]
+    NotARange {
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The range as given.
+        range: String,
+    },
+    /// A logarithmic range with an end at or below 0.
+    #[error("--vary {axis}: a logarithmic range needs positive ends, got {low}:{high}")]
+    NonPositiveLogRange {
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The lower end.
+        low: f64,
+        /// The upper end.
+        high: f64,
+    },
+}
+
+/// Why the shard of a task cannot be told: what was given, or what the
+/// scheduler's variables say.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ShardError {
+    /// `--shard` text that is not `i/n` with `1 ≤ i ≤ n`.
+    #[error("--shard `{text}` is not of the form i/n with 1 ≤ i ≤ n (e.g. 3/8)")]
+    NotAFraction {
+        /// The text given.
+        text: String,
+    },
+    /// A 0-based index at or above the count.
+    #[error("shard index {index} is not below the shard count {count} (indices count from 0)")]
+    IndexBeyondCount {
+        /// The index, from 0.
+        index: usize,
+        /// The number of shards.
+        count: usize,
+    },
+    /// `--shard-count` with `--shard I/N`.
+    #[error("--shard-count goes with --shard auto or --shard-index, not --shard I/N")]
+    CountWithFraction,
+    /// `--shard-count` alone.
+    #[error("--shard-count goes with --shard auto or --shard-index")]
+    CountAlone,
+    /// `--shard auto` outside an array job.
+    #[error(
+        "--shard auto: none of {} is set; outside an array job give --shard I/N or --shard-index K --shard-count N",
+        .variables.join(", ")
+    )]
+    NoScheduler {
+        /// The index variables of the schedulers known.
+        variables: Vec<&'static str>,
+    },
+    /// `--shard auto` where the variables of several schedulers are set.
+    #[error(
+        "--shard auto: {} are all set; give --shard-index K --shard-count N to say which to use",
+        .variables.join(" and ")
+    )]
+    SeveralSchedulers {
+        /// The index variables that are set.
+        variables: Vec<&'static str>,
+    },
+    /// `--shard auto` where the one scheduler's variables do not tell the
+    /// shard.
+    #[error("--shard auto ({scheduler}): {problem}")]
+    Scheduler {
+        /// The scheduler's name.
+        scheduler: &'static str,
+        /// What its variables lack.
+        problem: super::scheduler::SchedulerError,
+    },
+}
+
 /// How an axis changes its scenario entry.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Assignment {
@@ -92,10 +248,13 @@ pub enum Plan {
 
 /// Splits `KEY=VALUE` or `KEY*=VALUE`; `KEY1,KEY2=VALUE` ties several keys
 /// to the same value (the `*` of `*=` applies to each).
-fn split_assignment(text: &str, flag: &str) -> Result<(Tied, String), String> {
+fn split_assignment(text: &str, flag: &'static str) -> Result<(Tied, String), PlanError> {
     let (keys, value) = text
         .split_once('=')
-        .ok_or_else(|| format!("{flag} `{text}` is not of the form KEY=VALUES or KEY*=VALUES"))?;
+        .ok_or_else(|| PlanError::NotAnAssignment {
+            flag,
+            text: text.to_string(),
+        })?;
     let (keys, assignment) = match keys.trim().strip_suffix('*') {
         Some(k) => (k, Assignment::Scale),
         None => (keys, Assignment::Set),
@@ -103,9 +262,10 @@ fn split_assignment(text: &str, flag: &str) -> Result<(Tied, String), String> {
     let mut tied = Vec::new();
     for key in keys.split(',').map(str::trim) {
         if key.is_empty() {
-            return Err(format!(
-                "{flag} `{text}` names no key before `=` or between commas"
-            ));
+            return Err(PlanError::EmptyKey {
+                flag,
+                text: text.to_string(),
+            });
         }
         tied.push(Axis {
             key: key.to_string(),
@@ -124,20 +284,22 @@ fn tied_name(tied: &[Axis]) -> String {
     }
 }
 
-fn number(text: &str, flag: &str, axis: &str) -> Result<f64, String> {
-    let value: f64 = text
-        .trim()
-        .parse()
-        .map_err(|_| format!("{flag} {axis}: `{text}` is not a number"))?;
+fn number(text: &str, flag: &'static str, axis: &str) -> Result<f64, PlanError> {
+    let (axis, text) = (axis.to_string(), text.to_string());
+    let value: f64 = (text.trim().parse()).map_err(|_| PlanError::NotANumber {
+        flag,
+        axis: axis.clone(),
+        text: text.clone(),
+    })?;
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(format!("{flag} {axis}: `{text}` is not finite"))
+        Err(PlanError::NotFinite { flag, axis, text })
     }
 }
 
 /// `a,b,c` or `low:high:count` (count evenly spaced values, ends included).
-fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, String> {
+fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, PlanError> {
     let flag = "--grid";
     let parts: Vec<&str> = text.split(':').collect();
     match parts.as_slice() {
@@ -148,26 +310,30 @@ fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, String> {
                 .parse()
                 .ok()
                 .filter(|&n| n >= 2)
-                .ok_or_else(|| {
-                    format!("{flag} {axis}: `{count}` is not a count of at least 2 values")
+                .ok_or_else(|| PlanError::GridCount {
+                    axis: axis.to_string(),
+                    count: count.to_string(),
                 })?;
             Ok((0..count)
                 .map(|k| low + (high - low) * k as f64 / (count - 1) as f64)
                 .collect())
         }
         [list] => list.split(',').map(|v| number(v, flag, axis)).collect(),
-        _ => Err(format!(
-            "{flag} {axis}: `{text}` is neither a list `a,b,c` nor a range `low:high:count`"
-        )),
+        _ => Err(PlanError::GridValues {
+            axis: axis.to_string(),
+            text: text.to_string(),
+        }),
     }
 }
 
 /// Rejects an axis named twice.
-fn check_distinct<'a>(axes: impl Iterator<Item = &'a Axis>) -> Result<(), String> {
+fn check_distinct<'a>(axes: impl Iterator<Item = &'a Axis>) -> Result<(), PlanError> {
     let mut seen: Vec<&str> = Vec::new();
     for axis in axes {
         if seen.contains(&axis.key.as_str()) {
-            return Err(format!("`{}` is swept twice", axis.key));
+            return Err(PlanError::SweptTwice {
+                key: axis.key.clone(),
+            });
         }
         seen.push(&axis.key);
     }
@@ -176,9 +342,9 @@ fn check_distinct<'a>(axes: impl Iterator<Item = &'a Axis>) -> Result<(), String
 
 impl Plan {
     /// A grid from `--grid KEY=a,b,c` / `KEY=low:high:count` / `KEY*=…` arguments.
-    pub fn grid(arguments: &[String]) -> Result<Plan, String> {
+    pub fn grid(arguments: &[String]) -> Result<Plan, PlanError> {
         if arguments.is_empty() {
-            return Err("--grid needs at least one KEY=VALUES".into());
+            return Err(PlanError::NoGridAxis);
         }
         let mut axes = Vec::new();
         for argument in arguments {
@@ -192,7 +358,7 @@ impl Plan {
             .try_fold(1usize, |n, (_, v)| n.checked_mul(v.len()));
         match total {
             Some(n) if n <= u32::MAX as usize => Ok(Plan::Grid(axes)),
-            _ => Err("the grid has more than 2³² runs".into()),
+            _ => Err(PlanError::GridTooLarge),
         }
     }
 
@@ -202,12 +368,12 @@ impl Plan {
         arguments: &[String],
         seed: u64,
         design: Design,
-    ) -> Result<Plan, String> {
+    ) -> Result<Plan, PlanError> {
         if count == 0 || count > u32::MAX as usize {
-            return Err(format!("--samples {count}: give between 1 and 2³² runs"));
+            return Err(PlanError::SampleCount { count });
         }
         if arguments.is_empty() {
-            return Err("--samples needs at least one --vary KEY=LOW:HIGH".into());
+            return Err(PlanError::NoSampledAxis);
         }
         let mut axes = Vec::new();
         for argument in arguments {
@@ -218,9 +384,10 @@ impl Plan {
                 [low, high] => (low, high, false),
                 [low, high, "log"] => (low, high, true),
                 _ => {
-                    return Err(format!(
-                        "--vary {axis}: `{range}` is not a range `low:high` or `low:high:log`"
-                    ));
+                    return Err(PlanError::NotARange {
+                        axis,
+                        range: range.clone(),
+                    });
                 }
             };
             let (low, high) = (
@@ -228,9 +395,7 @@ impl Plan {
                 number(high, "--vary", &axis)?,
             );
             if logarithmic && (low <= 0.0 || high <= 0.0) {
-                return Err(format!(
-                    "--vary {axis}: a logarithmic range needs positive ends, got {low}:{high}"
-                ));
+                return Err(PlanError::NonPositiveLogRange { axis, low, high });
             }
             axes.push(SampledAxis {
                 axes: tied,
@@ -365,7 +530,7 @@ impl Shard {
     pub const ALL: Shard = Shard { index: 1, count: 1 };
 
     /// Parses `i/n` with `1 ≤ i ≤ n`.
-    pub fn parse(text: &str) -> Result<Shard, String> {
+    pub fn parse(text: &str) -> Result<Shard, ShardError> {
         let parsed = text.split_once('/').and_then(|(i, n)| {
             Some((
                 i.trim().parse::<usize>().ok()?,
@@ -374,25 +539,23 @@ impl Shard {
         });
         match parsed {
             Some((index, count)) if index >= 1 && index <= count => Ok(Shard { index, count }),
-            _ => Err(format!(
-                "--shard `{text}` is not of the form i/n with 1 ≤ i ≤ n (e.g. 3/8)"
-            )),
+            _ => Err(ShardError::NotAFraction {
+                text: text.to_string(),
+            }),
         }
     }
 
     /// Block `index` of `count` counted from 0 (`--shard-index 2
     /// --shard-count 8` is `--shard 3/8`), as Kubernetes, AWS Batch and
     /// HTCondor number their tasks.
-    pub fn zero_based(index: usize, count: usize) -> Result<Shard, String> {
+    pub fn zero_based(index: usize, count: usize) -> Result<Shard, ShardError> {
         if index < count {
             Ok(Shard {
                 index: index + 1,
                 count,
             })
         } else {
-            Err(format!(
-                "shard index {index} is not below the shard count {count} (indices count from 0)"
-            ))
+            Err(ShardError::IndexBeyondCount { index, count })
         }
     }
 
@@ -448,10 +611,12 @@ mod tests {
             assert!((5.0..6.0).contains(&p[2]));
         }
         let error = Plan::grid(&strings(&["a,b=1,2", "b=3"])).unwrap_err();
+        assert_eq!(error, PlanError::SweptTwice { key: "b".into() });
+        let error = error.to_string();
         assert!(error.contains("`b` is swept twice"), "{error}");
-        let error = Plan::grid(&strings(&["a,,b=1,2"])).unwrap_err();
+        let error = Plan::grid(&strings(&["a,,b=1,2"])).unwrap_err().to_string();
         assert!(error.contains("names no key"), "{error}");
-        let error = Plan::grid(&strings(&["a,b*=1,x"])).unwrap_err();
+        let error = Plan::grid(&strings(&["a,b*=1,x"])).unwrap_err().to_string();
         assert!(
             error.contains("--grid a,b*: `x` is not a number"),
             "{error}"
@@ -460,13 +625,17 @@ mod tests {
 
     #[test]
     fn bad_axes_are_reported_with_the_offending_text() {
-        let error = |args: &[&str]| Plan::grid(&strings(args)).unwrap_err();
+        let error = |args: &[&str]| Plan::grid(&strings(args)).unwrap_err().to_string();
         assert!(error(&["a"]).contains("`a`"));
         assert!(error(&["a=1,x"]).contains("`x` is not a number"));
         assert!(error(&["a=1:2:1"]).contains("at least 2"));
         assert!(error(&["a=1,2", "a*=3"]).contains("swept twice"));
         assert!(error(&["a=inf"]).contains("not finite"));
-        let vary = |args: &[&str]| Plan::samples(4, &strings(args), 1, Design::Random).unwrap_err();
+        let vary = |args: &[&str]| {
+            (Plan::samples(4, &strings(args), 1, Design::Random))
+                .unwrap_err()
+                .to_string()
+        };
         assert!(vary(&["k=0:1:lin"]).contains("low:high:log"));
         assert!(vary(&["k=-1:1:log"]).contains("positive"));
     }
@@ -514,7 +683,7 @@ mod tests {
     fn zero_based_shards_are_the_one_based_shard_after() {
         assert_eq!(Shard::zero_based(2, 8), Shard::parse("3/8"));
         assert_eq!(Shard::zero_based(0, 1), Ok(Shard::ALL));
-        let message = Shard::zero_based(8, 8).unwrap_err();
+        let message = Shard::zero_based(8, 8).unwrap_err().to_string();
         assert!(
             message.contains("shard index 8 is not below the shard count 8"),
             "{message}"
@@ -536,7 +705,7 @@ mod tests {
         }
         assert_eq!(Shard::parse("3/8").unwrap(), Shard { index: 3, count: 8 });
         for bad in ["0/4", "5/4", "3", "a/b", "1/0"] {
-            assert!(Shard::parse(bad).unwrap_err().contains(bad));
+            assert!(Shard::parse(bad).unwrap_err().to_string().contains(bad));
         }
     }
 }

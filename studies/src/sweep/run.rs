@@ -5,8 +5,8 @@ use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
 use lagrangian_model::LagrangianSystem;
 use lagrangian_sim::scenario::ScenarioError;
-use lagrangian_sim::scenario::{BaseScenario, ModelNames, Scenario, split_setting};
-use lagrangian_sim::scenario::{as_number, factor_base, scaled_inline, toml_number};
+use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
+use lagrangian_sim::scenario::{as_number, factor_base, number_value, scaled_value};
 use lagrangian_sim::simulate::{FailureKind, SimulationError, Summary, simulate_summary};
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -35,18 +35,33 @@ pub struct RunFailure {
     pub message: String,
 }
 
+/// Why a plan's axes do not fit the base scenario ([`Settings::new`]).
+#[derive(Debug, thiserror::Error)]
+pub enum SettingsError {
+    /// The scenario's text is not TOML.
+    #[error("scenario: {0}")]
+    Scenario(#[source] toml::de::Error),
+    /// A key both swept and set by `--set`.
+    #[error("`{key}` is both swept and fixed by --set; drop one")]
+    SweptAndSet {
+        /// The key.
+        key: String,
+    },
+    /// A factor (`KEY*=`) of an entry it cannot scale.
+    #[error("{message}")]
+    Factor {
+        /// The axis' key.
+        key: String,
+        /// Why, as the scenario says it.
+        message: String,
+    },
+}
+
 /// The base value a factor multiplies: a number, or a list or table whose
 /// every number it multiplies (`initial.velocities*=…` scales the speed of
 /// every coordinate the table names).
 #[derive(Clone, Debug)]
 struct Scaled(toml::Value);
-
-impl Scaled {
-    /// The base value times `x`, written as an inline TOML value.
-    fn times(&self, x: f64) -> String {
-        scaled_inline(&self.0, x)
-    }
-}
 
 /// The plan's axes, resolved against the base scenario: turns run values
 /// into `key=value` settings.
@@ -63,21 +78,15 @@ impl Settings {
         plan: &Plan,
         base: &BaseScenario,
         parameter_defaults: &[f64],
-    ) -> Result<Settings, String> {
-        let document: toml::Table = base
-            .text
-            .parse()
-            .map_err(|e: toml::de::Error| format!("scenario: {e}"))?;
+    ) -> Result<Settings, SettingsError> {
+        let document: toml::Table = base.text.parse().map_err(SettingsError::Scenario)?;
         let mut axes = Vec::new();
         for axis in plan.axes() {
-            let overridden = base.settings.iter().any(|s| {
-                split_setting(s).is_ok_and(|(k, _)| k.trim_end_matches('*').trim() == axis.key)
-            });
+            let overridden = base.settings.iter().any(|s| s.key == axis.key);
             if overridden {
-                return Err(format!(
-                    "`{}` is both swept and fixed by --set; drop one",
-                    axis.key
-                ));
+                return Err(SettingsError::SweptAndSet {
+                    key: axis.key.clone(),
+                });
             }
             let scaled = match axis.assignment {
                 Assignment::Set => None,
@@ -111,16 +120,16 @@ impl Settings {
     }
 
     /// The settings that give the axes `values`.
-    pub fn for_values(&self, values: &[f64]) -> Vec<String> {
+    pub fn for_values(&self, values: &[f64]) -> Vec<Override> {
         self.axes
             .iter()
             .zip(values)
             .map(|((axis, scaled), &x)| {
                 let value = match scaled {
-                    None => toml_number(x),
-                    Some(base) => base.times(x),
+                    None => number_value(x),
+                    Some(Scaled(base)) => scaled_value(base, x),
                 };
-                format!("{}={value}", axis.key)
+                Override::value(&axis.key, value)
             })
             .collect()
     }
@@ -131,8 +140,13 @@ fn scaled_base(
     document: &toml::Table,
     names: &ModelNames,
     parameter_defaults: &[f64],
-) -> Result<Scaled, String> {
-    factor_base(&axis.key, document, names, parameter_defaults).map(Scaled)
+) -> Result<Scaled, SettingsError> {
+    (factor_base(&axis.key, document, names, parameter_defaults).map(Scaled)).map_err(|e| {
+        SettingsError::Factor {
+            key: axis.key.clone(),
+            message: e.to_string(),
+        }
+    })
 }
 
 /// The scenario of one run.
@@ -263,13 +277,13 @@ impl<T> Batch<T> {
 /// yes they take no new run, and the runs under way finish and reach
 /// `sink`, so the rows delivered are always the runs `runs.start..runs.start + n`. Returns `n`. A failing
 /// run is a row with its error, not the end of the sweep; an error of
-/// `sink` ends it.
-pub fn stream_sweep<const N: usize, S>(
+/// `sink` ends it, and is what it returns.
+pub fn stream_sweep<const N: usize, S, E>(
     system: &S,
     job: SweepJob<'_>,
     stop: &(dyn Fn() -> bool + Sync),
-    sink: &mut dyn FnMut(Row) -> Result<(), String>,
-) -> Result<usize, String>
+    sink: &mut dyn FnMut(Row) -> Result<(), E>,
+) -> Result<usize, E>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
@@ -282,13 +296,13 @@ pub(crate) type MakeRun<'f, S, T> =
 
 /// [`stream_sweep`] with what each run makes given by `make`: its results
 /// reach `sink` in run order.
-pub(crate) fn stream_runs<const N: usize, S, T: Send>(
+pub(crate) fn stream_runs<const N: usize, S, T: Send, E>(
     system: &S,
     job: SweepJob<'_>,
     stop: &(dyn Fn() -> bool + Sync),
     make: MakeRun<'_, S, T>,
-    sink: &mut dyn FnMut(T) -> Result<(), String>,
-) -> Result<usize, String>
+    sink: &mut dyn FnMut(T) -> Result<(), E>,
+) -> Result<usize, E>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
@@ -375,17 +389,18 @@ pub fn run_sweep<const N: usize, S>(
     system: &S,
     job: SweepJob<'_>,
     progress: &(dyn Fn() + Sync),
-) -> Result<Vec<Row>, String>
+) -> Vec<Row>
 where
     S: LagrangianSystem<N> + Clone + Send,
 {
     let mut rows = Vec::with_capacity(job.runs.len());
-    stream_sweep(system, job, &|| false, &mut |row| {
+    let streamed = stream_sweep(system, job, &|| false, &mut |row| {
         progress();
         rows.push(row);
-        Ok(())
-    })?;
-    Ok(rows)
+        Ok::<(), std::convert::Infallible>(())
+    });
+    let Ok(_) = streamed;
+    rows
 }
 
 #[cfg(test)]
@@ -405,19 +420,20 @@ mod tests {
         }
     }
 
-    fn settings(text: &str, grid: &[&str]) -> Result<Settings, String> {
+    fn settings(text: &str, grid: &[&str]) -> Result<Settings, SettingsError> {
         let grid: Vec<String> = grid.iter().map(|s| s.to_string()).collect();
-        Settings::new(&Plan::grid(&grid)?, &base(text), &[2.0, 100.0])
+        Settings::new(&Plan::grid(&grid).unwrap(), &base(text), &[2.0, 100.0])
     }
 
     #[test]
     fn a_factor_scales_every_number_of_a_table() {
         let text = "[initial]\nvelocities = { xb = 15.5, xe = 15.5 }\n";
         let s = settings(text, &["initial.velocities*=0.5,2"]).unwrap();
-        assert_eq!(
-            s.for_values(&[2.0]),
-            [r#"initial.velocities={ "xb" = 31, "xe" = 31 }"#]
-        );
+        let texts = |values: &[f64]| {
+            let overrides = s.for_values(values);
+            overrides.iter().map(|o| o.text().to_string()).collect::<Vec<_>>()
+        };
+        assert_eq!(texts(&[2.0]), ["initial.velocities={ xb = 31, xe = 31 }"]);
         let scenario = base(text).resolve(&s.for_values(&[0.5])).unwrap();
         assert_eq!(scenario.initial_velocities, [(0, 7.75), (1, 7.75)]);
     }
@@ -425,13 +441,18 @@ mod tests {
     #[test]
     fn tied_factors_scale_parameters_from_the_file_or_the_spec_default() {
         let s = settings("[parameters]\nk = 300.0\n", &["m,k*=1:2:2"]).unwrap();
-        assert_eq!(s.for_values(&[1.5, 1.5]), ["m=3", "k=450"]);
+        let texts: Vec<String> = (s.for_values(&[1.5, 1.5]).iter())
+            .map(|o| o.text().to_string())
+            .collect();
+        assert_eq!(texts, ["m=3", "k=450"]);
     }
 
     #[test]
     fn a_factor_of_something_other_than_numbers_is_an_error() {
         let text = "[metrics]\npitch = [\"xb\"]\n";
-        let error = settings(text, &["metrics.pitch*=2"]).unwrap_err();
+        let error = settings(text, &["metrics.pitch*=2"])
+            .unwrap_err()
+            .to_string();
         assert!(
             error.contains("a factor scales a number, or a list or table of numbers"),
             "{error}"

@@ -4,7 +4,60 @@
 //! Each scheduler is one entry of [`SCHEDULERS`]: the variable holding the
 //! task's index and how to read the index and the number of tasks from it.
 
-use super::plan::Shard;
+use super::plan::{Shard, ShardError};
+
+/// Why a scheduler's variables do not tell the shard of this task.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SchedulerError {
+    /// A variable that holds no non-negative integer.
+    #[error("{variable}=`{text}` is not a non-negative integer")]
+    NotAnInteger {
+        /// The variable.
+        variable: String,
+        /// Its value.
+        text: String,
+    },
+    /// Slurm's task id without the range of the array.
+    #[error("SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT must be set with SLURM_ARRAY_TASK_ID")]
+    SlurmRangeMissing,
+    /// `--shard-count` that is not Slurm's number of tasks.
+    #[error("--shard-count {count} differs from SLURM_ARRAY_TASK_COUNT={tasks}")]
+    CountDiffers {
+        /// `--shard-count`.
+        count: usize,
+        /// `SLURM_ARRAY_TASK_COUNT`.
+        tasks: usize,
+    },
+    /// A Slurm task id that is not on the array's even steps.
+    #[error(
+        "task {id} is not one of {tasks} tasks numbered from {min} in steps of {step}; for an uneven --array list give --shard-index K --shard-count N"
+    )]
+    OffTheArray {
+        /// `SLURM_ARRAY_TASK_ID`.
+        id: usize,
+        /// `SLURM_ARRAY_TASK_COUNT`.
+        tasks: usize,
+        /// `SLURM_ARRAY_TASK_MIN`.
+        min: usize,
+        /// `SLURM_ARRAY_TASK_STEP`.
+        step: usize,
+    },
+    /// A scheduler that tells the index only, without `--shard-count`.
+    #[error("{variable} gives the task's index; give the number of tasks with --shard-count N")]
+    CountNeeded {
+        /// The index variable.
+        variable: String,
+    },
+    /// An index and count that make no shard.
+    #[error("{0}")]
+    Shard(Box<ShardError>),
+}
+
+impl From<ShardError> for SchedulerError {
+    fn from(e: ShardError) -> SchedulerError {
+        SchedulerError::Shard(Box::new(e))
+    }
+}
 
 /// Looks up an environment variable (`std::env::var` in `lpm`, a table in
 /// tests).
@@ -18,7 +71,7 @@ pub struct Scheduler {
     /// The variable set in every task of an array job.
     pub index_variable: &'static str,
     /// The shard of this task; `count` is `--shard-count` if given.
-    pub shard: fn(Environment, Option<usize>) -> Result<Shard, String>,
+    pub shard: fn(Environment, Option<usize>) -> Result<Shard, SchedulerError>,
 }
 
 /// The schedulers `--shard auto` knows, tried in order.
@@ -43,83 +96,79 @@ pub const SCHEDULERS: [Scheduler; 3] = [
 /// The shard of this task from the one scheduler whose index variable is
 /// set; `count` (`--shard-count`) is needed where the scheduler does not
 /// tell the number of tasks, and checked against it where it does.
-pub fn shard_from_environment(env: Environment, count: Option<usize>) -> Result<Shard, String> {
+pub fn shard_from_environment(env: Environment, count: Option<usize>) -> Result<Shard, ShardError> {
     let present: Vec<&Scheduler> = (SCHEDULERS.iter())
         .filter(|s| env(s.index_variable).is_some())
         .collect();
     match present.as_slice() {
-        [scheduler] => (scheduler.shard)(env, count)
-            .map_err(|e| format!("--shard auto ({}): {e}", scheduler.name)),
-        [] => Err(format!(
-            "--shard auto: none of {} is set; outside an array job give --shard I/N or --shard-index K --shard-count N",
-            variable_list()
-        )),
-        several => Err(format!(
-            "--shard auto: {} are all set; give --shard-index K --shard-count N to say which to use",
-            several
-                .iter()
-                .map(|s| s.index_variable)
-                .collect::<Vec<_>>()
-                .join(" and ")
-        )),
+        [scheduler] => (scheduler.shard)(env, count).map_err(|problem| ShardError::Scheduler {
+            scheduler: scheduler.name,
+            problem,
+        }),
+        [] => Err(ShardError::NoScheduler {
+            variables: SCHEDULERS.iter().map(|s| s.index_variable).collect(),
+        }),
+        several => Err(ShardError::SeveralSchedulers {
+            variables: several.iter().map(|s| s.index_variable).collect(),
+        }),
     }
 }
 
-fn variable_list() -> String {
-    let names: Vec<&str> = SCHEDULERS.iter().map(|s| s.index_variable).collect();
-    names.join(", ")
-}
-
 /// A non-negative integer variable, by name.
-fn integer(env: Environment, name: &str) -> Result<Option<usize>, String> {
+fn integer(env: Environment, name: &str) -> Result<Option<usize>, SchedulerError> {
     match env(name) {
         None => Ok(None),
         Some(text) => text
             .trim()
             .parse()
             .map(Some)
-            .map_err(|_| format!("{name}=`{text}` is not a non-negative integer")),
+            .map_err(|_| SchedulerError::NotAnInteger {
+                variable: name.to_string(),
+                text,
+            }),
     }
 }
 
 /// Slurm numbers array tasks from `SLURM_ARRAY_TASK_MIN` in steps of
 /// `SLURM_ARRAY_TASK_STEP` (`--array=1-16`, `--array=0-30:2`) and tells the
 /// number of tasks in `SLURM_ARRAY_TASK_COUNT`.
-fn slurm(env: Environment, count: Option<usize>) -> Result<Shard, String> {
+fn slurm(env: Environment, count: Option<usize>) -> Result<Shard, SchedulerError> {
     let id = integer(env, "SLURM_ARRAY_TASK_ID")?.unwrap_or(0);
     let (Some(min), Some(tasks)) = (
         integer(env, "SLURM_ARRAY_TASK_MIN")?,
         integer(env, "SLURM_ARRAY_TASK_COUNT")?,
     ) else {
-        return Err(
-            "SLURM_ARRAY_TASK_MIN and SLURM_ARRAY_TASK_COUNT must be set with SLURM_ARRAY_TASK_ID"
-                .into(),
-        );
+        return Err(SchedulerError::SlurmRangeMissing);
     };
     let step = integer(env, "SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
     if let Some(count) = count
         && count != tasks
     {
-        return Err(format!(
-            "--shard-count {count} differs from SLURM_ARRAY_TASK_COUNT={tasks}"
-        ));
+        return Err(SchedulerError::CountDiffers { count, tasks });
     }
     let offset = id.checked_sub(min).filter(|o| o % step == 0);
     match offset.map(|o| o / step) {
-        Some(index) if index < tasks => Shard::zero_based(index, tasks),
-        _ => Err(format!(
-            "task {id} is not one of {tasks} tasks numbered from {min} in steps of {step}; for an uneven --array list give --shard-index K --shard-count N"
-        )),
+        Some(index) if index < tasks => Ok(Shard::zero_based(index, tasks)?),
+        _ => Err(SchedulerError::OffTheArray {
+            id,
+            tasks,
+            min,
+            step,
+        }),
     }
 }
 
 /// A scheduler that tells a 0-based index but not the number of tasks.
-fn zero_based_index(env: Environment, name: &str, count: Option<usize>) -> Result<Shard, String> {
+fn zero_based_index(
+    env: Environment,
+    name: &str,
+    count: Option<usize>,
+) -> Result<Shard, SchedulerError> {
     let index = integer(env, name)?.unwrap_or(0);
-    let count = count.ok_or_else(|| {
-        format!("{name} gives the task's index; give the number of tasks with --shard-count N")
+    let count = count.ok_or_else(|| SchedulerError::CountNeeded {
+        variable: name.to_string(),
     })?;
-    Shard::zero_based(index, count)
+    Ok(Shard::zero_based(index, count)?)
 }
 
 #[cfg(test)]
@@ -133,7 +182,7 @@ mod tests {
                 .find(|(k, _)| *k == name)
                 .map(|(_, v)| v.to_string())
         };
-        shard_from_environment(&env, count)
+        shard_from_environment(&env, count).map_err(|e| e.to_string())
     }
 
     fn slurm_task(id: &str, min: &str, step: &str, count: &str) -> [(&'static str, String); 4] {

@@ -50,7 +50,7 @@ mod tests {
     use super::*;
     use crate::sweep::{Plan, run_scenario};
     use lagrangian_model::{Interpreted, LagrangianSystem};
-    use lagrangian_sim::scenario::ModelNames;
+    use lagrangian_sim::scenario::{ModelNames, Override};
     use lagrangian_sim::simulate::simulate_summary;
 
     #[test]
@@ -67,7 +67,7 @@ mod tests {
             text: text.to_string(),
             file: None,
             names,
-            settings: vec!["m=2".to_string()],
+            settings: vec![Override::number("m", 2.0)],
         };
         let grid = ["k=50,200.5", "c*=0.5,3"].map(String::from);
         let plan = Plan::grid(&grid).unwrap();

@@ -16,6 +16,74 @@ use parquet::schema::types::Type;
 use std::io::Write;
 use std::sync::Arc;
 
+/// Why the cells of a row do not read back as the [`Row`] they were made
+/// from ([`parse_record`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RecordError {
+    /// The row has another number of cells than the table has columns.
+    #[error("{found} cells instead of {expected}")]
+    CellCount {
+        /// The cells of the row.
+        found: usize,
+        /// The columns of the table.
+        expected: usize,
+    },
+    /// The `run` cell holds no run number.
+    #[error("run `{cell}` is not a run number")]
+    RunNumber {
+        /// The cell's text.
+        cell: String,
+    },
+    /// An axis' cell holds no number.
+    #[error("`{cell}` is not a number")]
+    NotANumber {
+        /// The axis' column.
+        column: String,
+        /// The cell's text.
+        cell: String,
+    },
+    /// The `status` cell is neither `ok` nor a failure kind's name.
+    #[error("status `{status}` is neither `ok` nor a failure kind")]
+    Status {
+        /// The cell's text.
+        status: String,
+    },
+    /// A metric's cell does not read as that metric's kind of value.
+    #[error("{message}")]
+    Metric {
+        /// The metric's column.
+        column: String,
+        /// Why, as the summary's reader says it.
+        message: String,
+    },
+}
+
+/// Why a table (a sweep's or an envelope's) could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    /// Writing CSV failed.
+    #[error("cannot write CSV: {0}")]
+    Csv(#[from] csv::Error),
+    /// Writing Parquet failed.
+    #[error("cannot write Parquet: {0}")]
+    Parquet(#[from] ParquetError),
+    /// A column of the Parquet schema could not be made.
+    #[error("Parquet schema: {0}")]
+    Schema(#[source] ParquetError),
+    /// A row group has fewer columns than the schema.
+    #[error("Parquet: column {column} missing from the schema")]
+    MissingColumn {
+        /// The column written, counted from 0.
+        column: usize,
+    },
+}
+
+/// The first columns of `header` for a message: at most 80 characters of
+/// the names joined by commas.
+pub(super) fn abbreviated(header: &[String]) -> String {
+    header.join(",").chars().take(80).collect()
+}
+
 /// The columns of a sweep table: `run`, the axes, `status`, `error`, the
 /// summary metrics, then the metrics of each of the scenario's channels.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -74,14 +142,22 @@ impl Layout {
     }
 
     /// The summary from the cells of its metric columns.
-    fn summary<'a>(&self, mut cells: impl Iterator<Item = &'a str>) -> Result<Summary, String> {
+    fn summary<'a>(
+        &self,
+        mut cells: impl Iterator<Item = &'a str>,
+    ) -> Result<Summary, RecordError> {
+        let bad = |column: String, message: String| RecordError::Metric { column, message };
         let mut summary = Summary::EMPTY;
         for metric in Summary::METRICS {
-            summary.set(metric.name, cells.next().unwrap_or(""))?;
+            (summary.set(metric.name, cells.next().unwrap_or("")))
+                .map_err(|e| bad(metric.name.to_string(), e.to_string()))?;
         }
         for (name, role, unit, cfc) in &self.channels {
             let values = (metric_names(*role).iter())
-                .map(|_| <Option<f64> as Field>::parse(cells.next().unwrap_or("")))
+                .map(|metric| {
+                    <Option<f64> as Field>::parse(cells.next().unwrap_or(""))
+                        .map_err(|e| bad(format!("{name}.{metric}"), e.to_string()))
+                })
                 .collect::<Result<_, _>>()?;
             let extreme_at_end = cells.next() == Some("1");
             summary.channels.0.push(ChannelSummary {
@@ -134,29 +210,38 @@ pub fn record(layout: &Layout, row: &Row) -> Vec<String> {
 
 /// The row a [`record`] was made from: the metrics are read by position
 /// from the cells of the columns of [`columns`].
-pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, String> {
+pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, RecordError> {
     let axes = layout.axes.len();
     let expected = 3 + axes + layout.metrics().len();
     if record.len() != expected {
-        return Err(format!("{} cells instead of {expected}", record.len()));
+        return Err(RecordError::CellCount {
+            found: record.len(),
+            expected,
+        });
     }
-    let number = |k: usize| -> Result<f64, String> {
+    let number = |k: usize| -> Result<f64, RecordError> {
         record[k]
             .parse::<f64>()
-            .map_err(|_| format!("`{}` is not a number", &record[k]))
+            .map_err(|_| RecordError::NotANumber {
+                column: layout.axes[k - 1].clone(),
+                cell: record[k].to_string(),
+            })
     };
     let run = record[0]
         .parse::<usize>()
-        .map_err(|_| format!("run `{}` is not a run number", &record[0]))?;
+        .map_err(|_| RecordError::RunNumber {
+            cell: record[0].to_string(),
+        })?;
     let values = (1..=axes)
         .map(number)
-        .collect::<Result<Vec<f64>, String>>()?;
+        .collect::<Result<Vec<f64>, RecordError>>()?;
     let status = &record[axes + 1];
     let outcome = if status == OK {
         Ok(layout.summary(record.iter().skip(axes + 3))?)
     } else {
-        let kind = FailureKind::from_name(status)
-            .ok_or_else(|| format!("status `{status}` is neither `{OK}` nor a failure kind"))?;
+        let kind = FailureKind::from_name(status).ok_or_else(|| RecordError::Status {
+            status: status.to_string(),
+        })?;
         Err(RunFailure {
             kind,
             message: record[axes + 2].to_string(),
@@ -170,77 +255,71 @@ pub fn parse_record(record: &csv::StringRecord, layout: &Layout) -> Result<Row, 
 }
 
 /// CSV with a header line; a failed run has empty metric cells.
-pub fn sweep_csv(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn sweep_csv(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, WriteError> {
     let mut bytes = Vec::new();
-    write_csv(layout, rows.iter().cloned().map(Ok), &mut bytes)?;
+    write_csv::<WriteError>(layout, rows.iter().cloned().map(Ok), &mut bytes)?;
     Ok(bytes)
 }
 
 /// Writes the CSV table of `rows` to `out` (the bytes of a journal of the
-/// same rows); the first error of `rows` stops it.
-pub fn write_csv(
+/// same rows); the first error of `rows` stops it, and is what it returns.
+pub fn write_csv<E: From<WriteError>>(
     layout: &Layout,
-    rows: impl Iterator<Item = Result<Row, String>>,
+    rows: impl Iterator<Item = Result<Row, E>>,
     out: impl Write,
-) -> Result<(), String> {
+) -> Result<(), E> {
     let mut writer = csv::Writer::from_writer(out);
-    let fail = |e: csv::Error| format!("cannot write CSV: {e}");
-    writer.write_record(columns(layout)).map_err(fail)?;
+    (writer.write_record(columns(layout))).map_err(WriteError::Csv)?;
     for row in rows {
-        writer.write_record(record(layout, &row?)).map_err(fail)?;
+        (writer.write_record(record(layout, &row?))).map_err(WriteError::Csv)?;
     }
-    writer.flush().map_err(|e| format!("cannot write CSV: {e}"))
+    writer.flush().map_err(|e| WriteError::Csv(e.into()))?;
+    Ok(())
 }
 
 pub(super) fn column_type(
     name: &str,
     physical: Physical,
     repetition: Repetition,
-) -> Result<Arc<Type>, String> {
+) -> Result<Arc<Type>, WriteError> {
     let mut builder = Type::primitive_type_builder(name, physical).with_repetition(repetition);
     if physical == Physical::BYTE_ARRAY {
         builder = builder.with_converted_type(ConvertedType::UTF8);
     }
-    builder
-        .build()
-        .map(Arc::new)
-        .map_err(|e| format!("Parquet schema: {e}"))
+    builder.build().map(Arc::new).map_err(WriteError::Schema)
 }
 
 /// A Parquet file (one row group, uncompressed). Metrics absent from a run
 /// (a failed run, or no crush coordinate) are nulls.
-pub fn sweep_parquet(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, String> {
+pub fn sweep_parquet(layout: &Layout, rows: &[Row]) -> Result<Vec<u8>, WriteError> {
     let mut bytes = Vec::new();
-    write_parquet(layout, std::iter::once(Ok(rows.to_vec())), &mut bytes)?;
+    write_parquet::<_, WriteError>(layout, std::iter::once(Ok(rows.to_vec())), &mut bytes)?;
     Ok(bytes)
 }
 
 /// Writes a Parquet file to `out`, one row group per item of `groups`, so
-/// that a table of any length is written in the memory of one group.
-pub fn write_parquet<W: Write + Send>(
+/// that a table of any length is written in the memory of one group; the
+/// first error of `groups` stops it, and is what it returns.
+pub fn write_parquet<W: Write + Send, E: From<WriteError>>(
     layout: &Layout,
-    groups: impl Iterator<Item = Result<Vec<Row>, String>>,
+    groups: impl Iterator<Item = Result<Vec<Row>, E>>,
     out: W,
-) -> Result<(), String> {
+) -> Result<(), E> {
     let schema = schema(layout)?;
     let properties = Arc::new(WriterProperties::builder().build());
-    let mut writer =
-        SerializedFileWriter::new(out, Arc::new(schema), properties).map_err(parquet_error)?;
+    let mut writer = SerializedFileWriter::new(out, Arc::new(schema), properties)
+        .map_err(WriteError::Parquet)?;
     for rows in groups {
         write_group(&mut writer, layout, &rows?)?;
     }
-    writer.close().map_err(parquet_error)?;
+    writer.close().map_err(WriteError::Parquet)?;
     Ok(())
-}
-
-pub(super) fn parquet_error(e: ParquetError) -> String {
-    format!("cannot write Parquet: {e}")
 }
 
 /// The Parquet schema of the [`columns`]: `run` and the metric counts as
 /// 64-bit integers, the axes and the real metrics as doubles, `status` and
 /// `error` as UTF-8; `error` and the metrics may be null.
-fn schema(layout: &Layout) -> Result<Type, String> {
+fn schema(layout: &Layout) -> Result<Type, WriteError> {
     let mut fields = vec![column_type("run", Physical::INT64, Repetition::REQUIRED)?];
     for axis in &layout.axes {
         fields.push(column_type(axis, Physical::DOUBLE, Repetition::REQUIRED)?);
@@ -265,7 +344,7 @@ fn schema(layout: &Layout) -> Result<Type, String> {
     Type::group_type_builder("sweep")
         .with_fields(fields)
         .build()
-        .map_err(parquet_error)
+        .map_err(WriteError::Parquet)
 }
 
 /// The columns of one row group, written one after the other in schema
@@ -283,18 +362,18 @@ impl<W: Write + Send> GroupColumns<'_, W> {
         &mut self,
         values: &[T::T],
         levels: Option<&[i16]>,
-    ) -> Result<(), String> {
+    ) -> Result<(), WriteError> {
         let column = self.written;
         let mut writer = self
             .group
             .next_column()
-            .map_err(parquet_error)?
-            .ok_or_else(|| format!("Parquet: column {column} missing from the schema"))?;
+            .map_err(WriteError::Parquet)?
+            .ok_or(WriteError::MissingColumn { column })?;
         writer
             .typed::<T>()
             .write_batch(values, levels, None)
-            .map_err(parquet_error)?;
-        writer.close().map_err(parquet_error)?;
+            .map_err(WriteError::Parquet)?;
+        writer.close().map_err(WriteError::Parquet)?;
         self.written += 1;
         Ok(())
     }
@@ -305,9 +384,9 @@ fn write_group<W: Write + Send>(
     writer: &mut SerializedFileWriter<W>,
     layout: &Layout,
     rows: &[Row],
-) -> Result<(), String> {
+) -> Result<(), WriteError> {
     let mut columns = GroupColumns {
-        group: writer.next_row_group().map_err(parquet_error)?,
+        group: writer.next_row_group().map_err(WriteError::Parquet)?,
         written: 0,
     };
     let runs: Vec<i64> = rows.iter().map(|r| r.run as i64).collect();
@@ -336,7 +415,7 @@ fn write_group<W: Write + Send>(
     let levels: Vec<i16> = rows.iter().map(|r| i16::from(r.outcome.is_err())).collect();
     columns.write::<ByteArrayType>(&errors, Some(&levels))?;
     write_metric_columns(&mut columns, layout, rows)?;
-    columns.group.close().map_err(parquet_error)?;
+    columns.group.close().map_err(WriteError::Parquet)?;
     Ok(())
 }
 
@@ -346,7 +425,7 @@ fn write_metric_columns<W: Write + Send>(
     columns: &mut GroupColumns<'_, W>,
     layout: &Layout,
     rows: &[Row],
-) -> Result<(), String> {
+) -> Result<(), WriteError> {
     let values: Vec<Option<Vec<Value>>> = rows
         .iter()
         .map(|r| r.outcome.as_ref().ok().map(|s| layout.values(s)))
@@ -490,7 +569,16 @@ mod tests {
         cells[3] = "exploded".into();
         assert_eq!(
             parse_record(&csv::StringRecord::from(cells), &layout),
-            Err("status `exploded` is neither `ok` nor a failure kind".into())
+            Err(RecordError::Status {
+                status: "exploded".into()
+            })
+        );
+        assert_eq!(
+            RecordError::Status {
+                status: "exploded".into()
+            }
+            .to_string(),
+            "status `exploded` is neither `ok` nor a failure kind"
         );
     }
 

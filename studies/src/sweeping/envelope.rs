@@ -120,18 +120,21 @@ fn channels(names: &[String], prepared: &Prepared) -> Result<Vec<Signal>, StudyE
     let first = first.map_err(|e| StudyError::scenario(&e))?;
     let names_of_run = base.names.with_components(&first.inputs);
     (names.iter())
-        .map(|name| Signal::parse("--envelope", name, &names_of_run).map_err(StudyError::usage))
+        .map(|name| {
+            Signal::parse("--envelope", name, &names_of_run)
+                .map_err(|e| StudyError::usage(e.to_string()))
+        })
         .collect()
 }
 
 /// `--weights`: per grid value, or per run from a CSV file.
 fn weights(text: &str, prepared: &Prepared) -> Result<Weights, StudyError> {
     if text.contains('=') {
-        return Weights::per_value(text, &prepared.plan).map_err(StudyError::usage);
+        return Ok(Weights::per_value(text, &prepared.plan)?);
     }
     let file = std::fs::read_to_string(text)
         .map_err(|e| StudyError::io(format!("--weights: cannot read {text}: {e}")))?;
-    Weights::per_run_csv(&file, text, &prepared.plan).map_err(StudyError::usage)
+    Ok(Weights::per_run_csv(&file, text, &prepared.plan)?)
 }
 
 /// Writes the envelope table (whole or not at all) and the plot; returns
@@ -142,17 +145,17 @@ pub(super) fn write(request: &EnvelopeRequest, envelope: &Envelope) -> Result<St
     };
     let parquet = table_is_parquet(out)?;
     write_beside(out, |file| match parquet {
-        true => write_envelope_parquet(envelope, file),
-        false => write_envelope_csv(envelope, file),
-    })
-    .map_err(StudyError::io)?;
+        true => Ok(write_envelope_parquet(envelope, file)?),
+        false => Ok(write_envelope_csv(envelope, file)?),
+    })?;
     let mut line = format!(
         "envelope of {} runs: wrote {}",
         envelope.runs,
         out.display()
     );
     if let Some(plot) = &request.plot {
-        let svg = bands_svg("Envelopes over the runs", &bands(envelope)).map_err(StudyError::io)?;
+        let svg = bands_svg("Envelopes over the runs", &bands(envelope))
+            .map_err(|e| StudyError::io(e.to_string()))?;
         lagrangian_sim::report::write_atomically(plot, svg.as_bytes())
             .map_err(|e| StudyError::io(format!("cannot write {}: {e}", plot.display())))?;
         line.push_str(&format!(" and {}", plot.display()));
@@ -193,13 +196,13 @@ pub(super) struct Checkpoints<'r> {
 /// What a sweep does after each row it adds to its envelope.
 pub(super) trait AfterRow {
     /// Run `run` is done and `envelope` holds every run up to it.
-    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), String>;
+    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), StudyError>;
 }
 
 impl AfterRow for Checkpoints<'_> {
     /// Takes the run into the mark; saves the envelope when the last save
     /// is a while ago.
-    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), String> {
+    fn after(&mut self, run: usize, envelope: &Envelope) -> Result<(), StudyError> {
         self.mark.take(self.plan, self.weights, run);
         self.done = run + 1 - self.block.start;
         match self.saved.elapsed() >= CHECKPOINT_EVERY {
@@ -211,14 +214,14 @@ impl AfterRow for Checkpoints<'_> {
 
 impl Checkpoints<'_> {
     /// Writes the partial envelope to `path` (whole or not at all).
-    fn save(&mut self, envelope: &Envelope, path: &Path) -> Result<(), String> {
+    fn save(&mut self, envelope: &Envelope, path: &Path) -> Result<(), StudyError> {
         let partial = PartialEnvelope {
             mark: self.mark.clone(),
             block: self.block.clone(),
             done: self.done,
             envelope: envelope.clone(),
         };
-        write_beside(path, |file| partial.write(file))?;
+        write_beside(path, |file| Ok(partial.write(file)?))?;
         self.saved = Instant::now();
         Ok(())
     }
@@ -295,7 +298,7 @@ impl<'r> Tracked<'r> {
     /// Saves the envelope beside the journal (a sweep that stops).
     pub fn save(&mut self) -> Result<(), StudyError> {
         let path = self.checkpoints.path.clone();
-        (self.checkpoints.save(&self.envelope, &path)).map_err(StudyError::io)
+        self.checkpoints.save(&self.envelope, &path)
     }
 
     /// The envelope's files once every run is done: the table and plot of
@@ -306,7 +309,7 @@ impl<'r> Tracked<'r> {
             return write(self.request, &self.envelope);
         }
         let partial = partial_envelope_path(out);
-        (self.checkpoints.save(&self.envelope, &partial)).map_err(StudyError::io)?;
+        self.checkpoints.save(&self.envelope, &partial)?;
         Ok(format!(
             "partial envelope of {} runs: wrote {} (--merge the shards for the envelope)\n",
             self.envelope.runs,
@@ -332,12 +335,11 @@ pub(super) fn merged(
     parts: &[PathBuf],
     prepared: &Prepared,
 ) -> Result<Envelope, StudyError> {
-    let data = |e: String| StudyError::data_file(e);
     let mut paths = Vec::new();
     for part in parts {
         let path = partial_envelope_path(part);
         if !path.exists() {
-            return Err(data(format!(
+            return Err(StudyError::data_file(format!(
                 "--envelope: {} is missing: the shard that wrote {} ran without --envelope; run it again with this sweep's --envelope flags",
                 path.display(),
                 part.display()
@@ -345,7 +347,12 @@ pub(super) fn merged(
         }
         paths.push(path);
     }
-    merged_envelope(&paths, &prepared.plan, &request.names(), &request.weights).map_err(data)
+    Ok(merged_envelope(
+        &paths,
+        &prepared.plan,
+        &request.names(),
+        &request.weights,
+    )?)
 }
 
 /// `text` of a merge with the line of the envelope's files appended.
@@ -373,6 +380,6 @@ pub(super) fn partial_json(
         envelope,
     };
     let mut bytes = Vec::new();
-    partial.write(&mut bytes).map_err(StudyError::io)?;
+    partial.write(&mut bytes)?;
     Ok(bytes)
 }

@@ -36,7 +36,7 @@ pub fn tables(
     progress: &dyn Progress,
 ) -> Result<(Vec<u8>, Option<Vec<u8>>), StudyError> {
     check_shard_count(options)?;
-    let shard = shard(options).map_err(StudyError::usage)?;
+    let shard = shard(options)?;
     let prepared = prepare(options)?;
     let request = envelope::request(options, &prepared)?;
     let mut accumulated = request
@@ -52,7 +52,7 @@ pub fn tables(
     let runs = shard.runs(plan.len());
     let mut rows = Vec::with_capacity(runs.len());
     let mut tally = Tally::default();
-    let mut sink = |row: Row| -> Result<(), String> {
+    let mut sink = |row: Row| -> Result<(), StudyError> {
         tally.count(&row);
         rows.push(row);
         progress.run_done();
@@ -78,7 +78,7 @@ pub fn tables(
     };
     let finished = model.with_dimension(sweep).map_err(StudyError::model)??;
     check_finished(finished, runs.len(), &tally)?;
-    let table = sweep_csv(&layout, &rows).map_err(StudyError::io)?;
+    let table = sweep_csv(&layout, &rows)?;
     let envelope = match (&request, accumulated) {
         (Some(request), Some((_, envelope))) if shard != Shard::ALL => {
             Some(envelope::partial_json(request, &plan, &runs, envelope)?)
@@ -107,7 +107,7 @@ fn check_finished(finished: usize, runs: usize, tally: &Tally) -> Result<(), Stu
 /// The CSV bytes of an envelope's table.
 fn envelope_csv(envelope: &Envelope) -> Result<Vec<u8>, StudyError> {
     let mut bytes = Vec::new();
-    write_envelope_csv(envelope, &mut bytes).map_err(StudyError::io)?;
+    write_envelope_csv(envelope, &mut bytes)?;
     Ok(bytes)
 }
 

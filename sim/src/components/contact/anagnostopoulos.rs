@@ -14,6 +14,7 @@
 //! law's damping restitutes `e` exactly).
 
 use super::{ContactForce, ContactLaw, LawEntries};
+use crate::entry::EntryError;
 
 /// `law = "anagnostopoulos"`: needs `mass`; `e` in (0, 1].
 pub(super) struct Anagnostopoulos;
@@ -27,7 +28,7 @@ impl ContactLaw for Anagnostopoulos {
         &["mass"]
     }
 
-    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, String> {
+    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, EntryError> {
         let mass = entries.needed_mass(self.name(), name)?;
         let ln = entries.positive_restitution(self.name(), name)?.ln();
         let zeta = -ln / (std::f64::consts::PI.powi(2) + ln * ln).sqrt();

@@ -12,6 +12,7 @@
 //! `n` is the `exponent` entry (Hertz's 1.5 by default).
 
 use super::{ContactForce, ContactLaw, LawEntries};
+use crate::entry::EntryError;
 
 /// `law = "flores"`: `exponent` optional; `e` in (0, 1].
 pub(super) struct Flores;
@@ -25,7 +26,7 @@ impl ContactLaw for Flores {
         &["exponent"]
     }
 
-    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, String> {
+    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, EntryError> {
         let e = entries.positive_restitution(self.name(), name)?;
         Ok(ContactForce {
             stiffness: entries.stiffness,

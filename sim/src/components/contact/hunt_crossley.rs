@@ -9,6 +9,7 @@
 //! `n` is the `exponent` entry (Hertz's 1.5 by default).
 
 use super::{ContactForce, ContactLaw, LawEntries};
+use crate::entry::EntryError;
 
 /// `law = "hunt_crossley"`: `exponent` optional; `e` in [0, 1].
 pub(super) struct HuntCrossley;
@@ -22,7 +23,7 @@ impl ContactLaw for HuntCrossley {
         &["exponent"]
     }
 
-    fn force(&self, entries: &LawEntries, _name: &str) -> Result<ContactForce, String> {
+    fn force(&self, entries: &LawEntries, _name: &str) -> Result<ContactForce, EntryError> {
         Ok(ContactForce {
             stiffness: entries.stiffness,
             exponent: entries.exponent_or_hertz(),

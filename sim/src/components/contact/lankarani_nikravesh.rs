@@ -11,6 +11,7 @@
 //! the `exponent` entry (Hertz's 1.5 by default).
 
 use super::{ContactForce, ContactLaw, LawEntries};
+use crate::entry::EntryError;
 
 /// `law = "lankarani_nikravesh"`: `exponent` optional; `e` in [0, 1].
 pub(super) struct LankaraniNikravesh;
@@ -24,7 +25,7 @@ impl ContactLaw for LankaraniNikravesh {
         &["exponent"]
     }
 
-    fn force(&self, entries: &LawEntries, _name: &str) -> Result<ContactForce, String> {
+    fn force(&self, entries: &LawEntries, _name: &str) -> Result<ContactForce, EntryError> {
         let e = entries.restitution;
         Ok(ContactForce {
             stiffness: entries.stiffness,

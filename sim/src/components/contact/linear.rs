@@ -15,6 +15,7 @@
 //! `ζ = 0` towards 0; the law solves it for `ζ` by bisection.
 
 use super::{ContactForce, ContactLaw, LawEntries};
+use crate::entry::EntryError;
 
 /// `law = "linear"`: needs `mass`; `e` in (0, 1].
 pub(super) struct Linear;
@@ -28,7 +29,7 @@ impl ContactLaw for Linear {
         &["mass"]
     }
 
-    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, String> {
+    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, EntryError> {
         let mass = entries.needed_mass(self.name(), name)?;
         let e = entries.positive_restitution(self.name(), name)?;
         let k = entries.stiffness;

@@ -46,6 +46,7 @@ use crate::components::section::Ports;
 use crate::components::{Dissipation, Events};
 use crate::curve::OutOfRange;
 use crate::entry::positive;
+use crate::entry::{EntryError, KeyPath};
 use crate::ode::Direction;
 use serde::Deserialize;
 
@@ -60,7 +61,7 @@ pub trait ContactLaw: Sync {
 
     /// The force for the checked `entries` of section
     /// `[components.{name}]`, or a message naming the entry at fault.
-    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, String>;
+    fn force(&self, entries: &LawEntries, name: &str) -> Result<ContactForce, EntryError>;
 }
 
 /// The laws, by name: one line per law.
@@ -99,22 +100,26 @@ impl LawEntries {
     }
 
     /// The mass, which law `law` of section `[components.{name}]` needs.
-    pub fn needed_mass(&self, law: &str, name: &str) -> Result<f64, String> {
+    pub fn needed_mass(&self, law: &str, name: &str) -> Result<f64, EntryError> {
         self.mass.ok_or_else(|| {
-            format!(
-                "components.{name}.mass is missing: the {law} law's damping follows from the effective mass m₁·m₂/(m₁ + m₂) of the bodies in contact [kg]"
-            )
+            EntryError::sentence(KeyPath::component(name).join("mass"), format!(
+                "is missing: the {law} law's damping follows from the effective mass m₁·m₂/(m₁ + m₂) of the bodies in contact [kg]"
+            ))
         })
     }
 
     /// `e`, which must be positive for law `law` (its damping diverges at 0).
-    pub fn positive_restitution(&self, law: &str, name: &str) -> Result<f64, String> {
+    pub fn positive_restitution(&self, law: &str, name: &str) -> Result<f64, EntryError> {
         let e = self.restitution;
         if e > 0.0 {
             return Ok(e);
         }
-        Err(format!(
-            "components.{name}.restitution = {e}: the {law} law needs a coefficient of restitution in (0, 1] (its damping is unbounded at 0)"
+        Err(EntryError::value(
+            KeyPath::component(name).join("restitution"),
+            format!("{e}"),
+            format!(
+                "the {law} law needs a coefficient of restitution in (0, 1] (its damping is unbounded at 0)"
+            ),
         ))
     }
 }
@@ -414,7 +419,7 @@ fn one_millimetre_per_second() -> f64 {
 }
 
 impl Section for ContactSection {
-    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), String> {
+    fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let element = self.element(name)?;
         let c = binder.add(name.to_string(), Box::new(element));
         binder.bind_ports(&self.inputs, "force", c, name)
@@ -423,7 +428,7 @@ impl Section for ContactSection {
 
 impl ContactSection {
     /// The contact `[components.{name}]` describes.
-    fn element(&self, name: &str) -> Result<ContactElement, String> {
+    fn element(&self, name: &str) -> Result<ContactElement, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let law = law(&self.law, &key("law"))?;
         self.refuse_unread(law, name)?;
@@ -443,15 +448,16 @@ impl ContactSection {
     }
 
     /// An error for an optional entry given that `law` does not read.
-    fn refuse_unread(&self, law: &dyn ContactLaw, name: &str) -> Result<(), String> {
+    fn refuse_unread(&self, law: &dyn ContactLaw, name: &str) -> Result<(), EntryError> {
         let given = [("exponent", self.exponent), ("mass", self.mass)];
         for (entry, value) in given {
             if let Some(value) = value
                 && !law.reads().contains(&entry)
             {
-                return Err(format!(
-                    "components.{name}.{entry} = {value}: the {} law takes no {entry}",
-                    law.name()
+                return Err(EntryError::value(
+                    KeyPath::component(name).join(entry),
+                    format!("{value}"),
+                    format!("the {} law takes no {entry}", law.name()),
                 ));
             }
         }
@@ -460,7 +466,7 @@ impl ContactSection {
 }
 
 /// The law named `text` at `key`, or an error listing the laws.
-fn law(text: &str, key: &str) -> Result<&'static dyn ContactLaw, String> {
+fn law(text: &str, key: &str) -> Result<&'static dyn ContactLaw, EntryError> {
     if let Some(law) = LAWS.iter().find(|law| law.name() == text) {
         return Ok(*law);
     }
@@ -468,39 +474,47 @@ fn law(text: &str, key: &str) -> Result<&'static dyn ContactLaw, String> {
     let hint = lagrangian_model::names::closest(text, names.iter().copied())
         .map(|n| format!(" (did you mean `{n}`?)"))
         .unwrap_or_default();
-    Err(format!(
-        "{key} = \"{text}\": not a contact law{hint}; use one of {}",
-        names.join(", ")
+    Err(EntryError::text(
+        key.into(),
+        text,
+        format!("not a contact law{hint}; use one of {}", names.join(", ")),
     ))
 }
 
 /// `e` if it is in [0, 1]; else an error naming `key`.
-fn restitution(key: &str, e: f64) -> Result<f64, String> {
+fn restitution(key: &str, e: f64) -> Result<f64, EntryError> {
     if (0.0..=1.0).contains(&e) {
         return Ok(e);
     }
-    Err(format!(
-        "{key} = {e}: a coefficient of restitution is in [0, 1] (1: elastic, 0: no rebound)"
+    Err(EntryError::value(
+        key.into(),
+        format!("{e}"),
+        "a coefficient of restitution is in [0, 1] (1: elastic, 0: no rebound)",
     ))
 }
 
 /// `n` if it is finite and at least 1; else an error naming `key`.
-fn exponent(key: &str, n: f64) -> Result<f64, String> {
+fn exponent(key: &str, n: f64) -> Result<f64, EntryError> {
     if n.is_finite() && n >= 1.0 {
         return Ok(n);
     }
-    Err(format!(
-        "{key} = {n}: the exponent must be a finite number ≥ 1 (1: linear, 1.5: Hertz)"
+    Err(EntryError::value(
+        key.into(),
+        format!("{n}"),
+        "the exponent must be a finite number ≥ 1 (1: linear, 1.5: Hertz)",
     ))
 }
 
 /// `+1` for `positive`, `−1` for `negative`.
-fn compression_sign(key: &str, text: &str) -> Result<f64, String> {
+fn compression_sign(key: &str, text: &str) -> Result<f64, EntryError> {
     match text {
         "positive" => Ok(1.0),
         "negative" => Ok(-1.0),
-        other => Err(format!(
-            "{key} = `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+        other => Err(EntryError::sentence(
+            key.into(),
+            format!(
+                "= `{other}`; use positive or negative (the sign of the input's first argument under compression)"
+            ),
         )),
     }
 }
