@@ -144,8 +144,8 @@ fn instantiate(
     };
     let guid = guid.ok_or_else(|| Failure::error("no GUID"))?;
     let location = location.ok_or_else(|| Failure::error("no resource location"))?;
-    let dir = directory_of(&location).map_err(Failure::error)?;
-    let loaded = load(&dir).map_err(Failure::error)?;
+    let dir = directory_of(&location)?;
+    let loaded = load(&dir)?;
     Instance::with_plant(name, interface, &guid, loaded, factory)
 }
 

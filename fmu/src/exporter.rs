@@ -120,7 +120,7 @@ pub fn export_with(
         },
     ];
     entries.extend(resources);
-    archive::write_atomically(out, &entries).map_err(StudyError::io)?;
+    archive::write_atomically(out, &entries)?;
     let bytes = std::fs::metadata(out).map_or(0, |m| m.len());
     Ok(Exported {
         bytes,

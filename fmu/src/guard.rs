@@ -67,7 +67,7 @@ pub fn guard(
     }
     let status = shielded(call, &report, || {
         let instance = &component.instance;
-        crate::machine::check(call, instance.interface, instance.mode()).map_err(Failure::error)?;
+        crate::machine::check(call, instance.interface, instance.mode())?;
         body(&mut component)
     });
     match status {
@@ -97,7 +97,7 @@ pub fn not_an_instance(call: &str, c: fmi2Component) -> String {
 pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Outcome<&'a [T]> {
     match (n, p.is_null()) {
         (0, _) => Ok(&[]),
-        (_, true) => Err(crate::instance::Failure::error(format!("{what} is null"))),
+        (_, true) => Err(Failure::error(format!("{what} is null"))),
         // SAFETY: as documented.
         (_, false) => Ok(unsafe { std::slice::from_raw_parts(p, n) }),
     }
@@ -110,7 +110,7 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Outcome<&'a [T]
 pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Outcome<&'a mut [T]> {
     match (n, p.is_null()) {
         (0, _) => Ok(&mut []),
-        (_, true) => Err(crate::instance::Failure::error(format!("{what} is null"))),
+        (_, true) => Err(Failure::error(format!("{what} is null"))),
         // SAFETY: as documented.
         (_, false) => Ok(unsafe { std::slice::from_raw_parts_mut(p, n) }),
     }

@@ -4,9 +4,10 @@
 //! `me`) only convert arguments and report failures.
 
 use crate::ffi::fmi2Status;
-use crate::plant::{Plant, PlantFactory, plant};
-use crate::resources::Loaded;
-use crate::variables::Variables;
+use crate::machine::CallError;
+use crate::plant::{Plant, PlantError, PlantFactory, plant};
+use crate::resources::{Loaded, ResourceError};
+use crate::variables::{NameClash, Variables};
 
 pub use crate::machine::{Interface, Mode};
 
@@ -28,6 +29,20 @@ impl Failure {
         }
     }
 }
+
+/// An `fmi2Error` logging the error's message, from each error of this
+/// crate.
+macro_rules! failure_from {
+    ($($error:ty),*) => {$(
+        impl From<$error> for Failure {
+            fn from(e: $error) -> Failure {
+                Failure::error(e.to_string())
+            }
+        }
+    )*};
+}
+
+failure_from!(CallError, PlantError, ResourceError, NameClash);
 
 /// The result of an instance's call.
 pub type Outcome<T = ()> = Result<T, Failure>;
@@ -92,9 +107,8 @@ impl Instance {
             )));
         }
         let spec = &loaded.compiled.model;
-        let variables =
-            Variables::new(spec, &loaded.scenario, &loaded.unbound).map_err(Failure::error)?;
-        let plant = factory(loaded.model, &loaded.scenario).map_err(Failure::error)?;
+        let variables = Variables::new(spec, &loaded.scenario, &loaded.unbound)?;
+        let plant = factory(loaded.model, &loaded.scenario)?;
         Ok(Instance {
             name: name.to_string(),
             interface,
@@ -124,7 +138,7 @@ impl Instance {
     /// `Err` unless the state machine allows `call` in the current mode
     /// ([`crate::machine`]).
     fn allow(&self, call: &str) -> Outcome {
-        crate::machine::check(call, self.interface, self.mode).map_err(Failure::error)
+        Ok(crate::machine::check(call, self.interface, self.mode)?)
     }
 
     /// Into the standard's error state, after a call returned `fmi2Error`:
@@ -134,10 +148,10 @@ impl Instance {
     }
 
     /// Runs a plant operation; its failure puts the instance in [`Mode::Failed`].
-    fn run<T>(&mut self, f: impl FnOnce(&mut dyn Plant) -> Result<T, String>) -> Outcome<T> {
-        f(self.plant.as_mut()).map_err(|message| {
+    fn run<T>(&mut self, f: impl FnOnce(&mut dyn Plant) -> Result<T, PlantError>) -> Outcome<T> {
+        f(self.plant.as_mut()).map_err(|error| {
             self.mode = Mode::Failed;
-            Failure::error(message)
+            Failure::from(error)
         })
     }
 
@@ -234,7 +248,7 @@ impl Instance {
             quantities.push(self.settable(vr, value)?);
         }
         for (quantity, &value) in quantities.into_iter().zip(values) {
-            self.plant.set(quantity, value).map_err(Failure::error)?;
+            self.plant.set(quantity, value)?;
         }
         Ok(())
     }

@@ -113,33 +113,71 @@ pub fn rule(call: &str) -> Option<(&'static [Mode], Option<Interface>)> {
     Some((modes, interface))
 }
 
+/// Why the state machine refuses a call ([`check`]). Each message
+/// follows the call's name in the log (`fmi2DoStep: not allowed in state
+/// …`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CallError {
+    /// A name that is no FMI 2.0 call on an instance.
+    #[error("{call} is no FMI 2.0 function on an instance")]
+    Unknown {
+        /// The name.
+        call: String,
+    },
+    /// A call of the other interface.
+    #[error(
+        "a {} function, and this instance was instantiated for {}",
+        interface_name(*.only),
+        interface_name(*.interface)
+    )]
+    Interface {
+        /// The interface the call belongs to.
+        only: Interface,
+        /// The interface the instance was created for.
+        interface: Interface,
+    },
+    /// A call the instance's state does not allow.
+    #[error(
+        "not allowed in state {}{} (allowed {})",
+        state_name(*.mode),
+        failed_hint(*.mode),
+        allowed_list(.allowed)
+    )]
+    State {
+        /// The instance's state.
+        mode: Mode,
+        /// The states that allow the call.
+        allowed: &'static [Mode],
+    },
+}
+
 /// `Err` saying why, unless an instance of `interface` in `mode` may be
-/// called with `call` (the message follows the call's name: `fmi2DoStep:
-/// not allowed in state …`).
-pub fn check(call: &str, interface: Interface, mode: Mode) -> Result<(), String> {
+/// called with `call`.
+pub fn check(call: &str, interface: Interface, mode: Mode) -> Result<(), CallError> {
     let Some((modes, only)) = rule(call) else {
-        return Err(format!("{call} is no FMI 2.0 function on an instance"));
+        return Err(CallError::Unknown {
+            call: call.to_string(),
+        });
     };
     if let Some(only) = only.filter(|&i| i != interface) {
-        return Err(format!(
-            "a {} function, and this instance was instantiated for {}",
-            interface_name(only),
-            interface_name(interface)
-        ));
+        return Err(CallError::Interface { only, interface });
     }
-    if modes.contains(&mode) {
-        return Ok(());
+    match modes.contains(&mode) {
+        true => Ok(()),
+        false => Err(CallError::State {
+            mode,
+            allowed: modes,
+        }),
     }
+}
+
+/// `in A, B, C`, or `in no state of this FMU`.
+fn allowed_list(modes: &[Mode]) -> String {
     let allowed: Vec<&str> = modes.iter().map(|&m| state_name(m)).collect();
-    let allowed = match allowed.is_empty() {
+    match allowed.is_empty() {
         true => "in no state of this FMU".to_string(),
         false => format!("in {}", allowed.join(", ")),
-    };
-    Err(format!(
-        "not allowed in state {}{} (allowed {allowed})",
-        state_name(mode),
-        failed_hint(mode)
-    ))
+    }
 }
 
 /// The standard's name of a mode (`continuousTimeMode`).
@@ -197,8 +235,15 @@ mod tests {
             assert_eq!(check(call, me, Mode::Instantiated), Ok(()), "{call}");
         }
         let early = check("fmi2GetDerivatives", me, Mode::Instantiated).unwrap_err();
-        assert_eq!(
+        assert!(matches!(
             early,
+            CallError::State {
+                mode: Mode::Instantiated,
+                ..
+            }
+        ));
+        assert_eq!(
+            early.to_string(),
             "not allowed in state instantiated \
              (allowed in eventMode, continuousTimeMode, terminated, error)"
         );
@@ -209,7 +254,7 @@ mod tests {
     fn a_call_of_the_other_interface_is_refused_by_name() {
         let wrong = check("fmi2DoStep", Interface::ModelExchange, Mode::Event).unwrap_err();
         assert_eq!(
-            wrong,
+            wrong.to_string(),
             "a Co-Simulation function, and this instance was instantiated \
              for Model Exchange"
         );
@@ -229,9 +274,21 @@ mod tests {
         ] {
             assert_eq!(check(call, cs, Mode::Failed), Ok(()), "{call}");
         }
-        let step = check("fmi2DoStep", cs, Mode::Failed).unwrap_err();
+        let step = check("fmi2DoStep", cs, Mode::Failed)
+            .unwrap_err()
+            .to_string();
         assert!(step.contains("an earlier call failed"), "{step}");
         assert!(check("fmi2SetReal", cs, Mode::Terminated).is_err());
+        let cancel = check("fmi2CancelStep", cs, Mode::StepComplete).unwrap_err();
+        assert_eq!(
+            cancel.to_string(),
+            "not allowed in state stepComplete (allowed in no state of this FMU)"
+        );
+        let unknown = check("fmi2Nothing", cs, Mode::StepComplete).unwrap_err();
+        assert_eq!(
+            unknown.to_string(),
+            "fmi2Nothing is no FMI 2.0 function on an instance"
+        );
     }
 
     #[test]

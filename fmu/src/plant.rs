@@ -6,14 +6,79 @@
 //! it handles, and Co-Simulation's step with our integrator and events.
 
 use crate::variables::Quantity;
-use lagrangian_model::{Interpreted, InterpretedModel, LagrangianSystem, WithDimension};
+use lagrangian_model::{
+    Interpreted, InterpretedModel, LagrangianSystem, ModelError, WithDimension,
+};
 use lagrangian_sim::components::BoundInputs;
 use lagrangian_sim::components::constant::Constant;
+use lagrangian_sim::fault::Fault;
 use lagrangian_sim::ode::tr_bdf2::AccelerationJacobians;
 use lagrangian_sim::ode::{self, EventAction, OdeProblem, OdeVector, PhaseState};
 use lagrangian_sim::scenario::{Columns, Scenario};
-use lagrangian_sim::simulate::{CrashProblem, stepwise};
+use lagrangian_sim::simulate::{CrashProblem, SimulationError, SolverError, stepwise};
 use nalgebra::SVector;
+
+/// Why a plant could not be made or do what the host asked. Each message
+/// is what the FMU logs after the call's name.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PlantError {
+    /// A compiled model that is not the one of the resources' spec: what
+    /// differs (`coordinates`, `parameter values`, …).
+    #[error(
+        "resources/model.lpm is not the spec this FMU binary was compiled from \
+         (its {} differ)",
+        .differ.join(", ")
+    )]
+    NotTheCompiledSpec {
+        /// What differs, in words.
+        differ: Vec<&'static str>,
+    },
+    /// The model refused: a dimension the interpreter does not run, a
+    /// parameter value.
+    #[error("{0}")]
+    Model(ModelError),
+    /// The components' internal states have no initial values.
+    #[error("{0}")]
+    Start(Fault),
+    /// No initial state (static equilibrium, constraints).
+    #[error("{0}")]
+    Initialization(SimulationError),
+    /// The model or a component failed to evaluate at `t`; `fault` is
+    /// `None` for an event handler that stopped the run without saying
+    /// why.
+    #[error("at t = {t:e} s: {}", .fault.as_ref().map_or(String::new(), Fault::to_string))]
+    Fault {
+        /// When \[s\].
+        t: f64,
+        /// What failed.
+        fault: Option<Fault>,
+    },
+    /// The integrator stopped.
+    #[error("{0}")]
+    Solver(SolverError),
+    /// An input the host set that is not bound to a constant.
+    #[error("input {input} is not bound to a constant")]
+    InputNotBound {
+        /// The input's index in the spec.
+        input: usize,
+    },
+    /// A quantity that is neither a parameter nor an input.
+    #[error("{quantity:?} cannot be set")]
+    NotSettable {
+        /// The quantity.
+        quantity: Quantity,
+    },
+}
+
+impl PlantError {
+    /// `fault` at `t`.
+    fn at(t: f64) -> impl FnOnce(Fault) -> PlantError {
+        move |fault| PlantError::Fault {
+            t,
+            fault: Some(fault),
+        }
+    }
+}
 
 /// A model with its scenario, simulated step by step by a host.
 pub trait Plant {
@@ -32,41 +97,41 @@ pub trait Plant {
     fn set_states(&mut self, x: &[f64]);
     /// Puts the model in the scenario's initial state (static equilibrium,
     /// components' start) with the parameters as they are set now.
-    fn initialize(&mut self) -> Result<(), String>;
+    fn initialize(&mut self) -> Result<(), PlantError>;
     /// `(q̇, q̈, ż)` into `dx`.
-    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String>;
+    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), PlantError>;
     /// The number of event indicators: the components' events, then the
     /// model's switching functions.
     fn event_count(&self) -> usize;
     /// The event indicators into `g`.
-    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String>;
+    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), PlantError>;
     /// Handles the events whose indicators crossed (in their direction)
     /// since the last call or [`Plant::initialize`]; returns the
     /// descriptions of the events handled.
-    fn handle_events(&mut self) -> Result<Vec<String>, String>;
+    fn handle_events(&mut self) -> Result<Vec<String>, PlantError>;
     /// Integrates to `t_end` with the scenario's method, tolerances and
     /// events; returns the descriptions of the events handled on the way.
     /// Each call starts a new step sequence (its first step estimated
     /// afresh); the components keep their state (contact, unloading, weld
     /// failure) from one call to the next.
-    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, String>;
+    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, PlantError>;
     /// The values of `quantities` at the current state into `out`.
-    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), String>;
+    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), PlantError>;
     /// Sets a parameter or an input.
-    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), String>;
+    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), PlantError>;
 }
 
 /// How an FMU binary makes its plant of the model loaded from the
 /// resources (compiled by the interpreter) under the scenario: [`plant`]
 /// runs that model, [`compiled`] a macro-compiled one checked against it.
-pub type PlantFactory = fn(InterpretedModel, &Scenario) -> Result<Box<dyn Plant>, String>;
+pub type PlantFactory = fn(InterpretedModel, &Scenario) -> Result<Box<dyn Plant>, PlantError>;
 
 /// The plant of `model` under `scenario`, with the scenario's parameters,
 /// run by the interpreter.
-pub fn plant(model: InterpretedModel, scenario: &Scenario) -> Result<Box<dyn Plant>, String> {
+pub fn plant(model: InterpretedModel, scenario: &Scenario) -> Result<Box<dyn Plant>, PlantError> {
     model
         .with_dimension(Build { scenario })
-        .map_err(|e| e.to_string())?
+        .map_err(PlantError::Model)?
 }
 
 /// The plant of the compiled model `S` (a `lagrangian!` or `lpm generate`
@@ -76,7 +141,7 @@ pub fn plant(model: InterpretedModel, scenario: &Scenario) -> Result<Box<dyn Pla
 pub fn compiled<const N: usize, S>(
     model: InterpretedModel,
     scenario: &Scenario,
-) -> Result<Box<dyn Plant>, String>
+) -> Result<Box<dyn Plant>, PlantError>
 where
     S: LagrangianSystem<N> + Default + Clone + 'static,
 {
@@ -90,7 +155,7 @@ where
 fn same_model<const N: usize, S: LagrangianSystem<N>>(
     compiled: &S,
     model: &InterpretedModel,
-) -> Result<(), String> {
+) -> Result<(), PlantError> {
     fn names(list: &[String]) -> Vec<&str> {
         list.iter().map(String::as_str).collect()
     }
@@ -125,27 +190,26 @@ fn same_model<const N: usize, S: LagrangianSystem<N>>(
         .collect();
     match differ.is_empty() {
         true => Ok(()),
-        false => Err(format!(
-            "resources/model.lpm is not the spec this FMU binary was compiled from \
-             (its {} differ)",
-            differ.join(", ")
-        )),
+        false => Err(PlantError::NotTheCompiledSpec { differ }),
     }
 }
 
 /// The plant of `system` under `scenario`, with the scenario's parameters.
-fn running<const N: usize, S>(mut system: S, scenario: &Scenario) -> Result<Box<dyn Plant>, String>
+fn running<const N: usize, S>(
+    mut system: S,
+    scenario: &Scenario,
+) -> Result<Box<dyn Plant>, PlantError>
 where
     S: LagrangianSystem<N> + Clone + 'static,
 {
     (scenario)
         .apply_parameters(&mut system)
-        .map_err(|e| e.to_string())?;
+        .map_err(PlantError::Model)?;
     let mut inputs = scenario.inputs.clone();
     // The state has the internal states' length from the start, as the
     // count of continuous states the description declares.
     let mut y = PhaseState::zeros();
-    y.z = inputs.initial_internal().map_err(|e| e.to_string())?;
+    y.z = inputs.initial_internal().map_err(PlantError::Start)?;
     Ok(Box::new(Run {
         model: system,
         inputs: Some(inputs),
@@ -161,7 +225,7 @@ struct Build<'a> {
 }
 
 impl WithDimension for Build<'_> {
-    type Output = Result<Box<dyn Plant>, String>;
+    type Output = Result<Box<dyn Plant>, PlantError>;
 
     fn run<const N: usize>(self, system: Interpreted<N>) -> Self::Output {
         running(system, self.scenario)
@@ -214,25 +278,25 @@ where
 
     /// `(q̇, q̈, ż)` at the current state, as the simulator's right-hand
     /// side gives them.
-    fn rates(&mut self) -> Result<PhaseState<N>, String> {
+    fn rates(&mut self) -> Result<PhaseState<N>, PlantError> {
         let (t, y) = (self.t, self.y);
         let mut dy = y;
         self.with_problem(|p| p.rhs(t, &y, &mut dy))
-            .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+            .map_err(PlantError::at(t))?;
         Ok(dy)
     }
 
-    fn derived(&mut self) -> Result<Derived<N>, String> {
+    fn derived(&mut self) -> Result<Derived<N>, PlantError> {
         let (t, y) = (self.t, self.y);
         let solved = self.with_problem(|p| p.accelerations_and_multipliers(t, &y.q, &y.v));
-        let solved = solved.map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        let solved = solved.map_err(PlantError::at(t))?;
         let a = solved.a;
         let mut outputs = vec![0.0; self.model.output_names().len()];
         let columns = self.with_problem(|p| {
             (p.system).outputs(t, &y.q, &y.v, &a, &p.inputs, &mut outputs);
             p.component_values(t, &y.q, &y.v)
         });
-        let columns = columns.map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+        let columns = columns.map_err(PlantError::at(t))?;
         let internal_rates = match y.z.is_empty() {
             true => Vec::new(),
             false => self.rates()?.z.as_slice().to_vec(),
@@ -292,10 +356,10 @@ where
     }
 
     /// The event indicators at `(t, y)`.
-    fn indicators_at(&mut self, t: f64, y: PhaseState<N>) -> Result<Vec<f64>, String> {
+    fn indicators_at(&mut self, t: f64, y: PhaseState<N>) -> Result<Vec<f64>, PlantError> {
         let mut g = vec![0.0; self.event_count()];
         self.with_problem(|p| p.events(t, &y, &mut g))
-            .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+            .map_err(PlantError::at(t))?;
         Ok(g)
     }
 
@@ -306,7 +370,7 @@ where
     /// at a state (a contact that begins at zero force, a crush rate that
     /// is zero at the start) has the sign of where it is going, so that a
     /// crossing is a change of that sign, never a touch of zero.
-    fn signed_indicators(&mut self) -> Result<Vec<f64>, String> {
+    fn signed_indicators(&mut self) -> Result<Vec<f64>, PlantError> {
         let mut g = self.indicators_at(self.t, self.y)?;
         if g.contains(&0.0) {
             let delta = 1e-9 * self.t.abs().max(1.0);
@@ -326,7 +390,7 @@ where
     /// Records the indicators ([`Run::signed_indicators`]) as the reference
     /// for the next crossing, so that the crossing just handled (or a zero
     /// at the start) is not seen again.
-    fn arm(&mut self) -> Result<(), String> {
+    fn arm(&mut self) -> Result<(), PlantError> {
         self.armed = self.signed_indicators()?;
         Ok(())
     }
@@ -371,14 +435,14 @@ where
         self.y.z.as_mut_slice().copy_from_slice(&x[2 * N..]);
     }
 
-    fn initialize(&mut self) -> Result<(), String> {
+    fn initialize(&mut self) -> Result<(), PlantError> {
         let scenario = self.scenario.clone();
         let y0 = self.with_problem(|p| stepwise::initial_state(p, &scenario));
-        self.y = y0.map_err(|e| e.to_string())?;
+        self.y = y0.map_err(PlantError::Initialization)?;
         self.arm()
     }
 
-    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), String> {
+    fn derivatives(&mut self, dx: &mut [f64]) -> Result<(), PlantError> {
         let rates = self.rates()?;
         dx[..N].copy_from_slice(rates.q.as_slice());
         dx[N..2 * N].copy_from_slice(rates.v.as_slice());
@@ -401,7 +465,7 @@ where
     /// its reference: as the simulator's event tracker takes the value at
     /// the end of the first step after an event, so that a crossing from
     /// there (reloading past the peak) is one.
-    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), String> {
+    fn event_indicators(&mut self, g: &mut [f64]) -> Result<(), PlantError> {
         let now = self.signed_indicators()?;
         for (armed, &value) in self.armed.iter_mut().zip(&now) {
             if *armed == 0.0 {
@@ -412,7 +476,7 @@ where
         Ok(())
     }
 
-    fn handle_events(&mut self) -> Result<Vec<String>, String> {
+    fn handle_events(&mut self) -> Result<Vec<String>, PlantError> {
         // Signed as the reference was: an indicator that is zero at the
         // state it was armed at (a crush element starting in contact at
         // zero force) has not crossed.
@@ -424,15 +488,14 @@ where
                 if p.event_direction(k).crosses(before, after)
                     && p.on_event(k, t, &mut y) == EventAction::Stop
                 {
-                    let fault = p.failure.take().map_or(String::new(), |f| f.to_string());
-                    return Err(format!("at t = {t:e} s: {fault}"));
+                    let fault = p.failure.take();
+                    return Err(PlantError::Fault { t, fault });
                 }
             }
             // The state after the events, back onto the model's
             // constraints (if it has any) that the integration between
             // events holds only up to the stabilization's drift.
-            p.project(t, &mut y)
-                .map_err(|fault| format!("at t = {t:e} s: {fault}"))?;
+            p.project(t, &mut y).map_err(PlantError::at(t))?;
             Ok(Self::descriptions(&p.events))
         })?;
         self.y = y;
@@ -440,7 +503,7 @@ where
         Ok(handled)
     }
 
-    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, String> {
+    fn advance(&mut self, t_end: f64) -> Result<Vec<String>, PlantError> {
         let (t, y) = (self.t, self.y);
         let (method, options) = (self.scenario.method, self.scenario.options);
         let (outcome, events) = self.with_problem(|p| {
@@ -448,16 +511,16 @@ where
             let failure = p.failure.take();
             (outcome.map(|o| (o, failure)), Self::descriptions(&p.events))
         });
-        let (outcome, failure) = outcome.map_err(|e| e.to_string())?;
+        let (outcome, failure) = outcome.map_err(PlantError::Solver)?;
         if let Some(fault) = failure {
-            return Err(format!("at t = {:e} s: {fault}", outcome.t));
+            return Err(PlantError::at(outcome.t)(fault));
         }
         self.t = outcome.t;
         self.y = outcome.y;
         Ok(events)
     }
 
-    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), String> {
+    fn get(&mut self, quantities: &[Quantity], out: &mut [f64]) -> Result<(), PlantError> {
         let derived = self.derived()?;
         for (value, &quantity) in out.iter_mut().zip(quantities) {
             *value = self.value(quantity, &derived);
@@ -465,17 +528,44 @@ where
         Ok(())
     }
 
-    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), String> {
+    fn set(&mut self, quantity: Quantity, value: f64) -> Result<(), PlantError> {
         match quantity {
             Quantity::Parameter(i) => {
                 let name = self.model.parameter_names()[i].to_string();
                 self.model
                     .set_parameter(&name, value)
-                    .map_err(|e| e.to_string())
+                    .map_err(PlantError::Model)
             }
-            Quantity::Input(i) => (self.set_input_constant(i, value))
-                .ok_or_else(|| format!("input {i} is not bound to a constant")),
-            other => Err(format!("{other:?} cannot be set")),
+            Quantity::Input(i) => {
+                (self.set_input_constant(i, value)).ok_or(PlantError::InputNotBound { input: i })
+            }
+            other => Err(PlantError::NotSettable { quantity: other }),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_error_reads_as_the_fmu_logs_it() {
+        let fault = Fault::NonFinite {
+            output: "f[x]".to_string(),
+            value: f64::NAN,
+            q: vec![0.0],
+            qd: vec![0.0],
+        };
+        let at = |fault| PlantError::Fault { t: 0.5, fault };
+        assert_eq!(at(Some(fault)).to_string(), "at t = 5e-1 s: f[x] is NaN");
+        assert_eq!(at(None).to_string(), "at t = 5e-1 s: ");
+        assert_eq!(
+            PlantError::InputNotBound { input: 2 }.to_string(),
+            "input 2 is not bound to a constant"
+        );
+        let crush = PlantError::NotSettable {
+            quantity: Quantity::Crush,
+        };
+        assert_eq!(crush.to_string(), "Crush cannot be set");
     }
 }

@@ -2,9 +2,9 @@
 //! `resources/scenario.toml`, from the `fmuResourceLocation` URI the host
 //! passes to `fmi2Instantiate`.
 
-use lagrangian_core::Compiled;
+use lagrangian_core::{Compiled, SpecErrors};
 use lagrangian_model::InterpretedModel;
-use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
+use lagrangian_sim::scenario::{ModelNames, Override, Scenario, ScenarioError};
 use std::path::{Path, PathBuf};
 
 /// The spec's file name in `resources/`.
@@ -12,12 +12,63 @@ pub const SPEC_FILE: &str = "model.lpm";
 /// The scenario's file name in `resources/`.
 pub const SCENARIO_FILE: &str = "scenario.toml";
 
+/// Why the resources cannot be loaded: a resource location that names no
+/// folder here ([`directory_of`]), a file that cannot be read, a spec that
+/// does not compile or a scenario that does not fit ([`load`]).
+#[derive(Debug, thiserror::Error)]
+pub enum ResourceError {
+    /// A location that is not a `file:` URI.
+    #[error("the resource location `{uri}` is not a file: URI")]
+    NotAFileUri {
+        /// The location.
+        uri: String,
+    },
+    /// A `file:` URI of another host.
+    #[error("the resource location `{uri}` names another host (`{host}`)")]
+    OtherHost {
+        /// The location.
+        uri: String,
+        /// The host it names.
+        host: String,
+    },
+    /// A `%XX` escape that is malformed or decodes to bytes that are not
+    /// UTF-8.
+    #[error("the resource location `{uri}` has a bad %-escape or is not UTF-8")]
+    BadEscape {
+        /// The location.
+        uri: String,
+    },
+    /// A file of the resources that cannot be read.
+    #[error("cannot read {}: {error}", .path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        error: std::io::Error,
+    },
+    /// The spec does not compile.
+    #[error("{}", .errors.render(.file, .text))]
+    Spec {
+        /// The spec's file, as its diagnostics name it.
+        file: String,
+        /// Its text, for the diagnostics' snippets.
+        text: String,
+        /// Its diagnostics.
+        errors: SpecErrors,
+    },
+    /// The scenario cannot be read or does not fit the spec.
+    #[error(transparent)]
+    Scenario(ScenarioError),
+}
+
 /// The folder a `file:` URI names: `file:///a/b`, `file://localhost/a/b`
 /// and `file:/a/b`, with `%XX` escapes decoded (a space is `%20`).
-pub fn directory_of(uri: &str) -> Result<PathBuf, String> {
+pub fn directory_of(uri: &str) -> Result<PathBuf, ResourceError> {
     let rest = uri
         .strip_prefix("file:")
-        .ok_or_else(|| format!("the resource location `{uri}` is not a file: URI"))?;
+        .ok_or_else(|| ResourceError::NotAFileUri {
+            uri: uri.to_string(),
+        })?;
     let path = match rest.strip_prefix("//") {
         Some(authority_and_path) => {
             let slash = authority_and_path
@@ -25,16 +76,17 @@ pub fn directory_of(uri: &str) -> Result<PathBuf, String> {
                 .unwrap_or(authority_and_path.len());
             let (authority, path) = authority_and_path.split_at(slash);
             if !(authority.is_empty() || authority.eq_ignore_ascii_case("localhost")) {
-                return Err(format!(
-                    "the resource location `{uri}` names another host (`{authority}`)"
-                ));
+                return Err(ResourceError::OtherHost {
+                    uri: uri.to_string(),
+                    host: authority.to_string(),
+                });
             }
             path
         }
         None => rest,
     };
-    let decoded = percent_decode(path).ok_or_else(|| {
-        format!("the resource location `{uri}` has a bad %-escape or is not UTF-8")
+    let decoded = percent_decode(path).ok_or_else(|| ResourceError::BadEscape {
+        uri: uri.to_string(),
     })?;
     Ok(PathBuf::from(decoded))
 }
@@ -102,23 +154,26 @@ pub struct Loaded {
 pub fn load_texts(
     (spec_file, spec): (&Path, &str),
     scenario: Option<(&Path, &str)>,
-) -> Result<Loaded, String> {
-    let file = spec_file.display().to_string();
-    let compiled = Compiled::from_source(spec).map_err(|e| e.render(&file, spec))?;
+) -> Result<Loaded, ResourceError> {
+    let compiled = Compiled::from_source(spec).map_err(|errors| ResourceError::Spec {
+        file: spec_file.display().to_string(),
+        text: spec.to_string(),
+        errors,
+    })?;
     let model = compiled.interpreted();
     let names = ModelNames::of_interpreted(&model);
     let resolve = |settings: &[Override]| match scenario {
         Some((path, text)) => Scenario::parse(text, Some(path), &names, settings),
         None => Scenario::defaults(&names, settings),
     };
-    let first = resolve(&[]).map_err(|e| e.to_string())?;
+    let first = resolve(&[]).map_err(ResourceError::Scenario)?;
     let unbound = crate::variables::unbound_inputs(&first);
     let constants: Vec<Override> = (unbound.iter())
         .map(|&i| Override::number(&model.input_names()[i], 0.0))
         .collect();
     let scenario_for_host = match constants.is_empty() {
         true => first,
-        false => resolve(&constants).map_err(|e| e.to_string())?,
+        false => resolve(&constants).map_err(ResourceError::Scenario)?,
     };
     let scenario_text = scenario.map_or("", |(_, text)| text);
     Ok(Loaded {
@@ -132,12 +187,13 @@ pub fn load_texts(
 
 /// Reads and loads `model.lpm` and `scenario.toml` (if there) of the
 /// resource folder `dir`.
-pub fn load(dir: &Path) -> Result<Loaded, String> {
+pub fn load(dir: &Path) -> Result<Loaded, ResourceError> {
     let read = |name: &str| {
         let path = dir.join(name);
-        std::fs::read_to_string(&path)
-            .map(|text| (path.clone(), text))
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+        match std::fs::read_to_string(&path) {
+            Ok(text) => Ok((path, text)),
+            Err(error) => Err(ResourceError::Read { path, error }),
+        }
     };
     let (spec_path, spec) = read(SPEC_FILE)?;
     let scenario = match dir.join(SCENARIO_FILE).exists() {
@@ -161,29 +217,30 @@ mod tests {
             ("file:///t%C3%A9st", "/tést"),
         ];
         for (uri, path) in cases {
-            assert_eq!(directory_of(uri), Ok(PathBuf::from(path)), "{uri}");
+            assert_eq!(directory_of(uri).unwrap(), PathBuf::from(path), "{uri}");
         }
     }
 
     #[test]
     fn bad_uris_are_errors_that_say_why() {
-        let remote = directory_of("file://server/share").unwrap_err();
-        assert!(remote.contains("another host"), "{remote}");
-        assert!(
-            directory_of("http://x/y")
-                .unwrap_err()
-                .contains("not a file: URI")
+        let message = |uri: &str| directory_of(uri).unwrap_err().to_string();
+        assert_eq!(
+            message("file://server/share"),
+            "the resource location `file://server/share` names another host (`server`)"
         );
-        assert!(
-            directory_of("file:///a%2")
-                .unwrap_err()
-                .contains("%-escape")
+        assert!(matches!(
+            directory_of("file://server/share"),
+            Err(ResourceError::OtherHost { host, .. }) if host == "server"
+        ));
+        assert_eq!(
+            message("http://x/y"),
+            "the resource location `http://x/y` is not a file: URI"
         );
-        assert!(
-            directory_of("file:///a%zz")
-                .unwrap_err()
-                .contains("%-escape")
+        assert_eq!(
+            message("file:///a%2"),
+            "the resource location `file:///a%2` has a bad %-escape or is not UTF-8"
         );
+        assert!(message("file:///a%zz").contains("%-escape"));
     }
 
     #[test]

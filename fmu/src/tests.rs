@@ -235,7 +235,7 @@ fn a_guid_of_another_export_is_refused() {
 }
 
 /// The variable names of the shipped spec `name` under its scenario.
-fn names(spec: &str, scenario: &str) -> Result<Vec<String>, String> {
+fn names(spec: &str, scenario: &str) -> Result<Vec<String>, Box<dyn std::error::Error>> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specs");
     let (spec_path, scenario_path) = (root.join(spec), root.join("scenarios").join(scenario));
     let spec = std::fs::read_to_string(&spec_path).unwrap();

@@ -134,6 +134,23 @@ pub struct Variables {
     pub dimension: usize,
 }
 
+/// Two FMU variables of one name ([`Variables::new`]): the name, and
+/// what each variable is the value of.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "two FMU variables would be called `{name}`: {} and {}; rename one of them",
+    origin(.first),
+    origin(.second)
+)]
+pub struct NameClash {
+    /// The name.
+    pub name: String,
+    /// The first variable of that name.
+    pub first: Quantity,
+    /// The second.
+    pub second: Quantity,
+}
+
 /// The inputs of `model` the scenario leaves unbound, in input order.
 pub fn unbound_inputs(scenario: &Scenario) -> Vec<usize> {
     (scenario.inputs.bindings.iter().enumerate())
@@ -149,7 +166,11 @@ impl Variables {
     ///
     /// Two variables of one name are an error that names them (see the
     /// module's notes on names).
-    pub fn new(model: &Model, scenario: &Scenario, unbound: &[usize]) -> Result<Variables, String> {
+    pub fn new(
+        model: &Model,
+        scenario: &Scenario,
+        unbound: &[usize],
+    ) -> Result<Variables, NameClash> {
         let mut list = states(model);
         list.extend(parameters(model, scenario));
         list.extend(unbound.iter().map(|&i| {
@@ -300,16 +321,15 @@ fn parameters<'a>(model: &'a Model, scenario: &'a Scenario) -> impl Iterator<Ite
 }
 
 /// `Err` naming the first two variables of `list` that share a name.
-fn unique(list: &[Variable]) -> Result<(), String> {
+fn unique(list: &[Variable]) -> Result<(), NameClash> {
     let Some((first, second)) = repeated_name(list) else {
         return Ok(());
     };
-    Err(format!(
-        "two FMU variables would be called `{}`: {} and {}; rename one of them",
-        list[first].name,
-        origin(&list[first]),
-        origin(&list[second])
-    ))
+    Err(NameClash {
+        name: list[first].name.clone(),
+        first: list[first].quantity,
+        second: list[second].quantity,
+    })
 }
 
 /// The positions of the first two variables of `list` that share a name.
@@ -322,8 +342,8 @@ fn repeated_name(list: &[Variable]) -> Option<(usize, usize)> {
 }
 
 /// Where a variable comes from, in words, for the clash message.
-fn origin(variable: &Variable) -> &'static str {
-    match variable.quantity {
+fn origin(quantity: &Quantity) -> &'static str {
+    match quantity {
         Quantity::Coordinate(_) => "the spec's coordinate",
         Quantity::Rate(_) | Quantity::Acceleration(_) => "the rate of a coordinate",
         Quantity::Parameter(_) => "the spec's parameter",
@@ -406,9 +426,14 @@ mod tests {
             variable("metrics.crush", super::Quantity::Crush),
             variable("metrics.crush", super::Quantity::Column(0)),
         ];
-        let message = super::unique(&list).unwrap_err();
+        let clash = super::unique(&list).unwrap_err();
+        assert_eq!(clash.name, "metrics.crush");
         assert_eq!(
-            message,
+            (clash.first, clash.second),
+            (super::Quantity::Crush, super::Quantity::Column(0))
+        );
+        assert_eq!(
+            clash.to_string(),
             "two FMU variables would be called `metrics.crush`: the scenario's crush signal \
              and a column of the scenario's components; rename one of them"
         );

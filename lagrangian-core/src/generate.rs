@@ -3,7 +3,7 @@
 //! them; a test regenerates them and fails when a committed file is stale.
 
 use crate::emit::{RustOptions, emit_file, render_markdown};
-use crate::{Compiled, audit};
+use crate::{Compiled, SpecErrors, audit};
 use quote::quote;
 use std::path::{Path, PathBuf};
 
@@ -14,6 +14,49 @@ pub struct GeneratedFile {
     pub path: PathBuf,
     /// Its full text.
     pub contents: String,
+}
+
+/// Why the generated files cannot be made.
+#[derive(Debug)]
+pub enum GenerateError {
+    /// The specs' folder or a spec cannot be read.
+    Read {
+        /// The folder, or the spec relative to the root (`specs/NAME.lpm`).
+        path: PathBuf,
+        /// Why.
+        error: std::io::Error,
+    },
+    /// A spec does not compile.
+    Spec {
+        /// The spec, relative to the root (`specs/NAME.lpm`).
+        file: String,
+        /// Its text, for the diagnostics' snippets.
+        text: String,
+        /// Its diagnostics.
+        errors: SpecErrors,
+    },
+}
+
+/// A read error as `cannot read PATH: WHY`; a spec's diagnostics rendered
+/// as `file:line:col` snippets ([`SpecErrors::render`]).
+impl std::fmt::Display for GenerateError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            GenerateError::Read { path, error } => {
+                write!(f, "cannot read {}: {error}", path.display())
+            }
+            GenerateError::Spec { file, text, errors } => f.write_str(&errors.render(file, text)),
+        }
+    }
+}
+
+impl std::error::Error for GenerateError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            GenerateError::Read { error, .. } => Some(error),
+            GenerateError::Spec { errors, .. } => Some(errors),
+        }
+    }
 }
 
 /// The runtime path the committed code uses (the `generated` crate depends
@@ -32,10 +75,12 @@ fn header(spec: &str) -> String {
 }
 
 /// The specs of `root/specs`, sorted: `(file stem, relative path)`.
-pub fn specs(root: &Path) -> Result<Vec<(String, String)>, String> {
+pub fn specs(root: &Path) -> Result<Vec<(String, String)>, GenerateError> {
     let dir = root.join("specs");
-    let entries =
-        std::fs::read_dir(&dir).map_err(|e| format!("cannot read {}: {e}", dir.display()))?;
+    let entries = std::fs::read_dir(&dir).map_err(|error| GenerateError::Read {
+        path: dir.clone(),
+        error,
+    })?;
     let mut specs: Vec<(String, String)> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "lpm"))
@@ -49,7 +94,7 @@ pub fn specs(root: &Path) -> Result<Vec<(String, String)>, String> {
 }
 
 /// Every generated file for the specs under `root`.
-pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
+pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, GenerateError> {
     let specs = specs(root)?;
     let mut files = Vec::new();
     let mut modules = String::from(
@@ -61,10 +106,21 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
          //! `generated/<spec>/` (the crate's lints are the workspace's).\n\n",
     );
     for (stem, relative) in &specs {
-        let source = std::fs::read_to_string(root.join(relative))
-            .map_err(|e| format!("cannot read {relative}: {e}"))?;
-        let mut compiled =
-            Compiled::from_source(&source).map_err(|e| e.render(relative, &source))?;
+        let source =
+            std::fs::read_to_string(root.join(relative)).map_err(|error| GenerateError::Read {
+                path: PathBuf::from(relative),
+                error,
+            })?;
+        let mut compiled = match Compiled::from_source(&source) {
+            Ok(compiled) => compiled,
+            Err(errors) => {
+                return Err(GenerateError::Spec {
+                    file: relative.clone(),
+                    text: source,
+                    errors,
+                });
+            }
+        };
         let equations = render_markdown(&mut compiled, relative);
         let audit = audit::audit(&mut compiled);
         files.push(GeneratedFile {
@@ -93,7 +149,7 @@ pub fn generate_all(root: &Path) -> Result<Vec<GeneratedFile>, String> {
 }
 
 /// The generated files whose committed contents differ (or are missing).
-pub fn stale(root: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn stale(root: &Path) -> Result<Vec<PathBuf>, GenerateError> {
     Ok(generate_all(root)?
         .into_iter()
         .filter(|f| {

@@ -78,18 +78,85 @@ impl Dimension {
     }
 
     /// Parses a unit such as `N*m/rad` or `m/s^2`.
-    pub fn parse(text: &str) -> Result<Dimension, String> {
+    pub fn parse(text: &str) -> Result<Dimension, UnitError> {
         let tokens = tokenize(text)?;
         let mut parser = Parser { tokens, at: 0 };
         let d = parser.product()?;
         match parser.tokens.get(parser.at) {
             None => Ok(d),
-            Some(t) => Err(format!("unexpected `{t}` in unit `{text}`")),
+            Some(t) => Err(UnitError::Unexpected {
+                token: t.clone(),
+                unit: text.to_string(),
+            }),
         }
     }
 }
 
-fn tokenize(text: &str) -> Result<Vec<String>, String> {
+/// Why a unit's text is no unit ([`Dimension::parse`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum UnitError {
+    /// A character no unit has (`unit` the whole text).
+    Character {
+        /// The character.
+        character: char,
+        /// The unit's text.
+        unit: String,
+    },
+    /// A token where the unit should have ended.
+    Unexpected {
+        /// The token.
+        token: String,
+        /// The unit's text.
+        unit: String,
+    },
+    /// A `^` followed by no integer (`found` what followed, empty at the
+    /// end).
+    Exponent {
+        /// What followed the `^`.
+        found: String,
+    },
+    /// An integer exponent too large for 64 bits.
+    ExponentRange(std::num::ParseIntError),
+    /// A `(` never closed.
+    MissingParenthesis,
+    /// A name that is no known unit.
+    Unknown {
+        /// The name.
+        name: String,
+    },
+    /// The text ended where a unit was expected.
+    Incomplete,
+    /// Exponents beyond exact 128-bit fractions.
+    Overflow,
+}
+
+impl fmt::Display for UnitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UnitError::Character { character, unit } => {
+                write!(f, "unexpected character `{character}` in unit `{unit}`")
+            }
+            UnitError::Unexpected { token, unit } => {
+                write!(f, "unexpected `{token}` in unit `{unit}`")
+            }
+            UnitError::Exponent { found } => {
+                write!(f, "expected an integer exponent, found `{found}`")
+            }
+            UnitError::ExponentRange(e) => write!(f, "{e}"),
+            UnitError::MissingParenthesis => f.write_str("missing `)` in unit"),
+            UnitError::Unknown { name } => write!(
+                f,
+                "unknown unit `{name}`; use kg, m, s, N, J, W, Pa, Hz or rad (values are SI)"
+            ),
+            UnitError::Incomplete => f.write_str("incomplete unit"),
+            UnitError::Overflow => f.write_str("unit exponents beyond exact 128-bit fractions"),
+        }
+    }
+}
+
+impl std::error::Error for UnitError {}
+
+fn tokenize(text: &str) -> Result<Vec<String>, UnitError> {
     let mut tokens = Vec::new();
     let mut chars = text.chars().peekable();
     while let Some(&c) = chars.peek() {
@@ -117,7 +184,10 @@ fn tokenize(text: &str) -> Result<Vec<String>, String> {
             });
             chars.next();
         } else {
-            return Err(format!("unexpected character `{c}` in unit `{text}`"));
+            return Err(UnitError::Character {
+                character: c,
+                unit: text.to_string(),
+            });
         }
     }
     Ok(tokens)
@@ -139,7 +209,7 @@ impl Parser {
         t
     }
 
-    fn product(&mut self) -> Result<Dimension, String> {
+    fn product(&mut self) -> Result<Dimension, UnitError> {
         let mut d = self.power()?;
         while let Some(op) = self
             .peek()
@@ -153,12 +223,12 @@ impl Parser {
             } else {
                 d.checked_div(rhs)
             }
-            .ok_or_else(overflow)?;
+            .ok_or(UnitError::Overflow)?;
         }
         Ok(d)
     }
 
-    fn power(&mut self) -> Result<Dimension, String> {
+    fn power(&mut self) -> Result<Dimension, UnitError> {
         let base = self.atom()?;
         if self.peek() != Some("^") {
             return Ok(base);
@@ -170,27 +240,26 @@ impl Parser {
         }
         let exponent = match self.next() {
             Some(n) if n.chars().all(|c| c.is_ascii_digit()) => {
-                n.parse::<i64>().map_err(|e| e.to_string())?
+                n.parse::<i64>().map_err(UnitError::ExponentRange)?
             }
             other => {
-                return Err(format!(
-                    "expected an integer exponent, found `{}`",
-                    other.unwrap_or_default()
-                ));
+                return Err(UnitError::Exponent {
+                    found: other.unwrap_or_default(),
+                });
             }
         };
         let exponent = if negative { -exponent } else { exponent };
         base.checked_pow(Rational::integer(exponent))
-            .ok_or_else(overflow)
+            .ok_or(UnitError::Overflow)
     }
 
-    fn atom(&mut self) -> Result<Dimension, String> {
+    fn atom(&mut self) -> Result<Dimension, UnitError> {
         match self.next().as_deref() {
             Some("(") => {
                 let d = self.product()?;
                 match self.next().as_deref() {
                     Some(")") => Ok(d),
-                    _ => Err("missing `)` in unit".to_string()),
+                    _ => Err(UnitError::MissingParenthesis),
                 }
             }
             Some("1") | Some("rad") => Ok(Dimension::NONE),
@@ -202,16 +271,12 @@ impl Parser {
             Some("W") => Ok(Dimension::POWER),
             Some("Pa") => Ok(dim(1, -1, -2)),
             Some("Hz") => Ok(dim(0, 0, -1)),
-            Some(other) => Err(format!(
-                "unknown unit `{other}`; use kg, m, s, N, J, W, Pa, Hz or rad (values are SI)"
-            )),
-            None => Err("incomplete unit".to_string()),
+            Some(other) => Err(UnitError::Unknown {
+                name: other.to_string(),
+            }),
+            None => Err(UnitError::Incomplete),
         }
     }
-}
-
-fn overflow() -> String {
-    "unit exponents beyond exact 128-bit fractions".to_string()
 }
 
 impl fmt::Display for Dimension {
@@ -263,23 +328,29 @@ mod tests {
             Dimension::parse("J*s").unwrap()
         );
         assert_eq!(Dimension::parse("(m/s)^2").unwrap(), dim(0, 2, -2));
-        assert!(
-            Dimension::parse("km")
-                .unwrap_err()
-                .contains("unknown unit `km`")
+        let km = Dimension::parse("km").unwrap_err();
+        assert_eq!(
+            km,
+            UnitError::Unknown {
+                name: "km".to_string()
+            }
         );
-        assert!(Dimension::parse("m^x").is_err());
+        assert!(km.to_string().contains("unknown unit `km`"), "{km}");
+        assert_eq!(
+            Dimension::parse("m^x"),
+            Err(UnitError::Exponent {
+                found: "x".to_string()
+            })
+        );
     }
 
     #[test]
     fn exponent_overflow_is_an_error_not_zero() {
         // ((m^i64::MAX)^i64::MAX)^4 ≈ m^(2^128) overflowed to m^0 = 1.
         let huge = format!("((m^{0})^{0})^4", i64::MAX);
-        assert!(
-            Dimension::parse(&huge)
-                .unwrap_err()
-                .contains("beyond exact")
-        );
+        let overflow = Dimension::parse(&huge).unwrap_err();
+        assert_eq!(overflow, UnitError::Overflow);
+        assert!(overflow.to_string().contains("beyond exact"), "{overflow}");
         let big = Dimension::LENGTH
             .checked_pow(Rational::new(i128::MAX, 1).unwrap())
             .unwrap();
@@ -292,6 +363,20 @@ mod tests {
             Dimension::ENERGY.checked_div(Dimension::FORCE),
             Some(Dimension::LENGTH)
         );
+    }
+
+    #[test]
+    fn each_error_says_what_is_wrong_in_the_unit() {
+        let message = |text: &str| Dimension::parse(text).unwrap_err().to_string();
+        assert_eq!(message("m%s"), "unexpected character `%` in unit `m%s`");
+        assert_eq!(message("m s"), "unexpected `s` in unit `m s`");
+        assert_eq!(message("m^"), "expected an integer exponent, found ``");
+        assert_eq!(
+            message("m^99999999999999999999"),
+            "number too large to fit in target type"
+        );
+        assert_eq!(message("(m/s"), "missing `)` in unit");
+        assert_eq!(message("m/"), "incomplete unit");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
-use lagrangian_core::generate::{generate_all, stale};
+use lagrangian_core::generate::{GenerateError, generate_all, stale};
 use lagrangian_sim::report::write_atomically;
 use std::path::PathBuf;
 
@@ -18,11 +18,10 @@ pub struct Args {
 }
 
 /// A failure of the generator: a spec's rendered diagnostics, or a file.
-fn failure(e: String) -> Failure {
-    if e.starts_with("error:") {
-        Failure::rendered(ExitStatus::Spec, e)
-    } else {
-        Failure::new(ExitStatus::Spec, e)
+fn failure(e: GenerateError) -> Failure {
+    match e {
+        GenerateError::Spec { .. } => Failure::rendered(ExitStatus::Spec, e.to_string()),
+        GenerateError::Read { .. } => Failure::new(ExitStatus::Spec, e.to_string()),
     }
 }
 

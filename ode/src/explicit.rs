@@ -104,7 +104,7 @@ impl<Y: OdeVector> ExplicitRk<Y> {
         options: &Options,
     ) -> Result<Self, SolverError<E>> {
         options.validate()?;
-        check(tableau).map_err(SolverError::InvalidOptions)?;
+        check(tableau)?;
         let fixed = match (options.fixed_step, tableau.error) {
             (Some(h), _) => Some(h),
             (None, Some(_)) => None,
@@ -226,7 +226,7 @@ impl<Y: OdeVector> ExplicitRk<Y> {
 const MAX_STAGES: usize = 16;
 
 /// `Err` unless the tableau's lists fit each other and [`MAX_STAGES`].
-fn check(tableau: &Tableau) -> Result<(), String> {
+fn check<E>(tableau: &Tableau) -> Result<(), SolverError<E>> {
     let s = tableau.stages();
     let rows_fit = tableau.a.iter().enumerate().all(|(i, row)| row.len() <= i);
     let weights = [Some(tableau.b), tableau.error].into_iter().flatten();
@@ -241,10 +241,10 @@ fn check(tableau: &Tableau) -> Result<(), String> {
     {
         Ok(())
     } else {
-        Err(format!(
+        Err(SolverError::InvalidOptions(format!(
             "the tableau of {} does not fit its {s} stages (at most {MAX_STAGES})",
             tableau.name
-        ))
+        )))
     }
 }
 
@@ -568,8 +568,8 @@ mod tests {
 
     #[test]
     fn a_tableau_that_does_not_fit_its_stages_is_refused() {
-        assert_eq!(check(&DOPRI5), Ok(()));
-        assert_eq!(check(&RK4), Ok(()));
+        assert_eq!(check::<()>(&DOPRI5), Ok(()));
+        assert_eq!(check::<()>(&RK4), Ok(()));
         // Row 1 reaches stage 1 itself: not explicit.
         let implicit_row = Tableau {
             name: "bad",
@@ -579,10 +579,12 @@ mod tests {
             ..RK4
         };
         assert_eq!(
-            check(&implicit_row),
-            Err("the tableau of bad does not fit its 2 stages (at most 16)".to_string())
+            check::<()>(&implicit_row),
+            Err(SolverError::InvalidOptions(
+                "the tableau of bad does not fit its 2 stages (at most 16)".to_string()
+            ))
         );
         let short_weights = Tableau { b: &[1.0], ..RK4 };
-        assert!(check(&short_weights).is_err());
+        assert!(check::<()>(&short_weights).is_err());
     }
 }

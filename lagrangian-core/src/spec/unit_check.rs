@@ -14,8 +14,8 @@ fn parse(unit: &Option<UnitText>, problems: &mut Vec<Diagnostic>) -> Option<Dime
     let unit = unit.as_ref()?;
     match Dimension::parse(&unit.text) {
         Ok(d) => Some(d),
-        Err(message) => {
-            problems.push(Diagnostic::new(unit.span, message));
+        Err(error) => {
+            problems.push(Diagnostic::new(unit.span, error.to_string()));
             None
         }
     }
