@@ -30,7 +30,13 @@ fn scenario<const N: usize, S: LagrangianSystem<N>>(model: &S, settings: &[&str]
         _ => text,
     };
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    Scenario::parse(&text, None, &ModelNames::of(model), &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap()
+    Scenario::parse(
+        &text,
+        None,
+        &ModelNames::of(model),
+        &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap()
 }
 
 /// Microseconds of each call of `f`, one per batch.

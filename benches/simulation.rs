@@ -86,7 +86,12 @@ fn peer_rows<S: LagrangianSystem<3> + Clone>(model: &S, scenario_path: &Path) {
     let names = ModelNames::of(model);
     let reference = {
         let settings = ["simulation.rtol=1e-13", "simulation.atol=1e-15"].map(String::from);
-        let scenario = Scenario::load(scenario_path, &names, &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+        let scenario = Scenario::load(
+            scenario_path,
+            &names,
+            &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+        )
+        .unwrap();
         let (mut problem, y0) = setup(model, &scenario);
         let options = Options {
             max_steps: 10_000_000,
@@ -114,7 +119,12 @@ fn peer_rows<S: LagrangianSystem<3> + Clone>(model: &S, scenario_path: &Path) {
             format!("simulation.rtol={rtol}"),
             format!("simulation.atol={}", rtol * 1e-2),
         ];
-        let scenario = Scenario::load(scenario_path, &names, &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+        let scenario = Scenario::load(
+            scenario_path,
+            &names,
+            &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+        )
+        .unwrap();
         let options = scenario.options;
         let (_, y0) = setup(model, &scenario);
         let mut ours = None;
@@ -225,8 +235,12 @@ fn main() {
                 format!("simulation.atol={}", rtol.parse::<f64>().unwrap() * 1e-2),
                 format!("simulation.output_interval={interval}"),
             ];
-            let scenario =
-                Scenario::load(&scenario_path, &ModelNames::of(&compiled), &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+            let scenario = Scenario::load(
+                &scenario_path,
+                &ModelNames::of(&compiled),
+                &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+            )
+            .unwrap();
             let samples = (0.15 / interval.parse::<f64>().unwrap()).round() as usize + 1;
             for (label, result) in [
                 ("compiled", time(&compiled, &scenario, 21)),
@@ -241,8 +255,12 @@ fn main() {
             format!("simulation.rtol={rtol}"),
             format!("simulation.atol={}", rtol.parse::<f64>().unwrap() * 1e-2),
         ];
-        let scenario =
-            Scenario::load(&scenario_path, &ModelNames::of(&compiled), &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+        let scenario = Scenario::load(
+            &scenario_path,
+            &ModelNames::of(&compiled),
+            &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+        )
+        .unwrap();
         let us = median_us(21, || {
             std::hint::black_box(simulate_summary(&compiled, &scenario).unwrap());
         });

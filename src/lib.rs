@@ -6,7 +6,7 @@
 //! generates a struct implementing [`LagrangianSystem`].
 //!
 //! The crate re-exports the macro (`lagrangian-macro`, which runs the
-//! compiler `lagrangian-core`), the model runtime (`lagrangian-model`: the
+//! compiler `lagrangian-core`), the model runtime (`lagrangian-runtime`: the
 //! trait, input functions, the interpreter) and, with the default feature
 //! `sim`, the crash-simulation library (`lagrangian-sim`: `scenario`,
 //! `simulate`, `ode`, `components`, `pulse`, `report`) and its studies
@@ -74,7 +74,7 @@
 #[cfg(feature = "compiler")]
 pub use lagrangian_core as compiler;
 pub use lagrangian_macro::lagrangian;
-pub use lagrangian_model::*;
+pub use lagrangian_runtime::*;
 /// The crash-simulation library (feature `sim`, on by default): scenarios,
 /// crash components, integration, pulse metrics, sweeps, fitting, plots.
 #[cfg(feature = "sim")]

@@ -42,7 +42,13 @@ fn run<const N: usize, S: LagrangianSystem<N> + Clone>(
 ) -> Result<SimulationResult, SimulationError> {
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
     let names = ModelNames::of(system);
-    let scenario = Scenario::parse(scenario, None, &names, &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+    let scenario = Scenario::parse(
+        scenario,
+        None,
+        &names,
+        &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap();
     simulate(system, &scenario)
 }
 

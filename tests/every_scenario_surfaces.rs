@@ -10,7 +10,7 @@ use lagrangian::scenario::{ModelNames, Scenario};
 use lagrangian::simulate::{SimulationResult, simulate};
 use lagrangian::{Interpreted, LagrangianSystem};
 use lagrangian_core::Compiled;
-use lagrangian_model::WithDimension;
+use lagrangian_runtime::WithDimension;
 use std::path::Path;
 
 mod models {
@@ -71,7 +71,7 @@ fn compare<const N: usize, M: LagrangianSystem<N> + Default + Clone>(spec: &str,
     let tape = compiled.interpreted();
     let mut native = tape.clone();
     lagrangian_jit::accelerate(&mut native).unwrap();
-    let run = |model: lagrangian_model::InterpretedModel| {
+    let run = |model: lagrangian_runtime::InterpretedModel| {
         model
             .with_dimension(Run {
                 scenario: &scenario,

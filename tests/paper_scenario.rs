@@ -21,7 +21,12 @@ fn interpreted() -> Interpreted<3> {
 
 fn run<S: LagrangianSystem<3> + Clone>(model: &S, settings: &[&str]) -> SimulationResult {
     let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
-    let scenario = Scenario::load(Path::new(SCENARIO), &ModelNames::of(model), &lagrangian::scenario::Override::parse_all(&settings).unwrap()).unwrap();
+    let scenario = Scenario::load(
+        Path::new(SCENARIO),
+        &ModelNames::of(model),
+        &lagrangian::scenario::Override::parse_all(&settings).unwrap(),
+    )
+    .unwrap();
     simulate(model, &scenario).unwrap()
 }
 

@@ -25,7 +25,7 @@ use crate::instance::{Instance, Interface};
 use crate::resources::{SCENARIO_FILE, SPEC_FILE};
 use crate::variables::first_paragraph;
 use archive::Entry;
-use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_runtime::{Interpreted, WithDimension};
 use lagrangian_sim::scenario::Scenario;
 use lagrangian_studies::error::StudyError;
 use std::path::{Path, PathBuf};

@@ -120,7 +120,7 @@ fn a_contact_that_begins_at_zero_force_is_engaged() {
 /// `lpm simulate`'s maximum crush and its components' dissipated energies
 /// at the end of the run, for the spec and scenario of `loaded`.
 fn simulated(loaded: &Loaded) -> (f64, Vec<(String, f64)>) {
-    use lagrangian_model::{Interpreted, WithDimension};
+    use lagrangian_runtime::{Interpreted, WithDimension};
     struct Run<'a>(&'a lagrangian_sim::scenario::Scenario);
     impl WithDimension for Run<'_> {
         type Output = (f64, Vec<(String, f64)>);
@@ -175,7 +175,7 @@ fn internal_states_are_continuous_states_of_model_exchange() {
 
 /// `lpm simulate`'s coordinates at the end of the run of `loaded`.
 fn simulated_end(loaded: &Loaded) -> Vec<f64> {
-    use lagrangian_model::{Interpreted, WithDimension};
+    use lagrangian_runtime::{Interpreted, WithDimension};
     struct Run<'a>(&'a lagrangian_sim::scenario::Scenario);
     impl WithDimension for Run<'_> {
         type Output = Vec<f64>;

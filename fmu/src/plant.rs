@@ -6,7 +6,7 @@
 //! it handles, and Co-Simulation's step with our integrator and events.
 
 use crate::variables::Quantity;
-use lagrangian_model::{
+use lagrangian_runtime::{
     Interpreted, InterpretedModel, LagrangianSystem, ModelError, WithDimension,
 };
 use lagrangian_sim::components::BoundInputs;

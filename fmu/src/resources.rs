@@ -3,7 +3,7 @@
 //! passes to `fmi2Instantiate`.
 
 use lagrangian_core::{Compiled, SpecErrors};
-use lagrangian_model::InterpretedModel;
+use lagrangian_runtime::InterpretedModel;
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario, ScenarioError};
 use std::path::{Path, PathBuf};
 

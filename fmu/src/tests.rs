@@ -6,7 +6,7 @@
 use crate::instance::{Instance, Interface, Mode};
 use crate::resources::{Loaded, load_texts};
 use crate::variables::{Causality, Quantity};
-use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_runtime::{Interpreted, WithDimension};
 use lagrangian_sim::simulate::simulate;
 use std::path::{Path, PathBuf};
 
@@ -42,7 +42,12 @@ fn reference_max_crush(settings: &[String]) -> f64 {
     let loaded = paper();
     let names = lagrangian_sim::scenario::ModelNames::of_interpreted(&loaded.model);
     let path = root().join("specs/scenarios/yaris_full_frontal.toml");
-    let scenario = lagrangian_sim::scenario::Scenario::load(&path, &names, &lagrangian_sim::scenario::Override::parse_all(settings).unwrap()).unwrap();
+    let scenario = lagrangian_sim::scenario::Scenario::load(
+        &path,
+        &names,
+        &lagrangian_sim::scenario::Override::parse_all(settings).unwrap(),
+    )
+    .unwrap();
     loaded.model.with_dimension(Run(&scenario)).unwrap()
 }
 

@@ -94,7 +94,7 @@ impl CarToCar {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
+impl ::lagrangian_runtime::LagrangianSystem<3> for CarToCar {
     fn model_name(&self) -> &str {
         "CarToCar"
     }
@@ -114,14 +114,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "ma" => self.ma = value,
             "mb" => self.mb = value,
             "mi" => self.mi = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -137,14 +137,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) {
         let ma = self.ma;
         let mb = self.mb;
@@ -170,13 +170,13 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         forcing[1] = x0 - x1;
         forcing[2] = x1;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let ma = self.ma;
         let mb = self.mb;
         let mi = self.mi;
@@ -188,7 +188,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         let xb_dot = qd[2];
         let x0 = inputs.value(0, &[xa - xi, xa_dot - xi_dot]);
         let x1 = inputs.value(3, &[xi - xb, xi_dot - xb_dot]);
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: (ma * (xa_dot * xa_dot) + mi * (xi_dot * xi_dot)
                 + mb * (xb_dot * xb_dot)) * 0.5,
             potential: 0.0,
@@ -198,14 +198,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) -> [f64; 2] {
         let ma = self.ma;
         let mb = self.mb;
@@ -232,15 +232,15 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         forcing[2] = x1;
         [0.0, x0 * (xi_dot - xa_dot) + x1 * (xb_dot - xi_dot)]
     }
-    fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn jacobians<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        out: &mut ::lagrangian_model::Jacobians<3>,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+        out: &mut ::lagrangian_runtime::Jacobians<3>,
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         let xa = q[0];
         let xi = q[1];
         let xb = q[2];
@@ -284,11 +284,11 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         out.mass_times_acceleration_q[(2, 2)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -303,12 +303,12 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
         out[2] = xi - xb;
         out[3] = xi_dot - xb_dot;
     }
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -333,16 +333,16 @@ impl ::lagrangian_model::LagrangianSystem<3> for CarToCar {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 3>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<3> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false, false],
             [false, true, false],
             [false, false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -62,7 +62,7 @@ impl DoublePendulum {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
+impl ::lagrangian_runtime::LagrangianSystem<2> for DoublePendulum {
     fn model_name(&self) -> &str {
         "DoublePendulum"
     }
@@ -82,7 +82,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m1" => self.m1 = value,
             "m2" => self.m2 = value,
@@ -91,7 +91,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -107,14 +107,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -136,13 +136,13 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
             * (m2 * (x0 * g + x4 * (l2 * (theta2_dot * theta2_dot))) + x0 * (m1 * g)));
         forcing[1] = m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x2 * g));
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m1 = self.m1;
         let m2 = self.m2;
         let l1 = self.l1;
@@ -156,7 +156,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         let (x1, x2) = theta1.sin_cos();
         let (x3, x4) = theta2.sin_cos();
         let x5 = m2 * l2;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: l1
                 * (theta1_dot
                     * (l1 * (x0 * theta1_dot * 0.5)
@@ -169,14 +169,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) -> [f64; 2] {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -199,20 +199,20 @@ impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum {
         forcing[1] = m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x2 * g));
         [0.0, 0.0]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
         out: &mut [f64],
     ) {}
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
         out: &mut [f64],
     ) {

@@ -84,7 +84,7 @@ impl ElasticPendulum {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
+impl ::lagrangian_runtime::LagrangianSystem<2> for ElasticPendulum {
     fn model_name(&self) -> &str {
         "ElasticPendulum"
     }
@@ -106,7 +106,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m" => self.m = value,
             "I" => self.I = value,
@@ -119,7 +119,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -132,14 +132,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         &[]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) {
         let m = self.m;
         let I_ = self.I;
@@ -170,13 +170,13 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
                 + (theta * (ks * x5 - x2) - m * g * x4))
             + ls * (theta * (x2 - ks * ls) - cs * (ls * theta_dot));
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m = self.m;
         let I_ = self.I;
         let l0 = self.l0;
@@ -200,7 +200,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         let x7 = x5 * x6;
         let x8 = c * x6;
         let x9 = ks * x5;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: (m * (x6 + x0 * x0 * x2) + I_ * x2) * 0.5,
             potential: x0
                 * (x0 * (0.5 * (k + x9)) + (theta.sin() * (m * g) - l0 * k - ls * x9))
@@ -211,14 +211,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) -> [f64; 2] {
         let m = self.m;
         let I_ = self.I;
@@ -256,26 +256,26 @@ impl ::lagrangian_model::LagrangianSystem<2> for ElasticPendulum {
             0.0,
         ]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
         out: &mut [f64],
     ) {}
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 2>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 2>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<2> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<2> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false],
             [false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -76,7 +76,7 @@ impl FourBarLinkage {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
+impl ::lagrangian_runtime::LagrangianSystem<3> for FourBarLinkage {
     fn model_name(&self) -> &str {
         "FourBarLinkage"
     }
@@ -98,7 +98,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "l0" => self.l0 = value,
             "l1" => self.l1 = value,
@@ -110,7 +110,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -126,14 +126,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         Self::CONSTRAINTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) {
         let l1 = self.l1;
         let l2 = self.l2;
@@ -165,13 +165,13 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         forcing[1] = 0.5 * (m2 * (l2 * (l1 * x4 * (theta1_dot * theta1_dot) - x3 * g)));
         forcing[2] = -(0.5 * (g * (l3 * m3) * theta3.cos()));
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let l1 = self.l1;
         let l2 = self.l2;
         let l3 = self.l3;
@@ -188,7 +188,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         let (x0, x1) = theta1.sin_cos();
         let (x2, x3) = theta2.sin_cos();
         let x4 = m2 * l2;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: l1
                 * (theta1_dot
                     * (l1 * (theta1_dot * (m1 * 0.16666666666666666 + m2 * 0.5))
@@ -205,14 +205,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) -> [f64; 2] {
         let l1 = self.l1;
         let l2 = self.l2;
@@ -245,19 +245,19 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
         forcing[2] = -(0.5 * (g * (l3 * m3) * theta3.cos()));
         [0.0, 0.0]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {}
-    fn constraints<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn constraints<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -299,16 +299,16 @@ impl ::lagrangian_model::LagrangianSystem<3> for FourBarLinkage {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 3>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<3> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, true, false],
             [true, true, false],
             [false, false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -97,7 +97,7 @@ impl Kamal1970 {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
+impl ::lagrangian_runtime::LagrangianSystem<2> for Kamal1970 {
     fn model_name(&self) -> &str {
         "Kamal1970"
     }
@@ -117,7 +117,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "mb" => self.mb = value,
             "me" => self.me = value,
@@ -125,7 +125,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
             "c_eb" => self.c_eb = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -141,14 +141,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) {
         let mb = self.mb;
         let me = self.me;
@@ -167,13 +167,13 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         forcing[0] = (xe - xb) * k_eb + ((xe_dot - xb_dot) * c_eb - x0);
         forcing[1] = k_eb * (xb - xe) + (c_eb * (xb_dot - xe_dot) - x1);
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let mb = self.mb;
         let me = self.me;
         let k_eb = self.k_eb;
@@ -185,7 +185,7 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         let x0 = inputs.value(3, &[xb, xb_dot]);
         let x1 = inputs.value(0, &[xe, xe_dot]);
         let x2 = xe_dot * xe_dot;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: (mb * (xb_dot * xb_dot) + me * x2) * 0.5,
             potential: k_eb * (xb * (xb * 0.5 - xe) + 0.5 * (xe * xe)),
             dissipation: c_eb * (xb_dot * (xb_dot * 0.5 - xe_dot) + x2 * 0.5),
@@ -194,14 +194,14 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 2>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 2>,
     ) -> [f64; 2] {
         let mb = self.mb;
         let me = self.me;
@@ -224,15 +224,15 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
             -(xb_dot * x0 + xe_dot * x1),
         ]
     }
-    fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn jacobians<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
-        out: &mut ::lagrangian_model::Jacobians<2>,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+        out: &mut ::lagrangian_runtime::Jacobians<2>,
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         let k_eb = self.k_eb;
         let c_eb = self.c_eb;
         let xb = q[0];
@@ -257,11 +257,11 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         out.mass_times_acceleration_q[(1, 1)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -274,12 +274,12 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
         out[2] = xb;
         out[3] = xb_dot;
     }
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 2>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -294,15 +294,15 @@ impl ::lagrangian_model::LagrangianSystem<2> for Kamal1970 {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 2, 2>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 2>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 2>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 2, 2>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 2>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 2>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<2> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<2> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false],
             [false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

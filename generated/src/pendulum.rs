@@ -47,7 +47,7 @@ impl Pendulum {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
+impl ::lagrangian_runtime::LagrangianSystem<1> for Pendulum {
     fn model_name(&self) -> &str {
         "Pendulum"
     }
@@ -67,7 +67,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m" => self.m = value,
             "l" => self.l = value,
@@ -75,7 +75,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
             "c" => self.c = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -88,14 +88,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         &[(0, 1)]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) {
         let m = self.m;
         let l = self.l;
@@ -107,13 +107,13 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         mass[(0, 0)] = m * (l * l);
         forcing[0] = x0 - m * l * g * theta.sin() - theta_dot * c;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m = self.m;
         let l = self.l;
         let g = self.g;
@@ -123,7 +123,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         let x0 = inputs.value(0, &[t]);
         let x1 = theta_dot * theta_dot;
         let x2 = c * x1;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: m * (l * l) * x1 * 0.5,
             potential: -(m * l * g * theta.cos()),
             dissipation: x2 * 0.5,
@@ -132,14 +132,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) -> [f64; 2] {
         let m = self.m;
         let l = self.l;
@@ -152,11 +152,11 @@ impl ::lagrangian_model::LagrangianSystem<1> for Pendulum {
         forcing[0] = x0 - m * l * g * theta.sin() - theta_dot * c;
         [c * (theta_dot * theta_dot), x0 * theta_dot]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
         out: &mut [f64],
     ) {

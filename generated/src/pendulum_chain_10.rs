@@ -151,7 +151,7 @@ impl PendulumChain10 {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
+impl ::lagrangian_runtime::LagrangianSystem<10> for PendulumChain10 {
     fn model_name(&self) -> &str {
         "PendulumChain10"
     }
@@ -175,7 +175,7 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m1" => self.m1 = value,
             "l1" => self.l1 = value,
@@ -200,7 +200,7 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -213,14 +213,14 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         &[]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 10, 10>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 10>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 10, 10>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 10>,
     ) {
         let m1 = self.m1;
         let l1 = self.l1;
@@ -526,13 +526,13 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                 * (x90 * (l1 * x36) + x44 * x73 + x51 * x75 + x57 * x77 + x62 * x79
                     + x66 * x81 + x69 * x83 + x71 * x85 + x72 * x87 - x34 * g));
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m1 = self.m1;
         let l1 = self.l1;
         let m2 = self.m2;
@@ -629,7 +629,7 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         let x62 = x61 + x15 * l7;
         let x63 = x62 + x17 * l8;
         let x64 = x63 + x19 * l9;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: l1
                 * (theta1_dot
                     * (l1 * (x0 * theta1_dot * 0.5)
@@ -725,14 +725,14 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 10, 10>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 10>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 10, 10>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 10>,
     ) -> [f64; 2] {
         let m1 = self.m1;
         let l1 = self.l1;
@@ -1039,11 +1039,11 @@ impl ::lagrangian_model::LagrangianSystem<10> for PendulumChain10 {
                     + x66 * x81 + x69 * x83 + x71 * x85 + x72 * x87 - x34 * g));
         [0.0, 0.0]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 10>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 10>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 10>,
         inputs: &I,
         out: &mut [f64],
     ) {}

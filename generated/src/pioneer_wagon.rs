@@ -189,7 +189,7 @@ impl PioneerWagon {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
+impl ::lagrangian_runtime::LagrangianSystem<7> for PioneerWagon {
     fn model_name(&self) -> &str {
         "PioneerWagon"
     }
@@ -209,7 +209,7 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m1" => self.m1 = value,
             "m2" => self.m2 = value,
@@ -220,7 +220,7 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
             "m7" => self.m7 = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -236,14 +236,14 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 7, 7>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 7>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 7, 7>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 7>,
     ) {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -330,13 +330,13 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         forcing[5] = tmp6 - tmp5;
         forcing[6] = -tmp6;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m1 = self.m1;
         let m2 = self.m2;
         let m3 = self.m3;
@@ -365,7 +365,7 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         let tmp4 = inputs.value(9, &[x5 - x4, x5_dot - x4_dot]);
         let tmp5 = inputs.value(12, &[x6 - x5, x6_dot - x5_dot]);
         let tmp6 = inputs.value(15, &[x7 - x6, x7_dot - x6_dot]);
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: (m1 * (x1_dot * x1_dot) + m2 * (x2_dot * x2_dot)
                 + m3 * (x3_dot * x3_dot) + m4 * (x4_dot * x4_dot)
                 + m5 * (x5_dot * x5_dot) + m6 * (x6_dot * x6_dot)
@@ -382,14 +382,14 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 7, 7>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 7>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 7, 7>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 7>,
     ) -> [f64; 2] {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -485,15 +485,15 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
                                 + (tmp6 * (x6_dot - x7_dot) - x1_dot * tmp1))))),
         ]
     }
-    fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn jacobians<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
-        out: &mut ::lagrangian_model::Jacobians<7>,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+        out: &mut ::lagrangian_runtime::Jacobians<7>,
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         let x1 = q[0];
         let x2 = q[1];
         let x3 = q[2];
@@ -683,11 +683,11 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         out.mass_times_acceleration_q[(6, 6)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -720,12 +720,12 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
         out[12] = x1;
         out[13] = x1_dot;
     }
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 7>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -765,12 +765,12 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 7, 7>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 7>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 7>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 7, 7>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 7>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 7>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<7> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<7> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false, false, false, false, false, false],
             [false, true, false, false, false, false, false],
             [false, false, true, false, false, false, false],
@@ -779,6 +779,6 @@ impl ::lagrangian_model::LagrangianSystem<7> for PioneerWagon {
             [false, false, false, false, false, true, false],
             [false, false, false, false, false, false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -50,7 +50,7 @@ impl SimplePendulum {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
+impl ::lagrangian_runtime::LagrangianSystem<1> for SimplePendulum {
     fn model_name(&self) -> &str {
         "SimplePendulum"
     }
@@ -70,7 +70,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m" => self.m = value,
             "l" => self.l = value,
@@ -78,7 +78,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -91,14 +91,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         &[]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) {
         let m = self.m;
         let l = self.l;
@@ -108,20 +108,20 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         mass[(0, 0)] = I_ + m * (l * l);
         forcing[0] = -(m * l * g * theta.sin());
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m = self.m;
         let l = self.l;
         let I_ = self.I;
         let g = self.g;
         let theta = q[0];
         let theta_dot = qd[0];
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: theta_dot * ((I_ + m * (l * l)) * theta_dot) * 0.5,
             potential: -(m * l * g * theta.cos()),
             dissipation: 0.0,
@@ -130,14 +130,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) -> [f64; 2] {
         let m = self.m;
         let l = self.l;
@@ -148,11 +148,11 @@ impl ::lagrangian_model::LagrangianSystem<1> for SimplePendulum {
         forcing[0] = -(m * l * g * theta.sin());
         [0.0, 0.0]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
         out: &mut [f64],
     ) {}

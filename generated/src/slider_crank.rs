@@ -73,7 +73,7 @@ impl SliderCrank {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
+impl ::lagrangian_runtime::LagrangianSystem<3> for SliderCrank {
     fn model_name(&self) -> &str {
         "SliderCrank"
     }
@@ -95,7 +95,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "r" => self.r = value,
             "l" => self.l = value,
@@ -106,7 +106,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
             "x_free" => self.x_free = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -122,14 +122,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         Self::CONSTRAINTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) {
         let r = self.r;
         let l = self.l;
@@ -160,13 +160,13 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         forcing[1] = -(0.5 * (x0 * x5 * (theta_dot * theta_dot)));
         forcing[2] = (x_free - x) * k;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let r = self.r;
         let l = self.l;
         let J = self.J;
@@ -183,7 +183,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         let (x0, x1) = theta.sin_cos();
         let (x2, x3) = phi.sin_cos();
         let x4 = x - x_free;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: m_rod
                 * (r
                     * (0.5
@@ -198,14 +198,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) -> [f64; 2] {
         let r = self.r;
         let l = self.l;
@@ -237,19 +237,19 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
         forcing[2] = (x_free - x) * k;
         [0.0, 0.0]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {}
-    fn constraints<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn constraints<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -284,16 +284,16 @@ impl ::lagrangian_model::LagrangianSystem<3> for SliderCrank {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 3>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<3> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, true, false],
             [true, true, false],
             [false, false, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -44,7 +44,7 @@ impl SpringMassDamper {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
+impl ::lagrangian_runtime::LagrangianSystem<1> for SpringMassDamper {
     fn model_name(&self) -> &str {
         "SpringMassDamper"
     }
@@ -64,14 +64,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m" => self.m = value,
             "k" => self.k = value,
             "c" => self.c = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -84,14 +84,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         &[(0, 1)]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) {
         let m = self.m;
         let k = self.k;
@@ -102,13 +102,13 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         mass[(0, 0)] = m;
         forcing[0] = x0 - x * k - x_dot * c;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m = self.m;
         let k = self.k;
         let c = self.c;
@@ -117,7 +117,7 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         let x0 = inputs.value(0, &[t]);
         let x1 = x_dot * x_dot;
         let x2 = c * x1;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: m * x1 * 0.5,
             potential: 0.5 * (k * (x * x)),
             dissipation: x2 * 0.5,
@@ -126,14 +126,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) -> [f64; 2] {
         let m = self.m;
         let k = self.k;
@@ -145,11 +145,11 @@ impl ::lagrangian_model::LagrangianSystem<1> for SpringMassDamper {
         forcing[0] = x0 - x * k - x_dot * c;
         [c * (x_dot * x_dot), x0 * x_dot]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
         out: &mut [f64],
     ) {

@@ -44,7 +44,7 @@ impl WallImpact {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
+impl ::lagrangian_runtime::LagrangianSystem<1> for WallImpact {
     fn model_name(&self) -> &str {
         "WallImpact"
     }
@@ -64,12 +64,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m" => self.m = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -85,14 +85,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) {
         let m = self.m;
         let x = q[0];
@@ -101,18 +101,18 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         mass[(0, 0)] = m;
         forcing[0] = -x0;
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m = self.m;
         let x = q[0];
         let x_dot = qd[0];
         let x0 = inputs.value(0, &[x, x_dot]);
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: m * (x_dot * x_dot) * 0.5,
             potential: 0.0,
             dissipation: 0.0,
@@ -121,14 +121,14 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 1, 1>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 1>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 1, 1>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 1>,
     ) -> [f64; 2] {
         let m = self.m;
         let x = q[0];
@@ -138,11 +138,11 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         forcing[0] = -x0;
         [0.0, -(x_dot * x0)]
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -151,12 +151,12 @@ impl ::lagrangian_model::LagrangianSystem<1> for WallImpact {
         out[0] = x;
         out[1] = x_dot;
     }
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 1>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 1>,
         inputs: &I,
         out: &mut [f64],
     ) {

@@ -175,7 +175,7 @@ impl YarisDoublePendulum {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
+impl ::lagrangian_runtime::LagrangianSystem<3> for YarisDoublePendulum {
     fn model_name(&self) -> &str {
         "YarisDoublePendulum"
     }
@@ -199,7 +199,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m1" => self.m1 = value,
             "m2" => self.m2 = value,
@@ -220,7 +220,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
             "g" => self.g = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -233,14 +233,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         &[(0, 2), (3, 1), (4, 1), (5, 1), (6, 1), (7, 2)]
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -326,13 +326,13 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
                     - c2 * (x27 + (x26 + x8 * theta1_dot))))
             - (x29 + theta2 * k_tor + theta2_dot * c_tor);
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m1 = self.m1;
         let m2 = self.m2;
         let l0 = self.l0;
@@ -384,7 +384,7 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         let x27 = theta2_dot * (theta2_dot * (c_tor + l2 * l2 * c2));
         let x28 = r_dot * r_dot;
         let x29 = theta1 * theta1;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: m2
                 * (l2
                     * (theta2_dot
@@ -422,14 +422,14 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 3>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 3>,
     ) -> [f64; 2] {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -535,15 +535,15 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
                 + (r_dot * (x28 + (x1 * x24 - x29)) + theta2_dot * (l2 * x38 - x39)),
         ]
     }
-    fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn jacobians<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
-        out: &mut ::lagrangian_model::Jacobians<3>,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+        out: &mut ::lagrangian_runtime::Jacobians<3>,
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         let m1 = self.m1;
         let m2 = self.m2;
         let l0 = self.l0;
@@ -659,11 +659,11 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
         out.mass_times_acceleration_q[(2, 2)] = m2 * (l2 * (x51 - x50));
         ::core::result::Result::Ok(())
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 3>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -683,16 +683,16 @@ impl ::lagrangian_model::LagrangianSystem<3> for YarisDoublePendulum {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 3, 3>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 3>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 3>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 3, 3>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 3>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 3>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<3> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<3> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false, true],
             [false, true, true],
             [true, true, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -215,7 +215,7 @@ impl YarisOccupant {
     clippy::pedantic,
     clippy::nursery
 )]
-impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
+impl ::lagrangian_runtime::LagrangianSystem<4> for YarisOccupant {
     fn model_name(&self) -> &str {
         "YarisOccupant"
     }
@@ -239,7 +239,7 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         &mut self,
         name: &str,
         value: f64,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         match name {
             "m1" => self.m1 = value,
             "m2" => self.m2 = value,
@@ -261,7 +261,7 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
             "mo" => self.mo = value,
             _ => {
                 return ::core::result::Result::Err(
-                    ::lagrangian_model::ModelError::unknown_parameter(
+                    ::lagrangian_runtime::ModelError::unknown_parameter(
                         name,
                         Self::PARAMETERS,
                     ),
@@ -277,14 +277,14 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         Self::OUTPUTS.to_vec()
     }
     #[inline]
-    fn mass_matrix_and_forcing<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_and_forcing<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 4, 4>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 4>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 4, 4>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 4>,
     ) {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -385,13 +385,13 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
             * (theta1_dot * (2.0 * (x2 * r_dot) + theta1_dot * (x3 * x10))
                 + x5 * (l2 * (theta2_dot * theta2_dot))) + (x34 + x35));
     }
-    fn energies<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn energies<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
-    ) -> ::lagrangian_model::Energies {
+    ) -> ::lagrangian_runtime::Energies {
         let m1 = self.m1;
         let m2 = self.m2;
         let l0 = self.l0;
@@ -451,7 +451,7 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         let x32 = (x1 * x4 - x2 * x3) * r_dot + x25 * 0.5;
         let x33 = r_dot * r_dot;
         let x34 = theta1 * theta1;
-        ::lagrangian_model::Energies {
+        ::lagrangian_runtime::Energies {
             kinetic: theta1_dot
                 * (x7
                     * (theta1_dot * (x7 * (x0 * 0.5) - m1 * l1)
@@ -491,14 +491,14 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         }
     }
     #[inline]
-    fn mass_matrix_forcing_and_powers<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn mass_matrix_forcing_and_powers<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
-        mass: &mut ::lagrangian_model::nalgebra::SMatrix<f64, 4, 4>,
-        forcing: &mut ::lagrangian_model::nalgebra::SVector<f64, 4>,
+        mass: &mut ::lagrangian_runtime::nalgebra::SMatrix<f64, 4, 4>,
+        forcing: &mut ::lagrangian_runtime::nalgebra::SVector<f64, 4>,
     ) -> [f64; 2] {
         let m1 = self.m1;
         let m2 = self.m2;
@@ -623,15 +623,15 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
                     + (theta2_dot * (l2 * (x5 * x24 - x40) - x41) - s_dot * x44)),
         ]
     }
-    fn jacobians<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn jacobians<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
-        out: &mut ::lagrangian_model::Jacobians<4>,
-    ) -> ::core::result::Result<(), ::lagrangian_model::ModelError> {
+        out: &mut ::lagrangian_runtime::Jacobians<4>,
+    ) -> ::core::result::Result<(), ::lagrangian_runtime::ModelError> {
         let m1 = self.m1;
         let m2 = self.m2;
         let l0 = self.l0;
@@ -788,11 +788,11 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         out.mass_times_acceleration_q[(3, 3)] = 0.0;
         ::core::result::Result::Ok(())
     }
-    fn input_arguments<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn input_arguments<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -815,12 +815,12 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
         out[10] = s;
         out[11] = s_dot;
     }
-    fn outputs<I: ::lagrangian_model::InputFunctions + ?Sized>(
+    fn outputs<I: ::lagrangian_runtime::InputFunctions + ?Sized>(
         &self,
         t: f64,
-        q: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-        qdd: &::lagrangian_model::nalgebra::SVector<f64, 4>,
+        q: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+        qdd: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
         inputs: &I,
         out: &mut [f64],
     ) {
@@ -853,17 +853,17 @@ impl ::lagrangian_model::LagrangianSystem<4> for YarisOccupant {
     #[inline]
     fn solve_mass(
         &self,
-        mass: &::lagrangian_model::nalgebra::SMatrix<f64, 4, 4>,
-        b: &::lagrangian_model::nalgebra::SVector<f64, 4>,
-    ) -> ::core::option::Option<::lagrangian_model::nalgebra::SVector<f64, 4>> {
+        mass: &::lagrangian_runtime::nalgebra::SMatrix<f64, 4, 4>,
+        b: &::lagrangian_runtime::nalgebra::SVector<f64, 4>,
+    ) -> ::core::option::Option<::lagrangian_runtime::nalgebra::SVector<f64, 4>> {
         /// Which entries of `M` can be nonzero (the others are zero by
         /// the equations).
-        const PATTERN: ::lagrangian_model::linalg::LdltPattern<4> = ::lagrangian_model::linalg::LdltPattern::from_mass([
+        const PATTERN: ::lagrangian_runtime::linalg::LdltPattern<4> = ::lagrangian_runtime::linalg::LdltPattern::from_mass([
             [true, false, true, true],
             [false, true, true, true],
             [true, true, true, true],
             [true, true, true, true],
         ]);
-        ::lagrangian_model::linalg::solve_with_pattern(mass, b, &PATTERN)
+        ::lagrangian_runtime::linalg::solve_with_pattern(mass, b, &PATTERN)
     }
 }

@@ -82,7 +82,7 @@ fn the_macro_expands_each_spec_to_its_committed_file() {
     for (stem, relative) in specs(root()).unwrap() {
         let path = format!("../{relative}");
         let expansion =
-            lagrangian_core::expand::expand(quote!(file = #path, runtime = ::lagrangian_model));
+            lagrangian_core::expand::expand(quote!(file = #path, runtime = ::lagrangian_runtime));
         let expanded: syn::File = syn::parse2(expansion).unwrap_or_else(|e| panic!("{stem}: {e}"));
         let committed =
             std::fs::read_to_string(root().join(format!("generated/src/{stem}.rs"))).unwrap();

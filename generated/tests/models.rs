@@ -2,8 +2,8 @@
 
 use lagrangian_generated::double_pendulum::DoublePendulum;
 use lagrangian_generated::yaris_double_pendulum::YarisDoublePendulum;
-use lagrangian_model::nalgebra::{Vector2, Vector3};
-use lagrangian_model::{LagrangianSystem, NoInputs};
+use lagrangian_runtime::nalgebra::{Vector2, Vector3};
+use lagrangian_runtime::{LagrangianSystem, NoInputs};
 
 #[test]
 fn double_pendulum_mass_matrix() {

@@ -23,10 +23,10 @@ use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module};
-use lagrangian_model::InterpretedModel;
-use lagrangian_model::layout::RoutineKind;
-use lagrangian_model::native::{InputCall, InputTrampoline, NativeRoutines};
-use lagrangian_model::tape::{DerivedRoutine, Tape, TapeRoutine};
+use lagrangian_runtime::InterpretedModel;
+use lagrangian_runtime::layout::RoutineKind;
+use lagrangian_runtime::native::{InputCall, InputTrampoline, NativeRoutines};
+use lagrangian_runtime::tape::{DerivedRoutine, Tape, TapeRoutine};
 use std::fmt;
 use std::sync::Arc;
 

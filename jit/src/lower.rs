@@ -5,7 +5,7 @@
 //! state are loaded once, where first read), keeps every temporary in an SSA
 //! value, never writes the file, and stores the routine's outputs to `out`.
 //! Input calls go through `trampoline(context, index, arguments, count)`
-//! (see `lagrangian_model::native`).
+//! (see `lagrangian_runtime::native`).
 //!
 //! Each tape instruction becomes the one IEEE operation it names, in the
 //! tape's order: Cranelift neither reassociates floating-point arithmetic
@@ -23,7 +23,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::{CallConv, TargetFrontendConfig};
 use cranelift_frontend::FunctionBuilder;
-use lagrangian_model::tape::{Instruction, RegisterLayout, TapeRoutine};
+use lagrangian_runtime::tape::{Instruction, RegisterLayout, TapeRoutine};
 
 /// The signature of a routine's function.
 pub(crate) fn routine_signature(pointer: Type, call_conv: CallConv) -> Signature {

@@ -2,7 +2,7 @@
 //! `extern "C"` function calling the same `f64` method the interpreter and
 //! the compiled models call, so the three agree bit for bit.
 
-use lagrangian_model::Func;
+use lagrangian_runtime::Func;
 
 /// A one-argument operation (`sin`, `cos`, `exp`, `ln`).
 pub(crate) type Unary = extern "C" fn(f64) -> f64;

@@ -8,10 +8,10 @@
 use lagrangian_core::random::Lcg;
 use lagrangian_generated as generated;
 use lagrangian_jit::{Options, accelerate, compile};
-use lagrangian_model::layout::RoutineKind;
-use lagrangian_model::nalgebra::{SMatrix, SVector};
-use lagrangian_model::tape::{DerivedRoutine, Instruction};
-use lagrangian_model::{Interpreted, InterpretedModel, Jacobians, LagrangianSystem};
+use lagrangian_runtime::layout::RoutineKind;
+use lagrangian_runtime::nalgebra::{SMatrix, SVector};
+use lagrangian_runtime::tape::{DerivedRoutine, Instruction};
+use lagrangian_runtime::{Interpreted, InterpretedModel, Jacobians, LagrangianSystem};
 use std::cell::Cell;
 use std::path::Path;
 use std::sync::Arc;

@@ -19,7 +19,7 @@ use crate::expr::ExprId;
 use crate::spec::{Constraint, Model, engine_diagnostic};
 
 /// `g`, `g_t`, `G` and `γ` of a model's constraints (all empty without
-/// constraints), in the order of [`lagrangian_model::layout::ConstraintLayout`].
+/// constraints), in the order of [`lagrangian_runtime::layout::ConstraintLayout`].
 #[derive(Clone, Debug, Default)]
 pub struct ConstraintTerms {
     /// `g_k(q, t)`, the residual of each constraint.

@@ -428,7 +428,7 @@ fn program_mass(model: &Model, program: &Program, values: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; routine.outputs.len()];
     program.run(routine, &ctx, &mut program.registers(), &mut out);
     let mut m = vec![0.0; n * n];
-    for (k, (i, j)) in lagrangian_model::layout::mass_entries(n).enumerate() {
+    for (k, (i, j)) in lagrangian_runtime::layout::mass_entries(n).enumerate() {
         m[i * n + j] = out[k];
         m[j * n + i] = out[k];
     }

@@ -303,7 +303,7 @@ impl std::fmt::Display for SpecErrors {
 
 impl std::error::Error for SpecErrors {}
 
-pub use lagrangian_model::names::closest;
+pub use lagrangian_runtime::names::closest;
 
 #[cfg(test)]
 mod tests {

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! lagrangian! { model Name; coordinates { … } … }            // inline spec
-//! lagrangian! { runtime = ::lagrangian_model; model Name; … } // custom runtime path
+//! lagrangian! { runtime = ::lagrangian_runtime; model Name; … } // custom runtime path
 //! lagrangian!(file = "specs/name.lpm")                        // spec file
 //! lagrangian!(file = "specs/name.lpm", runtime = crate)
 //! ```

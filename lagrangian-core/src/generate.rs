@@ -60,10 +60,10 @@ impl std::error::Error for GenerateError {
 }
 
 /// The runtime path the committed code uses (the `generated` crate depends
-/// on `lagrangian-model` directly).
+/// on `lagrangian-runtime` directly).
 pub fn runtime() -> RustOptions {
     RustOptions {
-        runtime: quote!(::lagrangian_model),
+        runtime: quote!(::lagrangian_runtime),
     }
 }
 

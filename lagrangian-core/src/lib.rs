@@ -33,7 +33,7 @@ pub use diagnostic::{Diagnostic, SpecErrors};
 pub use spec::Model;
 
 use derive::Derivation;
-use lagrangian_model::{InterpretedModel, ModelDescription};
+use lagrangian_runtime::{InterpretedModel, ModelDescription};
 use program::Program;
 
 /// A model with its derived equations and optimized program.

@@ -14,8 +14,8 @@ use crate::derive::Derivation;
 use crate::expr::{ExprId, Func, Node, Store, SymbolKind};
 use crate::program::{Op, Program, Reg, Routine, RoutineKind};
 use crate::rational::Rational;
-use lagrangian_model::functions::Elementary;
-use lagrangian_model::layout::mass_entries;
+use lagrangian_runtime::functions::Elementary;
+use lagrangian_runtime::layout::mass_entries;
 use rustc_hash::FxHashMap;
 
 mod from_graph;

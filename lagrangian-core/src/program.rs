@@ -137,7 +137,7 @@ impl Op {
     }
 }
 
-pub use lagrangian_model::layout::RoutineKind;
+pub use lagrangian_runtime::layout::RoutineKind;
 
 /// A group of outputs and the operations needed to compute them, in order.
 #[derive(Clone, Debug)]

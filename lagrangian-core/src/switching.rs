@@ -9,12 +9,12 @@
 //! across it. Both derivations have them: the canonical one
 //! ([`switching_functions`]) and the graph's ([`graph_switching_functions`]).
 //!
-//! [`RoutineKind::Switching`]: lagrangian_model::layout::RoutineKind::Switching
+//! [`RoutineKind::Switching`]: lagrangian_runtime::layout::RoutineKind::Switching
 
 use crate::derive::Derivation;
 use crate::expr::{ExprId, Func, Node, Store};
 use crate::graph::{Graph, GraphId, GraphNode};
-use lagrangian_model::functions::Switching;
+use lagrangian_runtime::functions::Switching;
 use rustc_hash::FxHashSet;
 
 /// The distinct switching functions of the dynamics (`M` and `f`), in the

@@ -4,7 +4,7 @@
 //! program's order (so the tape computes bit for bit what the program does).
 
 use crate::program::{Op, Program, Reg};
-use lagrangian_model::tape::{Instruction, RegisterLayout, Tape, TapeRoutine};
+use lagrangian_runtime::tape::{Instruction, RegisterLayout, Tape, TapeRoutine};
 
 /// The tape of `program`, a model with `parameters` parameters.
 pub fn lower(program: &Program, parameters: usize) -> Tape {
@@ -128,7 +128,7 @@ mod tests {
     use super::*;
     use crate::Compiled;
     use crate::program::EvalContext;
-    use lagrangian_model::layout::RoutineKind;
+    use lagrangian_runtime::layout::RoutineKind;
 
     /// Inputs whose values depend on every argument, so wiring mistakes show.
     fn wiggly(index: usize, args: &[f64]) -> f64 {

@@ -185,7 +185,7 @@ fn expected(
     };
     let mut both = vec![0.0; routine.outputs.len()];
     program.run(routine, &ctx, &mut program.registers(), &mut both);
-    let powers = lagrangian_model::layout::unpack_dynamics(&both, n, &mut mass, &mut forcing);
+    let powers = lagrangian_runtime::layout::unpack_dynamics(&both, n, &mut mass, &mut forcing);
     out.extend(mass.iter().chain(&forcing).chain(powers));
     if model.has_jacobians() {
         let mut blocks = vec![0.0; 3 * n * n];

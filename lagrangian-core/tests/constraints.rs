@@ -3,8 +3,8 @@
 //! coordinates worked out by hand.
 
 use lagrangian_core::Compiled;
-use lagrangian_model::NoInputs;
-use lagrangian_model::layout::ConstraintLayout;
+use lagrangian_runtime::NoInputs;
+use lagrangian_runtime::layout::ConstraintLayout;
 
 /// A point mass in the plane held at distance `l` from the origin.
 const PENDULUM: &str = "model CartesianPendulum;

@@ -2,7 +2,7 @@
 //! samples states inside every function's domain, and says when it cannot.
 
 use lagrangian_core::Compiled;
-use lagrangian_model::NoInputs;
+use lagrangian_runtime::NoInputs;
 
 /// A point mass in a plane with a flywheel turned through the angle
 /// `th = acos(y / r)`: defined for |y| ≤ r only, where the first sample

@@ -2,7 +2,7 @@
 //! place), and values against a pendulum worked out by hand.
 
 use lagrangian_core::Compiled;
-use lagrangian_model::NoInputs;
+use lagrangian_runtime::NoInputs;
 
 /// A point-mass pendulum on a rod of length `l`.
 const PENDULUM: &str = "model Pendulum;

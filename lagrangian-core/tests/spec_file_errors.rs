@@ -70,13 +70,13 @@ fn the_macro_expansion_of_a_bad_file_is_a_located_compile_error() {
 fn the_macro_expansion_of_a_good_file_tracks_it_for_rebuilds() {
     let out = lagrangian_core::expand::expand(quote!(
         file = "../specs/double_pendulum.lpm",
-        runtime = ::lagrangian_model
+        runtime = ::lagrangian_runtime
     ))
     .to_string();
     assert!(out.contains("include_str"), "{out}");
     assert!(out.contains("double_pendulum.lpm"), "{out}");
     assert!(
-        out.contains(":: lagrangian_model :: LagrangianSystem < 2 > for DoublePendulum"),
+        out.contains(":: lagrangian_runtime :: LagrangianSystem < 2 > for DoublePendulum"),
         "{out}"
     );
 }

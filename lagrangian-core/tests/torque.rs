@@ -1,7 +1,7 @@
 //! `torque (φ) = T;` is the generalized force of a torque about the angle
 //! φ(q): `Q_i = T ∂φ/∂q_i`, by virtual work.
 
-use lagrangian_model::NoInputs;
+use lagrangian_runtime::NoInputs;
 
 const DOUBLE: &str = "model Double;
 coordinates { theta1 [rad], theta2 [rad] }

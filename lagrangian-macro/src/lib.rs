@@ -10,7 +10,7 @@ use proc_macro::TokenStream;
 /// ```text
 /// lagrangian! { model Name; coordinates { … } parameters { … } kinetic = …; … }
 /// lagrangian!(file = "specs/name.lpm")            // relative to CARGO_MANIFEST_DIR
-/// lagrangian!(file = "…", runtime = ::lagrangian_model)
+/// lagrangian!(file = "…", runtime = ::lagrangian_runtime)
 /// ```
 #[proc_macro]
 pub fn lagrangian(input: TokenStream) -> TokenStream {

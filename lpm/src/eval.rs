@@ -3,7 +3,7 @@
 //! text ([`lagrangian_studies::eval`] evaluates them).
 
 use crate::failure::{Failure, Outcome};
-use lagrangian_model::InterpretedModel;
+use lagrangian_runtime::InterpretedModel;
 use lagrangian_sim::scenario::Override;
 use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::simulate::constrained::DEFAULT_STABILIZATION;

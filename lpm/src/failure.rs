@@ -74,7 +74,7 @@ impl Failure {
     }
 
     /// A model the interpreter cannot run as it is (too many coordinates).
-    pub fn model(e: lagrangian_model::ModelError) -> Failure {
+    pub fn model(e: lagrangian_runtime::ModelError) -> Failure {
         Failure::usage(e.to_string())
     }
 

@@ -3,8 +3,8 @@
 
 use crate::failure::{Failure, Outcome};
 use lagrangian_core::{Compiled, Model};
-use lagrangian_model::names::closest;
-use lagrangian_model::{Interpreted, WithDimension};
+use lagrangian_runtime::names::closest;
+use lagrangian_runtime::{Interpreted, WithDimension};
 use lagrangian_sim::linearize::{
     At, Linearization, LinearizeError, json, linearize, markdown, projection_note,
 };

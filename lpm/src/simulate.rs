@@ -2,8 +2,8 @@
 
 use crate::failure::{Failure, Outcome};
 use lagrangian_sim::ode::Method;
-use lagrangian_sim::scenario::Override;
 use lagrangian_sim::report::text_summary;
+use lagrangian_sim::scenario::Override;
 use lagrangian_studies::simulate::{simulate_spec, write_outputs};
 use lagrangian_studies::spec::out_dir;
 use std::path::PathBuf;

@@ -37,12 +37,12 @@ fn derive_latex_and_rust() {
         "--format",
         "rust",
         "--runtime",
-        "::lagrangian_model",
+        "::lagrangian_runtime",
     ]));
     assert!(rust.starts_with("// @generated"), "{rust}");
     syn::parse_file(&rust).expect("generated Rust parses");
     assert!(
-        rust.contains("impl ::lagrangian_model::LagrangianSystem<2> for DoublePendulum"),
+        rust.contains("impl ::lagrangian_runtime::LagrangianSystem<2> for DoublePendulum"),
         "{rust}"
     );
     let c = stdout(&lpm(&[

@@ -178,14 +178,22 @@ fn an_unconstrained_spec_reports_its_accelerations_and_no_constraints() {
 /// 2e-11, are 4e-13 of `q̈`).
 #[test]
 fn the_solve_of_eval_is_the_first_samples_in_full_precision() {
-    use lagrangian_model::{ConstantInputs, Interpreted};
+    use lagrangian_runtime::{ConstantInputs, Interpreted};
     use lagrangian_sim::scenario::{ModelNames, Scenario};
     let root = std::path::Path::new(common::ROOT);
     let spec = std::fs::read_to_string(root.join("specs/four_bar_linkage.lpm")).unwrap();
     let model = lagrangian_core::interpret(&spec).unwrap();
     let names = ModelNames::of_interpreted(&model);
     let file = root.join("specs/scenarios/four_bar_linkage.toml");
-    let scenario = Scenario::load(&file, &names, &[lagrangian_sim::scenario::Override::number("simulation.t_end", 0.01)]).unwrap();
+    let scenario = Scenario::load(
+        &file,
+        &names,
+        &[lagrangian_sim::scenario::Override::number(
+            "simulation.t_end",
+            0.01,
+        )],
+    )
+    .unwrap();
     let system = Interpreted::<3>::new(model.clone()).unwrap();
     let result = lagrangian_sim::simulate::simulate(&system, &scenario).unwrap();
     let first = &result.samples[0];

@@ -8,7 +8,7 @@
 
 use lagrangian_core::Compiled;
 use lagrangian_core::emit::{Notation, render_equations, render_markdown};
-use lagrangian_model::{Energies, InputFunctions, InterpretedModel};
+use lagrangian_runtime::{Energies, InputFunctions, InterpretedModel};
 use lagrangian_sim::scenario::Override;
 use lagrangian_studies::error::StudyError;
 use lagrangian_studies::mass::State;

@@ -3,7 +3,7 @@
 //! among the model's (with a suggestion for a typo), and how a number is
 //! written in a message. Below both, so that neither reaches the other.
 
-use lagrangian_model::names::closest;
+use lagrangian_runtime::names::closest;
 use std::fmt;
 
 /// Where an entry sits in a scenario document: its dotted key, one part

@@ -15,7 +15,7 @@
 //! Sweeps, fits and plots of these runs are the `lagrangian-studies` crate's.
 //!
 //! ```no_run
-//! use lagrangian_model::LagrangianSystem;
+//! use lagrangian_runtime::LagrangianSystem;
 //! use lagrangian_sim::scenario::{ModelNames, Scenario};
 //! use lagrangian_sim::simulate::simulate;
 //!

@@ -2,8 +2,8 @@
 //! coordinates, parameters, inputs, outputs and constraints, with what is
 //! known of their units and arguments.
 
-use lagrangian_model::tape::StateReads;
-use lagrangian_model::{InterpretedModel, LagrangianSystem};
+use lagrangian_runtime::tape::StateReads;
+use lagrangian_runtime::{InterpretedModel, LagrangianSystem};
 
 /// The names a scenario is resolved against.
 #[derive(Clone, Debug, Default)]

@@ -3,7 +3,9 @@
 //! a half-written file.
 
 use crate::simulate::SimulationResult;
-use lagrangian_model::names::{ENERGY_COLUMNS, TIME_COLUMN, acceleration_column, velocity_column};
+use lagrangian_runtime::names::{
+    ENERGY_COLUMNS, TIME_COLUMN, acceleration_column, velocity_column,
+};
 use std::fmt::Write as _;
 use std::io::{self, Write as _};
 use std::path::Path;

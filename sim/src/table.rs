@@ -244,7 +244,7 @@ impl Table {
                 file: self.file.clone(),
                 column: name.to_string(),
                 available: self.headers.clone(),
-                suggestion: lagrangian_model::names::closest(
+                suggestion: lagrangian_runtime::names::closest(
                     name,
                     self.headers.iter().map(|h| bare(h)),
                 )

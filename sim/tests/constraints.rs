@@ -6,9 +6,9 @@
 //! of the solve written out here as it was. (Those of a sweep:
 //! lagrangian-studies' `tests/constraints_sweep.rs`.)
 
-use lagrangian_model::constrained::{Baumgarte, ConstraintValues};
-use lagrangian_model::linalg::Ldlt;
-use lagrangian_model::{Interpreted, LagrangianSystem};
+use lagrangian_runtime::constrained::{Baumgarte, ConstraintValues};
+use lagrangian_runtime::linalg::Ldlt;
+use lagrangian_runtime::{Interpreted, LagrangianSystem};
 use lagrangian_sim::linearize::{At, ModeKind, linearize, markdown};
 use lagrangian_sim::ode::{OdeProblem, PhaseState};
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
@@ -274,7 +274,7 @@ fn solve_as_before<const N: usize>(
         }
         rhs[k] = gamma[k] - dot(g, free.as_slice());
     }
-    let lambda = lagrangian_model::constrained::solve_positive_definite(&schur, m, &rhs).unwrap();
+    let lambda = lagrangian_runtime::constrained::solve_positive_definite(&schur, m, &rhs).unwrap();
     let mut qdd = free;
     for (row, l) in rows.iter().zip(&lambda) {
         qdd += row * *l;

@@ -4,7 +4,7 @@
 //! spring–mass gives, and no step straddles a kink; without it the steps
 //! cross them, with rejections. Either way the force is the curve's.
 
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 use lagrangian_sim::components::Events;
 use lagrangian_sim::components::crush::{CrushElement, LoadingCurve, Unloading};
 use lagrangian_sim::curve::{ForceCurve, Outside, SecantCurve};

@@ -33,7 +33,7 @@
 //! against DOPRI5 at rtol 1e-8): peak wall force, contact duration, main
 //! impact and the peak decelerations agree within 1 %.
 
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 use std::path::Path;

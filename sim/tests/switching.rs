@@ -1,7 +1,7 @@
 //! A model with a non-smooth function: its switching functions are located
 //! as events, so no step straddles a kink.
 
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
 use lagrangian_sim::simulate::simulate;
 
@@ -30,7 +30,7 @@ fn on_the_graph_path_the_contact_switches_at_the_same_times() {
     switches_at_the_analytic_times(compiled.interpreted());
 }
 
-fn switches_at_the_analytic_times(model: lagrangian_model::InterpretedModel) {
+fn switches_at_the_analytic_times(model: lagrangian_runtime::InterpretedModel) {
     assert_eq!(model.switching_count(), 1);
     let names = ModelNames::of_interpreted(&model);
     let system = Interpreted::<1>::new(model).unwrap();

@@ -4,7 +4,7 @@
 //! occupant against Newton's law for the occupant, the two cars against
 //! the conservation of momentum and energy.
 
-use lagrangian_model::{Interpreted, LagrangianSystem};
+use lagrangian_runtime::{Interpreted, LagrangianSystem};
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 use std::path::Path;

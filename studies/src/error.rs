@@ -88,7 +88,7 @@ impl StudyError {
     }
 
     /// A model the interpreter cannot run as it is (too many coordinates).
-    pub fn model(e: lagrangian_model::ModelError) -> StudyError {
+    pub fn model(e: lagrangian_runtime::ModelError) -> StudyError {
         StudyError::usage(e.to_string())
     }
 

@@ -13,9 +13,9 @@
 
 use crate::error::StudyError;
 use crate::mass;
-use lagrangian_model::constrained::Baumgarte;
-use lagrangian_model::nalgebra::{SMatrix, SVector};
-use lagrangian_model::{
+use lagrangian_runtime::constrained::Baumgarte;
+use lagrangian_runtime::nalgebra::{SMatrix, SVector};
+use lagrangian_runtime::{
     ConstantInputs, InputFunctions, Interpreted, InterpretedModel, LagrangianSystem, NoInputs,
     WithDimension,
 };
@@ -233,7 +233,10 @@ pub fn apply_settings(
     let mut inputs = vec![None; names.inputs.len()];
     let mut set = Vec::new();
     for setting in settings {
-        match setting.setting(&names).map_err(|e| StudyError::usage(e.to_string()))? {
+        match setting
+            .setting(&names)
+            .map_err(|e| StudyError::usage(e.to_string()))?
+        {
             Setting::Parameter { name, value } => {
                 model
                     .set_parameter(&name, value)

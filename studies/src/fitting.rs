@@ -6,7 +6,7 @@ use crate::error::StudyError;
 use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
 use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};

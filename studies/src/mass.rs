@@ -5,8 +5,8 @@
 //! `M` positive definite again is named (else the set parameters together,
 //! when their defaults do).
 
-use lagrangian_model::nalgebra::DMatrix;
-use lagrangian_model::{ConstantInputs, InterpretedModel};
+use lagrangian_runtime::nalgebra::DMatrix;
+use lagrangian_runtime::{ConstantInputs, InterpretedModel};
 
 /// A state: time, coordinates, velocities.
 pub type State<'a> = (f64, &'a [f64], &'a [f64]);

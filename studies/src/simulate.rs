@@ -5,7 +5,7 @@ use crate::error::StudyError;
 use crate::plot::{PlotSetup, figure_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_core::Compiled;
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
 use lagrangian_sim::report::{Units, summary_json, trajectory_csv, write_all_atomically};
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario};

@@ -3,7 +3,7 @@
 
 use crate::error::StudyError;
 use lagrangian_core::Compiled;
-use lagrangian_model::InterpretedModel;
+use lagrangian_runtime::InterpretedModel;
 use lagrangian_sim::scenario::scenarios_for;
 use std::path::{Path, PathBuf};
 

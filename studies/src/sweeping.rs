@@ -13,7 +13,7 @@ use crate::sweep::{
     ShardError, SweepJob, journal_path, merged_rows, read_groups, run_scenario,
     shard_from_environment, stream_envelope, stream_sweep, write_csv, write_parquet,
 };
-use lagrangian_model::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, spec_named_by};
 use std::io::Write as _;

@@ -1,7 +1,7 @@
 //! A sweep of a constrained model (the four-bar): its table has the
 //! constraint channels' extremes per run, those of the runs made one by one.
 
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 use lagrangian_sim::scenario::ModelNames;
 use lagrangian_sim::simulate::simulate;
 
@@ -36,7 +36,10 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
         text,
         file: None,
         names,
-        settings: vec![lagrangian_sim::scenario::Override::number("simulation.t_end", 0.2)],
+        settings: vec![lagrangian_sim::scenario::Override::number(
+            "simulation.t_end",
+            0.2,
+        )],
     };
     let plan = Plan::grid(&["m2=1.5,2.5".to_string()]).unwrap();
     let settings = Settings::new(&plan, &base, &defaults).unwrap();

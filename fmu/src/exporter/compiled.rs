@@ -48,14 +48,14 @@ fn source_tree(given: Option<&Path>) -> Result<PathBuf, StudyError> {
         (None, None) => (built_in, "the tree lpm was built from"),
     };
     let holds = |crate_dir: &str| dir.join(crate_dir).join("Cargo.toml").is_file();
-    if holds("fmu") && holds("model") {
+    if holds("fmu") && holds("runtime") {
         // Canonical: the generated manifest names the crates by a plain
         // path (`tree/fmu`, not `tree/lpm/../fmu`).
         return Ok(dir.canonicalize().unwrap_or(dir));
     }
     Err(StudyError::usage(format!(
         "--compiled builds against the lagrangian source tree, and {} ({whence}) is not one \
-         (no fmu/Cargo.toml and model/Cargo.toml): name it with --source DIR or {SOURCE_VARIABLE}",
+         (no fmu/Cargo.toml and runtime/Cargo.toml): name it with --source DIR or {SOURCE_VARIABLE}",
         dir.display()
     )))
 }
@@ -128,10 +128,10 @@ fn manifest(name: &str, source: &Path) -> String {
          [lib]\ncrate-type = [\"cdylib\"]\n\n\
          [dependencies]\n\
          lagrangian-fmi = {{ path = {} }}\n\
-         lagrangian-model = {{ path = {}, default-features = false, features = [\"nalgebra\"] }}\n\n\
+         lagrangian-runtime = {{ path = {}, default-features = false, features = [\"nalgebra\"] }}\n\n\
          # Not a member of the source tree's workspace.\n[workspace]\n",
         path("fmu"),
-        path("model"),
+        path("runtime"),
     )
 }
 

@@ -8,9 +8,9 @@
 //! schedule's tree exactly (the same operations on the same operands, in the
 //! same order). Where the outputs go is the backend's routine template's
 //! business: it places each output by its [`OutputSlot`]
-//! (`lagrangian_model::layout`).
+//! (`lagrangian_runtime::layout`).
 //!
-//! [`OutputSlot`]: lagrangian_model::layout::OutputSlot
+//! [`OutputSlot`]: lagrangian_runtime::layout::OutputSlot
 
 use super::schedule::{BinaryOp, Expression, Function, Load, Schedule, Statement};
 use crate::expr::{Func, Precedence};

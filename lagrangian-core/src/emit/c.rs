@@ -86,7 +86,7 @@ use super::schedule::{BinaryOp, Function, Load, Schedule, schedule};
 use crate::Compiled;
 use crate::expr::{Func, Precedence};
 use crate::program::{Op, RoutineKind};
-use lagrangian_model::layout::{JacobianBlock, OutputSlot};
+use lagrangian_runtime::layout::{JacobianBlock, OutputSlot};
 use std::fmt::Write;
 
 /// How the C code is named.

@@ -15,7 +15,7 @@ use crate::Compiled;
 use crate::expr::{Func, Precedence};
 use crate::program::RoutineKind;
 use crate::spec::Model;
-use lagrangian_model::layout::{Energy, OutputSlot};
+use lagrangian_runtime::layout::{Energy, OutputSlot};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, quote};
 
@@ -23,7 +23,7 @@ use quote::{ToTokens, quote};
 #[derive(Clone, Debug)]
 pub struct RustOptions {
     /// Path of the runtime crate (`::lagrangian` for users of the umbrella
-    /// crate, `::lagrangian_model` or `crate` inside the workspace).
+    /// crate, `::lagrangian_runtime` or `crate` inside the workspace).
     pub runtime: TokenStream,
 }
 

@@ -20,7 +20,7 @@
 
 use crate::expr::Func;
 use crate::program::{Op, Program, Reg, Routine, RoutineKind};
-use lagrangian_model::layout::OutputSlot;
+use lagrangian_runtime::layout::OutputSlot;
 use rustc_hash::FxHashMap;
 
 /// A value the routine reads from its arguments.

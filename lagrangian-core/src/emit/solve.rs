@@ -4,7 +4,7 @@
 //! computed. The interpreter reads the same zeros from its tape.
 
 use crate::program::{Op, Program, RoutineKind};
-use lagrangian_model::layout::mass_entries;
+use lagrangian_runtime::layout::mass_entries;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 

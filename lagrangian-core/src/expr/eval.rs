@@ -6,7 +6,7 @@ use super::{ExprId, Node, Store, SymbolKind};
 use rustc_hash::FxHashMap;
 
 /// The values of a model's input functions: `inputs(index, args)` (any
-/// `lagrangian_model::InputFunctions` is one through `|i, a| f.value(i, a)`).
+/// `lagrangian_runtime::InputFunctions` is one through `|i, a| f.value(i, a)`).
 pub type Inputs<'a> = &'a dyn Fn(usize, &[f64]) -> f64;
 
 /// Inputs of a model without input functions: every call is NaN.

@@ -121,7 +121,7 @@ pub struct Symbol {
 
 /// Elementary functions kept as atoms (defined with the runtime, which
 /// evaluates them the same way).
-pub use lagrangian_model::functions::Func;
+pub use lagrangian_runtime::functions::Func;
 
 /// An interned node. See the module documentation for the invariants.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]

@@ -8,7 +8,7 @@
 use super::arith::TermAccumulator;
 use super::{ExprId, Func, Node, Store};
 use crate::rational::Rational;
-use lagrangian_model::functions::Elementary;
+use lagrangian_runtime::functions::Elementary;
 use rustc_hash::FxHashMap;
 
 impl Store {

@@ -9,7 +9,7 @@ use crate::graph::{Graph, GraphId, GraphNode};
 use crate::graph_derivation::GraphDerivation;
 use crate::program::{Op, Program};
 use crate::rational::Rational;
-use lagrangian_model::layout::mass_entries;
+use lagrangian_runtime::layout::mass_entries;
 use rustc_hash::FxHashMap;
 
 /// Builds the program for all outputs of a derivation on the graph.

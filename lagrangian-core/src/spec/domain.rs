@@ -10,7 +10,7 @@ use super::Model;
 use crate::diagnostic::{SpanRange, location};
 use crate::expr::{Evaluator, ExprId};
 
-pub use lagrangian_model::functions::Domain;
+pub use lagrangian_runtime::functions::Domain;
 
 /// One call whose argument has a restricted domain.
 #[derive(Clone, Debug)]

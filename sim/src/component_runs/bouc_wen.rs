@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A unit mass whose spring input is driven through
 /// `u = U sin(w t)`, whatever the mass does.

@@ -6,7 +6,7 @@ use crate::components::contact::*;
 use crate::components::{Component, Contact, Dissipation, Events, Port};
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A 2 kg mass whose coordinate is its penetration into a fixed wall.
 const MASS: &str = "model Impact;\n\

@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A car of 860 kg on a crush element, `x` its crush.
 const IMPACT: &str = "model Impact;\n\

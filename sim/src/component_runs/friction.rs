@@ -4,7 +4,7 @@
 use crate::components::friction::*;
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 fn stribeck() -> Friction {
     Friction {

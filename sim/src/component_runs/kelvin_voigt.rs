@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A 1 kg mass on the element.
 const MASS: &str = "model Oscillator;\n\

@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::{SimulationResult, simulate};
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A unit mass whose friction input slides at a prescribed speed `V`.
 const SLIDING: &str = "model Sliding;\n\

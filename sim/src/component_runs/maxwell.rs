@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A unit mass whose element is held at a step deflection `U` from
 /// `t = 0`.

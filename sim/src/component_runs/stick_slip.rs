@@ -3,7 +3,7 @@
 
 use crate::scenario::{ModelNames, Scenario};
 use crate::simulate::simulate;
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 /// A 1 kg block pulled by `10·t` N against its friction.
 const BLOCK: &str = "model Pulled;\n\

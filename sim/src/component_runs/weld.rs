@@ -126,7 +126,7 @@ const SCENARIO: &str = "[simulation]\nt_end = 0.2\noutput_interval = 1e-3\n\
 fn the_energy_balance_closes_with_what_the_weld_dissipated() {
     use crate::scenario::{ModelNames, Scenario};
     use crate::simulate::simulate;
-    use lagrangian_model::Interpreted;
+    use lagrangian_runtime::Interpreted;
     let model = lagrangian_core::interpret(HINGE).unwrap();
     let names = ModelNames::of_interpreted(&model);
     let model = Interpreted::<1>::new(model).unwrap();

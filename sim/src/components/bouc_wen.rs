@@ -193,7 +193,7 @@ impl BoucWenSection {
     /// The spring, its entries checked.
     fn spring(&self, name: &str) -> Result<BoucWen, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
-        let a = non_negative(&key("a"), self.a)?;
+        let a = non_negative(key("a"), self.a)?;
         if a >= 1.0 {
             return Err(EntryError::value(
                 key("a").into(),
@@ -202,8 +202,8 @@ impl BoucWenSection {
             ));
         }
         let (beta, gamma) = (
-            finite(&key("beta"), self.beta)?,
-            finite(&key("gamma"), self.gamma)?,
+            finite(key("beta"), self.beta)?,
+            finite(key("gamma"), self.gamma)?,
         );
         if beta + gamma <= 0.0 {
             return Err(EntryError::at(
@@ -215,14 +215,14 @@ impl BoucWenSection {
             ));
         }
         let spring = BoucWen::new(
-            positive(&key("fy"), self.fy)?,
-            positive(&key("uy"), self.uy)?,
+            positive(key("fy"), self.fy)?,
+            positive(key("uy"), self.uy)?,
             a,
-            positive(&key("A"), self.big_a)?,
+            positive(key("A"), self.big_a)?,
             beta,
             gamma,
-            positive(&key("n"), self.n)?,
-            finite(&key("z0"), self.z0)?,
+            positive(key("n"), self.n)?,
+            finite(key("z0"), self.z0)?,
         );
         spring.check_coefficients(&format!("components.{name}"))?;
         Ok(spring)

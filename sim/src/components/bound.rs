@@ -8,7 +8,7 @@ use super::{Column, Component, Contact, Event, Port};
 use crate::curve::OutOfRange;
 use crate::fault::Fault;
 use crate::ode::{Direction, Internal};
-use lagrangian_model::InputFunctions;
+use lagrangian_runtime::InputFunctions;
 use std::cell::RefCell;
 
 /// A component with the name it has in the scenario (`front_end`, or

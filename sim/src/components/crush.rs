@@ -648,7 +648,7 @@ impl CrushSection {
 
     /// The gap: finite, ≥ 0, and only for a compression-only element.
     fn gap(&self, name: &str) -> Result<f64, EntryError> {
-        let gap = non_negative(&format!("components.{name}.gap"), self.gap)?;
+        let gap = non_negative(format!("components.{name}.gap"), self.gap)?;
         if gap > 0.0 && !self.contact_only {
             return Err(EntryError::sentence(
                 KeyPath::component(name).join("gap"),

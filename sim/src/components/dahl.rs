@@ -133,23 +133,18 @@ pub(crate) struct DahlSection {
 impl Section for DahlSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
-        let z0 = finite(&key("z0"), self.z0)?;
+        let z0 = finite(key("z0"), self.z0)?;
         let law = Dahl {
-            fc: positive(&key("fc"), self.fc)?,
-            sigma0: positive(&key("sigma0"), self.sigma0)?,
-            alpha: positive(&key("alpha"), self.alpha)?,
+            fc: positive(key("fc"), self.fc)?,
+            sigma0: positive(key("sigma0"), self.sigma0)?,
+            alpha: positive(key("alpha"), self.alpha)?,
             z0,
             z: z0,
         };
         let (sigma0, fc) = (law.sigma0, law.fc);
         let entries = [("sigma0", sigma0), ("fc", fc)];
         let formula = ("sigma0/fc", "the rate of z");
-        finite_combination(
-            &format!("components.{name}"),
-            formula,
-            &entries,
-            sigma0 / fc,
-        )?;
+        finite_combination(format!("components.{name}"), formula, &entries, sigma0 / fc)?;
         let c = binder.add(name.to_string(), Box::new(law));
         binder.bind_ports(&self.inputs, "force", c, name)
     }

@@ -178,9 +178,9 @@ impl FrictionSection {
     /// The friction `[components.{name}]` describes.
     fn friction(&self, name: &str) -> Result<Friction, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
-        let coulomb = non_negative(&key("coefficient"), self.coefficient)?;
+        let coulomb = non_negative(key("coefficient"), self.coefficient)?;
         let stiction = self.static_coefficient.unwrap_or(coulomb);
-        let stiction = non_negative(&key("static_coefficient"), stiction)?;
+        let stiction = non_negative(key("static_coefficient"), stiction)?;
         if stiction < coulomb {
             return Err(EntryError::value(
                 key("static_coefficient").into(),
@@ -191,7 +191,7 @@ impl FrictionSection {
             ));
         }
         let stribeck_velocity = match (self.stribeck_velocity, stiction > coulomb) {
-            (Some(v), _) => positive(&key("stribeck_velocity"), v)?,
+            (Some(v), _) => positive(key("stribeck_velocity"), v)?,
             (None, false) => 1.0,
             (None, true) => {
                 return Err(EntryError::sentence(
@@ -206,12 +206,12 @@ impl FrictionSection {
             coulomb,
             stiction,
             stribeck_velocity,
-            stribeck_exponent: positive(&key("stribeck_exponent"), self.stribeck_exponent)?,
-            viscous: non_negative(&key("viscous"), self.viscous)?,
-            smoothing_velocity: positive(&key("smoothing_velocity"), self.smoothing_velocity)?,
+            stribeck_exponent: positive(key("stribeck_exponent"), self.stribeck_exponent)?,
+            viscous: non_negative(key("viscous"), self.viscous)?,
+            smoothing_velocity: positive(key("smoothing_velocity"), self.smoothing_velocity)?,
             normal_force: self
                 .normal_force
-                .map(|n| non_negative(&key("normal_force"), n))
+                .map(|n| non_negative(key("normal_force"), n))
                 .transpose()?,
         })
     }

@@ -104,8 +104,8 @@ impl Section for KelvinVoigtSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let element = KelvinVoigt {
-            stiffness: non_negative(&key("stiffness"), self.stiffness)?,
-            damping: non_negative(&key("damping"), self.damping)?,
+            stiffness: non_negative(key("stiffness"), self.stiffness)?,
+            damping: non_negative(key("damping"), self.damping)?,
         };
         let c = binder.add(name.to_string(), Box::new(element));
         binder.bind_ports(&self.inputs, "force", c, name)

@@ -158,8 +158,8 @@ impl LuGreSection {
     /// The friction law, its entries checked.
     fn law(&self, name: &str) -> Result<LuGre, EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
-        let fc = positive(&key("fc"), self.fc)?;
-        let fs = positive(&key("fs"), self.fs)?;
+        let fc = positive(key("fc"), self.fc)?;
+        let fs = positive(key("fs"), self.fs)?;
         if fs < fc {
             return Err(EntryError::value(
                 key("fs").into(),
@@ -167,14 +167,14 @@ impl LuGreSection {
                 format!("must be at least fc = {fc} (the break-away force is the largest)"),
             ));
         }
-        let z0 = finite(&key("z0"), self.z0)?;
+        let z0 = finite(key("z0"), self.z0)?;
         Ok(LuGre {
             fc,
             fs,
-            vs: positive(&key("vs"), self.vs)?,
-            sigma0: positive(&key("sigma0"), self.sigma0)?,
-            sigma1: non_negative(&key("sigma1"), self.sigma1)?,
-            sigma2: non_negative(&key("sigma2"), self.sigma2)?,
+            vs: positive(key("vs"), self.vs)?,
+            sigma0: positive(key("sigma0"), self.sigma0)?,
+            sigma1: non_negative(key("sigma1"), self.sigma1)?,
+            sigma2: non_negative(key("sigma2"), self.sigma2)?,
             z0,
             z: z0,
         })

@@ -133,14 +133,14 @@ impl Section for MaxwellSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
         let element = Maxwell::new(
-            positive(&key("stiffness"), self.stiffness)?,
-            positive(&key("damping"), self.damping)?,
-            finite(&key("dashpot0"), self.dashpot0)?,
+            positive(key("stiffness"), self.stiffness)?,
+            positive(key("damping"), self.damping)?,
+            finite(key("dashpot0"), self.dashpot0)?,
         );
         let (k, c) = (element.stiffness, element.damping);
         let entries = [("stiffness", k), ("damping", c)];
         let formula = ("stiffness/damping", "the dashpot's rate");
-        finite_combination(&format!("components.{name}"), formula, &entries, k / c)?;
+        finite_combination(format!("components.{name}"), formula, &entries, k / c)?;
         let c = binder.add(name.to_string(), Box::new(element));
         binder.bind_ports(&self.inputs, "force", c, name)
     }

@@ -202,9 +202,9 @@ pub(crate) struct StickSlipSection {
 impl Section for StickSlipSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");
-        let kinetic = non_negative(&key("coefficient"), self.coefficient)?;
+        let kinetic = non_negative(key("coefficient"), self.coefficient)?;
         let stiction = self.static_coefficient.unwrap_or(kinetic);
-        let stiction = non_negative(&key("static_coefficient"), stiction)?;
+        let stiction = non_negative(key("static_coefficient"), stiction)?;
         if stiction < kinetic {
             return Err(EntryError::value(
                 key("static_coefficient").into(),
@@ -214,7 +214,7 @@ impl Section for StickSlipSection {
                 ),
             ));
         }
-        let normal = non_negative(&key("normal_force"), self.normal_force)?;
+        let normal = non_negative(key("normal_force"), self.normal_force)?;
         let c = binder.add(
             name.to_string(),
             Box::new(StickSlip::new(kinetic, stiction, normal)),

@@ -94,8 +94,8 @@ pub(crate) struct SpringSection {
 impl Section for SpringSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let spring = Spring {
-            stiffness: positive(&format!("components.{name}.stiffness"), self.stiffness)?,
-            breaks_at: positive(&format!("components.{name}.breaks_at"), self.breaks_at)?,
+            stiffness: positive(format!("components.{name}.stiffness"), self.stiffness)?,
+            breaks_at: positive(format!("components.{name}.breaks_at"), self.breaks_at)?,
             broken_at: None,
         };
         let c = binder.add(name.to_string(), Box::new(spring));

@@ -365,13 +365,13 @@ impl WeldSection {
             .map_err(|e| EntryError::at(KeyPath::component(name), format!("{what}: {e}")))
         };
         let key = |entry: &str| format!("components.{name}.{entry}");
-        non_negative(&key("damping"), self.damping)?;
-        non_negative(&key("post_failure_damping"), self.post_failure_damping)?;
+        non_negative(key("damping"), self.damping)?;
+        non_negative(key("post_failure_damping"), self.post_failure_damping)?;
         if let Some(m) = self.failure_moment {
-            positive(&key("failure_moment"), m)?;
+            positive(key("failure_moment"), m)?;
         }
         if let Some(a) = self.failure_angle {
-            positive(&key("failure_angle"), a)?;
+            positive(key("failure_angle"), a)?;
         }
         let intact = make(&self.curve, "curve")?;
         let post = self

@@ -17,7 +17,7 @@ use crate::fault::Fault;
 use crate::ode::PhaseState;
 use crate::simulate::CrashProblem;
 use crate::simulate::constrained::values;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use nalgebra::{DMatrix, SVector};
 
 /// `Tᵀ A T`, `A` restricted to the tangent space of the constraints at `y`.

@@ -33,8 +33,8 @@ use crate::scenario::Scenario;
 use crate::simulate::{
     CrashProblem, Projection, SimulationError, SolverError, constrained, static_equilibrium,
 };
-use lagrangian_model::constrained::Baumgarte;
-use lagrangian_model::{InputFunctions, LagrangianSystem, solve_mass_matrix};
+use lagrangian_runtime::constrained::Baumgarte;
+use lagrangian_runtime::{InputFunctions, LagrangianSystem, solve_mass_matrix};
 use nalgebra::{DMatrix, SMatrix, SVector};
 
 /// Where to linearize.

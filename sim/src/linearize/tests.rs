@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::scenario::{ModelNames, Override};
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 use std::f64::consts::TAU;
 
 const PENDULUM: &str = include_str!("../../../specs/simple_pendulum.lpm");

@@ -71,7 +71,7 @@ pub use base::BaseScenario;
 pub use choice::Choice;
 pub use discover::{scenarios_for, spec_named_by};
 use file::File;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use locate::Places;
 use options::{SampleAccelerations, TimeKinks};
 use overrides::with_settings;
@@ -208,7 +208,7 @@ pub struct Scenario {
     pub inputs: BoundInputs,
     /// Baumgarte's stabilization of the model's constraints (`[constraints]
     /// alpha`, `beta`); unused for a model without constraints.
-    pub stabilization: lagrangian_model::constrained::Baumgarte,
+    pub stabilization: lagrangian_runtime::constrained::Baumgarte,
     /// How the output samples get `q̈` (`simulation.accelerations`).
     pub accelerations: SampleAccelerations,
     /// What a step's stages see of a kink of an input of time inside it
@@ -222,17 +222,18 @@ impl Scenario {
     pub fn apply_parameters<const N: usize, S: LagrangianSystem<N>>(
         &self,
         model: &mut S,
-    ) -> Result<(), lagrangian_model::ModelError> {
+    ) -> Result<(), lagrangian_runtime::ModelError> {
         let names: Vec<String> = (model.parameter_names().iter())
             .map(|s| s.to_string())
             .collect();
         for &(index, value) in &self.parameters {
-            let name = names
-                .get(index)
-                .ok_or(lagrangian_model::ModelError::DimensionMismatch {
-                    expected: index + 1,
-                    found: names.len(),
-                })?;
+            let name =
+                names
+                    .get(index)
+                    .ok_or(lagrangian_runtime::ModelError::DimensionMismatch {
+                        expected: index + 1,
+                        found: names.len(),
+                    })?;
             model.set_parameter(name, value)?;
         }
         Ok(())
@@ -396,7 +397,7 @@ fn with_suggestion(message: &str) -> String {
     let unknown = message.starts_with("unknown field") || message.starts_with("unknown variant");
     if unknown
         && let Some((wanted, expected)) = quoted.split_first()
-        && let Some(best) = lagrangian_model::names::closest(wanted, expected.iter().copied())
+        && let Some(best) = lagrangian_runtime::names::closest(wanted, expected.iter().copied())
     {
         return format!("{message} (did you mean `{best}`?)");
     }

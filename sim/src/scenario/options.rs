@@ -4,7 +4,7 @@
 //! so that the scenario never reaches up into it; `simulate` re-exports them.
 
 use super::Choice;
-use lagrangian_model::constrained::Baumgarte;
+use lagrangian_runtime::constrained::Baumgarte;
 
 /// What the stages of a step see of a kink of an input of time inside it
 /// (`[simulation] time_kinks` of a scenario).

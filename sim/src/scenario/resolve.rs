@@ -11,7 +11,7 @@ use crate::entry::{EntryError, KeyPath, finite, index_of, number, positive, unkn
 use crate::ode::{Method, Options};
 use crate::pulse::cfc::{CLASS_BY_MEASUREMENT, DEFAULT_CLASS, STANDARD_CLASSES};
 use crate::table::Table;
-use lagrangian_model::names::closest;
+use lagrangian_runtime::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -104,7 +104,7 @@ pub(super) fn resolve(
 /// `[constraints] alpha`, `beta`: finite and not negative.
 fn stabilization(
     section: &super::file::ConstraintsSection,
-) -> Result<lagrangian_model::constrained::Baumgarte, EntryError> {
+) -> Result<lagrangian_runtime::constrained::Baumgarte, EntryError> {
     for (name, value) in [("alpha", section.alpha), ("beta", section.beta)] {
         if !(value.is_finite() && value >= 0.0) {
             return Err(EntryError::sentence(
@@ -113,7 +113,7 @@ fn stabilization(
             ));
         }
     }
-    Ok(lagrangian_model::constrained::Baumgarte {
+    Ok(lagrangian_runtime::constrained::Baumgarte {
         alpha: section.alpha,
         beta: section.beta,
     })
@@ -533,7 +533,7 @@ fn parameter_overrides(
         .map(|(name, value)| {
             Ok((
                 index_of("parameters", "parameter", name, &names.parameters)?,
-                finite(&format!("parameters.{name}"), *value)?,
+                finite(format!("parameters.{name}"), *value)?,
             ))
         })
         .collect()

@@ -305,7 +305,7 @@ fn channels_name_columns_of_the_trajectory_with_suggestions() {
         coordinate_units: vec![Some("m".into()), Some("m".into())],
         outputs: vec!["belt_force".into()],
         output_units: vec![Some("N".into())],
-        output_reads: vec![Some(lagrangian_model::tape::StateReads {
+        output_reads: vec![Some(lagrangian_runtime::tape::StateReads {
             velocities: true,
             ..Default::default()
         })],

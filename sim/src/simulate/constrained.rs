@@ -15,11 +15,11 @@
 use super::SimulationError;
 use crate::fault::Fault;
 pub use crate::scenario::options::DEFAULT_STABILIZATION;
-use lagrangian_model::constrained::{
+use lagrangian_runtime::constrained::{
     Baumgarte, ConstrainedSolveError, ConstraintValues, SolveWorkspace, solve_constrained_in,
     solve_positive_definite,
 };
-use lagrangian_model::{InputFunctions, LagrangianSystem};
+use lagrangian_runtime::{InputFunctions, LagrangianSystem};
 use nalgebra::{SMatrix, SVector};
 
 /// The accelerations and multipliers at one state, with the constraint

@@ -8,7 +8,7 @@
 
 use super::{CrashProblem, SimulationError, constrained};
 use crate::ode::SolverError;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use nalgebra::{DMatrix, DVector, SVector};
 
 /// Solves `f_i(q, 0, t) = 0` for the coordinates `free` by Newton's method

@@ -7,7 +7,7 @@
 use super::{CrashProblem, SimulationError};
 use crate::ode::PhaseState;
 use crate::scenario::Scenario;
-use lagrangian_model::{InputFunctions, LagrangianSystem};
+use lagrangian_runtime::{InputFunctions, LagrangianSystem};
 use nalgebra::SVector;
 
 /// The scenario's initial coordinates and velocities (0 where it gives

@@ -24,7 +24,7 @@
 use super::CrashProblem;
 use crate::components::{BoundInputs, StandIn};
 use crate::ode::{DenseStep, PhaseState};
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use nalgebra::SVector;
 
 /// What turns a smoothed step's interpolated `q̈` into that of the inputs

@@ -15,7 +15,7 @@
 //! end; the output samples read every input as it is.
 
 use crate::components::{BoundInputs, Port, Smoothness, StandIn};
-use lagrangian_model::{InputFunctions, LagrangianSystem};
+use lagrangian_runtime::{InputFunctions, LagrangianSystem};
 
 /// An input of time with kinks.
 #[derive(Clone, Debug, PartialEq)]
@@ -112,7 +112,7 @@ mod tests {
     use crate::scenario::options::TimeKinks;
     use crate::scenario::{ModelNames, Scenario};
     use crate::simulate::{SimulationResult, simulate};
-    use lagrangian_model::Interpreted;
+    use lagrangian_runtime::Interpreted;
 
     /// `ẍ + c ẋ + k x = F(t)` (the spring spec: m = 1 kg, k = 100 N/m, c =
     /// 0.5 N·s/m) from rest, with `F` through the rows of `PUSH`, linear

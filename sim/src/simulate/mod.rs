@@ -32,7 +32,7 @@ use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, Part, PhaseState, Stats};
 use crate::scenario::{MAX_SAMPLES, Scenario};
 use crate::warning::{self, Warning};
-use lagrangian_model::{LagrangianSystem, ModelError};
+use lagrangian_runtime::{LagrangianSystem, ModelError};
 use nalgebra::SVector;
 
 /// Why the integration of a run stopped: the solver's reasons, with the

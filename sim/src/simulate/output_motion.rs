@@ -35,7 +35,7 @@
 //! below `τ`) likewise as `(h/τ_o)⁴`. The cost is four evaluations of the
 //! outputs routine per output sample.
 
-use lagrangian_model::{LagrangianSystem, NoInputs};
+use lagrangian_runtime::{LagrangianSystem, NoInputs};
 use nalgebra::SVector;
 
 /// The step of the differences as a fraction of the motion's time scale

@@ -8,8 +8,8 @@ use crate::fault::Fault;
 use crate::ode::tr_bdf2::{AccelerationJacobian, AccelerationJacobians};
 use crate::ode::{Direction, EventAction, Internal, OdeProblem, PhaseState};
 use crate::scenario::options::TimeKinks;
-use lagrangian_model::constrained::Baumgarte;
-use lagrangian_model::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
+use lagrangian_runtime::constrained::Baumgarte;
+use lagrangian_runtime::{InputFunctions, Jacobians, LagrangianSystem, ModelError};
 use nalgebra::{SMatrix, SVector};
 use std::cell::RefCell;
 

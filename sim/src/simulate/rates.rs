@@ -43,7 +43,7 @@ use super::kink_rates::KinkCorrection;
 use crate::components::{BoundInputs, Smoothness};
 use crate::ode::{DenseStep, Part, PhaseState};
 use crate::scenario::options::SampleAccelerations;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use nalgebra::SVector;
 
 /// Which steps' samples take `q̈` from the dense output.
@@ -209,7 +209,7 @@ mod tests {
     use crate::scenario::Choice;
     use crate::scenario::{ModelNames, Scenario};
     use crate::simulate::{SimulationResult, simulate};
-    use lagrangian_model::Interpreted;
+    use lagrangian_runtime::Interpreted;
     use std::path::Path;
 
     const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");

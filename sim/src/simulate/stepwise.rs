@@ -5,7 +5,7 @@
 use super::{CrashProblem, SimulationError};
 use crate::ode::PhaseState;
 use crate::scenario::Scenario;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 
 /// The state a run of `scenario` starts from, with the components of
 /// `problem` put in the state that goes with it: the scenario's initial

@@ -9,7 +9,7 @@
 //! what a spec's `barrier(t)` compiles to.
 
 use crate::components::BoundInputs;
-use lagrangian_model::{LagrangianSystem, NoInputs};
+use lagrangian_runtime::{LagrangianSystem, NoInputs};
 use nalgebra::SVector;
 
 /// Two probe times, far from any breakpoint a table is likely to have.
@@ -121,7 +121,7 @@ mod tests {
         )))
         .unwrap();
         let names = ModelNames::of_interpreted(&model);
-        let system = lagrangian_model::Interpreted::<1>::new(model).unwrap();
+        let system = lagrangian_runtime::Interpreted::<1>::new(model).unwrap();
         let dir = std::env::temp_dir().join(format!("lagrangian-stops-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let table = "t,F\n0,0\n0.01,50\n0.02,-20\n0.03,0\n0.05,0\n";

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::scenario::ModelNames;
-use lagrangian_model::Interpreted;
+use lagrangian_runtime::Interpreted;
 
 const SPRING: &str = include_str!("../../../specs/spring_mass_damper.lpm");
 

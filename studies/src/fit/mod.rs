@@ -13,7 +13,7 @@ pub mod parameters;
 mod problem;
 mod statistics;
 
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use lagrangian_sim::pulse::channels::{Quantity, TimeHistories};
 use lagrangian_sim::pulse::interpolate;
 use lagrangian_sim::scenario::{BaseScenario, Override, ScenarioError};

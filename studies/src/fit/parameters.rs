@@ -343,7 +343,7 @@ fn crush_values_key(
 fn unknown_name(name: &str, document: &toml::Table, model: &ModelNames) -> ParameterError {
     let curves: Vec<String> = curve_names(document).iter().map(CurveName::name).collect();
     let accepted = accepted_names(document, model);
-    let closest = lagrangian_model::names::closest(name, accepted.iter().map(String::as_str));
+    let closest = lagrangian_runtime::names::closest(name, accepted.iter().map(String::as_str));
     ParameterError::Unknown {
         name: name.to_string(),
         parameters: model.parameters.clone(),

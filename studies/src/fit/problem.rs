@@ -2,7 +2,7 @@
 //! difference Jacobians in parallel, and the Levenberg–Marquardt starts.
 
 use super::{FitError, FitSetup, StartReport, rms, simulated_channels};
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra034::{DMatrix, DVector, Dyn, Owned};
 use rand_chacha::ChaCha8Rng;

@@ -14,7 +14,7 @@
 
 use super::FitError;
 use super::problem::{Outcome, Problem};
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use nalgebra::DMatrix;
 
 /// A column of `J` at most this fraction of the largest (in norm) has no

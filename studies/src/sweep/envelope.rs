@@ -15,7 +15,7 @@ use super::plan::Plan;
 use super::run::{Row, SweepJob, scenario_of, simulation_failure, stream_runs};
 use super::shared::SharedScenario;
 use super::weights::Weights;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use lagrangian_sim::scenario::Signal;
 use lagrangian_sim::simulate::{SimulationResult, simulate};
 

@@ -3,7 +3,7 @@
 
 use super::plan::{Assignment, Axis, Plan};
 use super::shared::SharedScenario;
-use lagrangian_model::LagrangianSystem;
+use lagrangian_runtime::LagrangianSystem;
 use lagrangian_sim::scenario::ScenarioError;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
 use lagrangian_sim::scenario::{as_number, factor_base, number_value, scaled_value};
@@ -431,7 +431,10 @@ mod tests {
         let s = settings(text, &["initial.velocities*=0.5,2"]).unwrap();
         let texts = |values: &[f64]| {
             let overrides = s.for_values(values);
-            overrides.iter().map(|o| o.text().to_string()).collect::<Vec<_>>()
+            overrides
+                .iter()
+                .map(|o| o.text().to_string())
+                .collect::<Vec<_>>()
         };
         assert_eq!(texts(&[2.0]), ["initial.velocities={ xb = 31, xe = 31 }"]);
         let scenario = base(text).resolve(&s.for_values(&[0.5])).unwrap();

@@ -49,7 +49,7 @@ impl SharedScenario {
 mod tests {
     use super::*;
     use crate::sweep::{Plan, run_scenario};
-    use lagrangian_model::{Interpreted, LagrangianSystem};
+    use lagrangian_runtime::{Interpreted, LagrangianSystem};
     use lagrangian_sim::scenario::{ModelNames, Override};
     use lagrangian_sim::simulate::simulate_summary;
 

@@ -40,7 +40,7 @@ pub(super) fn duplicate_name(scope: &Scope, ident: &Ident) -> Option<Diagnostic>
 
 /// A name that becomes a trajectory column (a coordinate, an input, an
 /// output) and is one of the columns every trajectory has
-/// ([`lagrangian_model::names::builtin_column`]): the trajectory would have
+/// ([`lagrangian_runtime::names::builtin_column`]): the trajectory would have
 /// two columns of that name.
 pub(super) fn builtin_column_name(
     (name, span): (&str, Span),
@@ -50,7 +50,7 @@ pub(super) fn builtin_column_name(
     if RESERVED_NAMES.contains(&name) {
         return None; // refused as reserved
     }
-    let column = lagrangian_model::names::builtin_column(name, coordinates.iter().copied())?;
+    let column = lagrangian_runtime::names::builtin_column(name, coordinates.iter().copied())?;
     Some(
         Diagnostic::new(
             span,

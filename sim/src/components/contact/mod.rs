@@ -433,15 +433,15 @@ impl ContactSection {
         let law = law(&self.law, &key("law"))?;
         self.refuse_unread(law, name)?;
         let entries = LawEntries {
-            stiffness: positive(&key("stiffness"), self.stiffness)?,
+            stiffness: positive(key("stiffness"), self.stiffness)?,
             restitution: restitution(&key("restitution"), self.restitution)?,
             exponent: self
                 .exponent
                 .map(|n| exponent(&key("exponent"), n))
                 .transpose()?,
-            mass: self.mass.map(|m| positive(&key("mass"), m)).transpose()?,
+            mass: self.mass.map(|m| positive(key("mass"), m)).transpose()?,
         };
-        let v_min = positive(&key("min_impact_velocity"), self.min_impact_velocity)?;
+        let v_min = positive(key("min_impact_velocity"), self.min_impact_velocity)?;
         let force = law.force(&entries, name)?;
         let sign = compression_sign(&key("compression"), &self.compression)?;
         Ok(ContactElement::new(law.name(), force, sign, v_min))
@@ -471,7 +471,7 @@ fn law(text: &str, key: &str) -> Result<&'static dyn ContactLaw, EntryError> {
         return Ok(*law);
     }
     let names: Vec<&str> = LAWS.iter().map(|law| law.name()).collect();
-    let hint = lagrangian_model::names::closest(text, names.iter().copied())
+    let hint = lagrangian_runtime::names::closest(text, names.iter().copied())
         .map(|n| format!(" (did you mean `{n}`?)"))
         .unwrap_or_default();
     Err(EntryError::text(
