@@ -141,15 +141,26 @@ fn a_missing_runtime_is_named_with_what_to_build() {
 }
 
 /// A shared library that is no FMU binary: a proc-macro crate's, which
-/// cargo built in the same `deps/` folder.
+/// cargo built in the same `deps/` folder for lpm's own build (thiserror's,
+/// serde's), whichever of them a build of lpm alone made.
 fn some_other_library() -> PathBuf {
     let deps = runtime().parent().unwrap().to_path_buf();
     let found = std::fs::read_dir(&deps).unwrap().map(|e| e.unwrap().path());
-    let mut libraries = found.filter(|p| {
-        let name = p.file_name().unwrap().to_string_lossy();
-        name.starts_with("liblagrangian_macro-") && name.ends_with(std::env::consts::DLL_SUFFIX)
-    });
-    libraries.next().expect("the proc-macro library beside lpm")
+    let mut libraries: Vec<PathBuf> = found
+        .filter(|p| {
+            let name = p.file_name().unwrap().to_string_lossy();
+            let proc_macro = [
+                "libthiserror_impl-",
+                "libserde_derive-",
+                "liblagrangian_macro-",
+            ]
+            .iter()
+            .any(|prefix| name.starts_with(prefix));
+            proc_macro && name.ends_with(std::env::consts::DLL_SUFFIX)
+        })
+        .collect();
+    libraries.sort();
+    libraries.pop().expect("a proc-macro library beside lpm")
 }
 
 #[test]
