@@ -78,9 +78,7 @@ use overrides::with_settings;
 pub use overrides::{Change, Override, OverrideError, Setting};
 use resolve::resolve;
 pub use resolve::{MAX_INITIAL_MAGNITUDE, MAX_SAMPLES};
-pub use scale::{
-    ScaleError, as_number, factor_base, number_value, scaled_inline, scaled_value, toml_number,
-};
+pub use scale::{ScaleError, as_number, factor_base, number_value, scaled_value};
 use serde::Deserialize;
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
@@ -289,10 +287,9 @@ impl Scenario {
         settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
         let error = |message: String| ScenarioError::invalid(file, message);
-        // The one parse of the text: the document with the places of its
-        // entries.
+        // The one parse of the text: the document with its spans, from
+        // which an error finds the place of its entry.
         let spanned = toml::de::DeTable::parse(text).map_err(|e| toml_error(file, text, &e))?;
-        let places = Places::new(text, spanned.get_ref());
         let positioned = || toml::de::Deserializer::from(spanned.clone());
         let document =
             toml::Table::deserialize(positioned()).map_err(|e| toml_error(file, text, &e))?;
@@ -321,7 +318,8 @@ impl Scenario {
                 ..ScenarioError::invalid(None, locate::blamed(setting, &e))
             },
             None => ScenarioError {
-                location: places.locate(&e),
+                // Where it is: needed on this path alone.
+                location: Places::new(text, spanned.get_ref()).locate(&e),
                 key: Some(e.key.clone()),
                 ..error(e.to_string())
             },

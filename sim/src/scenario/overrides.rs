@@ -4,7 +4,7 @@
 //! read.
 
 use super::ModelNames;
-use super::scale::{factor_base, scaled_inline};
+use super::scale::{factor_base, scaled_value};
 use crate::entry::{KeyPath, number, unknown};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -54,7 +54,7 @@ impl OverrideError {
 }
 
 /// `--set key=value` split at the first `=`, both sides trimmed.
-pub(crate) fn split_setting(setting: &str) -> Result<(&str, &str), OverrideError> {
+fn split_setting(setting: &str) -> Result<(&str, &str), OverrideError> {
     let (key, value) = setting.split_once('=').ok_or_else(|| {
         OverrideError::new(
             setting,
@@ -273,8 +273,7 @@ fn apply(
         Setting::Scale { key, factor } => {
             let base = factor_base(&key, document, names, &names.parameter_defaults)
                 .map_err(|e| error(format!("--set {e}")))?;
-            let value = toml_value(&scaled_inline(&base, factor))
-                .ok_or_else(|| error(format!("`{key}*=`: the scaled value is not TOML")))?;
+            let value = scaled_value(&base, factor);
             let key = match key.contains('.') {
                 true => key,
                 false => format!("parameters.{key}"),

@@ -63,26 +63,8 @@ pub struct ScaleError {
     pub reason: String,
 }
 
-/// `value` with every number multiplied by `x`, as inline TOML.
-pub fn scaled_inline(value: &toml::Value, x: f64) -> String {
-    match value {
-        toml::Value::Array(items) => {
-            let items: Vec<String> = items.iter().map(|v| scaled_inline(v, x)).collect();
-            format!("[{}]", items.join(", "))
-        }
-        toml::Value::Table(table) => {
-            let entries: Vec<String> = table
-                .iter()
-                .map(|(k, v)| format!("{k:?} = {}", scaled_inline(v, x)))
-                .collect();
-            format!("{{ {} }}", entries.join(", "))
-        }
-        other => toml_number(as_number(other).unwrap_or(f64::NAN) * x),
-    }
-}
-
-/// `value` with every number multiplied by `x`: what [`scaled_inline`]
-/// writes, as a value.
+/// `value` with every number multiplied by `x` (a number, or a list or
+/// table of numbers, nested).
 pub fn scaled_value(value: &toml::Value, x: f64) -> toml::Value {
     match value {
         toml::Value::Array(items) => {
@@ -97,23 +79,13 @@ pub fn scaled_value(value: &toml::Value, x: f64) -> toml::Value {
     }
 }
 
-/// A number as a TOML value that reads back exactly, as [`toml_number`]
-/// writes it: a whole number as an integer, else a float.
+/// A number as a TOML value: a whole number as an integer (so that integer
+/// entries such as `simulation.max_steps` can be scaled; float entries
+/// accept integers), else a float.
 pub fn number_value(x: f64) -> toml::Value {
     match x.fract() == 0.0 && x.abs() < 1e15 {
         true => toml::Value::Integer(x as i64),
         false => toml::Value::Float(x),
-    }
-}
-
-/// A number as TOML reads it back exactly: a whole number as an integer
-/// (so that integer entries such as `simulation.max_steps` can be scaled;
-/// float entries accept integers), else the shortest round-tripping float.
-pub fn toml_number(x: f64) -> String {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        format!("{}", x as i64)
-    } else {
-        format!("{x:?}")
     }
 }
 
