@@ -56,6 +56,7 @@ fn main() {
         file: Some(scenario),
         names: ModelNames::of(&compiled),
         settings: Vec::new(),
+        files: std::sync::Arc::new(lagrangian_sim::files::Cached::default()),
     };
     let grid: Vec<String> = [
         "components.front_end.stiffness_values*=0.7:1.3:25",

@@ -25,6 +25,7 @@ fn base(settings: Vec<String>) -> BaseScenario {
         file: Some(SCENARIO.into()),
         names: ModelNames::of(&Yaris::default()),
         settings: Override::parse_all(&settings).unwrap(),
+        files: std::sync::Arc::new(lagrangian_sim::files::Cached::default()),
     }
 }
 

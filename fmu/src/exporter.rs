@@ -26,6 +26,7 @@ use crate::resources::{SCENARIO_FILE, SPEC_FILE};
 use crate::variables::first_paragraph;
 use archive::Entry;
 use lagrangian_runtime::{Interpreted, WithDimension};
+use lagrangian_sim::files::Disk;
 use lagrangian_sim::scenario::Scenario;
 use lagrangian_studies::error::StudyError;
 use std::path::{Path, PathBuf};
@@ -78,8 +79,9 @@ pub fn export_with(
     out: &Path,
     binary: Binary,
 ) -> Result<Exported, StudyError> {
+    // From the disk, as what it packs is: the FMU holds the files there.
     let (compiled, model, scenario_path, resolved) =
-        lagrangian_studies::simulate::load_spec(spec, scenario, &[])?;
+        lagrangian_studies::simulate::load_spec(&Disk, spec, scenario, &[])?;
     model.with_dimension(Supported).map_err(StudyError::model)?;
     let spec_bytes = read(spec)?;
     let (library, whence) = match binary {

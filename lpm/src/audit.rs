@@ -3,9 +3,11 @@
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
 use lagrangian_core::audit::{AuditReport, Finding, GroupVerdict, Part, Verdict, audit, markdown};
+use lagrangian_studies::files::Files;
 use lagrangian_studies::spec::compile;
 use serde_json::{Value, json};
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Options of `lpm audit`.
 #[derive(clap::Args)]
@@ -17,9 +19,9 @@ pub struct Args {
 }
 
 /// Runs `lpm audit`: the report, with status 5 when anything disagrees.
-pub fn run(args: Args) -> Result<Outcome, Failure> {
+pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let spec = &args.spec;
-    let mut compiled = compile(spec)?;
+    let mut compiled = compile(&**files, spec)?;
     let report = audit(&mut compiled).ok_or_else(|| {
         Failure::usage(format!(
             "{} has no `hand_derived` section to audit",

@@ -4,8 +4,10 @@ use crate::failure::{Failure, Outcome};
 use clap::ValueEnum;
 use lagrangian_core::emit::c::{COptions, emit_c};
 use lagrangian_core::emit::{Notation, RustOptions, emit_file, render_equations, render_markdown};
+use lagrangian_studies::files::Files;
 use lagrangian_studies::spec::compile;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Options of `lpm derive`.
 #[derive(clap::Args)]
@@ -36,9 +38,9 @@ enum Format {
 }
 
 /// Runs `lpm derive`.
-pub fn run(args: Args) -> Result<Outcome, Failure> {
+pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let path = &args.spec;
-    let mut compiled = compile(path)?;
+    let mut compiled = compile(&**files, path)?;
     let text = match args.format {
         Format::Text => render_equations(&mut compiled, Notation::Text),
         Format::Latex => render_equations(&mut compiled, Notation::Latex),

@@ -11,9 +11,11 @@ use lagrangian_studies::error::StudyError;
 use lagrangian_studies::eval::{
     Accelerations, accelerations, apply_settings, evaluate, parse_state, scenario_inputs,
 };
+use lagrangian_studies::files::Files;
 use lagrangian_studies::mass;
 use lagrangian_studies::spec::compile;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// How `lpm eval` prints its result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -56,8 +58,8 @@ pub struct Args {
 }
 
 /// Runs `lpm eval`.
-pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let compiled = compile(&args.spec)?;
+pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
+    let compiled = compile(&**files, &args.spec)?;
     let defaults = compiled.default_parameters();
     let mut model = lagrangian_studies::spec::interpreted(&compiled);
     let state = parse_state("--state", &args.state, model.coordinates())?;
@@ -65,7 +67,7 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
     let (inputs, set, stabilization) = match &args.scenario {
         Some(path) => {
             let set = Failure::overrides(&args.set)?;
-            scenario_inputs(&mut model, path, &set, (args.time, q, qd))?
+            scenario_inputs(&**files, &mut model, path, &set, (args.time, q, qd))?
         }
         None => {
             // Without a scenario, an override that cannot be read is a bad

@@ -4,10 +4,12 @@
 
 use crate::failure::{Failure, Outcome};
 use indicatif::{ProgressBar, ProgressStyle};
+use lagrangian_studies::files::Files;
 use lagrangian_studies::fitting::{FitRequest, fitting, text_report, write_files};
 use lagrangian_studies::spec::out_dir;
 use std::fmt::Write;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Options of `lpm fit`.
 #[derive(clap::Args)]
@@ -60,7 +62,7 @@ impl Args {
 }
 
 /// Runs `lpm fit`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
+pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let bar = if options.quiet {
         ProgressBar::hidden()
     } else {
@@ -74,7 +76,7 @@ pub fn run(options: Args) -> Result<Outcome, Failure> {
         bar.set_position(simulations as u64);
         bar.set_message(format!("cost {cost:.4e}"));
     };
-    let fitting = fitting(&options.request()?, &progress)?;
+    let fitting = fitting(&options.request()?, &progress, files)?;
     bar.finish_and_clear();
 
     let out = out_dir(options.out.clone(), &options.spec, "-fit");

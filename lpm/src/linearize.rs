@@ -10,8 +10,10 @@ use lagrangian_sim::linearize::{
 };
 use lagrangian_sim::report::write_atomically;
 use lagrangian_sim::scenario::{ModelNames, Scenario};
+use lagrangian_studies::files::Files;
 use lagrangian_studies::spec::{compile, find_scenario};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Options of `lpm linearize`.
 #[derive(clap::Args)]
@@ -48,18 +50,21 @@ pub struct Args {
 }
 
 /// Runs `lpm linearize`.
-pub fn run(args: Args) -> Result<Outcome, Failure> {
-    let model =
-        lagrangian_studies::spec::interpreted(&with_jacobians(compile(&args.spec)?, &args.spec));
+pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
+    let model = lagrangian_studies::spec::interpreted(&with_jacobians(
+        compile(&**files, &args.spec)?,
+        &args.spec,
+        &**files,
+    ));
     let names = ModelNames::of_interpreted(&model);
     let at = parse_at(&args.at, model.coordinates())?;
     let scenario_path = match &args.scenario {
         Some(p) => Some(p.clone()),
-        None => find_scenario(&args.spec)?,
+        None => find_scenario(&**files, &args.spec)?,
     };
     let set = Failure::overrides(&args.set)?;
     let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, &set),
+        Some(path) => Scenario::read(&**files, path, &names, &set),
         None => Scenario::defaults(&names, &set),
     }
     .map_err(|e| Failure::scenario(&e))?;
@@ -97,11 +102,11 @@ pub fn run(args: Args) -> Result<Outcome, Failure> {
 /// asks for them (`jacobians;`) or they cannot be derived (an input called
 /// with the state in its arguments has no declared derivatives; `A` is
 /// then found by central differences).
-fn with_jacobians(compiled: Compiled, path: &Path) -> Compiled {
+fn with_jacobians(compiled: Compiled, path: &Path, files: &dyn Files) -> Compiled {
     if compiled.model.jacobians {
         return compiled;
     }
-    let derived = std::fs::read_to_string(path)
+    let derived = (files.text(path))
         .ok()
         .and_then(|source| Model::from_source(&source).ok())
         .and_then(|mut model| {

@@ -5,11 +5,13 @@
 //! statuses are [`status::ExitStatus`] (`lpm --help` prints them).
 
 use clap::{Parser, Subcommand};
+use lagrangian_studies::files::{Cached, Files};
 use lpm::failure::{Failure, Outcome};
 use lpm::{
     audit, chain, derive, eval, fit, fmu, generate, linearize, metrics, simulate, status, sweep,
 };
 use std::process::ExitCode;
+use std::sync::Arc;
 
 #[derive(Parser)]
 #[command(
@@ -76,25 +78,28 @@ enum Command {
     ExportFmu(fmu::Args),
 }
 
-fn run(command: Command) -> Result<Outcome, Failure> {
+fn run(command: Command, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     match command {
-        Command::Derive(args) => derive::run(args),
-        Command::Eval(args) => eval::run(args),
-        Command::Simulate(args) => simulate::run(args),
-        Command::Sweep(args) => sweep::run(args),
-        Command::Audit(args) => audit::run(args),
+        Command::Derive(args) => derive::run(args, files),
+        Command::Eval(args) => eval::run(args, files),
+        Command::Simulate(args) => simulate::run(args, files),
+        Command::Sweep(args) => sweep::run(args, files),
+        Command::Audit(args) => audit::run(args, files),
         Command::Generate(args) => generate::run(args),
-        Command::Fit(args) => fit::run(args),
-        Command::Metrics(args) => metrics::run(args),
+        Command::Fit(args) => fit::run(args, files),
+        Command::Metrics(args) => metrics::run(args, files),
         Command::Chain(args) => chain::run(args),
-        Command::Linearize(args) => linearize::run(args),
+        Command::Linearize(args) => linearize::run(args, files),
         Command::ExportFmu(args) => fmu::run(args),
     }
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli.command) {
+    // One cache for the command: a sweep's or a fit's runs parse each
+    // table once.
+    let files: Arc<dyn Files> = Arc::new(Cached::default());
+    match run(cli.command, &files) {
         Ok(outcome) => {
             print!("{}", outcome.text);
             ExitCode::from(outcome.status.code())

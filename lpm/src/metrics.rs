@@ -4,8 +4,10 @@ use crate::failure::{Failure, Outcome};
 use lagrangian_sim::pulse::channels::{Quantity, read_time_histories};
 use lagrangian_sim::pulse::{Pulse, PulseMetrics};
 use lagrangian_sim::warning::{self, Warning};
+use lagrangian_studies::files::Files;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Options of `lpm metrics`.
 #[derive(clap::Args)]
@@ -24,9 +26,9 @@ pub struct Args {
 }
 
 /// Runs `lpm metrics`.
-pub fn run(args: Args) -> Result<Outcome, Failure> {
+pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let (file, v0, json) = (args.file.as_path(), args.v0, args.format == "json");
-    let histories = read_time_histories(file).map_err(|e| Failure::channels(&e))?;
+    let histories = read_time_histories(&**files, file).map_err(|e| Failure::channels(&e))?;
     let Some(acceleration) = histories.channel(Quantity::Acceleration) else {
         return Err(Failure::usage(format!(
             "{}: the metrics need an acceleration (or deceleration) column",

@@ -4,9 +4,11 @@ use crate::failure::{Failure, Outcome};
 use lagrangian_sim::ode::Method;
 use lagrangian_sim::report::text_summary;
 use lagrangian_sim::scenario::Override;
+use lagrangian_studies::files::Files;
 use lagrangian_studies::simulate::{simulate_spec, write_outputs};
 use lagrangian_studies::spec::out_dir;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Options of `lpm simulate`.
 #[derive(clap::Args)]
@@ -94,10 +96,15 @@ fn naming_flags(failure: Failure, options: &Args) -> Failure {
 }
 
 /// Runs `lpm simulate`.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
+pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let settings = settings(&options)?;
-    let simulated = simulate_spec(&options.spec, options.scenario.as_deref(), &settings)
-        .map_err(|e| naming_flags(Failure::from(&e), &options))?;
+    let simulated = simulate_spec(
+        &**files,
+        &options.spec,
+        options.scenario.as_deref(),
+        &settings,
+    )
+    .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
     write_outputs(&out, &simulated).map_err(|e| Failure::from(&e))?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);

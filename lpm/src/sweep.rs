@@ -6,6 +6,7 @@
 use crate::failure::{Failure, Outcome};
 use crate::status::ExitStatus;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lagrangian_studies::files::Files;
 use lagrangian_studies::sweep::Design;
 use lagrangian_studies::sweeping::envelope::EnvelopeOptions;
 use lagrangian_studies::sweeping::{Progress, SweepRequest};
@@ -166,13 +167,13 @@ impl Args {
 
 /// Runs `lpm sweep`: the sweep, or with `--plan` its plan, or with
 /// `--merge` the merge of its shards' tables.
-pub fn run(options: Args) -> Result<Outcome, Failure> {
+pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let progress = Bar {
         quiet: options.quiet,
         bar: OnceLock::new(),
         stop: OnceLock::new(),
     };
-    let text = lagrangian_studies::sweeping::run(&options.request()?, &progress)?;
+    let text = lagrangian_studies::sweeping::run(&options.request()?, &progress, files)?;
     Ok(Outcome::success(text))
 }
 

@@ -4,7 +4,7 @@
 //! the text the command writes. The Python layer builds the options (lists
 //! of `KEY=VALUES` strings) and shapes the results.
 
-use crate::raise;
+use crate::{FILES, raise};
 use lagrangian_sim::scenario::Override;
 use lagrangian_studies::error::StudyError;
 use lagrangian_studies::fitting::{self, FitRequest};
@@ -46,14 +46,13 @@ impl SweepOptions {
     fn args(self) -> Result<SweepRequest, StudyError> {
         let scenario = match (self.scenario, &self.spec) {
             (Some(scenario), _) => scenario,
-            (None, Some(spec)) => {
-                lagrangian_studies::spec::find_scenario(spec)?.ok_or_else(|| {
+            (None, Some(spec)) => lagrangian_studies::spec::find_scenario(&**FILES, spec)?
+                .ok_or_else(|| {
                     StudyError::usage(format!(
                         "no scenario names {}; give one with scenario=",
                         spec.display()
                     ))
-                })?
-            }
+                })?,
             (None, None) => return Err(StudyError::usage("give a spec, a scenario or both")),
         };
         Ok(SweepRequest {
@@ -97,7 +96,7 @@ fn sweep_tables(py: Python<'_>, options: SweepOptions) -> PyResult<(Vec<u8>, Opt
         stop: AtomicBool::new(false),
         interrupt: Mutex::new(None),
     };
-    let tables = py.detach(|| memory::tables(&args, &progress));
+    let tables = py.detach(|| memory::tables(&args, &progress, &FILES));
     if let Some(e) = (progress.interrupt.into_inner()).unwrap_or_else(|e| e.into_inner()) {
         return Err(e);
     }
@@ -158,7 +157,7 @@ pub(crate) fn sweep_merge(
     parts: Vec<PathBuf>,
 ) -> PyResult<String> {
     let args = options.args().map_err(raise)?;
-    py.detach(|| memory::merged(&args, &parts).and_then(text))
+    py.detach(|| memory::merged(&args, &parts, &FILES).and_then(text))
         .map_err(raise)
 }
 
@@ -173,7 +172,7 @@ pub(crate) fn sweep_merge_envelope(
 ) -> PyResult<(String, String)> {
     let args = options.args().map_err(raise)?;
     let (table, envelope) = py
-        .detach(|| memory::merged_tables(&args, &parts))
+        .detach(|| memory::merged_tables(&args, &parts, &FILES))
         .map_err(raise)?;
     let envelope =
         envelope.ok_or_else(|| raise(StudyError::usage("give the channels to envelope")))?;
@@ -184,7 +183,7 @@ pub(crate) fn sweep_merge_envelope(
 #[pyfunction]
 pub(crate) fn sweep_plan(py: Python<'_>, options: SweepOptions) -> PyResult<String> {
     let args = options.args().map_err(raise)?;
-    py.detach(|| memory::plan(&args)).map_err(raise)
+    py.detach(|| memory::plan(&args, &FILES)).map_err(raise)
 }
 
 /// The options of `lpm fit`, as a dict with every key.
@@ -222,7 +221,7 @@ pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
     };
     let out = options.out;
     let fitted = py.detach(|| -> Result<Fitted, StudyError> {
-        let fitting = fitting::fitting(&request, &|_, _| {})?;
+        let fitting = fitting::fitting(&request, &|_, _| {}, &FILES)?;
         let files = match &out {
             Some(out) => fitting::write_files(&fitting, out)?,
             None => fitting::outputs(&fitting, Path::new("."))?,

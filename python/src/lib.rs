@@ -11,6 +11,7 @@ use lagrangian_core::emit::{Notation, render_equations, render_markdown};
 use lagrangian_runtime::{Energies, InputFunctions, InterpretedModel};
 use lagrangian_sim::scenario::Override;
 use lagrangian_studies::error::StudyError;
+use lagrangian_studies::files::{Cached, Files};
 use lagrangian_studies::mass::State;
 use lagrangian_studies::status::ExitStatus;
 use numpy::{
@@ -23,12 +24,16 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::{Mutex, MutexGuard};
+use std::sync::{Arc, LazyLock, Mutex, MutexGuard};
 
 mod ensembles;
 
 /// The exception class of each exit status, registered by the Python layer.
 static ERRORS: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
+
+/// The files every call of the module reads: each table parsed once per
+/// text, for as long as the interpreter runs (an edited file is read anew).
+static FILES: LazyLock<Arc<dyn Files>> = LazyLock::new(|| Arc::new(Cached::default()));
 
 /// The exception of `error`'s exit status, with its message.
 fn raise(error: impl Into<StudyError>) -> PyErr {
@@ -347,7 +352,12 @@ fn simulate(
     let settings = Override::parse_all(&settings).map_err(raise)?;
     let simulated = py
         .detach(|| {
-            lagrangian_studies::simulate::simulate_spec(&spec, scenario.as_deref(), &settings)
+            lagrangian_studies::simulate::simulate_spec(
+                &**FILES,
+                &spec,
+                scenario.as_deref(),
+                &settings,
+            )
         })
         .map_err(raise)?;
     let summary = lagrangian_sim::report::summary_json(&simulated.result);

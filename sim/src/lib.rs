@@ -38,6 +38,7 @@ pub mod curve;
 pub(crate) mod entry;
 pub mod failure;
 pub mod fault;
+pub mod files;
 pub mod linearize;
 pub mod model_names;
 pub use lagrangian_ode as ode;

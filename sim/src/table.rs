@@ -155,15 +155,6 @@ fn bare(header: &str) -> &str {
 }
 
 impl Table {
-    /// Reads and parses the CSV file `file`.
-    pub fn load(file: &Path) -> Result<Table, TableError> {
-        let text = std::fs::read_to_string(file).map_err(|e| TableError::Read {
-            file: file.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        Table::parse(file, &text)
-    }
-
     /// Parses `text`, the contents of `file`: a header row, then rows of
     /// numbers; `#` starts a comment.
     pub fn parse(file: &Path, text: &str) -> Result<Table, TableError> {

@@ -21,6 +21,7 @@ use lagrangian_runtime::{
 };
 use lagrangian_sim::components::BoundInputs;
 use lagrangian_sim::fault::Fault;
+use lagrangian_sim::files::Files;
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario, Setting};
 use lagrangian_sim::simulate::FailureKind;
 use lagrangian_sim::simulate::constrained;
@@ -191,15 +192,18 @@ pub type Bound = (Box<dyn InputFunctions>, Vec<usize>, Baumgarte);
 /// The scenario at `path` (with `settings`) applied to `model`: its
 /// parameters set, its components bound to the inputs and put in the state
 /// a run from `state` starts in. Returns the inputs, the indices of the
-/// parameters it sets and its stabilization of the constraints.
+/// parameters it sets and its stabilization of the constraints. The
+/// scenario and its tables are read from `files`.
 pub fn scenario_inputs(
+    files: &dyn Files,
     model: &mut InterpretedModel,
     path: &std::path::Path,
     settings: &[Override],
     (t, q, qd): mass::State,
 ) -> Result<Bound, StudyError> {
     let names = ModelNames::of_interpreted(model);
-    let scenario = Scenario::load(path, &names, settings).map_err(|e| StudyError::scenario(&e))?;
+    let scenario =
+        Scenario::read(files, path, &names, settings).map_err(|e| StudyError::scenario(&e))?;
     for &(i, value) in &scenario.parameters {
         model
             .set_parameter(&names.parameters[i], value)

@@ -7,11 +7,13 @@ use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
 use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::files::Files;
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
 use lagrangian_sim::report::write_all_atomically;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, Scenario};
 use std::fmt::Write;
 use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
 
 /// What to fit (`lpm fit`'s options without the output's).
 #[derive(Clone, Debug)]
@@ -47,26 +49,29 @@ pub struct Fitting {
 }
 
 /// The fit `options` describe, without writing anything; `progress` sees
-/// the number of simulations and the cost.
+/// the number of simulations and the cost. Every file is read from `files`,
+/// which every run of the fit shares.
 pub fn fitting(
     options: &FitRequest,
     progress: &(dyn Fn(usize, f64) + Sync),
+    files: &Arc<dyn Files>,
 ) -> Result<Fitting, StudyError> {
-    let compiled = compile(&options.spec)?;
+    let compiled = compile(&**files, &options.spec)?;
     let model = crate::spec::interpreted(&compiled);
     let names = ModelNames::of_interpreted(&model);
     let scenario_path = match &options.scenario {
         Some(p) => p.clone(),
-        None => find_scenario(&options.spec)?.ok_or_else(|| {
+        None => find_scenario(&**files, &options.spec)?.ok_or_else(|| {
             StudyError::usage(format!(
                 "no scenario names {}; give one with --scenario",
                 options.spec.display()
             ))
         })?,
     };
-    let text = std::fs::read_to_string(&scenario_path)
+    let text = (files.text(&scenario_path))
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
-    let target = read_time_histories(&options.target).map_err(|e| StudyError::channels(&e))?;
+    let target =
+        read_time_histories(&**files, &options.target).map_err(|e| StudyError::channels(&e))?;
     let document =
         Scenario::document(&text, &names, &options.set).map_err(|e| StudyError::scenario(&e))?;
     let fit_names = if options.fit.is_empty() {
@@ -76,14 +81,14 @@ pub fn fitting(
     };
     let parameters = Parameters::resolve(&fit_names, &document, &names, model.parameters())?;
     let base = BaseScenario {
-        text,
+        text: text.to_string(),
         file: Some(scenario_path.clone()),
         names: names.clone(),
         settings: options.set.clone(),
+        files: Arc::clone(files),
     };
     // Check the scenario once, so that its errors read as such.
-    Scenario::parse(&base.text, base.file.as_deref(), &names, &options.set)
-        .map_err(|e| StudyError::scenario(&e))?;
+    base.resolve(&[]).map_err(|e| StudyError::scenario(&e))?;
     check_target_extent(&target, &base, parameters.entries.len())
         .map_err(|e| StudyError::data_file(format!("{}: {e}", options.target.display())))?;
     let setup = FitSetup {

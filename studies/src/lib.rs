@@ -13,10 +13,12 @@
 //! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
 //! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
 //! its envelopes; [`progress::Progress`] the host's view of it), and the
-//! exit statuses a host ends with ([`status::ExitStatus`]).
+//! exit statuses a host ends with ([`status::ExitStatus`]). Every service
+//! reads its specs, scenarios and tables from the host's [`files::Files`].
 
 pub mod error;
 pub mod eval;
+pub use lagrangian_sim::files;
 #[cfg(feature = "fit")]
 pub mod fit;
 #[cfg(all(feature = "fit", feature = "plot"))]

@@ -7,6 +7,7 @@ use crate::spec::{compile, find_scenario};
 use lagrangian_core::Compiled;
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::fault::Fault;
+use lagrangian_sim::files::Files;
 use lagrangian_sim::report::{Units, summary_json, trajectory_csv, write_all_atomically};
 use lagrangian_sim::scenario::{ModelNames, Override, Scenario};
 use lagrangian_sim::simulate::{SimulationError, SimulationResult, SolverError, simulate};
@@ -34,15 +35,16 @@ impl Simulated {
 /// Compiles the spec at `spec`, loads its scenario (`scenario`, else the one
 /// beside the spec that names it, else the defaults) with `settings`
 /// (`--set` entries) and simulates it: what `lpm simulate` does before it
-/// writes its files ([`write_outputs`]).
+/// writes its files ([`write_outputs`]). Every file is read from `files`.
 pub fn simulate_spec(
+    files: &dyn Files,
     spec: &Path,
     scenario: Option<&Path>,
     settings: &[Override],
 ) -> Result<Simulated, StudyError> {
-    let (compiled, model, scenario_path, scenario) = load_spec(spec, scenario, settings)?;
+    let (compiled, model, scenario_path, scenario) = load_spec(files, spec, scenario, settings)?;
     let result = dispatch(model.clone(), &scenario).map_err(|failure| {
-        match domain_cause(&failure, &compiled, &scenario, spec) {
+        match domain_cause(&failure, &compiled, &scenario, (files, spec)) {
             Some(why) => failure.0.because(&why),
             None => failure.0,
         }
@@ -63,21 +65,23 @@ pub fn simulate_spec(
 /// Compiles the spec at `spec` and resolves its scenario (`scenario`, else
 /// the one beside the spec that names it, else the defaults) with
 /// `settings`: the compiled spec, its interpreted model, the scenario's file
-/// and the scenario, each failing as a run fails.
+/// and the scenario, each failing as a run fails. Every file is read from
+/// `files`.
 pub fn load_spec(
+    files: &dyn Files,
     spec: &Path,
     scenario: Option<&Path>,
     settings: &[Override],
 ) -> Result<(Compiled, InterpretedModel, Option<PathBuf>, Scenario), StudyError> {
-    let compiled = compile(spec)?;
+    let compiled = compile(files, spec)?;
     let model = crate::spec::interpreted(&compiled);
     let names = ModelNames::of_interpreted(&model);
     let scenario_path = match scenario {
         Some(p) => Some(p.to_path_buf()),
-        None => find_scenario(spec)?,
+        None => find_scenario(files, spec)?,
     };
     let scenario = match &scenario_path {
-        Some(path) => Scenario::load(path, &names, settings),
+        Some(path) => Scenario::read(files, path, &names, settings),
         None => Scenario::defaults(&names, settings),
     }
     .map_err(|e| StudyError::scenario(&e))?;
@@ -118,7 +122,7 @@ fn domain_cause(
     failure: &RunFailure,
     compiled: &Compiled,
     scenario: &Scenario,
-    spec: &Path,
+    (files, spec): (&dyn Files, &Path),
 ) -> Option<String> {
     let (t, Fault::NonFinite { q, qd, .. }) = failure.1.as_deref()? else {
         return None;
@@ -129,7 +133,7 @@ fn domain_cause(
         parameters[i] = value;
     }
     let (check, value) = model.domain_violation(*t, q, qd, &parameters)?;
-    let source = std::fs::read_to_string(spec).ok()?;
+    let source = files.text(spec).ok()?;
     Some(check.describe(&spec.display().to_string(), &source, value))
 }
 

@@ -4,13 +4,15 @@
 use crate::error::StudyError;
 use lagrangian_core::Compiled;
 use lagrangian_runtime::InterpretedModel;
+use lagrangian_sim::files::Files;
 use lagrangian_sim::scenario::scenarios_for;
 use std::path::{Path, PathBuf};
 
-/// Reads and compiles a spec, rendering errors as `file:line:col` snippets;
-/// the spec's warnings go to stderr, rendered the same way.
-pub fn compile(path: &Path) -> Result<Compiled, StudyError> {
-    let source = std::fs::read_to_string(path)
+/// Reads the spec at `path` from `files` and compiles it, rendering errors
+/// as `file:line:col` snippets; the spec's warnings go to stderr, rendered
+/// the same way.
+pub fn compile(files: &dyn Files, path: &Path) -> Result<Compiled, StudyError> {
+    let source = (files.text(path))
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", path.display())))?;
     let file = path.display().to_string();
     let compiled =
@@ -36,9 +38,10 @@ pub fn interpreted(compiled: &Compiled) -> InterpretedModel {
 }
 
 /// The scenario beside a spec (`<spec dir>/scenarios/*.toml` whose `spec`
-/// key names it); `None` when there is none, a failure when there are several.
-pub fn find_scenario(spec: &Path) -> Result<Option<PathBuf>, StudyError> {
-    let mut found = scenarios_for(spec);
+/// key names it); `None` when there is none, a failure when there are
+/// several. The scenarios are read from `files`.
+pub fn find_scenario(files: &dyn Files, spec: &Path) -> Result<Option<PathBuf>, StudyError> {
+    let mut found = scenarios_for(files, spec);
     match found.len() {
         0 => Ok(None),
         1 => Ok(found.pop()),

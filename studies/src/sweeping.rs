@@ -14,10 +14,12 @@ use crate::sweep::{
     shard_from_environment, stream_envelope, stream_sweep, write_csv, write_parquet,
 };
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
+use lagrangian_sim::files::Files;
 use lagrangian_sim::report::write_atomically_with;
 use lagrangian_sim::scenario::{BaseScenario, ModelNames, Override, spec_named_by};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 pub mod envelope;
@@ -120,19 +122,23 @@ fn shard(options: &SweepRequest) -> Result<Shard, ShardError> {
 
 /// The model the scenario (or `--spec`) names and the scenario every run
 /// starts from.
-fn load(options: &SweepRequest) -> Result<(InterpretedModel, BaseScenario), StudyError> {
-    let text = std::fs::read_to_string(&options.scenario)
+fn load(
+    options: &SweepRequest,
+    files: &Arc<dyn Files>,
+) -> Result<(InterpretedModel, BaseScenario), StudyError> {
+    let text = (files.text(&options.scenario))
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", options.scenario.display())))?;
     let spec = match &options.spec {
         Some(spec) => spec.clone(),
         None => spec_of(&options.scenario, &text)?,
     };
-    let model = crate::spec::interpreted(&compile(&spec)?);
+    let model = crate::spec::interpreted(&compile(&**files, &spec)?);
     let base = BaseScenario {
-        text,
+        text: text.to_string(),
         file: Some(options.scenario.clone()),
         names: ModelNames::of_interpreted(&model),
         settings: options.set.clone(),
+        files: Arc::clone(files),
     };
     Ok((model, base))
 }
@@ -169,9 +175,9 @@ struct Prepared {
     layout: Layout,
 }
 
-fn prepare(options: &SweepRequest) -> Result<Prepared, StudyError> {
+fn prepare(options: &SweepRequest, files: &Arc<dyn Files>) -> Result<Prepared, StudyError> {
     let plan = plan(options)?;
-    let (model, base) = load(options)?;
+    let (model, base) = load(options, files)?;
     let settings = Settings::new(&plan, &base, model.parameters())?;
     // A key the scenario does not know fails here, before any run starts.
     let first = match plan.is_empty() {
@@ -192,12 +198,17 @@ fn prepare(options: &SweepRequest) -> Result<Prepared, StudyError> {
 
 /// Runs the sweep `options` asks for, or with `plan_only` its plan, or
 /// with `merge` the merge of its shards' tables: the text `lpm sweep`
-/// prints. `progress` sees the runs of a sweep (not of a plan or a merge).
-pub fn run(options: &SweepRequest, progress: &dyn Progress) -> Result<String, StudyError> {
+/// prints. `progress` sees the runs of a sweep (not of a plan or a merge);
+/// the scenario, its spec and its tables are read from `files`.
+pub fn run(
+    options: &SweepRequest,
+    progress: &dyn Progress,
+    files: &Arc<dyn Files>,
+) -> Result<String, StudyError> {
     let shard = shard(options)?;
     let out = options.out.clone();
     let parquet = out.as_deref().map(|out| wants_parquet(options, out));
-    let prepared = prepare(options)?;
+    let prepared = prepare(options, files)?;
     let parquet = parquet.transpose()?;
     let envelope = envelope::request(options, &prepared)?;
     match (out, parquet) {

@@ -40,6 +40,7 @@ fn a_sweep_reports_the_multipliers_and_the_drift_of_each_run() {
             "simulation.t_end",
             0.2,
         )],
+        files: std::sync::Arc::new(lagrangian_sim::files::Disk),
     };
     let plan = Plan::grid(&["m2=1.5,2.5".to_string()]).unwrap();
     let settings = Settings::new(&plan, &base, &defaults).unwrap();

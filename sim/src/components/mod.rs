@@ -210,6 +210,7 @@ pub mod weld;
 
 use crate::curve::OutOfRange;
 use crate::entry::EntryError;
+use crate::files::Files;
 use crate::ode::Direction;
 use crate::table::Table;
 pub use bound::{Binding, BoundInputs, NamedComponent};
@@ -217,6 +218,7 @@ pub(crate) use section::Binder;
 pub use stand_in::StandIn;
 use std::fmt;
 use std::path::Path;
+use std::sync::Arc;
 
 /// Which value of a component an input function reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -514,10 +516,16 @@ impl Clone for Box<dyn Component> {
 /// A `[components.NAME]` section of a scenario file, as read for one kind
 /// of component.
 pub(crate) trait Section {
-    /// Reads the data file the section names, if any, and checks that what
+    /// Reads the data file the section names, if any, from `files`, and
+    /// checks that what
     /// it needs is there — before anything is bound, so that a missing file
     /// is reported as such. The default: no data file.
-    fn load_table(&self, _name: &str, _base: &Path) -> Result<Option<Table>, EntryError> {
+    fn load_table(
+        &self,
+        _files: &dyn Files,
+        _name: &str,
+        _base: &Path,
+    ) -> Result<Option<Arc<Table>>, EntryError> {
         Ok(None)
     }
 

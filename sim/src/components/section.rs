@@ -11,6 +11,7 @@ use crate::model_names::ModelNames;
 use crate::table::Table;
 use serde::Deserialize;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// The inputs a component supplies: its value and, optionally, derivatives
 /// (`inputs = { force = "…", stiffness = "…", damping = "…" }`; `moment` for
@@ -38,7 +39,7 @@ pub(crate) enum Named {
 /// they get bound, each to one port of a component.
 pub(crate) struct Binder<'a> {
     names: &'a ModelNames,
-    tables: &'a BTreeMap<String, Table>,
+    tables: &'a BTreeMap<String, Arc<Table>>,
     components: Vec<NamedComponent>,
     bindings: Vec<Option<Binding>>,
 }
@@ -46,7 +47,10 @@ pub(crate) struct Binder<'a> {
 impl<'a> Binder<'a> {
     /// A binder for the inputs of the model named by `names`, with the data
     /// files the sections loaded.
-    pub(crate) fn new(names: &'a ModelNames, tables: &'a BTreeMap<String, Table>) -> Binder<'a> {
+    pub(crate) fn new(
+        names: &'a ModelNames,
+        tables: &'a BTreeMap<String, Arc<Table>>,
+    ) -> Binder<'a> {
         Binder {
             names,
             tables,
@@ -86,8 +90,8 @@ impl<'a> Binder<'a> {
     /// The data file that section `[components.{name}]` loaded
     /// ([`crate::components::Section::load_table`]).
     pub(crate) fn table(&self, name: &str) -> Result<&'a Table, EntryError> {
-        let tables: &'a BTreeMap<String, Table> = self.tables;
-        tables.get(name).ok_or_else(|| {
+        let tables: &'a BTreeMap<String, Arc<Table>> = self.tables;
+        tables.get(name).map(|t| &**t).ok_or_else(|| {
             EntryError::at(
                 KeyPath::new("components").join(name),
                 "its table was not loaded",

@@ -20,10 +20,12 @@ use crate::components::section::Named;
 use crate::curve::outside;
 use crate::curve::{Curve, OutOfRange, Outside};
 use crate::entry::{EntryError, KeyPath};
+use crate::files::Files;
 use crate::table::Table;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// `y(x)` from a table: its value and slope at the input's first argument.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,11 +128,16 @@ fn smooth(name: &str, interpolation: &str) -> Result<bool, EntryError> {
 impl Section for TableSection {
     /// Reads the file (relative to `base`) and checks that every column it
     /// names is there, against increasing times.
-    fn load_table(&self, name: &str, base: &Path) -> Result<Option<Table>, EntryError> {
+    fn load_table(
+        &self,
+        files: &dyn Files,
+        name: &str,
+        base: &Path,
+    ) -> Result<Option<Arc<Table>>, EntryError> {
         let at = |e: &dyn std::fmt::Display| {
             EntryError::at(KeyPath::new("components").join(name), e.to_string())
         };
-        let table = Table::load(&base.join(&self.file)).map_err(|e| at(&e))?;
+        let table = files.table(&base.join(&self.file)).map_err(|e| at(&e))?;
         for column in self.columns.values() {
             table
                 .curve(&self.time_column, column, Outside::Hold)

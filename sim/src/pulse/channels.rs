@@ -8,6 +8,7 @@
 //! Every column the tool reads carries its unit in brackets; values are
 //! converted to SI. Columns with other names are ignored.
 
+use crate::files::Files;
 use crate::table::{Table, TableError};
 use std::path::Path;
 
@@ -179,9 +180,9 @@ fn unit_factor(quantity: Option<Quantity>, unit: &str) -> (Option<f64>, &'static
 }
 
 /// Reads the time column and the acceleration, velocity and crush columns
-/// (at least one) of a CSV file, in SI units.
-pub fn read_time_histories(path: &Path) -> Result<TimeHistories, ChannelError> {
-    let table = Table::load(path).map_err(ChannelError::Table)?;
+/// (at least one) of the CSV file `path` of `files`, in SI units.
+pub fn read_time_histories(files: &dyn Files, path: &Path) -> Result<TimeHistories, ChannelError> {
+    let table = files.table(path).map_err(ChannelError::Table)?;
     from_table(&table)
 }
 

@@ -1,7 +1,9 @@
 //! A scenario file with settings that every run of a sweep or a fit shares.
 
 use super::{ModelNames, Override, Scenario, ScenarioError};
+use crate::files::Files;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// The scenario every run of a sweep or a fit starts from.
 #[derive(Clone, Debug)]
@@ -14,6 +16,8 @@ pub struct BaseScenario {
     pub names: ModelNames,
     /// `--set` settings applied to every run before a run's own.
     pub settings: Vec<Override>,
+    /// Where the tables it names are read from, once per run.
+    pub files: Arc<dyn Files>,
 }
 
 impl BaseScenario {
@@ -21,6 +25,12 @@ impl BaseScenario {
     pub fn resolve(&self, settings: &[Override]) -> Result<Scenario, ScenarioError> {
         let mut all = self.settings.clone();
         all.extend_from_slice(settings);
-        Scenario::parse(&self.text, self.file.as_deref(), &self.names, &all)
+        Scenario::parse_in(
+            &*self.files,
+            &self.text,
+            self.file.as_deref(),
+            &self.names,
+            &all,
+        )
     }
 }

@@ -9,10 +9,11 @@ use crate::entry::EntryError;
 use crate::model_names::ModelNames;
 use crate::table::Table;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 pub(super) fn bind_components(
     sections: &BTreeMap<String, ComponentSection>,
-    tables: &BTreeMap<String, Table>,
+    tables: &BTreeMap<String, Arc<Table>>,
     names: &ModelNames,
     constants: BTreeMap<usize, f64>,
 ) -> Result<BoundInputs, EntryError> {

@@ -2,6 +2,7 @@
 //! `spec = "…"` key of a scenario file, relative to the file.
 
 use super::{ScenarioError, ScenarioErrorKind};
+use crate::files::Files;
 use std::path::{Path, PathBuf};
 
 /// The spec a scenario's text names with its `spec` key, relative to the
@@ -22,8 +23,9 @@ pub fn spec_named_by(path: &Path, text: &str) -> Result<Option<PathBuf>, Scenari
 }
 
 /// The scenarios beside a spec, `<spec dir>/scenarios/*.toml`, whose `spec`
-/// key names it, sorted (none when the folder does not exist).
-pub fn scenarios_for(spec: &Path) -> Vec<PathBuf> {
+/// key names it, sorted (none when the folder does not exist); their text
+/// is read from `files`.
+pub fn scenarios_for(files: &dyn Files, spec: &Path) -> Vec<PathBuf> {
     let Some(dir) = spec.parent().map(|d| d.join("scenarios")) else {
         return Vec::new();
     };
@@ -35,9 +37,8 @@ pub fn scenarios_for(spec: &Path) -> Vec<PathBuf> {
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .filter(|p| {
-            let named = std::fs::read_to_string(p)
-                .ok()
-                .and_then(|text| spec_named_by(p, &text).ok().flatten());
+            let named =
+                (files.text(p).ok()).and_then(|text| spec_named_by(p, &text).ok().flatten());
             named
                 .and_then(|n| std::fs::canonicalize(n).ok())
                 .is_some_and(|n| Some(n) == target)

@@ -64,6 +64,7 @@ mod signal;
 use crate::components::BoundInputs;
 pub use crate::entry::{EntryError, KeyPath};
 use crate::failure::FailureKind;
+use crate::files::{Disk, Files};
 pub use crate::model_names::ModelNames;
 use crate::ode::{Method, Options};
 use crate::table::Table;
@@ -83,6 +84,7 @@ use serde::Deserialize;
 pub use signal::{Channel, Column, Columns, CoordinateCombination, Role, Signal};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 impl ModelNames {
     /// The names with the columns of the components bound in `inputs`.
@@ -237,21 +239,33 @@ impl Scenario {
         Ok(())
     }
 
-    /// Reads and resolves a scenario file, applying `settings` (`key=value`,
-    /// see [`Scenario::parse`]) first.
+    /// Reads and resolves a scenario file from the disk, applying
+    /// `settings` first: [`Scenario::read`] with [`Disk`].
     pub fn load(
         path: &Path,
         names: &ModelNames,
         settings: &[Override],
     ) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
+        Scenario::read(&Disk, path, names, settings)
+    }
+
+    /// Reads the scenario file `path` and the tables it names from `files`,
+    /// and resolves it with `settings` applied first (see
+    /// [`Scenario::parse_in`]).
+    pub fn read(
+        files: &dyn Files,
+        path: &Path,
+        names: &ModelNames,
+        settings: &[Override],
+    ) -> Result<Scenario, ScenarioError> {
+        let text = files.text(path).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::Unreadable,
             file: Some(path.to_path_buf()),
             location: None,
             message: format!("cannot read: {e}"),
             key: None,
         })?;
-        Scenario::parse(&text, Some(path), names, settings)
+        Scenario::parse_in(files, &text, Some(path), names, settings)
     }
 
     /// A scenario with nothing but defaults (no file).
@@ -274,13 +288,27 @@ impl Scenario {
             .0)
     }
 
-    /// Resolves scenario `text` (from `file`, which relative paths start from).
+    /// Resolves scenario `text` (from `file`, which relative paths start
+    /// from), reading the tables it names from the disk:
+    /// [`Scenario::parse_in`] with [`Disk`].
+    pub fn parse(
+        text: &str,
+        file: Option<&Path>,
+        names: &ModelNames,
+        settings: &[Override],
+    ) -> Result<Scenario, ScenarioError> {
+        Scenario::parse_in(&Disk, text, file, names, settings)
+    }
+
+    /// Resolves scenario `text` (from `file`, which relative paths start
+    /// from), reading the tables it names from `files`.
     ///
     /// `settings` override it: `name=value` sets a spec parameter, or gives
     /// an input function a constant value; a dotted key such as
     /// `simulation.t_end=0.2` or `components.front_end.unloading=elastic`
     /// sets that entry of the file (the value is read as TOML).
-    pub fn parse(
+    pub fn parse_in(
+        files: &dyn Files,
         text: &str,
         file: Option<&Path>,
         names: &ModelNames,
@@ -324,7 +352,7 @@ impl Scenario {
                 ..error(e.to_string())
             },
         };
-        let tables = load_tables(&parsed.components, base).map_err(|e| ScenarioError {
+        let tables = load_tables(files, &parsed.components, base).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::DataFile,
             ..located(e)
         })?;
@@ -365,12 +393,13 @@ fn culprit<'a>(
 /// Reads every data file a scenario's components name, and checks that
 /// what they read is there, before anything is bound.
 fn load_tables(
+    files: &dyn Files,
     components: &BTreeMap<String, crate::components::ComponentSection>,
     base: &Path,
-) -> Result<BTreeMap<String, Table>, EntryError> {
+) -> Result<BTreeMap<String, Arc<Table>>, EntryError> {
     let mut tables = BTreeMap::new();
     for (name, section) in components {
-        if let Some(table) = section.section().load_table(name, base)? {
+        if let Some(table) = section.section().load_table(files, name, base)? {
             tables.insert(name.clone(), table);
         }
     }

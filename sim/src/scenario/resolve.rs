@@ -14,6 +14,7 @@ use crate::table::Table;
 use lagrangian_runtime::names::closest;
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The most output samples a run may ask for (`t_end / output_interval`);
 /// each keeps the whole state, so more would exhaust memory.
@@ -24,7 +25,7 @@ pub(super) fn resolve(
     base: &Path,
     names: &ModelNames,
     constants: BTreeMap<String, f64>,
-    tables: &BTreeMap<String, Table>,
+    tables: &BTreeMap<String, Arc<Table>>,
 ) -> Result<Scenario, EntryError> {
     let s = &file.simulation;
     let (method, options) = solver_settings(s)?;

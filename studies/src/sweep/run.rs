@@ -417,6 +417,7 @@ mod tests {
                 ..ModelNames::default()
             },
             settings: Vec::new(),
+            files: std::sync::Arc::new(lagrangian_sim::files::Disk),
         }
     }
 

@@ -68,6 +68,7 @@ mod tests {
             file: None,
             names,
             settings: vec![Override::number("m", 2.0)],
+            files: std::sync::Arc::new(lagrangian_sim::files::Disk),
         };
         let grid = ["k=50,200.5", "c*=0.5,3"].map(String::from);
         let plan = Plan::grid(&grid).unwrap();

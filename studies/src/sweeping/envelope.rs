@@ -132,7 +132,7 @@ fn weights(text: &str, prepared: &Prepared) -> Result<Weights, StudyError> {
     if text.contains('=') {
         return Ok(Weights::per_value(text, &prepared.plan)?);
     }
-    let file = std::fs::read_to_string(text)
+    let file = (prepared.base.files.text(std::path::Path::new(text)))
         .map_err(|e| StudyError::io(format!("--weights: cannot read {text}: {e}")))?;
     Ok(Weights::per_run_csv(&file, text, &prepared.plan)?)
 }

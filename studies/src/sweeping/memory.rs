@@ -13,7 +13,9 @@ use super::{
 };
 use crate::error::StudyError;
 use crate::sweep::{Design, Envelope, Row, Shard, SweepJob, sweep_csv, write_envelope_csv};
+use lagrangian_sim::files::Files;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// The runs of the shard `options` names, as the CSV bytes `lpm sweep
 /// --out FILE.csv` writes for the same options (`out`, `format`, `plan`,
@@ -24,8 +26,12 @@ use std::path::PathBuf;
 /// like the first Ctrl-C of the command (an `Interrupted` error). When
 /// every run fails the error is `EveryRunFailed`, as the command's exit
 /// status.
-pub fn table(options: &SweepRequest, progress: &dyn Progress) -> Result<Vec<u8>, StudyError> {
-    tables(options, progress).map(|(table, _)| table)
+pub fn table(
+    options: &SweepRequest,
+    progress: &dyn Progress,
+    files: &Arc<dyn Files>,
+) -> Result<Vec<u8>, StudyError> {
+    tables(options, progress, files).map(|(table, _)| table)
 }
 
 /// [`table`], and with `options.envelope`'s channels the envelope table
@@ -34,10 +40,11 @@ pub fn table(options: &SweepRequest, progress: &dyn Progress) -> Result<Vec<u8>,
 pub fn tables(
     options: &SweepRequest,
     progress: &dyn Progress,
+    files: &Arc<dyn Files>,
 ) -> Result<(Vec<u8>, Option<Vec<u8>>), StudyError> {
     check_shard_count(options)?;
     let shard = shard(options)?;
-    let prepared = prepare(options)?;
+    let prepared = prepare(options, files)?;
     let request = envelope::request(options, &prepared)?;
     let mut accumulated = request
         .as_ref()
@@ -116,8 +123,12 @@ fn envelope_csv(envelope: &Envelope) -> Result<Vec<u8>, StudyError> {
 /// CSV bytes of one full run's table. With `options.out` the command's
 /// merge also writes that file (CSV or Parquet, as `--format` or the
 /// extension says).
-pub fn merged(options: &SweepRequest, parts: &[PathBuf]) -> Result<Vec<u8>, StudyError> {
-    let prepared = prepare(options)?;
+pub fn merged(
+    options: &SweepRequest,
+    parts: &[PathBuf],
+    files: &Arc<dyn Files>,
+) -> Result<Vec<u8>, StudyError> {
+    let prepared = prepare(options, files)?;
     if let Some(out) = &options.out {
         merge(parts, &prepared, out, wants_parquet(options, out)?)?;
     }
@@ -133,8 +144,9 @@ pub fn merged(options: &SweepRequest, parts: &[PathBuf]) -> Result<Vec<u8>, Stud
 pub fn merged_tables(
     options: &SweepRequest,
     parts: &[PathBuf],
+    files: &Arc<dyn Files>,
 ) -> Result<(Vec<u8>, Option<Vec<u8>>), StudyError> {
-    let prepared = prepare(options)?;
+    let prepared = prepare(options, files)?;
     let request = envelope::request(options, &prepared)?;
     let envelope = (request.as_ref())
         .map(|request| envelope::merged(request, parts, &prepared))
@@ -148,8 +160,8 @@ pub fn merged_tables(
 }
 
 /// What `lpm sweep --plan` prints for `options`.
-pub fn plan(options: &SweepRequest) -> Result<String, StudyError> {
-    plan_report(prepare(options)?)
+pub fn plan(options: &SweepRequest, files: &Arc<dyn Files>) -> Result<String, StudyError> {
+    plan_report(prepare(options, files)?)
 }
 
 /// The command line refuses `--shard-count 0` while parsing; so does this.
