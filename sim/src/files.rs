@@ -111,66 +111,6 @@ mod tests {
         assert_eq!((at_end(&first), at_end(&edited)), (2.0, 3.0));
     }
 
-    /// Files held in memory, which counts the tables asked for.
-    #[derive(Debug, Default)]
-    struct Memory {
-        texts: HashMap<PathBuf, &'static str>,
-        tables_asked: std::sync::atomic::AtomicUsize,
-    }
-
-    impl Files for Memory {
-        fn text(&self, path: &Path) -> std::io::Result<Arc<str>> {
-            let missing = || std::io::Error::from(std::io::ErrorKind::NotFound);
-            self.texts
-                .get(path)
-                .map(|t| Arc::from(*t))
-                .ok_or_else(missing)
-        }
-
-        fn table(&self, path: &Path) -> Result<Arc<Table>, TableError> {
-            (self.tables_asked).fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let text = self.text(path).map_err(|e| unreadable(path, &e))?;
-            Table::parse(path, &text).map(Arc::new)
-        }
-    }
-
-    #[test]
-    fn a_scenario_reads_itself_and_its_tables_from_the_hosts_files() {
-        use crate::scenario::{BaseScenario, ModelNames, Override, Scenario};
-        let spec = include_str!("../../specs/spring_mass_damper.lpm");
-        let names = ModelNames::of_interpreted(&lagrangian_core::interpret(spec).unwrap());
-        let folder = Path::new("/nowhere-on-disk");
-        let scenario =
-            "[components.b]\ntype = \"table\"\nfile = \"forces.csv\"\ncolumns = { push = \"F\" }\n";
-        let memory = Memory {
-            texts: HashMap::from([
-                (folder.join("s.toml"), scenario),
-                (folder.join("forces.csv"), "t,F\n0,5\n1,100\n"),
-            ]),
-            ..Memory::default()
-        };
-        let path = folder.join("s.toml");
-        Scenario::read(&memory, &path, &names, &[]).unwrap();
-        let on_disk = Scenario::read(&Disk, &path, &names, &[]).unwrap_err();
-        assert!(on_disk.to_string().contains("cannot read"), "{on_disk}");
-        // Every run of a study resolves its base scenario through them.
-        let memory = Arc::new(memory);
-        let base = BaseScenario {
-            text: scenario.into(),
-            file: Some(path),
-            names,
-            settings: Vec::new(),
-            files: Arc::clone(&memory) as Arc<dyn Files>,
-        };
-        for m in [1.0, 2.0, 3.0] {
-            base.resolve(&[Override::number("m", m)]).unwrap();
-        }
-        let asked = memory
-            .tables_asked
-            .load(std::sync::atomic::Ordering::Relaxed);
-        assert_eq!(asked, 4);
-    }
-
     #[test]
     fn disk_and_cached_report_a_missing_file_alike() {
         let path = folder("missing").join("none.csv");
