@@ -134,6 +134,7 @@ impl Compiled {
             coordinate_units: model.coordinates.iter().map(|c| unit(&c.unit)).collect(),
             parameters: model.parameters.iter().map(|p| p.name.clone()).collect(),
             parameter_defaults: self.default_parameters(),
+            parameter_units: model.parameters.iter().map(|p| unit(&p.unit)).collect(),
             inputs: model.inputs.iter().map(|i| i.name.clone()).collect(),
             input_arguments: model
                 .inputs

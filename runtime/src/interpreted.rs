@@ -25,6 +25,9 @@ pub struct ModelDescription {
     pub parameters: Vec<String>,
     /// The default value of each parameter.
     pub parameter_defaults: Vec<f64>,
+    /// The unit of each parameter as written in the spec, if any (empty
+    /// where a description does not say).
+    pub parameter_units: Vec<Option<String>>,
     /// The input functions.
     pub inputs: Vec<String>,
     /// The declared argument names of each input function.
@@ -197,6 +200,12 @@ impl InterpretedModel {
     /// Names of the parameters, in order.
     pub fn parameter_names(&self) -> &[String] {
         &self.description.parameters
+    }
+
+    /// Units of the parameters as written in the spec (empty where the
+    /// description does not say).
+    pub fn parameter_units(&self) -> &[Option<String>] {
+        &self.description.parameter_units
     }
 
     /// Names of the input functions, in order.

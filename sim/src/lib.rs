@@ -43,6 +43,7 @@ pub mod linearize;
 pub mod model_names;
 pub use lagrangian_ode as ode;
 pub mod pulse;
+pub mod quantity;
 pub mod report;
 pub mod scenario;
 pub mod simulate;

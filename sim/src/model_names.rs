@@ -24,6 +24,9 @@ pub struct ModelNames {
     pub input_sites: Vec<(usize, usize)>,
     /// The unit of each coordinate, where the model declares it.
     pub coordinate_units: Vec<Option<String>>,
+    /// The unit of each parameter, where the model declares it (empty when
+    /// it does not say).
+    pub parameter_units: Vec<Option<String>>,
     /// The spec's declared outputs, in order.
     pub outputs: Vec<String>,
     /// The unit of each output, where declared.
@@ -77,6 +80,7 @@ impl ModelNames {
             input_arguments: model.input_arguments().iter().cloned().map(Some).collect(),
             input_sites: model.input_sites().to_vec(),
             coordinate_units: model.coordinate_units().to_vec(),
+            parameter_units: model.parameter_units().to_vec(),
             outputs: model.output_names().to_vec(),
             output_units: model.output_units().to_vec(),
             output_reads: model.output_reads().into_iter().map(Some).collect(),

@@ -189,6 +189,13 @@ pub(crate) struct BoucWenSection {
     z0: f64,
 }
 
+impl super::SectionUnits for BoucWenSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("fy", One("N")), ("uy", One("m"))]
+    };
+}
+
 impl BoucWenSection {
     /// The spring, its entries checked.
     fn spring(&self, name: &str) -> Result<BoucWen, EntryError> {

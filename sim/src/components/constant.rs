@@ -59,6 +59,12 @@ pub(crate) struct ConstantSection {
     values: BTreeMap<String, f64>,
 }
 
+/// No entry of it is a quantity: what it reads is in its file or in the
+/// unit of the input it sets.
+impl super::SectionUnits for ConstantSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = &[];
+}
+
 impl Section for ConstantSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         for (input, value) in &self.values {

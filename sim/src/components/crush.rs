@@ -564,6 +564,22 @@ pub(crate) struct CrushSection {
     stop_at_kinks: bool,
 }
 
+impl super::SectionUnits for CrushSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[
+            ("stiffness_breakpoints", One("m")),
+            ("stiffness_values", One("N/m")),
+            ("force_breakpoints", One("m")),
+            ("force_values", One("N")),
+            ("damping_breakpoints", One("m/s")),
+            ("damping_values", One("N*s/m")),
+            ("gap", One("m")),
+            ("unloading_stiffness", One("N/m")),
+        ]
+    };
+}
+
 fn elastic() -> String {
     "elastic".into()
 }

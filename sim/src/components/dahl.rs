@@ -130,6 +130,13 @@ pub(crate) struct DahlSection {
     z0: f64,
 }
 
+impl super::SectionUnits for DahlSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("fc", One("N")), ("sigma0", One("N/m")), ("z0", One("m"))]
+    };
+}
+
 impl Section for DahlSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");

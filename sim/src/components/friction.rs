@@ -162,6 +162,18 @@ pub(crate) struct FrictionSection {
     normal_force: Option<f64>,
 }
 
+impl super::SectionUnits for FrictionSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[
+            ("stribeck_velocity", One("m/s")),
+            ("viscous", One("N*s/m")),
+            ("smoothing_velocity", One("m/s")),
+            ("normal_force", One("N")),
+        ]
+    };
+}
+
 fn two() -> f64 {
     2.0
 }

@@ -100,6 +100,13 @@ pub(crate) struct KelvinVoigtSection {
     damping: f64,
 }
 
+impl super::SectionUnits for KelvinVoigtSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("stiffness", One("N/m")), ("damping", One("N*s/m"))]
+    };
+}
+
 impl Section for KelvinVoigtSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");

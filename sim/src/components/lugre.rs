@@ -154,6 +154,21 @@ pub(crate) struct LuGreSection {
     z0: f64,
 }
 
+impl super::SectionUnits for LuGreSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[
+            ("fc", One("N")),
+            ("fs", One("N")),
+            ("vs", One("m/s")),
+            ("sigma0", One("N/m")),
+            ("sigma1", One("N*s/m")),
+            ("sigma2", One("N*s/m")),
+            ("z0", One("m")),
+        ]
+    };
+}
+
 impl LuGreSection {
     /// The friction law, its entries checked.
     fn law(&self, name: &str) -> Result<LuGre, EntryError> {

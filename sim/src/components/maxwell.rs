@@ -129,6 +129,17 @@ pub(crate) struct MaxwellSection {
     dashpot0: f64,
 }
 
+impl super::SectionUnits for MaxwellSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[
+            ("stiffness", One("N/m")),
+            ("damping", One("N*s/m")),
+            ("dashpot0", One("m")),
+        ]
+    };
+}
+
 impl Section for MaxwellSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");

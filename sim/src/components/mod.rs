@@ -534,6 +534,26 @@ pub(crate) trait Section {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError>;
 }
 
+/// The unit of a number entry of a section, in which it may be written
+/// with a unit of its own (`force_values = ["4 MN", "6 MN"]`): see
+/// [`crate::quantity`].
+pub(crate) enum Measure {
+    /// The number, or each number of a list, is in this unit.
+    One(&'static str),
+    /// A list of pairs, `[[angle, moment], …]`: the first of each pair is
+    /// in the first unit, the second in the second.
+    Pairs(&'static str, &'static str),
+}
+
+/// The units of a section's number entries, by key: the one list a
+/// scenario's quantities (`"4 MN"`) are read with. An entry not listed
+/// takes a plain number only (a pure number, or one whose unit depends on
+/// the model, such as a contact's stiffness of `N/m^n`).
+pub(crate) trait SectionUnits {
+    /// `(key, its unit)` per number entry.
+    const UNITS: &'static [(&'static str, Measure)];
+}
+
 /// The registry: from `KIND => module::Section` lines, the serde enum of
 /// the sections (tagged by `type = "KIND"`) and their dispatch.
 macro_rules! components {
@@ -554,6 +574,19 @@ macro_rules! components {
             pub(crate) fn kind(&self) -> &'static str {
                 match self {
                     $($(#[$attr])* ComponentSection::$kind(_) => stringify!($kind),)*
+                }
+            }
+
+            /// Every kind of section, as its `type` is written.
+            #[cfg(test)]
+            pub(crate) const KINDS: &[&str] = &[$($(#[$attr])* stringify!($kind),)*];
+
+            /// The units of the number entries of the section of `kind`
+            /// ([`SectionUnits`]); `None` for a kind there is not.
+            pub(crate) fn units_of(kind: &str) -> Option<&'static [(&'static str, Measure)]> {
+                match kind {
+                    $($(#[$attr])* stringify!($kind) => Some(<$section as SectionUnits>::UNITS),)*
+                    _ => None,
                 }
             }
 

@@ -199,6 +199,13 @@ pub(crate) struct StickSlipSection {
     normal_force: f64,
 }
 
+impl super::SectionUnits for StickSlipSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("normal_force", One("N"))]
+    };
+}
+
 impl Section for StickSlipSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let key = |entry: &str| format!("components.{name}.{entry}");

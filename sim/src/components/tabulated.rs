@@ -101,6 +101,12 @@ pub(crate) struct TableSection {
     stop_at_kinks: bool,
 }
 
+/// No entry of it is a quantity: what it reads is in its file or in the
+/// unit of the input it sets.
+impl super::SectionUnits for TableSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = &[];
+}
+
 fn time() -> String {
     "t".into()
 }

@@ -91,6 +91,13 @@ pub(crate) struct SpringSection {
     breaks_at: f64,
 }
 
+impl super::SectionUnits for SpringSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("stiffness", One("N/m")), ("breaks_at", One("m"))]
+    };
+}
+
 impl Section for SpringSection {
     fn build(&self, name: &str, binder: &mut Binder) -> Result<(), EntryError> {
         let spring = Spring {

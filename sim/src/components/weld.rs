@@ -336,6 +336,20 @@ pub(crate) struct WeldSection {
     stop_at_kinks: bool,
 }
 
+impl super::SectionUnits for WeldSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::{One, Pairs};
+        &[
+            ("curve", Pairs("rad", "N*m")),
+            ("damping", One("N*m*s/rad")),
+            ("failure_moment", One("N*m")),
+            ("failure_angle", One("rad")),
+            ("post_failure_curve", Pairs("rad", "N*m")),
+            ("post_failure_damping", One("N*m*s/rad")),
+        ]
+    };
+}
+
 fn yes() -> bool {
     true
 }

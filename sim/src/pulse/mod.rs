@@ -15,8 +15,9 @@ pub use cfc::{CfcError, cfc_filter, cfc_filter_classes};
 pub use occupant::{Olc, asi, clip_3ms, integrate, olc};
 use serde::Serialize;
 
-/// Standard gravity [m/s²], the unit `g` of the metrics.
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+/// Standard gravity [m/s²], the unit `g` of the metrics (one constant with
+/// the `g` of a scenario's quantities).
+pub use crate::quantity::STANDARD_GRAVITY;
 
 /// How far apart, relative to the smallest, the periods of samples that
 /// [`Pulse::resampled`] takes as evenly spaced may be: far below what

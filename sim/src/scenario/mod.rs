@@ -57,6 +57,7 @@ mod file;
 mod locate;
 pub mod options;
 mod overrides;
+mod quantities;
 mod resolve;
 mod scale;
 mod signal;
@@ -280,12 +281,12 @@ impl Scenario {
         names: &ModelNames,
         settings: &[Override],
     ) -> Result<toml::Table, ScenarioError> {
-        let document: toml::Table = (text.parse())
-            .map_err(|e: toml::de::Error| ScenarioError::invalid(None, e.to_string()))?;
-        let settled = with_settings(document, names, settings);
-        Ok(settled
-            .map_err(|e| ScenarioError::invalid(None, e.to_string()))?
-            .0)
+        let invalid = |e: &dyn std::fmt::Display| ScenarioError::invalid(None, e.to_string());
+        let mut document: toml::Table = text.parse().map_err(|e| invalid(&e))?;
+        quantities::in_si(&mut document, names).map_err(|e| invalid(&e))?;
+        let (mut settled, _) = with_settings(document, names, settings).map_err(|e| invalid(&e))?;
+        quantities::in_si(&mut settled, names).map_err(|e| invalid(&e))?;
+        Ok(settled)
     }
 
     /// Resolves scenario `text` (from `file`, which relative paths start
@@ -319,10 +320,25 @@ impl Scenario {
         // which an error finds the place of its entry.
         let spanned = toml::de::DeTable::parse(text).map_err(|e| toml_error(file, text, &e))?;
         let positioned = || toml::de::Deserializer::from(spanned.clone());
-        let document =
+        let located = |e: EntryError| match locate::setting_of(&e, settings) {
+            Some(setting) => ScenarioError {
+                key: Some(e.key.clone()),
+                ..ScenarioError::invalid(None, locate::blamed(setting, &e))
+            },
+            None => ScenarioError {
+                // Where it is: needed on this path alone.
+                location: Places::new(text, spanned.get_ref()).locate(&e),
+                key: Some(e.key.clone()),
+                ..error(e.to_string())
+            },
+        };
+        let mut document =
             toml::Table::deserialize(positioned()).map_err(|e| toml_error(file, text, &e))?;
-        let (settled, constants) = with_settings(document.clone(), names, settings)
+        // Quantities with units, of the file and then of the settings.
+        quantities::in_si(&mut document, names).map_err(located)?;
+        let (mut settled, constants) = with_settings(document.clone(), names, settings)
             .map_err(|e| ScenarioError::invalid(None, e.to_string()))?;
+        quantities::in_si(&mut settled, names).map_err(located)?;
         let parsed: File = settled.try_into().map_err(|e: toml::de::Error| {
             // The settled document has no positions; the parsed text has
             // them when the problem is in the file rather than in a setting.
@@ -340,18 +356,6 @@ impl Scenario {
             }
         })?;
         let base = file.and_then(Path::parent).unwrap_or(Path::new("."));
-        let located = |e: EntryError| match locate::setting_of(&e, settings) {
-            Some(setting) => ScenarioError {
-                key: Some(e.key.clone()),
-                ..ScenarioError::invalid(None, locate::blamed(setting, &e))
-            },
-            None => ScenarioError {
-                // Where it is: needed on this path alone.
-                location: Places::new(text, spanned.get_ref()).locate(&e),
-                key: Some(e.key.clone()),
-                ..error(e.to_string())
-            },
-        };
         let tables = load_tables(files, &parsed.components, base).map_err(|e| ScenarioError {
             kind: ScenarioErrorKind::DataFile,
             ..located(e)
@@ -380,6 +384,7 @@ fn culprit<'a>(
         current = with_settings(current, names, std::slice::from_ref(setting))
             .ok()?
             .0;
+        quantities::in_si(&mut current, names).ok()?;
         if let Err(e) = current.clone().try_into::<File>() {
             if e.message() == message {
                 return Some(setting.text());

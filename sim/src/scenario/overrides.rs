@@ -71,6 +71,16 @@ fn setting_number(setting: &str, name: &str, value: &str) -> Result<f64, Overrid
     })
 }
 
+/// `text` (in quotes or not) where it reads as a number with a unit
+/// (`850 g`, `"1.2 t"`): a parameter's quantity, read in its unit later.
+fn quantity_text(text: &str) -> Option<&str> {
+    let bare = text.strip_prefix('"').and_then(|t| t.strip_suffix('"'));
+    let text = bare.unwrap_or(text).trim();
+    let digits = text.trim_start_matches(['+', '-']);
+    let number_first = digits.starts_with(|c: char| c.is_ascii_digit() || c == '.');
+    (number_first && text.contains(char::is_alphabetic)).then_some(text)
+}
+
 /// `text` read as a TOML value, if it is one.
 fn toml_value(text: &str) -> Option<toml::Value> {
     format!("v = {text}")
@@ -80,9 +90,9 @@ fn toml_value(text: &str) -> Option<toml::Value> {
 }
 
 impl Override {
-    /// Reads `KEY=VALUE` or `KEY*=FACTOR`: a plain key takes a number, a
-    /// factor a finite number, a dotted key any TOML value (a bare word is
-    /// a string).
+    /// Reads `KEY=VALUE` or `KEY*=FACTOR`: a plain key takes a number (or
+    /// a parameter a number with a unit, `m=1.2 t`), a factor a finite
+    /// number, a dotted key any TOML value (a bare word is a string).
     pub fn parse(setting: &str) -> Result<Override, OverrideError> {
         let (key, value) = split_setting(setting)?;
         let text = setting.trim().to_string();
@@ -99,7 +109,12 @@ impl Override {
         }
         let value = match key.contains('.') {
             true => toml_value(value).unwrap_or_else(|| toml::Value::String(value.to_string())),
-            false => toml::Value::Float(setting_number(setting, key, value)?),
+            false => match quantity_text(value) {
+                Some(quantity) if value.parse::<f64>().is_err() => {
+                    toml::Value::String(quantity.to_string())
+                }
+                _ => toml::Value::Float(setting_number(setting, key, value)?),
+            },
         };
         let (key, change) = (key.to_string(), Change::Set(value));
         Ok(Override { key, change, text })
@@ -209,6 +224,9 @@ impl Override {
                 let (key, value) = (key.to_string(), value.clone());
                 return Ok(Setting::Entry { key, value });
             }
+            Change::Set(toml::Value::String(text)) if names.parameters.iter().any(|p| p == key) => {
+                parameter_quantity(&self.text, key, text, names)?
+            }
             Change::Set(value) => super::as_number(value)
                 .ok_or_else(|| error(format!("--set {key}: `{value}` is not a number")))?,
         };
@@ -246,6 +264,26 @@ impl Override {
         let key = key.to_string();
         Ok(Setting::Scale { key, factor })
     }
+}
+
+/// Parameter `name` set to `text` by `setting`, a quantity in the unit the
+/// spec declares for it (`--set m="1.2 t"`), as an SI number.
+fn parameter_quantity(
+    setting: &str,
+    name: &str,
+    text: &str,
+    names: &ModelNames,
+) -> Result<f64, OverrideError> {
+    let index = names.parameters.iter().position(|p| p == name);
+    let unit = index.and_then(|i| names.parameter_units.get(i)?.as_deref());
+    let error =
+        |why: String| OverrideError::new(setting, format!("--set {name}=\"{text}\": {why}"));
+    let Some(unit) = unit else {
+        return Err(error(format!(
+            "the spec declares no unit for `{name}`: write the number in SI units"
+        )));
+    };
+    crate::quantity::value_in(text, unit).map_err(|e| error(e.problem.to_string()))
 }
 
 /// Applies one override to the document (input constants go to

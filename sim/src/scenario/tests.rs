@@ -630,3 +630,94 @@ fn a_scenario_reads_itself_and_its_tables_from_the_hosts_files() {
         .load(std::sync::atomic::Ordering::Relaxed);
     assert_eq!(asked, 4);
 }
+
+#[test]
+fn quantities_with_units_read_as_their_si_values() {
+    let yaris = ModelNames::of_interpreted(&lagrangian_core::interpret(YARIS).unwrap());
+    let crush = |speed: &str, forces: &str, t_end: &str| {
+        let text = format!(
+            "[simulation]\nt_end = {t_end}\n[initial]\nspeed = {speed}\nmoving = [\"r\"]\n\
+             [components.fe]\ntype = \"crush\"\ninputs = {{ force = \"crush\" }}\ncompression = \"negative\"\n\
+             force_breakpoints = [\"100 mm\", 0.5]\nforce_values = {forces}\n\
+             damping_breakpoints = [\"1 m/s\"]\ndamping_values = [\"2 kN*s/m\", 2000]\n"
+        );
+        let scenario = Scenario::parse(&text, None, &yaris, &[]).unwrap_or_else(|e| panic!("{e}"));
+        format!(
+            "{:?}",
+            (
+                scenario.initial_velocities,
+                scenario.options,
+                scenario.inputs
+            )
+        )
+    };
+    // 56 km/h = 56/3.6 m/s; 4 MN; 0.12 s.
+    assert_eq!(
+        crush("\"56 km/h\"", "[\"4 MN\", \"4000 kN\"]", "\"120 ms\""),
+        crush(&format!("{:?}", 56.0 / 3.6), "[4e6, 4e6]", "0.12")
+    );
+    // A parameter in the unit the spec declares (`m [kg]`), also from --set.
+    let spring = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let m = |text: &str, settings: &[&str]| {
+        let s = parse_with(text, None, &spring, settings).unwrap_or_else(|e| panic!("{e}"));
+        s.parameters
+    };
+    assert_eq!(
+        m("[parameters]\nm = \"1.2 t\"\n", &[]),
+        m("[parameters]\nm = 1200.0\n", &[])
+    );
+    assert_eq!(m("", &["m=\"850 g\""]), m("", &["m=0.85"]));
+    assert_eq!(m("", &["m=850 g"]), m("", &["m=0.85"]));
+    // A factor scales the SI value; a dotted --set takes a quantity too.
+    let speed = |text: &str, settings: &[&str]| {
+        let s = parse_with(text, None, &yaris, settings).unwrap_or_else(|e| panic!("{e}"));
+        s.initial_velocities
+    };
+    let moving = "[initial]\nmoving = [\"r\"]\nspeed = \"36 km/h\"\n";
+    assert_eq!(speed(moving, &["initial.speed*=2"]), vec![(0, 20.0)]);
+    assert_eq!(speed(moving, &["initial.speed=72 km/h"]), vec![(0, 20.0)]);
+}
+
+#[test]
+fn a_quantity_in_the_wrong_unit_is_refused_at_its_entry() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let text = "[simulation]\nt_end = 0.1\n\n[initial]\nspeed = \"56 km\"\n";
+    let e = Scenario::parse(text, Some(Path::new("s.toml")), &names, &[]).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "s.toml:5:9: initial.speed = \"56 km\": km is a length, but this entry needs a velocity (m/s)"
+    );
+    assert_eq!(
+        error("", &["simulation.t_end=\"5 kg\""]),
+        "--set simulation.t_end=\"5 kg\": kg is a mass, but this entry needs a time (s)"
+    );
+    assert_eq!(
+        error("[parameters]\nk = \"3 kN\"\n", &[]),
+        "parameters.k = \"3 kN\": kN is a force, but this entry needs a stiffness (N/m)"
+    );
+    assert_eq!(
+        error("", &["m=3 m"]),
+        "--set m=\"3 m\": m is a length, but this entry needs a mass (kg)"
+    );
+    assert_eq!(
+        error("[simulation]\nt_end = \"0.1\"\n", &[]),
+        "simulation.t_end = \"0.1\": has no unit: write it in s, or as a number without quotes (SI)"
+    );
+}
+
+#[test]
+fn every_unit_a_component_section_declares_is_a_unit() {
+    use crate::components::{ComponentSection, Measure};
+    for kind in ComponentSection::KINDS {
+        for (key, measure) in ComponentSection::units_of(kind).unwrap() {
+            let units = match measure {
+                Measure::One(unit) => vec![*unit],
+                Measure::Pairs(a, b) => vec![*a, *b],
+            };
+            for unit in units {
+                let value = crate::quantity::value_in(&format!("1 {unit}"), unit);
+                assert_eq!(value, Ok(1.0), "{kind}.{key}: {unit}");
+            }
+        }
+    }
+}

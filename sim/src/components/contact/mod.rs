@@ -414,6 +414,13 @@ pub(crate) struct ContactSection {
     min_impact_velocity: f64,
 }
 
+impl super::SectionUnits for ContactSection {
+    const UNITS: &'static [(&'static str, super::Measure)] = {
+        use super::Measure::One;
+        &[("mass", One("kg")), ("min_impact_velocity", One("m/s"))]
+    };
+}
+
 fn one_millimetre_per_second() -> f64 {
     1e-3
 }
