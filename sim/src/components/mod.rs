@@ -90,6 +90,10 @@
 //!      ports: `binder.bind_ports(&self.inputs, "force", c, name)` for an
 //!      `inputs = { force, stiffness, damping }` entry (`Ports`), or
 //!      `binder.bind(key, input, (c, Port::Value))` for one input.
+//!      And `impl SectionUnits` with the unit of each of its number entries
+//!      (`("gap", Measure::One("m"))`), in which a scenario may write them
+//!      with a unit of their own (`"25 mm"`); an empty list where none has
+//!      a fixed unit.
 //!
 //!    [`weld`] is a short example with events, [`constant`] one without.
 //! 2. Here: declare the file (`pub mod KIND;`) and register its section with
