@@ -319,7 +319,6 @@ impl Scenario {
         // The one parse of the text: the document with its spans, from
         // which an error finds the place of its entry.
         let spanned = toml::de::DeTable::parse(text).map_err(|e| toml_error(file, text, &e))?;
-        let positioned = || toml::de::Deserializer::from(spanned.clone());
         let located = |e: EntryError| match locate::setting_of(&e, settings) {
             Some(setting) => ScenarioError {
                 key: Some(e.key.clone()),
@@ -332,10 +331,14 @@ impl Scenario {
                 ..error(e.to_string())
             },
         };
-        let mut document =
-            toml::Table::deserialize(positioned()).map_err(|e| toml_error(file, text, &e))?;
+        let mut document = toml::Table::deserialize(toml::de::Deserializer::from(spanned.clone()))
+            .map_err(|e| toml_error(file, text, &e))?;
         // Quantities with units, of the file and then of the settings.
         quantities::in_si(&mut document, names).map_err(located)?;
+        // The file with its spans as it is read: numbers for its quantities.
+        let mut read = spanned.clone();
+        quantities::numbers_in_place(read.get_mut(), &document);
+        let positioned = || toml::de::Deserializer::from(read.clone());
         let (mut settled, constants) = with_settings(document.clone(), names, settings)
             .map_err(|e| ScenarioError::invalid(None, e.to_string()))?;
         quantities::in_si(&mut settled, names).map_err(located)?;

@@ -9,6 +9,7 @@ use super::ModelNames;
 use crate::components::{ComponentSection, Measure};
 use crate::entry::{EntryError, KeyPath};
 use crate::quantity::{Problem, value_in};
+use toml::de::{DeTable, DeValue};
 use toml::{Table, Value};
 
 /// The entries of `[simulation]` that are times.
@@ -160,4 +161,35 @@ fn in_unit(value: &mut Value, unit: &str, key: &KeyPath) -> Result<(), EntryErro
         Err(e) => return Err(EntryError::text(key.clone(), text, e.problem.to_string())),
     }
     Ok(())
+}
+
+/// `spanned`, the file as parsed with its spans, with a number in place of
+/// each quantity that `converted` (the same file read by [`in_si`]) holds
+/// the SI value of: the file as a scenario reads it, where a problem that
+/// serde finds elsewhere still has its place.
+pub(super) fn numbers_in_place(spanned: &mut DeTable<'_>, converted: &Table) {
+    for (key, value) in spanned.iter_mut() {
+        if let Some(read) = converted.get(key.get_ref().as_ref()) {
+            number_in_place(value.get_mut(), read);
+        }
+    }
+}
+
+/// [`numbers_in_place`] of one value.
+fn number_in_place(value: &mut DeValue<'_>, read: &Value) {
+    match (value, read) {
+        (value @ DeValue::String(_), Value::Float(_)) => {
+            // Any number: only its place matters.
+            if let Ok(zero) = DeValue::parse("0.0") {
+                *value = zero.into_inner();
+            }
+        }
+        (DeValue::Table(table), Value::Table(read)) => numbers_in_place(table, read),
+        (DeValue::Array(items), Value::Array(read)) => {
+            for (item, read) in items.iter_mut().zip(read) {
+                number_in_place(item.get_mut(), read);
+            }
+        }
+        _ => {}
+    }
 }

@@ -695,6 +695,10 @@ fn a_quantity_in_the_wrong_unit_is_refused_at_its_entry() {
         error("[parameters]\nk = \"3 kN\"\n", &[]),
         "parameters.k = \"3 kN\": kN is a force, but this entry needs a stiffness (N/m)"
     );
+    // A quantity does not hide the place of another problem.
+    let text = "[initial]\nspeed = \"56 km/h\"\n\n[simulation]\ntend = 0.1\n";
+    let e = Scenario::parse(text, Some(Path::new("s.toml")), &names, &[]).unwrap_err();
+    assert!(e.to_string().starts_with("s.toml:5:1: unknown field `tend`"), "{e}");
     assert_eq!(
         error("", &["m=3 m"]),
         "--set m=\"3 m\": m is a length, but this entry needs a mass (kg)"
