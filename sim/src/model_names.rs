@@ -27,6 +27,9 @@ pub struct ModelNames {
     /// The unit of each parameter, where the model declares it (empty when
     /// it does not say).
     pub parameter_units: Vec<Option<String>>,
+    /// The unit of each input's value, where the model declares it (empty
+    /// when it does not say).
+    pub input_units: Vec<Option<String>>,
     /// The spec's declared outputs, in order.
     pub outputs: Vec<String>,
     /// The unit of each output, where declared.
@@ -81,6 +84,7 @@ impl ModelNames {
             input_sites: model.input_sites().to_vec(),
             coordinate_units: model.coordinate_units().to_vec(),
             parameter_units: model.parameter_units().to_vec(),
+            input_units: model.input_units().to_vec(),
             outputs: model.output_names().to_vec(),
             output_units: model.output_units().to_vec(),
             output_reads: model.output_reads().into_iter().map(Some).collect(),

@@ -224,8 +224,8 @@ impl Override {
                 let (key, value) = (key.to_string(), value.clone());
                 return Ok(Setting::Entry { key, value });
             }
-            Change::Set(toml::Value::String(text)) if names.parameters.iter().any(|p| p == key) => {
-                parameter_quantity(&self.text, key, text, names)?
+            Change::Set(toml::Value::String(text)) if names_model(key, names) => {
+                quantity_of(&self.text, key, text, names)?
             }
             Change::Set(value) => super::as_number(value)
                 .ok_or_else(|| error(format!("--set {key}: `{value}` is not a number")))?,
@@ -266,24 +266,37 @@ impl Override {
     }
 }
 
-/// Parameter `name` set to `text` by `setting`, a quantity in the unit the
-/// spec declares for it (`--set m="1.2 t"`), as an SI number.
-fn parameter_quantity(
+/// Parameter or input `name` set to `text` by `setting`, a quantity in
+/// the unit the spec declares for it (`--set m="1.2 t"`), as an SI number.
+fn quantity_of(
     setting: &str,
     name: &str,
     text: &str,
     names: &ModelNames,
 ) -> Result<f64, OverrideError> {
-    let index = names.parameters.iter().position(|p| p == name);
-    let unit = index.and_then(|i| names.parameter_units.get(i)?.as_deref());
+    let unit_of = |all: &[String], units: &[Option<String>]| {
+        let index = all.iter().position(|p| p == name)?;
+        Some(units.get(index).cloned().flatten())
+    };
+    let unit = (unit_of(&names.parameters, &names.parameter_units))
+        .or_else(|| unit_of(&names.inputs, &names.input_units));
     let error =
         |why: String| OverrideError::new(setting, format!("--set {name}=\"{text}\": {why}"));
-    let Some(unit) = unit else {
+    let Some(unit) = unit.flatten() else {
         return Err(error(format!(
             "the spec declares no unit for `{name}`: write the number in SI units"
         )));
     };
-    crate::quantity::value_in(text, unit).map_err(|e| error(e.problem.to_string()))
+    crate::quantity::value_in(text, &unit).map_err(|e| error(e.problem.to_string()))
+}
+
+/// Whether `name` is a parameter or an input of the model.
+fn names_model(name: &str, names: &ModelNames) -> bool {
+    names
+        .parameters
+        .iter()
+        .chain(&names.inputs)
+        .any(|n| n == name)
 }
 
 /// Applies one override to the document (input constants go to

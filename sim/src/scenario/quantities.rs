@@ -1,8 +1,9 @@
 //! A scenario's numbers written with a unit (`initial.speed = "56 km/h"`,
 //! `force_values = ["4 MN", "6 MN"]`), replaced by their SI values before
 //! the document is read, each checked against the unit its entry needs:
-//! the solver's times, the initial speed, a coordinate's and a parameter's
-//! unit as the spec declares it, and a component's entries as its section
+//! the solver's times, the initial speed, a coordinate's, a parameter's and
+//! an input's unit as the spec declares it (a constant component's values
+//! are in their inputs' units), and a component's entries as its section
 //! lists them ([`crate::components::SectionUnits`]).
 
 use super::ModelNames;
@@ -49,7 +50,7 @@ pub(super) fn in_si(document: &mut Table, names: &ModelNames) -> Result<(), Entr
     if let Some(Value::Table(components)) = document.get_mut("components") {
         for (name, section) in components.iter_mut() {
             if let Value::Table(section) = section {
-                section_in_si(section, &KeyPath::component(name))?;
+                section_in_si(section, &KeyPath::component(name), names)?;
             }
         }
     }
@@ -101,11 +102,19 @@ fn starts_with_number(text: &str) -> bool {
     digits.starts_with(|c: char| c.is_ascii_digit() || c == '.')
 }
 
-/// A `[components.NAME]` section's entries in the units of its kind.
-fn section_in_si(section: &mut Table, key: &KeyPath) -> Result<(), EntryError> {
+/// A `[components.NAME]` section's entries in the units of its kind (a
+/// constant's values in their inputs' units).
+fn section_in_si(section: &mut Table, key: &KeyPath, names: &ModelNames) -> Result<(), EntryError> {
     let Some(Value::String(kind)) = section.get("type") else {
         return Ok(());
     };
+    if kind == "constant" {
+        if let Some(Value::Table(values)) = section.get_mut("values") {
+            let units = names.inputs.iter().zip(&names.input_units);
+            by_name(values, &key.join("values"), units, "")?;
+        }
+        return Ok(());
+    }
     let Some(units) = ComponentSection::units_of(kind) else {
         return Ok(());
     };

@@ -668,6 +668,19 @@ fn quantities_with_units_read_as_their_si_values() {
     );
     assert_eq!(m("", &["m=\"850 g\""]), m("", &["m=0.85"]));
     assert_eq!(m("", &["m=850 g"]), m("", &["m=0.85"]));
+    // An input's constant, from a constant section or --set, in its unit.
+    let push = |text: &str, settings: &[&str]| {
+        let s = parse_with(text, None, &spring, settings).unwrap_or_else(|e| panic!("{e}"));
+        format!("{:?}", s.inputs)
+    };
+    let constant = |value: &str| {
+        format!("[components.c]\ntype = \"constant\"\nvalues = {{ push = {value} }}\n")
+    };
+    assert_eq!(
+        push(&constant("\"2 kN\""), &[]),
+        push(&constant("2000.0"), &[])
+    );
+    assert_eq!(push("", &["push=2 kN"]), push("", &["push=2000"]));
     // A factor scales the SI value; a dotted --set takes a quantity too.
     let speed = |text: &str, settings: &[&str]| {
         let s = parse_with(text, None, &yaris, settings).unwrap_or_else(|e| panic!("{e}"));
@@ -698,7 +711,11 @@ fn a_quantity_in_the_wrong_unit_is_refused_at_its_entry() {
     // A quantity does not hide the place of another problem.
     let text = "[initial]\nspeed = \"56 km/h\"\n\n[simulation]\ntend = 0.1\n";
     let e = Scenario::parse(text, Some(Path::new("s.toml")), &names, &[]).unwrap_err();
-    assert!(e.to_string().starts_with("s.toml:5:1: unknown field `tend`"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("s.toml:5:1: unknown field `tend`"),
+        "{e}"
+    );
     assert_eq!(
         error("", &["m=3 m"]),
         "--set m=\"3 m\": m is a length, but this entry needs a mass (kg)"
