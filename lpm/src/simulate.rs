@@ -5,7 +5,7 @@ use lagrangian_sim::ode::Method;
 use lagrangian_sim::report::text_summary;
 use lagrangian_sim::scenario::Override;
 use lagrangian_studies::files::Files;
-use lagrangian_studies::simulate::{simulate_spec, write_outputs};
+use lagrangian_studies::simulate::{simulate_for_report, simulate_spec, write_outputs};
 use lagrangian_studies::spec::out_dir;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -43,6 +43,11 @@ pub struct Args {
     /// the outputs are written, and lpm exits with status 9.
     #[arg(long)]
     strict: bool,
+    /// Also write report.html: the summary, warnings, plots, events, the
+    /// audit of the hand-derived equations and the equations of motion, on
+    /// one self-contained page.
+    #[arg(long)]
+    report: bool,
 }
 
 /// The method names `--method` takes: [`Method::NAMES`], and the former
@@ -98,18 +103,22 @@ fn naming_flags(failure: Failure, options: &Args) -> Failure {
 /// Runs `lpm simulate`.
 pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     let settings = settings(&options)?;
-    let simulated = simulate_spec(
-        &**files,
-        &options.spec,
-        options.scenario.as_deref(),
-        &settings,
-    )
+    let (spec, scenario) = (&options.spec, options.scenario.as_deref());
+    let (simulated, derived) = match options.report {
+        true => simulate_for_report(&**files, spec, scenario, &settings)
+            .map(|(simulated, derived)| (simulated, Some(derived))),
+        false => simulate_spec(&**files, spec, scenario, &settings).map(|s| (s, None)),
+    }
     .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
-    write_outputs(&out, &simulated).map_err(|e| Failure::from(&e))?;
+    write_outputs(&out, &simulated, derived.as_ref()).map_err(|e| Failure::from(&e))?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);
+    let report = match options.report {
+        true => format!(", {}/report.html", out.display()),
+        false => String::new(),
+    };
     text.push_str(&format!(
-        "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg\n",
+        "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg{report}\n",
         out.display()
     ));
     Ok(crate::warnings::outcome(

@@ -207,7 +207,9 @@ pub fn summary_json(result: &SimulationResult) -> String {
 
 /// The lines of the text summary on a model's constraints: the projection
 /// of the initial state, the stabilization and the drift.
-fn constraint_lines(result: &SimulationResult) -> String {
+/// The lines of the text summary on a model's constraints (their
+/// projection, stabilization and drift); empty without constraints.
+pub fn constraint_lines(result: &SimulationResult) -> String {
     let Some(c) = &result.constraints else {
         return String::new();
     };

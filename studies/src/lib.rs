@@ -28,6 +28,8 @@ pub mod mass;
 pub mod plot;
 pub mod progress;
 #[cfg(feature = "plot")]
+pub mod report;
+#[cfg(feature = "plot")]
 pub mod simulate;
 pub mod spec;
 pub mod status;

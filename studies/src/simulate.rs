@@ -3,6 +3,7 @@
 
 use crate::error::StudyError;
 use crate::plot::{PlotSetup, figure_svg};
+use crate::report::{Derived, ReportParts, report_html};
 use crate::spec::{compile, find_scenario};
 use lagrangian_core::Compiled;
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
@@ -23,6 +24,8 @@ pub struct Simulated {
     pub scenario: Scenario,
     /// The scenario's file, or that there was none.
     pub scenario_name: String,
+    /// The spec's file.
+    pub spec: PathBuf,
 }
 
 impl Simulated {
@@ -42,6 +45,28 @@ pub fn simulate_spec(
     scenario: Option<&Path>,
     settings: &[Override],
 ) -> Result<Simulated, StudyError> {
+    simulate_compiled(files, spec, scenario, settings).map(|(simulated, _)| simulated)
+}
+
+/// [`simulate_spec`], and the spec's equations and audit for the report
+/// ([`crate::report`]).
+pub fn simulate_for_report(
+    files: &dyn Files,
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[Override],
+) -> Result<(Simulated, Derived), StudyError> {
+    let (simulated, mut compiled) = simulate_compiled(files, spec, scenario, settings)?;
+    Ok((simulated, Derived::of(&mut compiled)))
+}
+
+/// The run of [`simulate_spec`] and the spec compiled.
+fn simulate_compiled(
+    files: &dyn Files,
+    spec: &Path,
+    scenario: Option<&Path>,
+    settings: &[Override],
+) -> Result<(Simulated, Compiled), StudyError> {
     let (compiled, model, scenario_path, scenario) = load_spec(files, spec, scenario, settings)?;
     let result = dispatch(model.clone(), &scenario).map_err(|failure| {
         match domain_cause(&failure, &compiled, &scenario, (files, spec)) {
@@ -54,12 +79,14 @@ pub fn simulate_spec(
         .map_or("default scenario (no scenario file)".to_string(), |p| {
             p.display().to_string()
         });
-    Ok(Simulated {
+    let simulated = Simulated {
         result,
         model,
         scenario,
         scenario_name,
-    })
+        spec: spec.to_path_buf(),
+    };
+    Ok((simulated, compiled))
 }
 
 /// Compiles the spec at `spec` and resolves its scenario (`scenario`, else
@@ -192,13 +219,16 @@ fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
 }
 
 /// Writes `trajectory.csv`, `summary.json` and `plots.svg` of `simulated`
-/// into `out` (created if need be), all or none.
-pub fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), StudyError> {
+/// (with the spec's equations and audit `report`, also `report.html`:
+/// [`crate::report`]) into `out`
+/// (created if need be), all or none.
+pub fn write_outputs(
+    out: &Path,
+    simulated: &Simulated,
+    report: Option<&Derived>,
+) -> Result<(), StudyError> {
     let Simulated {
-        result,
-        model: _,
-        scenario,
-        scenario_name,
+        result, scenario, ..
     } = simulated;
     std::fs::create_dir_all(out)
         .map_err(|e| StudyError::io(format!("cannot create {}: {e}", out.display())))?;
@@ -208,15 +238,24 @@ pub fn write_outputs(out: &Path, simulated: &Simulated) -> Result<(), StudyError
         pitch: scenario.pitch.clone(),
         force_deflection: scenario.inputs.force_deflection_columns(),
         g: lagrangian_sim::pulse::STANDARD_GRAVITY,
-        title: figure_title(&result.model, scenario, scenario_name),
+        title: figure_title(&result.model, scenario, &simulated.scenario_name),
     };
     let svg =
         figure_svg(result, &setup).map_err(|e| StudyError::io(format!("plotting failed: {e}")))?;
-    let files = [
+    let mut files = vec![
         ("trajectory.csv", simulated.trajectory_csv()),
         ("summary.json", summary_json(result)),
-        ("plots.svg", svg),
     ];
+    if let Some(derived) = report {
+        let parts = ReportParts {
+            simulated,
+            derived,
+            spec: &simulated.spec.display().to_string(),
+            plots_svg: &svg,
+        };
+        files.push(("report.html", report_html(&parts)));
+    }
+    files.push(("plots.svg", svg));
     let paths: Vec<_> = files.iter().map(|(name, _)| out.join(name)).collect();
     let contents: Vec<(&Path, &[u8])> = (paths.iter().zip(&files))
         .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))

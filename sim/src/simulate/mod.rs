@@ -26,7 +26,7 @@ pub use constrained::{ConstraintReport, Projection};
 pub use equilibrium::static_equilibrium;
 pub use metrics::{EnergyPoint, Metrics, SampleView};
 pub use problem::{CrashProblem, EventRecord};
-pub use summary::{CellError, Field, Metric, Summary, Text, Value};
+pub use summary::{CellError, Field, Metric, Row, Summary, Text, Value};
 
 use crate::fault::Fault;
 use crate::ode::{self, DenseStep, Method, Part, PhaseState, Stats};

@@ -304,33 +304,52 @@ impl Summary {
     /// The metric lines of the text summary: `  label  value[, value…]note`.
     pub fn text_lines(&self) -> String {
         let mut out = String::new();
-        let mut note = "";
-        for (metric, value) in Summary::METRICS.iter().zip(self.values()) {
-            let Some(text) = metric.text else { continue };
-            match text.label {
-                Some(label) => {
-                    if !out.is_empty() {
-                        let _ = writeln!(out, "{note}");
-                    }
-                    let _ = write!(out, "  {label:<23}{}", text.show(value));
-                }
-                None => {
-                    let _ = write!(out, ", {}", text.show(value));
-                }
-            }
-            note = match metric.name == "max_crush_m" && self.still_crushing {
-                true => " (still crushing at t_end: not the maximum)",
-                false => text.note,
-            };
-        }
-        if !out.is_empty() {
-            let _ = writeln!(out, "{note}");
+        for row in self.rows() {
+            let shown: Vec<&str> = row.values.iter().map(|(_, v)| v.as_str()).collect();
+            let _ = writeln!(out, "  {:<23}{}{}", row.label, shown.join(", "), row.note);
         }
         for (name, energy) in &self.dissipated_by {
             let _ = writeln!(out, "  dissipated by {name:<8} {energy:.4e} J");
         }
         out
     }
+
+    /// The metrics as the text summary and the report show them, a row a
+    /// label: the rows of [`Summary::METRICS`] with a [`Text`].
+    pub fn rows(&self) -> Vec<Row> {
+        let mut rows: Vec<Row> = Vec::new();
+        for (metric, value) in Summary::METRICS.iter().zip(self.values()) {
+            let Some(text) = metric.text else { continue };
+            let shown = (metric.name, text.show(value));
+            match (text.label, rows.last_mut()) {
+                (None, Some(row)) => row.values.push(shown),
+                (label, _) => rows.push(Row {
+                    label: label.unwrap_or(""),
+                    values: vec![shown],
+                    note: "",
+                }),
+            }
+            if let Some(row) = rows.last_mut() {
+                row.note = match metric.name == "max_crush_m" && self.still_crushing {
+                    true => " (still crushing at t_end: not the maximum)",
+                    false => text.note,
+                };
+            }
+        }
+        rows
+    }
+}
+
+/// A line of the summary: its label, its metrics (their `summary.json`
+/// key and their value as shown, with its unit) and a note.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    /// What the line shows (`max dynamic crush`).
+    pub label: &'static str,
+    /// `(key, value as shown)` of each metric on the line.
+    pub values: Vec<(&'static str, String)>,
+    /// Said after the values (`(unfiltered)`), or empty.
+    pub note: &'static str,
 }
 
 /// `[(name, energy)]` as the map `{name: energy}`.
