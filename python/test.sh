@@ -13,6 +13,12 @@ venv=target/python-venv
 # test_wheel.py without a build environment of its own.
 "$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2"
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
+# Debian's chromium for the report's browser test (test_report_browser.py).
+if ! command -v chromium >/dev/null; then
+    as_root=$([ "$(id -u)" = 0 ] || echo sudo)
+    $as_root apt-get update -q >/dev/null
+    DEBIAN_FRONTEND=noninteractive $as_root apt-get install -y -q chromium >/dev/null
+fi
 # lpm, and the FMU runtime that `lpm export-fmu` packs (python/tests/test_fmu.py).
 cargo build -q -p lpm -p lagrangian-fmu
 # Exit status 5 (no tests collected) is a failure here too.
