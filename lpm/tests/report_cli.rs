@@ -122,6 +122,12 @@ fn a_report_is_written_on_request_only_and_for_every_shipped_scenario() {
     for spec in &specs {
         let (_, page) = report(spec, "report-each");
         assert_self_contained(&page);
+        // No tick reads "-0.0" (a tick a rounding error below zero).
+        let negative_zero = |l: &str| {
+            let l = l.trim();
+            l.len() > 1 && l.starts_with('-') && l[1..].chars().all(|c| c == '0' || c == '.')
+        };
+        assert!(!page.lines().any(negative_zero), "{spec}: a -0 tick");
         let audited = page.contains("<th>verdict</th>");
         let none = page.contains("The spec has no hand-derived equations to audit.");
         assert!(audited != none, "{spec}: the audit section");

@@ -238,7 +238,8 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let ((x0, x1), (y0, y1)) = bounds(&panel.lines);
+    let ((x0, x1), y_range) = bounds(&panel.lines);
+    let (corner, (y0, y1)) = legend_place(&panel.lines, (x0, x1), y_range);
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, ("sans-serif", 18))
         .margin(12)
@@ -251,6 +252,8 @@ fn draw_panel<DB: DrawingBackend>(
         .y_desc(&panel.y_label)
         .x_labels(8)
         .y_labels(8)
+        .x_label_formatter(&tick_label)
+        .y_label_formatter(&tick_label)
         .label_style(("sans-serif", 13))
         .draw()?;
     for line in &panel.lines {
@@ -258,7 +261,7 @@ fn draw_panel<DB: DrawingBackend>(
     }
     chart
         .configure_series_labels()
-        .position(legend_corner(&panel.lines, ((x0, x1), (y0, y1))))
+        .position(corner)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 13))
@@ -266,35 +269,87 @@ fn draw_panel<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The corner of the plot area the fewest points fall in (a box of 45 %
-/// of the width and 40 % of the height), for the legend: the first of
-/// equals in the order upper right, lower right, upper left, lower left.
-fn legend_corner(
+/// A tick's label as plotters writes it, without the sign of a zero
+/// (`-0.0` where a tick lands a rounding error below 0).
+fn tick_label(value: &f64) -> String {
+    use plotters::coord::ranged1d::ValueFormatter;
+    let label = RangedCoordf64::format(value);
+    match label.strip_prefix('-') {
+        Some(zero) if zero.chars().all(|c| c == '0' || c == '.') => zero.to_string(),
+        _ => label,
+    }
+}
+
+/// The legend's corner ([`legend_corner`]) and the y range that keeps it
+/// off the data: where every corner has points, the range grows on the
+/// corner's side until its box ([`legend_height`]) holds none.
+fn legend_place(
     lines: &[Line],
-    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
-) -> SeriesLabelPosition {
-    let (right, upper) = (x1 - 0.45 * (x1 - x0), y1 - 0.4 * (y1 - y0));
-    let (left, lower) = (x0 + 0.45 * (x1 - x0), y0 + 0.4 * (y1 - y0));
-    let corners = [
-        (SeriesLabelPosition::UpperRight, (right, x1), (upper, y1)),
-        (SeriesLabelPosition::LowerRight, (right, x1), (y0, lower)),
-        (SeriesLabelPosition::UpperLeft, (x0, left), (upper, y1)),
-        (SeriesLabelPosition::LowerLeft, (x0, left), (y0, lower)),
-    ];
-    let inside = |(a, b): (f64, f64), v: f64| a <= v && v <= b;
-    let count = |xs, ys| {
-        (lines.iter().flat_map(|l| &l.points))
-            .filter(|&&(x, y)| inside(xs, x) && inside(ys, y))
-            .count()
+    xs: (f64, f64),
+    (y0, y1): (f64, f64),
+) -> (SeriesLabelPosition, (f64, f64)) {
+    let corner = legend_corner(lines, (xs, (y0, y1)));
+    let (corner, crowded) = corner_count(lines, corner, (xs, (y0, y1)));
+    if crowded == 0 {
+        return (corner, (y0, y1));
+    }
+    let h = legend_height(lines);
+    let grown = match corner {
+        SeriesLabelPosition::UpperRight | SeriesLabelPosition::UpperLeft => {
+            (y0, (y1 - h * y0) / (1.0 - h) + 0.02 * (y1 - y0))
+        }
+        _ => ((y0 - h * y1) / (1.0 - h) - 0.02 * (y1 - y0), y1),
     };
-    let [first, rest @ ..] = corners;
-    let best = rest.into_iter().fold(
-        (first.0, count(first.1, first.2)),
-        |best, (corner, xs, ys)| {
-            let n = count(xs, ys);
-            if n < best.1 { (corner, n) } else { best }
-        },
-    );
+    (corner, grown)
+}
+
+/// The share of a panel's height its legend takes: about 5.5 % an entry
+/// and a margin, at most 40 %.
+fn legend_height(lines: &[Line]) -> f64 {
+    (0.06 + 0.055 * lines.len() as f64).min(0.4)
+}
+
+/// The corner's box (45 % of the width, [`legend_height`] of the height)
+/// and the number of points in it.
+fn corner_count(
+    lines: &[Line],
+    corner: SeriesLabelPosition,
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> (SeriesLabelPosition, usize) {
+    let h = legend_height(lines);
+    let (right, upper) = (x1 - 0.45 * (x1 - x0), y1 - h * (y1 - y0));
+    let (left, lower) = (x0 + 0.45 * (x1 - x0), y0 + h * (y1 - y0));
+    let (xs, ys) = match corner {
+        SeriesLabelPosition::UpperRight => ((right, x1), (upper, y1)),
+        SeriesLabelPosition::LowerRight => ((right, x1), (y0, lower)),
+        SeriesLabelPosition::UpperLeft => ((x0, left), (upper, y1)),
+        _ => ((x0, left), (y0, lower)),
+    };
+    let inside = |(a, b): (f64, f64), v: f64| a <= v && v <= b;
+    let n = (lines.iter().flat_map(|l| &l.points))
+        .filter(|&&(x, y)| inside(xs, x) && inside(ys, y))
+        .count();
+    (corner, n)
+}
+
+/// The corner of the plot area the fewest points fall in (a box of 45 %
+/// of the width and [`legend_height`] of the height), for the legend: the first of
+/// equals in the order upper right, lower right, upper left, lower left.
+fn legend_corner(lines: &[Line], bounds: ((f64, f64), (f64, f64))) -> SeriesLabelPosition {
+    let corners = [
+        SeriesLabelPosition::UpperRight,
+        SeriesLabelPosition::LowerRight,
+        SeriesLabelPosition::UpperLeft,
+        SeriesLabelPosition::LowerLeft,
+    ];
+    let counted = corners.map(|corner| corner_count(lines, corner, bounds));
+    let [first, rest @ ..] = counted;
+    let best = rest
+        .into_iter()
+        .fold(first, |best, (corner, n)| match n < best.1 {
+            true => (corner, n),
+            false => best,
+        });
     best.0
 }
 

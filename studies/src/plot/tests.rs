@@ -322,6 +322,47 @@ fn the_legend_goes_to_the_emptiest_corner() {
 }
 
 #[test]
+fn a_legend_every_corner_of_whose_panel_has_data_gets_room_of_its_own() {
+    // Energies that cross: one falls from the upper left, one rises to
+    // the upper right, one stays low: points in every corner.
+    let falling = Line::solid(
+        "kinetic",
+        (0..=20)
+            .map(|k| (k as f64, 1.0 - k as f64 / 20.0))
+            .collect(),
+        0,
+    );
+    let rising = Line::solid(
+        "absorbed",
+        (0..=20).map(|k| (k as f64, k as f64 / 20.0)).collect(),
+        1,
+    );
+    let lines = [falling, rising];
+    let xs = (0.0, 20.0);
+    let (corner, ys) = legend_place(&lines, xs, (0.0, 1.0));
+    assert!(ys.1 > 1.0 || ys.0 < 0.0, "{ys:?}");
+    assert_eq!(corner_count(&lines, corner, (xs, ys)).1, 0, "{ys:?}");
+    // Where a corner is empty, nothing changes.
+    let plateau = Line::solid(
+        "a",
+        (0..=10)
+            .map(|k| (k as f64, (k as f64 / 3.0).min(1.0)))
+            .collect(),
+        0,
+    );
+    let (_, same) = legend_place(&[plateau], (0.0, 10.0), (0.0, 1.0));
+    assert_eq!(same, (0.0, 1.0));
+}
+
+#[test]
+fn a_tick_at_a_rounding_error_below_zero_reads_zero() {
+    assert_eq!(tick_label(&-1e-17), tick_label(&0.0));
+    assert!(!tick_label(&-1e-17).starts_with('-'));
+    assert_eq!(tick_label(&-0.05), "-0.05");
+    assert_eq!(tick_label(&2.5), "2.5");
+}
+
+#[test]
 fn panels_side_by_side_keep_their_size() {
     let series = vec![("a".to_string(), vec![(0.0, 1.0), (1.0, 2.0)])];
     let panel = ("P".to_string(), "x".to_string(), "y".to_string(), series);
