@@ -4,10 +4,10 @@
 //! equations of motion. No script, no style sheet, font or image from
 //! elsewhere: the plots are inline SVG and the page works offline.
 
-use crate::simulate::Simulated;
 use lagrangian_core::Compiled;
 use lagrangian_core::audit::{AuditReport, Part, Verdict, audit};
 use lagrangian_core::emit::{Notation, render_equations};
+use lagrangian_sim::simulate::SimulationResult;
 use std::fmt::Write;
 
 /// The page's style: print-friendly, one column.
@@ -44,7 +44,9 @@ impl Derived {
 /// and the plots of the run (`plots.svg`).
 pub struct ReportParts<'a> {
     /// The run.
-    pub simulated: &'a Simulated,
+    pub result: &'a SimulationResult,
+    /// The scenario's file, or that there was none.
+    pub scenario_name: &'a str,
     /// The spec's equations and audit.
     pub derived: &'a Derived,
     /// The spec's file, as the page names it.
@@ -55,8 +57,8 @@ pub struct ReportParts<'a> {
 
 /// The page.
 pub fn report_html(parts: &ReportParts) -> String {
-    let result = &parts.simulated.result;
-    let title = format!("{} — {}", result.model, parts.simulated.scenario_name);
+    let result = parts.result;
+    let title = format!("{} — {}", result.model, parts.scenario_name);
     let mut page = String::new();
     let _ = write!(
         page,
@@ -74,15 +76,15 @@ pub fn report_html(parts: &ReportParts) -> String {
         result.summary.rejected_steps,
         env!("CARGO_PKG_VERSION")
     );
-    page.push_str(&summary(parts.simulated));
-    page.push_str(&channels(parts.simulated));
-    page.push_str(&warnings(parts.simulated));
+    page.push_str(&summary(result));
+    page.push_str(&channels(result));
+    page.push_str(&warnings(result));
     let _ = writeln!(
         page,
         "<h2 id=\"plots\">Plots</h2>\n{}",
         inline_svg(parts.plots_svg)
     );
-    page.push_str(&events(parts.simulated));
+    page.push_str(&events(result));
     page.push_str(&audit_section(parts.derived.audit.as_ref()));
     page.push_str(&equations(&parts.derived.equations));
     page.push_str("</body>\n</html>\n");
@@ -90,9 +92,9 @@ pub fn report_html(parts: &ReportParts) -> String {
 }
 
 /// The summary's rows, each metric with its `summary.json` key.
-fn summary(simulated: &Simulated) -> String {
+fn summary(result: &SimulationResult) -> String {
     let mut out = String::from("<h2 id=\"summary\">Summary</h2>\n<table>\n");
-    for row in simulated.result.summary.rows() {
+    for row in result.summary.rows() {
         let values: Vec<String> = (row.values.iter())
             .map(|(key, shown)| {
                 format!(
@@ -110,7 +112,7 @@ fn summary(simulated: &Simulated) -> String {
             escape(row.note.trim())
         );
     }
-    for (name, energy) in &simulated.result.summary.dissipated_by {
+    for (name, energy) in &result.summary.dissipated_by {
         let _ = writeln!(
             out,
             "<tr><th>dissipated by {}</th><td class=\"value\">{energy:.4e} J</td><td></td></tr>",
@@ -124,8 +126,7 @@ fn summary(simulated: &Simulated) -> String {
 /// The scenario's channels (their extremes, an acceleration's peaks) and
 /// the constraints' lines, as the text summary has them; nothing where
 /// there are none.
-fn channels(simulated: &Simulated) -> String {
-    let result = &simulated.result;
+fn channels(result: &SimulationResult) -> String {
     let mut out = String::new();
     if !result.summary.channels.0.is_empty() {
         out.push_str("<h2 id=\"channels\">Channels</h2>\n<ul>\n");
@@ -146,8 +147,8 @@ fn channels(simulated: &Simulated) -> String {
 }
 
 /// The run's warnings, or that there are none.
-fn warnings(simulated: &Simulated) -> String {
-    let warnings = &simulated.result.warnings;
+fn warnings(result: &SimulationResult) -> String {
+    let warnings = &result.warnings;
     let mut out = String::from("<h2 id=\"warnings\">Warnings</h2>\n");
     if warnings.is_empty() {
         out.push_str("<p>None.</p>\n");
@@ -167,8 +168,8 @@ fn warnings(simulated: &Simulated) -> String {
 }
 
 /// The events of the run, in time order.
-fn events(simulated: &Simulated) -> String {
-    let events = &simulated.result.events;
+fn events(result: &SimulationResult) -> String {
+    let events = &result.events;
     let mut out = String::from("<h2 id=\"events\">Events</h2>\n");
     if events.is_empty() {
         out.push_str("<p>None.</p>\n");

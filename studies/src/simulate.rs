@@ -248,7 +248,8 @@ pub fn write_outputs(
     ];
     if let Some(derived) = report {
         let parts = ReportParts {
-            simulated,
+            result,
+            scenario_name: &simulated.scenario_name,
             derived,
             spec: &simulated.spec.display().to_string(),
             plots_svg: &svg,
