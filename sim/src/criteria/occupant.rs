@@ -96,6 +96,18 @@ pub struct Criteria {
 }
 
 impl Criteria {
+    /// No criteria.
+    pub const EMPTY: Criteria = Criteria {
+        dummy: None,
+        rated: Vec::new(),
+        warnings: Vec::new(),
+    };
+
+    /// Whether nothing is rated.
+    pub fn is_empty(&self) -> bool {
+        self.rated.is_empty()
+    }
+
     /// The value of `criterion`, if rated.
     pub fn get(&self, criterion: Criterion) -> Option<f64> {
         self.rated
