@@ -194,3 +194,40 @@ impl Criterion {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_book_documents_every_criterion_and_every_limit() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../docs/book/reference/criteria.md"
+        );
+        let book = std::fs::read_to_string(path).unwrap();
+        for c in Criterion::ALL {
+            assert!(
+                book.contains(&format!("`{}`", c.key())),
+                "{} is not in {path}",
+                c.key()
+            );
+        }
+        let limits_table = &book[book.find("## Limits").unwrap()..];
+        for protocol in limits::Protocol::ALL {
+            for dummy in DUMMIES {
+                for limit in limits::limits(protocol, dummy) {
+                    let label = limit.criterion.label();
+                    let row = (limits_table.lines())
+                        .find(|l| l.starts_with(&format!("| {label} |")))
+                        .unwrap_or_else(|| panic!("no row for {label} in the limits table"));
+                    let shown = match limit.higher {
+                        Some(higher) => format!("{higher}–{}", limit.lower),
+                        None => format!("{}", limit.lower),
+                    };
+                    assert!(row.contains(&shown), "{label}: {shown} is not in `{row}`");
+                }
+            }
+        }
+    }
+}
