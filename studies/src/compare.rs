@@ -337,8 +337,9 @@ fn file_stem(pair: &PairRating) -> String {
     }
 }
 
-/// The overlay of one pair: both curves against time in ms, the overall
-/// rating in the title, the four scores above the panel.
+/// The overlay of one pair: both curves against time in ms over the
+/// interval rated, the overall rating in the title, the four scores above
+/// the panel.
 fn overlay(comparison: &Comparison, pair: &PairRating) -> Result<String, StudyError> {
     let r = &pair.rating;
     let title = format!(
@@ -351,12 +352,7 @@ fn overlay(comparison: &Comparison, pair: &PairRating) -> Result<String, StudyEr
         "corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3}",
         r.corridor, r.phase, r.magnitude, r.slope
     );
-    let points = |s: &Signal| -> Vec<(f64, f64)> {
-        s.t.iter()
-            .map(|t| t * 1e3)
-            .zip(s.y.iter().copied())
-            .collect()
-    };
+    let points = |s: &Signal| points_within(s, r.interval_s);
     let series: Vec<Series> = vec![
         (
             format!(
@@ -382,6 +378,17 @@ fn overlay(comparison: &Comparison, pair: &PairRating) -> Result<String, StudyEr
         series,
     );
     panels_svg(&title, &[panel]).map_err(|e| StudyError::io(format!("plotting failed: {e}")))
+}
+
+/// The points `(t [ms], y)` of `signal` over `(start, end)` [s], with
+/// the sample before and the one after, so that the line reaches both.
+fn points_within(signal: &Signal, (start, end): (f64, f64)) -> Vec<(f64, f64)> {
+    let t = &signal.t;
+    let first = t.partition_point(|&t| t <= start).saturating_sub(1);
+    let last = t.partition_point(|&t| t < end).min(t.len() - 1);
+    (t[first..=last].iter().map(|t| t * 1e3))
+        .zip(signal.y[first..=last].iter().copied())
+        .collect()
 }
 
 /// A source as a legend names it: a CSV file by its name, a run by its

@@ -189,3 +189,16 @@ fn plot_file_names_are_safe_and_unique() {
     );
     assert!(figures[1].1.contains("comparison: model.csv c"));
 }
+
+#[test]
+fn a_plot_shows_the_interval_rated_and_reaches_its_ends() {
+    let signal = Signal {
+        name: "a".into(),
+        unit: None,
+        t: Arc::from([0.0, 0.001, 0.002, 0.003, 0.004]),
+        y: vec![0.0, 1.0, 2.0, 3.0, 4.0],
+    };
+    let within = points_within(&signal, (0.0015, 0.003));
+    assert_eq!(within, [(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]);
+    assert_eq!(points_within(&signal, (0.0, 0.004)).len(), 5);
+}
