@@ -100,9 +100,9 @@ pub enum RatingError {
         curve: CurveRole,
         /// The sample's index (from 0).
         index: usize,
-        /// Its time [s].
+        /// Its time \[s\].
         time: f64,
-        /// The time of the sample before [s].
+        /// The time of the sample before \[s\].
         previous: f64,
     },
     /// The curves' time ranges (within [`crate::Options::interval`]) do
@@ -113,11 +113,11 @@ pub enum RatingError {
         .requested.map_or(String::new(), |(a, b)| format!(", requested {a} s to {b} s"))
     )]
     NoCommonInterval {
-        /// The reference's first and last time [s].
+        /// The reference's first and last time \[s\].
         reference: (f64, f64),
-        /// The comparison's first and last time [s].
+        /// The comparison's first and last time \[s\].
         comparison: (f64, f64),
-        /// The interval asked for in the options, if any [s].
+        /// The interval asked for in the options, if any \[s\].
         requested: Option<(f64, f64)>,
     },
     /// The common interval holds too few samples of the common time base.
@@ -125,14 +125,29 @@ pub enum RatingError {
         "the common interval {start} s to {end} s holds {samples} samples of the common time base; the rating needs at least {needed}"
     )]
     IntervalTooShort {
-        /// Its start [s].
+        /// Its start \[s\].
         start: f64,
-        /// Its end [s].
+        /// Its end \[s\].
         end: f64,
         /// The samples it holds.
         samples: usize,
         /// The samples the rating needs ([`crate::MIN_SAMPLES`]).
         needed: usize,
+    },
+    /// The common interval holds more samples of the common time base
+    /// than the rating takes ([`crate::MAX_SAMPLES`]).
+    #[error(
+        "the common interval {start} s to {end} s holds {samples} samples of the common time base; the rating takes at most {most} (narrow the interval)"
+    )]
+    IntervalTooLong {
+        /// Its start \[s\].
+        start: f64,
+        /// Its end \[s\].
+        end: f64,
+        /// The samples it holds.
+        samples: usize,
+        /// The most the rating takes.
+        most: usize,
     },
     /// The reference is zero (corridor, magnitude) or constant (slope)
     /// over the common interval: the score divides by zero.

@@ -1,6 +1,6 @@
 //! The ISO/TS 18571:2014 objective rating of a comparison curve (a
 //! model's time history) against a reference curve (a test's): four
-//! scores in [0, 1], their weighted overall rating and its grade.
+//! scores in \[0, 1\], their weighted overall rating and its grade.
 //!
 //! [`iso18571`] puts both curves on a common 10 kHz time base over the
 //! interval they share ([`resample`]), then scores
@@ -40,7 +40,7 @@ pub mod slope;
 
 pub use error::{Coordinate, CurveRole, RatingError, Score};
 pub use grade::{EXCELLENT_ABOVE, FAIR_ABOVE, GOOD_ABOVE, Grade};
-pub use resample::{MIN_SAMPLES, SAMPLING_INTERVAL_S};
+pub use resample::{MAX_SAMPLES, MIN_SAMPLES, SAMPLING_INTERVAL_S};
 
 /// The weight `w_Z` of the corridor score in the overall rating: 0.4
 /// (ISO/TS 18571:2014; objective_rating_metrics' `w_z`).
@@ -52,11 +52,11 @@ pub const MAGNITUDE_WEIGHT: f64 = 0.2;
 /// The weight `w_S` of the slope score: 0.2.
 pub const SLOPE_WEIGHT: f64 = 0.2;
 
-/// A time history: times [s], strictly increasing, not necessarily
+/// A time history: times \[s\], strictly increasing, not necessarily
 /// evenly spaced, and a value at each.
 #[derive(Clone, Copy, Debug)]
 pub struct Curve<'a> {
-    /// The sample times [s].
+    /// The sample times \[s\].
     pub t: &'a [f64],
     /// The values, one per time, in any unit (the same for both curves of
     /// a rating; every score is a ratio, so the unit does not matter).
@@ -66,10 +66,10 @@ pub struct Curve<'a> {
 /// How to rate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
-    /// The interval to rate `(start, end)` [s], within the curves' common
+    /// The interval to rate `(start, end)` \[s\], within the curves' common
     /// one; `None`: all of the common interval.
     pub interval: Option<(f64, f64)>,
-    /// The step of the common time base [s]; the standard's is
+    /// The step of the common time base \[s\]; the standard's is
     /// [`SAMPLING_INTERVAL_S`] (10 kHz), the default.
     pub sampling_interval: f64,
 }
@@ -86,22 +86,22 @@ impl Default for Options {
 /// The objective rating of a comparison against a reference.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rating {
-    /// The corridor score `Z`, in [0, 1].
+    /// The corridor score `Z`, in \[0, 1\].
     pub corridor: f64,
-    /// The phase score `E_P`, in [0, 1].
+    /// The phase score `E_P`, in \[0, 1\].
     pub phase: f64,
-    /// The magnitude score `E_M`, in [0, 1].
+    /// The magnitude score `E_M`, in \[0, 1\].
     pub magnitude: f64,
-    /// The slope score `E_S`, in [0, 1].
+    /// The slope score `E_S`, in \[0, 1\].
     pub slope: f64,
-    /// The weighted overall rating `R`, in [0, 1].
+    /// The weighted overall rating `R`, in \[0, 1\].
     pub overall: f64,
     /// The grade of `overall`.
     pub grade: Grade,
-    /// The time shift that correlates best [s], positive where the
+    /// The time shift that correlates best \[s\], positive where the
     /// comparison lags the reference.
     pub time_shift_s: f64,
-    /// The interval rated `(start, end)` [s]: the common time base's
+    /// The interval rated `(start, end)` \[s\]: the common time base's
     /// first and last time.
     pub interval_s: (f64, f64),
 }

@@ -95,7 +95,7 @@ pub fn phase_score(shift: Shift, samples: usize) -> f64 {
 }
 
 /// Pearson's correlation coefficient of `x` and `y` (the same length),
-/// clipped to [−1, 1]; `None` where either is constant.
+/// clipped to \[−1, 1\]; `None` where either is constant.
 fn correlation(x: &[f64], y: &[f64]) -> Option<f64> {
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     let (mx, my) = (mean(x), mean(y));

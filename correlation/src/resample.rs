@@ -14,7 +14,7 @@
 use crate::error::{Coordinate, CurveRole, RatingError};
 use crate::{Curve, Options};
 
-/// The sampling interval of the common time base [s]: 10 kHz, the rate
+/// The sampling interval of the common time base \[s\]: 10 kHz, the rate
 /// ISO/TS 18571 rates curves at (and the `dt` of objective_rating_metrics).
 pub const SAMPLING_INTERVAL_S: f64 = 1e-4;
 
@@ -22,6 +22,12 @@ pub const SAMPLING_INTERVAL_S: f64 = 1e-4;
 /// curves shifted by the largest phase shift (20 %, two samples of
 /// eleven) keep the 9 samples the slope's moving average spans.
 pub const MIN_SAMPLES: usize = 11;
+
+/// The most samples the common time base may hold: 20 001, 2 s at 10 kHz
+/// (a crash test's channels span a few hundred ms). The magnitude's time
+/// warping keeps a step per cell of its band, `n × 0.2·n` bytes: 80 MB
+/// at this length.
+pub const MAX_SAMPLES: usize = 20_001;
 
 /// How far past a whole number of steps (in steps) the interval's end may
 /// lie and still be the grid's last point: rounding of times written in
@@ -31,9 +37,9 @@ pub const GRID_TOLERANCE: f64 = 1e-6;
 /// The two curves on the common time base.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Resampled {
-    /// The first time of the grid [s].
+    /// The first time of the grid \[s\].
     pub start: f64,
-    /// The grid's step [s].
+    /// The grid's step \[s\].
     pub step: f64,
     /// The reference's values on the grid.
     pub reference: Vec<f64>,
@@ -42,7 +48,7 @@ pub struct Resampled {
 }
 
 impl Resampled {
-    /// The grid's last time [s].
+    /// The grid's last time \[s\].
     pub fn end(&self) -> f64 {
         self.start + (self.reference.len() - 1) as f64 * self.step
     }
@@ -73,6 +79,14 @@ pub fn resample(
             end,
             samples,
             needed: MIN_SAMPLES,
+        });
+    }
+    if samples > MAX_SAMPLES {
+        return Err(RatingError::IntervalTooLong {
+            start,
+            end,
+            samples,
+            most: MAX_SAMPLES,
         });
     }
     let grid: Vec<f64> = (0..samples).map(|k| start + k as f64 * step).collect();
@@ -197,6 +211,21 @@ mod tests {
             let time = 5e-4 + k as f64 * 1e-4;
             assert!((a - time).abs() < 1e-15 && (b - 2.0 * time).abs() < 1e-15);
         }
+    }
+
+    #[test]
+    fn an_interval_longer_than_the_rating_takes_is_refused() {
+        let (t, y) = ([0.0, 2.5], [0.0, 1.0]);
+        let e = resample(&curve(&t, &y), &curve(&t, &y), &Options::default()).unwrap_err();
+        assert_eq!(
+            e,
+            RatingError::IntervalTooLong {
+                start: 0.0,
+                end: 2.5,
+                samples: 25_001,
+                most: MAX_SAMPLES
+            }
+        );
     }
 
     #[test]

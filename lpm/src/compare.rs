@@ -2,6 +2,7 @@
 //! channel pair ([`lagrangian_studies::compare`] does the work).
 
 use crate::failure::{Failure, Outcome};
+use lagrangian_sim::quantity::value_in;
 use lagrangian_studies::compare::{
     ChannelPair, CompareRequest, compare, json, text_report, write_plots,
 };
@@ -24,6 +25,10 @@ pub struct Args {
     /// Default: every channel name both have.
     #[arg(long = "channel", value_name = "REF=COMP")]
     pub channels: Vec<String>,
+    /// The interval to rate, within each pair's common one: seconds, or
+    /// times with a unit (`0:0.1`, `10 ms:80 ms`). Default: all of it.
+    #[arg(long, value_name = "START:END", value_parser = interval, allow_hyphen_values = true)]
+    pub interval: Option<(f64, f64)>,
     /// Output format.
     #[arg(long, value_parser = ["text", "json"], default_value = "text")]
     pub format: String,
@@ -42,7 +47,24 @@ impl Args {
             reference: self.reference.clone(),
             comparison: self.comparison.clone(),
             channels,
+            interval: self.interval,
         })
+    }
+}
+
+/// `START:END`, each a number of seconds or a time with a unit.
+fn interval(text: &str) -> Result<(f64, f64), String> {
+    let time = |t: &str| match t.trim().parse::<f64>() {
+        Ok(seconds) if seconds.is_finite() => Ok(seconds),
+        Ok(_) => Err(format!("`{t}` is not a finite number of seconds")),
+        Err(_) => value_in(t, "s").map_err(|e| e.to_string()),
+    };
+    let (start, end) =
+        (text.split_once(':')).ok_or("expected START:END, e.g. 0:0.1 or 10 ms:80 ms")?;
+    let (start, end) = (time(start)?, time(end)?);
+    match start < end {
+        true => Ok((start, end)),
+        false => Err(format!("the start {start} s is not before the end {end} s")),
     }
 }
 

@@ -161,3 +161,28 @@ fn a_bad_channel_is_a_usage_error_that_names_it() {
     assert!(stderr(&o).contains("not a simulation output folder"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_interval_is_given_in_seconds_or_with_a_unit() {
+    let dir = temporary("compare-interval");
+    let a = run(&dir, "a", 0.5);
+    let a = a.to_str().unwrap();
+    for interval in ["0.05:0.2", "50 ms:200 ms"] {
+        let args = ["compare", a, a, "--channel", "theta1", "--format", "json"];
+        let document = json(&[&args[..], &["--interval", interval]].concat());
+        let rated = &document["pairs"][0]["interval_s"];
+        assert_eq!(rated[0], 0.05, "{interval}");
+        assert!(
+            (rated[1].as_f64().unwrap() - 0.2).abs() < 1e-12,
+            "{interval}"
+        );
+    }
+    let o = lpm(&["compare", a, a, "--interval", "0.2:0.1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("the start 0.2 s is not before the end 0.1 s"),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -33,6 +33,9 @@ pub struct CompareRequest {
     pub comparison: PathBuf,
     /// The pairs to rate; empty: every channel name both sources have.
     pub channels: Vec<ChannelPair>,
+    /// The interval to rate `(start, end)` \[s\], within each pair's
+    /// common one; `None`: all of it.
+    pub interval: Option<(f64, f64)>,
 }
 
 /// A reference channel and the comparison channel rated against it.
@@ -113,7 +116,7 @@ pub fn compare(request: &CompareRequest, files: &dyn Files) -> Result<Comparison
     let (mut pairs, mut skipped) = (Vec::new(), Vec::new());
     if request.channels.is_empty() {
         for (r, c) in same_names(&reference, &comparison)? {
-            match rate(r, c) {
+            match rate(r, c, request.interval) {
                 Ok(pair) => pairs.push(pair),
                 Err(error) => skipped.push(Skipped {
                     name: r.name.clone(),
@@ -130,7 +133,7 @@ pub fn compare(request: &CompareRequest, files: &dyn Files) -> Result<Comparison
         for pair in &request.channels {
             let r = reference.get(&pair.reference)?;
             let c = comparison.get(&pair.comparison)?;
-            pairs.push(rate(r, c)?);
+            pairs.push(rate(r, c, request.interval)?);
         }
     }
     Ok(Comparison {
@@ -158,8 +161,13 @@ fn same_names<'a>(
     }
 }
 
-/// The rating of `comparison` (in the reference's unit) against `reference`.
-fn rate(reference: &Signal, comparison: &Signal) -> Result<PairRating, CompareError> {
+/// The rating of `comparison` (in the reference's unit) against
+/// `reference`, within `interval` where one is given.
+fn rate(
+    reference: &Signal,
+    comparison: &Signal,
+    interval: Option<(f64, f64)>,
+) -> Result<PairRating, CompareError> {
     let comparison = in_unit_of(comparison, reference)?;
     let rating = iso18571(
         &Curve {
@@ -170,7 +178,10 @@ fn rate(reference: &Signal, comparison: &Signal) -> Result<PairRating, CompareEr
             t: &comparison.t,
             y: &comparison.y,
         },
-        &Options::default(),
+        &Options {
+            interval,
+            ..Options::default()
+        },
     );
     let rating = rating.map_err(|error: RatingError| CompareError::Rating {
         reference: reference.name.clone(),
@@ -222,7 +233,7 @@ fn labelled(signal: &Signal) -> String {
 
 /// `{"reference", "comparison", "pairs": [...], "skipped": [...]}`: per
 /// pair the channels, the unit, the four scores, the overall rating, the
-/// grade, the time shift [s] and the interval rated [s].
+/// grade, the time shift \[s\] and the interval rated \[s\].
 pub fn json(comparison: &Comparison) -> String {
     let pairs: Vec<serde_json::Value> = (comparison.pairs.iter())
         .map(|p| {
@@ -380,7 +391,7 @@ fn overlay(comparison: &Comparison, pair: &PairRating) -> Result<String, StudyEr
     panels_svg(&title, &[panel]).map_err(|e| StudyError::io(format!("plotting failed: {e}")))
 }
 
-/// The points `(t [ms], y)` of `signal` over `(start, end)` [s], with
+/// The points `(t [ms], y)` of `signal` over `(start, end)` \[s\], with
 /// the sample before and the one after, so that the line reaches both.
 fn points_within(signal: &Signal, (start, end): (f64, f64)) -> Vec<(f64, f64)> {
     let t = &signal.t;

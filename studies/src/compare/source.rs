@@ -42,7 +42,7 @@ pub struct Signal {
     pub name: String,
     /// Its unit as written (`kN`, `m/s^2`), if it has one.
     pub unit: Option<String>,
-    /// The sample times [s], strictly increasing.
+    /// The sample times \[s\], strictly increasing.
     pub t: Arc<[f64]>,
     /// One value per time, in `unit`.
     pub y: Vec<f64>,

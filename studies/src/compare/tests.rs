@@ -50,6 +50,7 @@ fn request(channels: &[&str]) -> CompareRequest {
         reference: "test.csv".into(),
         comparison: "model.csv".into(),
         channels: (channels.iter().map(|c| ChannelPair::parse(c).unwrap())).collect(),
+        interval: None,
     }
 }
 
@@ -201,4 +202,18 @@ fn a_plot_shows_the_interval_rated_and_reaches_its_ends() {
     let within = points_within(&signal, (0.0015, 0.003));
     assert_eq!(within, [(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]);
     assert_eq!(points_within(&signal, (0.0, 0.004)).len(), 5);
+}
+
+#[test]
+fn the_interval_asked_for_is_the_one_rated() {
+    let text = csv(&[("a [g]", &pulse)]);
+    let files = files(text.clone(), text);
+    let request = CompareRequest {
+        interval: Some((0.01, 0.03)),
+        ..request(&["a"])
+    };
+    let comparison = compare(&request, &files).unwrap();
+    let (start, end) = comparison.pairs[0].rating.interval_s;
+    assert_eq!(start, 0.01);
+    assert!((end - 0.03).abs() < 1e-12, "{end}");
 }
