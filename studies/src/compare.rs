@@ -16,7 +16,7 @@ pub use error::CompareError;
 
 use crate::error::StudyError;
 use crate::plot::{Series, panels_svg};
-use lagrangian_correlation::{Curve, Options, Rating, RatingError, iso18571};
+use lagrangian_correlation::{Curve, Options, Rating, iso18571};
 use lagrangian_sim::files::Files;
 use lagrangian_sim::quantity::value_in;
 use lagrangian_sim::report::write_all_atomically;
@@ -113,35 +113,63 @@ pub struct Comparison {
 pub fn compare(request: &CompareRequest, files: &dyn Files) -> Result<Comparison, StudyError> {
     let reference = Source::at(&request.reference).read(files)?;
     let comparison = Source::at(&request.comparison).read(files)?;
-    let (mut pairs, mut skipped) = (Vec::new(), Vec::new());
-    if request.channels.is_empty() {
-        for (r, c) in same_names(&reference, &comparison)? {
-            match rate(r, c, request.interval) {
-                Ok(pair) => pairs.push(pair),
-                Err(error) => skipped.push(Skipped {
-                    name: r.name.clone(),
-                    error,
-                }),
-            }
+    let interval = request.interval;
+    let (pairs, skipped) = match request.channels.is_empty() {
+        true => rate_by_name(&reference, &comparison, interval)?,
+        false => {
+            let asked = &request.channels;
+            (
+                rate_asked(asked, &reference, &comparison, interval)?,
+                Vec::new(),
+            )
         }
-        if pairs.is_empty() {
-            let first = skipped.swap_remove(0).error;
-            let first = Box::new(first);
-            return Err(CompareError::NothingRated { first }.into());
-        }
-    } else {
-        for pair in &request.channels {
-            let r = reference.get(&pair.reference)?;
-            let c = comparison.get(&pair.comparison)?;
-            pairs.push(rate(r, c, request.interval)?);
-        }
-    }
+    };
     Ok(Comparison {
         reference: reference.file,
         comparison: comparison.file,
         pairs,
         skipped,
     })
+}
+
+/// Each pair asked for, rated; the first that cannot be fails them all.
+fn rate_asked(
+    asked: &[ChannelPair],
+    reference: &Signals,
+    comparison: &Signals,
+    interval: Option<(f64, f64)>,
+) -> Result<Vec<PairRating>, CompareError> {
+    (asked.iter())
+        .map(|pair| {
+            let r = reference.get(&pair.reference)?;
+            rate(r, comparison.get(&pair.comparison)?, interval)
+        })
+        .collect()
+}
+
+/// The channels of the same name, rated, and those that cannot be (at
+/// least one must be).
+fn rate_by_name(
+    reference: &Signals,
+    comparison: &Signals,
+    interval: Option<(f64, f64)>,
+) -> Result<(Vec<PairRating>, Vec<Skipped>), CompareError> {
+    let (mut pairs, mut skipped) = (Vec::new(), Vec::new());
+    for (r, c) in same_names(reference, comparison)? {
+        match rate(r, c, interval) {
+            Ok(pair) => pairs.push(pair),
+            Err(error) => skipped.push(Skipped {
+                name: r.name.clone(),
+                error,
+            }),
+        }
+    }
+    match skipped.first() {
+        Some(first) if pairs.is_empty() => Err(CompareError::NothingRated {
+            first: Box::new(first.error.clone()),
+        }),
+        _ => Ok((pairs, skipped)),
+    }
 }
 
 /// The reference's signals that have a namesake in the comparison, with it.
@@ -183,7 +211,7 @@ fn rate(
             ..Options::default()
         },
     );
-    let rating = rating.map_err(|error: RatingError| CompareError::Rating {
+    let rating = rating.map_err(|error| CompareError::Rating {
         reference: reference.name.clone(),
         comparison: comparison.name.clone(),
         error,

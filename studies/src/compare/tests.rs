@@ -217,3 +217,25 @@ fn the_interval_asked_for_is_the_one_rated() {
     assert_eq!(start, 0.01);
     assert!((end - 0.03).abs() < 1e-12, "{end}");
 }
+
+#[test]
+fn channels_found_by_name_none_of_which_can_be_rated_fail_with_the_first_reason() {
+    let text = csv(&[("zero [m]", &|_| 0.0)]);
+    let e = compare(&request(&[]), &files(text.clone(), text.clone())).unwrap_err();
+    assert_eq!(
+        e.status(),
+        ExitStatus::Failed(lagrangian_sim::simulate::FailureKind::DataFile)
+    );
+    assert!(
+        e.to_string()
+            .starts_with("no pair of channels could be rated: `zero` against `zero`: "),
+        "{e}"
+    );
+    let other = csv(&[("one [m]", &|t| t)]);
+    let e = compare(&request(&[]), &files(text, other)).unwrap_err();
+    assert_eq!(e.status(), ExitStatus::Usage);
+    assert!(
+        e.to_string().contains("have no channel of the same name"),
+        "{e}"
+    );
+}
