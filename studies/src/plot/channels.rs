@@ -1,7 +1,8 @@
 //! The panels of the scenario's channels: one per role that has channels,
-//! titled by the role, each channel in the legend with its unit;
-//! accelerations in `g`, as the summary gives their peaks, raw and with
-//! their SAE J211 CFC 60 line.
+//! titled by the role, each channel in the legend with its unit; in the
+//! units crash plots use: accelerations in `g`, as the summary gives their
+//! peaks, raw and filtered at the channel's SAE J211 class; forces in `N`
+//! drawn in `kN`.
 
 use super::panels::{ms, with_unit};
 use super::{Line, Panel, Style};
@@ -28,19 +29,20 @@ pub(super) fn channel_panels(
 fn role_panel(result: &SimulationResult, role: Role, channels: &[&Channel], g: f64) -> Panel {
     let t: Vec<f64> = result.samples.iter().map(|x| x.t).collect();
     let accelerations = role == Role::Acceleration;
-    let scale = if accelerations { 1.0 / g } else { 1.0 };
-    let unit = |c: &Channel| match accelerations {
-        true => Some("g".to_string()),
-        false => c.signal.unit.clone(),
+    let shown = |c: &Channel| match accelerations {
+        true => (Some("g".to_string()), 1.0 / g),
+        false => drawn_in(c.signal.unit.as_deref()),
     };
+    let unit = |c: &Channel| shown(c).0;
     let mut lines = Vec::new();
     for (i, channel) in channels.iter().enumerate() {
+        let scale = shown(channel).1;
         let values: Vec<f64> = (result.samples.iter())
             .map(|x| scale * channel.signal.value(&x.columns()))
             .collect();
         let name = with_unit(&channel.signal.name, unit(channel).as_deref());
         match accelerations {
-            true => lines.extend(filtered_lines(&name, &t, &values, i)),
+            true => lines.extend(filtered_lines(&name, &t, &values, i, channel.cfc)),
             false => lines.push(Line::solid(name, points(&t, &values), i)),
         }
     }
@@ -52,6 +54,15 @@ fn role_panel(result: &SimulationResult, role: Role, channels: &[&Channel], g: f
         &with_unit(role.name(), first.as_deref().filter(|_| common)),
         lines,
     )
+}
+
+/// The unit a channel in `unit` is drawn in, and the factor to it: a force
+/// in `N` in `kN`, as crash plots show them; others as they are.
+fn drawn_in(unit: Option<&str>) -> (Option<String>, f64) {
+    match unit {
+        Some("N") => (Some("kN".into()), 1e-3),
+        unit => (unit.map(str::to_string), 1.0),
+    }
 }
 
 /// `Displacement` for `displacement`.
@@ -68,25 +79,38 @@ fn points(t: &[f64], values: &[f64]) -> Vec<(f64, f64)> {
 }
 
 /// An acceleration `values` over times `t` \[s\], raw (thin and light) and
-/// CFC 60 filtered over it, both in color `color`; the raw line alone when
-/// the record cannot be filtered (too few samples, sampled too slowly).
-pub(super) fn filtered_lines(name: &str, t: &[f64], values: &[f64], color: usize) -> Vec<Line> {
+/// filtered at SAE J211 class `cfc` over it, both in color `color`; the raw
+/// line alone when the record cannot be filtered (too few samples, sampled
+/// too slowly).
+pub(super) fn filtered_lines(
+    name: &str,
+    t: &[f64],
+    values: &[f64],
+    color: usize,
+    cfc: f64,
+) -> Vec<Line> {
     let raw = Line::new(format!("{name}, raw"), points(t, values), color, Style::Raw);
-    match cfc60(t, values) {
+    match filtered(t, values, cfc) {
         Some(filtered) => vec![
             raw,
-            Line::solid(format!("{name}, CFC 60"), points(t, &filtered), color),
+            Line::solid(format!("{name}, CFC {cfc}"), points(t, &filtered), color),
         ],
         None => vec![raw],
     }
 }
 
 /// `values` over times `t` \[s\] filtered to SAE J211 CFC 60, at the times
-/// `t`: filtered on an even grid of the smallest period (events add
-/// samples between the output times), then interpolated back.
+/// `t` (the vehicle's class for its structure's pulse).
 pub(super) fn cfc60(t: &[f64], values: &[f64]) -> Option<Vec<f64>> {
+    filtered(t, values, 60.0)
+}
+
+/// `values` over times `t` \[s\] filtered to class `cfc`, at the times `t`:
+/// filtered on an even grid of the smallest period (events add samples
+/// between the output times), then interpolated back.
+fn filtered(t: &[f64], values: &[f64], cfc: f64) -> Option<Vec<f64>> {
     let pulse = Pulse::resampled(t, values, 0.0, None).ok()?;
     let dt = pulse.t[1] - pulse.t[0];
-    let filtered = cfc_filter(&pulse.acceleration, dt, 60.0).ok()?;
+    let filtered = cfc_filter(&pulse.acceleration, dt, cfc).ok()?;
     Some(interpolate(&pulse.t, &filtered, t))
 }

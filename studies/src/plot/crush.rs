@@ -42,7 +42,7 @@ pub(super) fn crush_panels(result: &SimulationResult, signal: &Signal, g: f64) -
         Panel::time(
             "Deceleration",
             "deceleration [g]",
-            filtered_lines("deceleration", &t, &deceleration, 0),
+            filtered_lines("deceleration", &t, &deceleration, 0, 60.0),
         ),
     ]
 }

@@ -169,13 +169,14 @@ fn panels_follow_the_channel_groups_with_titles_labels_and_legends() {
                 "Acceleration",
                 "acceleration [g]",
                 vec![
+                    // Each at its own class: the default, CFC 180.
                     "x_ddot [g], raw",
-                    "x_ddot [g], CFC 60",
+                    "x_ddot [g], CFC 180",
                     "-x_ddot [g], raw",
-                    "-x_ddot [g], CFC 60"
+                    "-x_ddot [g], CFC 180"
                 ]
             ),
-            ("Force", "force [N]", vec!["belt [N]"]),
+            ("Force", "force [kN]", vec!["belt [kN]"]),
             ("Pitch from static equilibrium", "angle [°]", vec!["theta"]),
             ("Energy", "energy [kJ]", energies),
             ("Crush force against crush", "force [kN]", vec!["front"]),
@@ -184,7 +185,7 @@ fn panels_follow_the_channel_groups_with_titles_labels_and_legends() {
 }
 
 #[test]
-fn channel_values_are_drawn_in_their_units_and_accelerations_in_g() {
+fn channel_values_are_drawn_in_their_units_accelerations_in_g_forces_in_kn() {
     let result = result();
     let panels = panels_of(&result, &setup());
     let line = |title: &str, k: usize| {
@@ -193,20 +194,21 @@ fn channel_values_are_drawn_in_their_units_and_accelerations_in_g() {
     };
     let s = &result.samples[37];
     assert_eq!(line("Displacement", 0)[37], (s.t * 1e3, s.q[0]));
-    assert_eq!(line("Force", 0)[37], (s.t * 1e3, s.outputs[0]));
+    assert_eq!(line("Force", 0)[37], (s.t * 1e3, s.outputs[0] * 1e-3));
     assert_eq!(line("Acceleration", 0)[37], (s.t * 1e3, s.a[0] / 10.0));
     assert_eq!(line("Acceleration", 2)[37], (s.t * 1e3, -s.a[0] / 10.0));
     assert_eq!(line("Deceleration", 0)[37], (s.t * 1e3, -s.a[0] / 10.0));
 }
 
 #[test]
-fn every_cfc60_line_has_one_point_per_sample() {
+fn every_filtered_line_has_one_point_per_sample() {
     let result = result();
     let panels = panels_of(&result, &setup());
     let filtered: Vec<&Line> = (panels.iter())
         .flat_map(|p| &p.lines)
-        .filter(|l| l.name.ends_with("CFC 60"))
+        .filter(|l| l.name.ends_with("CFC 60") || l.name.ends_with("CFC 180"))
         .collect();
+    // The vehicle's deceleration at CFC 60, the two channels at theirs.
     assert_eq!(filtered.len(), 3);
     for line in filtered {
         assert_eq!(line.points.len(), result.samples.len(), "{}", line.name);
