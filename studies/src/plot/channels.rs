@@ -99,16 +99,10 @@ pub(super) fn filtered_lines(
     }
 }
 
-/// `values` over times `t` \[s\] filtered to SAE J211 CFC 60, at the times
-/// `t` (the vehicle's class for its structure's pulse).
-pub(super) fn cfc60(t: &[f64], values: &[f64]) -> Option<Vec<f64>> {
-    filtered(t, values, 60.0)
-}
-
 /// `values` over times `t` \[s\] filtered to class `cfc`, at the times `t`:
 /// filtered on an even grid of the smallest period (events add samples
 /// between the output times), then interpolated back.
-fn filtered(t: &[f64], values: &[f64], cfc: f64) -> Option<Vec<f64>> {
+pub(super) fn filtered(t: &[f64], values: &[f64], cfc: f64) -> Option<Vec<f64>> {
     let pulse = Pulse::resampled(t, values, 0.0, None).ok()?;
     let dt = pulse.t[1] - pulse.t[0];
     let filtered = cfc_filter(&pulse.acceleration, dt, cfc).ok()?;

@@ -1,4 +1,4 @@
-use super::channels::cfc60;
+use super::channels::filtered;
 use super::crush::{AFTER_CONTACT, crush_lines};
 use super::panels::{force_deflection_panel, panels_of};
 use super::*;
@@ -217,12 +217,12 @@ fn every_filtered_line_has_one_point_per_sample() {
 }
 
 #[test]
-fn cfc60_of_uneven_samples_comes_back_at_the_sample_times() {
+fn a_filtered_line_of_uneven_samples_comes_back_at_the_sample_times() {
     // 1 kHz with an event sample between two output times.
     let mut t: Vec<f64> = (0..=100).map(|k| k as f64 * 1e-3).collect();
     t.insert(51, 0.0504);
     let constant = vec![-9.5; t.len()];
-    let filtered = cfc60(&t, &constant).unwrap();
+    let filtered = filtered(&t, &constant, 60.0).unwrap();
     assert_eq!(filtered.len(), t.len());
     assert!(
         filtered.iter().all(|&x| (x + 9.5).abs() < 1e-9),
@@ -233,7 +233,7 @@ fn cfc60_of_uneven_samples_comes_back_at_the_sample_times() {
     let alternating: Vec<f64> = (0..=200)
         .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 })
         .collect();
-    let filtered = cfc60(&t, &alternating).unwrap();
+    let filtered = filtered(&t, &alternating, 60.0).unwrap();
     let inner = &filtered[50..150];
     assert!(inner.iter().all(|x| x.abs() < 1e-2), "{inner:?}");
 }
