@@ -33,6 +33,8 @@ struct Source {
     root: PathBuf,
     /// Each file's path below `root` (`/`-separated) and where its bytes are.
     files: Vec<(String, Bytes)>,
+    /// Whether `root` is a zip.
+    zipped: bool,
 }
 
 /// Where a file's bytes are.
@@ -88,7 +90,11 @@ impl Source {
             }
         }
         files.sort_by(|a, b| a.0.cmp(&b.0));
-        Ok(Source { root, files })
+        Ok(Source {
+            root,
+            files,
+            zipped: false,
+        })
     }
 
     /// The members of the zip at `path`, read into memory.
@@ -115,6 +121,7 @@ impl Source {
         Ok(Source {
             root: path.to_path_buf(),
             files,
+            zipped: true,
         })
     }
 
@@ -129,7 +136,7 @@ impl Source {
 
     /// The `.mme` of the test: the one `path` names, else the only one.
     fn the_mme(&self, path: &Path) -> Result<usize, ReadError> {
-        if path.is_file() && !self.is_zip() {
+        if path.is_file() && !self.zipped {
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
             return (self.files.iter())
                 .position(|(n, _)| Some(n) == name.as_ref())
@@ -155,10 +162,6 @@ impl Source {
                 ),
             )),
         }
-    }
-
-    fn is_zip(&self) -> bool {
-        self.root.is_file()
     }
 
     /// The file `name` (below the root; compared without case).

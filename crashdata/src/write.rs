@@ -22,6 +22,11 @@ use std::path::{Path, PathBuf};
 /// place, so `dir` is never half-written: on a failure it is as it was.
 pub fn write(test: &Test, dir: &Path) -> Result<(), WriteError> {
     let files = files_of(test)?;
+    // Absolute, so that `.` has a name and a sibling.
+    let dir = &std::path::absolute(dir).map_err(|source| WriteError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let temporary = beside(dir, "tmp");
     let written = write_files(&temporary, &files).and_then(|()| replace(dir, &temporary));
     if written.is_err() {
