@@ -11,7 +11,7 @@ venv=target/python-venv
 # pandas for DataFrames, dask.distributed for the Dask template's test, FMPy
 # to validate and run exported FMUs, maturin to build the wheel of
 # test_wheel.py without a build environment of its own.
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2"
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy pyisomme "maturin>=1.5,<2"
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
 # Debian's chromium for the report's browser test (test_report_browser.py).
 if ! command -v chromium >/dev/null; then

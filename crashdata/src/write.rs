@@ -134,10 +134,13 @@ fn extremes(values: &[f64]) -> (Option<usize>, Option<usize>) {
 }
 
 /// `x` in the shortest form that reads back to it (`0.0001`, `-9.81`,
-/// `1e-7`, `12`), `NOVALUE` for NaN.
+/// `1e-7`, `12`; `0` for −0), `NOVALUE` for NaN.
 pub(crate) fn number(x: f64) -> String {
     if x.is_nan() {
         return crate::text::NOVALUE.to_string();
+    }
+    if x == 0.0 {
+        return "0".into(); // −0 too
     }
     let text = format!("{x:?}");
     match text.strip_suffix(".0") {
