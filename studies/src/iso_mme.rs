@@ -25,13 +25,14 @@
 //! be linearly interpolated, and the grid ends at the last sample.
 
 use crate::error::StudyError;
-use crate::simulate::Simulated;
 use lagrangian_crashdata::ChannelCode;
 use lagrangian_crashdata::isomme::{Channel, Test};
 use lagrangian_crashdata::text::Header;
 use lagrangian_sim::pulse::STANDARD_GRAVITY;
+use lagrangian_sim::scenario::Scenario;
 use lagrangian_sim::scenario::iso_mme::IsoMme;
-use lagrangian_sim::simulate::Sample;
+use lagrangian_sim::simulate::{Sample, SimulationResult};
+use std::path::Path;
 
 /// The vehicle's crush (forward displacement) channel.
 pub const VEHICLE_DISPLACEMENT: &str = "10VEHCCG0000DSXP";
@@ -42,13 +43,26 @@ pub const VEHICLE_ACCELERATION: &str = "10VEHCCG0000ACXP";
 /// The fixed barrier's force channel.
 pub const BARRIER_FORCE: &str = "B0FBAR000000FOXP";
 
-/// The test `simulated` makes (see the module); an error where it would
+/// A finished run and where it comes from: what its test is made of.
+#[derive(Clone, Copy)]
+pub struct Run<'a> {
+    /// The run.
+    pub result: &'a SimulationResult,
+    /// The scenario it ran under.
+    pub scenario: &'a Scenario,
+    /// The spec's file.
+    pub spec: &'a Path,
+    /// The scenario's file, or that there was none.
+    pub scenario_name: &'a str,
+}
+
+/// The test `run` makes (see the module); an error where it would
 /// have no channel.
-pub fn run_test(simulated: &Simulated) -> Result<Test, StudyError> {
-    let scenario = &simulated.scenario;
+pub fn run_test(run: Run) -> Result<Test, StudyError> {
+    let scenario = run.scenario;
     let section = &scenario.iso_mme;
-    let grid = Grid::of(&simulated.result.samples, scenario.output_interval);
-    let mut channels = standard_channels(simulated, &grid);
+    let grid = Grid::of(&run.result.samples, scenario.output_interval);
+    let mut channels = standard_channels(run, &grid);
     channels.retain(|c| !section.channels.iter().any(|s| s.code == c.code));
     for entry in &section.channels {
         let values = grid.resampled(|s| entry.signal.value(&s.columns()));
@@ -69,8 +83,8 @@ pub fn run_test(simulated: &Simulated) -> Result<Test, StudyError> {
         ));
     }
     Ok(Test {
-        name: test_name(simulated),
-        info: test_info(simulated, section),
+        name: test_name(run),
+        info: test_info(run, section),
         channel_info: [("Instrumentation standard", "NOVALUE")]
             .into_iter()
             .collect_header(),
@@ -80,8 +94,8 @@ pub fn run_test(simulated: &Simulated) -> Result<Test, StudyError> {
 
 /// The vehicle's channels (of the crush channel) and the barrier force,
 /// where the scenario has them.
-fn standard_channels(simulated: &Simulated, grid: &Grid) -> Vec<Channel> {
-    let scenario = &simulated.scenario;
+fn standard_channels(run: Run, grid: &Grid) -> Vec<Channel> {
+    let scenario = run.scenario;
     let mut channels = Vec::new();
     if let Some(crush) = &scenario.crush {
         let motion = |k: usize| grid.resampled(|s| s.crush_motion(crush)[k]);
@@ -179,27 +193,25 @@ fn channel(
 }
 
 /// The test's name: `[iso_mme] name`, else the spec's stem.
-fn test_name(simulated: &Simulated) -> String {
-    match &simulated.scenario.iso_mme.name {
+fn test_name(run: Run) -> String {
+    match &run.scenario.iso_mme.name {
         Some(name) => name.clone(),
-        None => {
-            (simulated.spec.file_stem()).map_or("run".into(), |s| s.to_string_lossy().into_owned())
-        }
+        None => (run.spec.file_stem()).map_or("run".into(), |s| s.to_string_lossy().into_owned()),
     }
 }
 
 /// The `.mme`: the section's title and laboratory, where the run comes
 /// from, one test object.
-fn test_info(simulated: &Simulated, section: &IsoMme) -> Header {
-    let scenario = &simulated.scenario;
+fn test_info(run: Run, section: &IsoMme) -> Header {
+    let scenario = run.scenario;
     let title = (section.title.clone())
         .or_else(|| Some(scenario.description.trim().to_string()).filter(|d| !d.is_empty()))
-        .unwrap_or_else(|| format!("{} — {}", simulated.result.model, simulated.scenario_name));
-    let name = test_name(simulated);
+        .unwrap_or_else(|| format!("{} — {}", run.result.model, run.scenario_name));
+    let name = test_name(run);
     let source = format!(
         "simulated by lpm: {} under {}",
-        simulated.spec.display(),
-        simulated.scenario_name
+        run.spec.display(),
+        run.scenario_name
     );
     let sampling = format!(
         "samples every {} s, the run's output interval",
@@ -219,7 +231,7 @@ fn test_info(simulated: &Simulated, section: &IsoMme) -> Header {
         ("Number of test objects", "1"),
         ("Comments", source.as_str()),
         ("Comments", sampling.as_str()),
-        ("Name of test object 1", simulated.result.model.as_str()),
+        ("Name of test object 1", run.result.model.as_str()),
     ]
     .into_iter()
     .collect_header()

@@ -239,8 +239,14 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
         result, scenario, ..
     } = simulated;
     // Checked before anything is written.
+    let run = crate::iso_mme::Run {
+        result,
+        scenario,
+        spec: &simulated.spec,
+        scenario_name: &simulated.scenario_name,
+    };
     let iso_mme = (extras.iso_mme)
-        .map(|dir| crate::iso_mme::run_test(simulated).map(|test| (dir, test)))
+        .map(|dir| crate::iso_mme::run_test(run).map(|test| (dir, test)))
         .transpose()?;
     std::fs::create_dir_all(out)
         .map_err(|e| StudyError::io(format!("cannot create {}: {e}", out.display())))?;
