@@ -358,56 +358,30 @@ fn finite_number(file: &Path, line: usize, entry: &Entry) -> Result<f64, ReadErr
 /// `Name:value`, then its samples.
 fn read_channel(text: &str, file: &Path, listed: &Listed) -> Result<Channel, ReadError> {
     let lines: Vec<&str> = text.lines().collect();
-    let mut numbered: Vec<(usize, Entry)> = Vec::new();
-    let mut data_start = lines.len();
-    for (k, line) in lines.iter().enumerate() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        match entry_of(line) {
-            Some(entry) => numbered.push((k + 1, entry)),
-            None => {
-                data_start = k;
-                break;
-            }
-        }
-    }
-    let field = |name: &str| numbered.iter().find(|(_, e)| e.name == name);
-    let required =
-        |name: &str| field(name).ok_or_else(|| missing(file, name, "a channel file must give it"));
-    let (code_line, code_entry) = required("Channel code")?;
-    let code = code_of(file, *code_line, code_entry, listed)?;
-    if let Some((line, entry)) = field("Reference channel")
-        && entry
-            .value
-            .as_deref()
-            .is_some_and(|v| v.eq_ignore_ascii_case("explicit"))
-    {
-        return Err(ReadError::at(
-            file,
-            Some(*line),
-            &entry.name,
-            "an explicit time channel is not read; only the implicit time base t = t0 + i·dt",
-        ));
-    }
-    let (dt_line, dt_entry) = required("Sampling interval")?;
-    let dt = finite_number(file, *dt_line, dt_entry)?;
+    let (numbered, data_start) = header_lines(&lines);
+    let fields = Fields {
+        file,
+        lines: &numbered,
+    };
+    let (code_line, code_entry) = fields.required("Channel code")?;
+    let code = code_of(file, code_line, code_entry, listed)?;
+    fields.implicit_time_base()?;
+    let (dt_line, dt_entry) = fields.required("Sampling interval")?;
+    let dt = finite_number(file, dt_line, dt_entry)?;
     if dt <= 0.0 {
         let why = format!("{dt} is not a positive interval");
-        return Err(ReadError::at(file, Some(*dt_line), &dt_entry.name, why));
+        return Err(ReadError::at(file, Some(dt_line), &dt_entry.name, why));
     }
-    let (t0_line, t0_entry) = required("Time of first sample")?;
-    let t0 = finite_number(file, *t0_line, t0_entry)?;
-    let (n_line, n_entry) = required("Number of samples")?;
-    let count = whole_number(file, *n_line, n_entry)?;
+    let (t0_line, t0_entry) = fields.required("Time of first sample")?;
+    let t0 = finite_number(file, t0_line, t0_entry)?;
+    let (n_line, n_entry) = fields.required("Number of samples")?;
+    let count = whole_number(file, n_line, n_entry)?;
     let values = samples(&lines, data_start, file)?;
     if values.len() != count {
         let why = format!("says {count} samples; the file holds {}", values.len());
-        return Err(ReadError::at(file, Some(*n_line), &n_entry.name, why));
+        return Err(ReadError::at(file, Some(n_line), &n_entry.name, why));
     }
-    let unit = field("Unit")
-        .and_then(|(_, e)| e.value.clone())
-        .unwrap_or_default();
+    let unit = (fields.find("Unit").and_then(|(_, e)| e.value.clone())).unwrap_or_default();
     Ok(Channel {
         code,
         header: numbered.into_iter().map(|(_, e)| e).collect(),
@@ -416,6 +390,55 @@ fn read_channel(text: &str, file: &Path, listed: &Listed) -> Result<Channel, Rea
         dt,
         values,
     })
+}
+
+/// The `Name:value` lines that open a channel file, with their line
+/// numbers (from 1), and the index of the first line after them.
+fn header_lines(lines: &[&str]) -> (Vec<(usize, Entry)>, usize) {
+    let mut numbered = Vec::new();
+    for (k, line) in lines.iter().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        match entry_of(line) {
+            Some(entry) => numbered.push((k + 1, entry)),
+            None => return (numbered, k),
+        }
+    }
+    (numbered, lines.len())
+}
+
+/// The header lines of channel file `file`, by name.
+struct Fields<'a> {
+    file: &'a Path,
+    lines: &'a [(usize, Entry)],
+}
+
+impl<'a> Fields<'a> {
+    /// The first line named `name`, with its line number.
+    fn find(&self, name: &str) -> Option<(usize, &'a Entry)> {
+        (self.lines.iter())
+            .find(|(_, e)| e.name == name)
+            .map(|(line, e)| (*line, e))
+    }
+
+    /// [`Fields::find`], or the error that it is missing.
+    fn required(&self, name: &str) -> Result<(usize, &'a Entry), ReadError> {
+        (self.find(name)).ok_or_else(|| missing(self.file, name, "a channel file must give it"))
+    }
+
+    /// An error where the file says its time is an explicit channel's.
+    fn implicit_time_base(&self) -> Result<(), ReadError> {
+        match self.find("Reference channel") {
+            Some((line, entry))
+                if (entry.value.as_deref()).is_some_and(|v| v.eq_ignore_ascii_case("explicit")) =>
+            {
+                let why = "an explicit time channel is not read; only the implicit time base t = t0 + i·dt";
+                Err(ReadError::at(self.file, Some(line), &entry.name, why))
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 /// The code of a channel file, which must be the one its `.chn` lists.

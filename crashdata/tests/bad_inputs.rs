@@ -204,3 +204,14 @@ fn a_folder_with_two_tests_asks_which() {
     assert_eq!(e.file, dir);
     assert!(e.problem.contains("2 .mme files"), "{e}");
 }
+
+#[test]
+fn an_explicit_time_channel_is_refused_at_its_line() {
+    let dir = copy("explicit");
+    let file = dir.join("Channel/REF001.003");
+    let line = line_of(&file, "Reference channel");
+    edit_line(&file, line, Some("Reference channel           :explicit"));
+    let e = error(&dir);
+    assert_eq!((e.file.as_path(), e.line), (file.as_path(), Some(line)));
+    assert_eq!(e.field.as_deref(), Some("Reference channel"));
+}
