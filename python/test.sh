@@ -10,8 +10,11 @@ venv=target/python-venv
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 # pandas for DataFrames, dask.distributed for the Dask template's test, FMPy
 # to validate and run exported FMUs, maturin to build the wheel of
-# test_wheel.py without a build environment of its own.
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy pyisomme "maturin>=1.5,<2"
+# test_wheel.py without a build environment of its own,
+# objective-rating-metrics (ISO/TS 18571, as pyisomme runs it) to check
+# `lpm compare` in test_compare.py, pyisomme (ISO-MME) to read
+# `lpm simulate --iso-mme` in test_isomme.py.
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2" objective-rating-metrics pyisomme
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
 # Debian's chromium for the report's browser test (test_report_browser.py).
 if ! command -v chromium >/dev/null; then

@@ -5,6 +5,7 @@
 
 pub mod audit;
 pub mod chain;
+pub mod compare;
 pub mod derive;
 pub mod eval;
 pub mod failure;

@@ -8,7 +8,8 @@ use clap::{Parser, Subcommand};
 use lagrangian_studies::files::{Cached, Files};
 use lpm::failure::{Failure, Outcome};
 use lpm::{
-    audit, chain, derive, eval, fit, fmu, generate, linearize, metrics, simulate, status, sweep,
+    audit, chain, compare, derive, eval, fit, fmu, generate, linearize, metrics, simulate, status,
+    sweep,
 };
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -66,6 +67,14 @@ enum Command {
     /// (forward positive, so negative in a frontal crash) or `deceleration
     /// [g|m/s^2]`, and optionally `velocity [m/s|km/h]`, `crush [m|mm]`.
     Metrics(metrics::Args),
+    /// Rate a model's time histories against a test's by ISO/TS 18571:
+    /// corridor, phase, magnitude and slope scores, the overall rating and
+    /// its grade (excellent > 0.94, good > 0.8, fair > 0.58, poor), per
+    /// channel pair; --out writes an overlay plot of each.
+    ///
+    /// REFERENCE and COMPARISON are CSV files (a `t [s|ms]` column, units
+    /// in brackets) or simulation output folders (their trajectory.csv).
+    Compare(compare::Args),
     /// Print the spec of an N-link planar pendulum chain.
     Chain(chain::Args),
     /// Linearize a spec about its static equilibrium (or a given state):
@@ -88,6 +97,7 @@ fn run(command: Command, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
         Command::Generate(args) => generate::run(args),
         Command::Fit(args) => fit::run(args, files),
         Command::Metrics(args) => metrics::run(args, files),
+        Command::Compare(args) => compare::run(args, files),
         Command::Chain(args) => chain::run(args),
         Command::Linearize(args) => linearize::run(args, files),
         Command::ExportFmu(args) => fmu::run(args),

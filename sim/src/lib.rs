@@ -9,6 +9,9 @@
 //!   static equilibrium or a given state, and their modes.
 //! * [`pulse`]: crash-pulse metrics (SAE J211 CFC filter, OLC, ASI, ESW) of a
 //!   run or of a measured pulse.
+//! * [`criteria`]: occupant and vehicle injury criteria (HIC, 3 ms clip,
+//!   VC, Nij, neck and femur loads, THIV/PHD) and the limits of FMVSS 208
+//!   and Euro NCAP.
 //! * [`warning`]: what a run does not stop at but should not be trusted
 //!   without a look.
 //!
@@ -31,6 +34,7 @@
 #[cfg(test)]
 mod component_runs;
 pub mod components;
+pub mod criteria;
 /// The former name of [`components`], kept for code that names it.
 #[doc(hidden)]
 pub use components as crash;

@@ -82,6 +82,13 @@ pub enum Warning {
         /// Its value there.
         value: f64,
     },
+    /// A criterion whose channels are there but which cannot be rated.
+    NotRated {
+        /// The criterion's key (`"vc_mps"`).
+        criterion: &'static str,
+        /// Why.
+        reason: String,
+    },
     /// A filter class that the samples' rate cannot give (SAE J211-1: the
     /// design frequency 2.0775·CFC below half the sample rate), and what
     /// the metrics do without it.
@@ -110,6 +117,7 @@ impl Warning {
             Warning::StillCrushing { .. } => "still_crushing",
             Warning::CrushOffset { .. } => "crush_offset",
             Warning::NonFinite { .. } => "non_finite",
+            Warning::NotRated { .. } => "criterion_not_rated",
         }
     }
 
@@ -179,6 +187,9 @@ impl Warning {
                 round_ms(*period),
                 1.0 / period
             ),
+            Warning::NotRated { criterion, reason } => {
+                format!("criterion `{criterion}` is not rated: {reason}")
+            }
         }
     }
 }

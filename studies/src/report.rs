@@ -7,6 +7,8 @@
 use lagrangian_core::Compiled;
 use lagrangian_core::audit::{AuditReport, Part, Verdict, audit};
 use lagrangian_core::emit::{Notation, render_equations};
+use lagrangian_sim::criteria::Criteria;
+use lagrangian_sim::criteria::limits::{self, Limit, Protocol, limits};
 use lagrangian_sim::simulate::SimulationResult;
 use std::fmt::Write;
 
@@ -78,6 +80,7 @@ pub fn report_html(parts: &ReportParts) -> String {
     );
     page.push_str(&summary(result));
     page.push_str(&channels(result));
+    page.push_str(&criteria_section(&result.summary.criteria));
     page.push_str(&warnings(result));
     let _ = writeln!(
         page,
@@ -121,6 +124,81 @@ fn summary(result: &SimulationResult) -> String {
     }
     out.push_str("</table>\n");
     out
+}
+
+/// The injury criteria of the run's occupant channels, each against the
+/// limits of FMVSS 208 and Euro NCAP for the dummy; nothing where there
+/// are none.
+fn criteria_section(criteria: &Criteria) -> String {
+    if criteria.is_empty() {
+        return String::new();
+    }
+    let dummy = criteria
+        .dummy
+        .map_or("no dummy named".to_string(), |d| d.to_string());
+    let mut out = format!(
+        "<h2 id=\"criteria\">Injury criteria</h2>\n<p class=\"meta\">dummy: {}</p>\n<table>\n\
+         <tr><th>criterion</th><th>value</th>",
+        escape(&dummy)
+    );
+    for protocol in Protocol::ALL {
+        let _ = write!(out, "<th>{}</th>", escape(protocol.name()));
+    }
+    out.push_str("<th>channels</th></tr>\n");
+    for rated in &criteria.rated {
+        let c = rated.criterion;
+        let _ = write!(
+            out,
+            "<tr><th>{} <span class=\"key\">{}</span></th><td class=\"value\">{}</td>",
+            escape(c.label()),
+            escape(c.key()),
+            escape(&with_unit(rated.value, c.unit()))
+        );
+        for protocol in Protocol::ALL {
+            let limit = criteria.dummy.and_then(|dummy| {
+                limits(protocol, dummy)
+                    .into_iter()
+                    .find(|l| l.criterion == c)
+            });
+            let _ = write!(
+                out,
+                "<td>{}</td>",
+                limit.map_or("–".into(), |l| judged(&l, rated.value))
+            );
+        }
+        let _ = writeln!(out, "<td>{}</td></tr>", escape(&rated.from.join(", ")));
+    }
+    out.push_str("</table>\n");
+    out
+}
+
+/// A criterion's value to four significant digits, with its unit.
+fn with_unit(value: f64, unit: &str) -> String {
+    let digits = (3 - value.abs().log10().floor().clamp(-3.0, 3.0) as i32).max(0) as usize;
+    match unit {
+        "" => format!("{value:.digits$}"),
+        unit => format!("{value:.digits$} {unit}"),
+    }
+}
+
+/// The verdict on `value` against `limit`, with the limit: `"pass (≤ 700)"`,
+/// `"2.4 of 4 points (500–700)"`.
+fn judged(limit: &Limit, value: f64) -> String {
+    let unit = match limit.criterion.unit() {
+        "" => String::new(),
+        unit => format!(" {unit}"),
+    };
+    let lower = limit.lower;
+    match (limit.judge(value), limit.higher) {
+        (limits::Verdict::Pass, _) => format!("pass (≤ {lower}{unit})"),
+        (limits::Verdict::Fail, _) => {
+            format!("<span class=\"disagrees\">fail</span> (≤ {lower}{unit})")
+        }
+        (limits::Verdict::Points(points), higher) => format!(
+            "{points:.2} of 4 points ({}–{lower}{unit})",
+            higher.unwrap_or(lower)
+        ),
+    }
 }
 
 /// The scenario's channels (their extremes, an acceleration's peaks) and
@@ -264,5 +342,34 @@ mod tests {
         let svg = "<?xml version=\"1.0\"?>\n<svg viewBox=\"0 0 1 1\"></svg>";
         assert_eq!(inline_svg(svg), "<svg viewBox=\"0 0 1 1\"></svg>");
         assert_eq!(inline_svg("<svg/>"), "<svg/>");
+    }
+
+    #[test]
+    fn criteria_are_judged_against_each_protocol_for_the_dummy() {
+        use lagrangian_sim::criteria::{Criterion, Dummy, Rated};
+        let rated = |criterion, value| Rated {
+            criterion,
+            value,
+            from: vec!["head".into()],
+            when: None,
+        };
+        let criteria = Criteria {
+            dummy: Some(Dummy::Hybrid3Female5),
+            rated: vec![
+                rated(Criterion::Hic15, 600.0),
+                rated(Criterion::ChestDeflection, 55.0),
+            ],
+            warnings: Vec::new(),
+        };
+        let html = criteria_section(&criteria);
+        assert!(
+            html.contains("<td>pass (≤ 700)</td><td>2.00 of 4 points (500–700)</td>"),
+            "{html}"
+        );
+        assert!(
+            html.contains("fail</span> (≤ 52 mm)</td><td>0.00 of 4 points (18–34 mm)</td>"),
+            "{html}"
+        );
+        assert_eq!(criteria_section(&Criteria::EMPTY), "");
     }
 }

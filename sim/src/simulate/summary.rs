@@ -6,6 +6,7 @@
 //! shows it); everything that lists metrics iterates that table.
 
 use super::channels::Channels;
+use crate::criteria::Criteria;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -199,6 +200,11 @@ macro_rules! summary {
             /// The metrics of the scenario's channels (`[metrics]
             /// displacement`, `velocity`, `acceleration`, `force`), by name.
             pub channels: Channels,
+            /// The injury criteria of the occupant channels the scenario
+            /// names (`[iso_mme.channels]` with a dummy's channel codes);
+            /// not in `summary.json` when there are none.
+            #[serde(skip_serializing_if = "Criteria::is_empty")]
+            pub criteria: Criteria,
             /// The energy each dissipative component (a damper, a
             /// hysteretic spring, a contact or friction element) dissipated
             /// over the run, by name, in scenario order \[J\]; not in
@@ -226,6 +232,7 @@ macro_rules! summary {
             pub const EMPTY: Summary = Summary {
                 $($name: <$type as Field>::EMPTY,)*
                 channels: Channels(Vec::new()),
+                criteria: Criteria::EMPTY,
                 dissipated_by: Vec::new(),
                 still_crushing: false,
             };
