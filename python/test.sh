@@ -12,8 +12,9 @@ venv=target/python-venv
 # to validate and run exported FMUs, maturin to build the wheel of
 # test_wheel.py without a build environment of its own,
 # objective-rating-metrics (ISO/TS 18571, as pyisomme runs it) to check
-# `lpm compare` in test_compare.py.
-"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2" objective-rating-metrics
+# `lpm compare` in test_compare.py, pyisomme (ISO-MME) to read
+# `lpm simulate --iso-mme` in test_isomme.py.
+"$venv/bin/pip" install -q --disable-pip-version-check pytest numpy pandas "dask[distributed]" fmpy "maturin>=1.5,<2" objective-rating-metrics pyisomme
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install -q --disable-pip-version-check ./python
 # Debian's chromium for the report's browser test (test_report_browser.py).
 if ! command -v chromium >/dev/null; then

@@ -5,7 +5,7 @@ use lagrangian_sim::ode::Method;
 use lagrangian_sim::report::text_summary;
 use lagrangian_sim::scenario::Override;
 use lagrangian_studies::files::Files;
-use lagrangian_studies::simulate::{simulate_for_report, simulate_spec, write_outputs};
+use lagrangian_studies::simulate::{Extras, simulate_for_report, simulate_spec, write_outputs};
 use lagrangian_studies::spec::out_dir;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -48,6 +48,12 @@ pub struct Args {
     /// one self-contained page.
     #[arg(long)]
     report: bool,
+    /// Also write the run as an ISO-MME test, the folder DIR: the
+    /// vehicle's channels (crush, velocity, acceleration in g), the
+    /// barrier force and the scenario's `[iso_mme.channels]`, every
+    /// output interval from 0.
+    #[arg(long, value_name = "DIR")]
+    iso_mme: Option<PathBuf>,
 }
 
 /// The method names `--method` takes: [`Method::NAMES`], and the former
@@ -111,7 +117,11 @@ pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     }
     .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
-    write_outputs(&out, &simulated, derived.as_ref()).map_err(|e| Failure::from(&e))?;
+    let extras = Extras {
+        report: derived.as_ref(),
+        iso_mme: options.iso_mme.as_deref(),
+    };
+    write_outputs(&out, &simulated, extras).map_err(|e| Failure::from(&e))?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);
     let report = match options.report {
         true => format!(", {}/report.html", out.display()),
@@ -121,6 +131,9 @@ pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
         "  wrote {0}/trajectory.csv, {0}/summary.json, {0}/plots.svg{report}\n",
         out.display()
     ));
+    if let Some(dir) = &options.iso_mme {
+        text.push_str(&format!("  wrote the ISO-MME test {}\n", dir.display()));
+    }
     Ok(crate::warnings::outcome(
         text,
         &simulated.result.warnings,

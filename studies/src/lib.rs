@@ -11,7 +11,7 @@
 //! And the services every host calls, failing with [`error::StudyError`]:
 //! [`spec`] (compile a spec, find its scenario), [`compare`] (the ISO/TS
 //! 18571 rating of a run's channels against a test's), [`simulate`] (one run and
-//! its files), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
+//! its files; [`iso_mme`] the run as an ISO-MME test), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
 //! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
 //! its envelopes; [`progress::Progress`] the host's view of it), and the
 //! exit statuses a host ends with ([`status::ExitStatus`]). Every service
@@ -21,6 +21,8 @@
 pub mod compare;
 pub mod error;
 pub mod eval;
+#[cfg(feature = "plot")]
+pub mod iso_mme;
 pub use lagrangian_sim::files;
 #[cfg(feature = "fit")]
 pub mod fit;

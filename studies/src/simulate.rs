@@ -218,18 +218,36 @@ fn units(result: &SimulationResult, model: &InterpretedModel) -> Units {
     }
 }
 
+/// What [`write_outputs`] writes besides `trajectory.csv`, `summary.json`
+/// and `plots.svg`.
+#[derive(Clone, Copy, Default)]
+pub struct Extras<'a> {
+    /// The spec's equations and audit: also `report.html`
+    /// ([`crate::report`]).
+    pub report: Option<&'a Derived>,
+    /// A folder to write the run into as an ISO-MME test
+    /// ([`crate::iso_mme`]), beside the outputs.
+    pub iso_mme: Option<&'a Path>,
+}
+
 /// Writes `trajectory.csv`, `summary.json` and `plots.svg` of `simulated`
-/// (with the spec's equations and audit `report`, also `report.html`:
-/// [`crate::report`]) into `out`
-/// (created if need be), all or none.
-pub fn write_outputs(
-    out: &Path,
-    simulated: &Simulated,
-    report: Option<&Derived>,
-) -> Result<(), StudyError> {
+/// (and what `extras` asks for) into `out` (created if need be), all or
+/// none; the ISO-MME test is a folder of its own, written whole or not at
+/// all after the files.
+pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Result<(), StudyError> {
     let Simulated {
         result, scenario, ..
     } = simulated;
+    // Checked before anything is written.
+    let run = crate::iso_mme::Run {
+        result,
+        scenario,
+        spec: &simulated.spec,
+        scenario_name: &simulated.scenario_name,
+    };
+    let iso_mme = (extras.iso_mme)
+        .map(|dir| crate::iso_mme::run_test(run).map(|test| (dir, test)))
+        .transpose()?;
     std::fs::create_dir_all(out)
         .map_err(|e| StudyError::io(format!("cannot create {}: {e}", out.display())))?;
     let setup = PlotSetup {
@@ -246,7 +264,7 @@ pub fn write_outputs(
         ("trajectory.csv", simulated.trajectory_csv()),
         ("summary.json", summary_json(result)),
     ];
-    if let Some(derived) = report {
+    if let Some(derived) = extras.report {
         let parts = ReportParts {
             result,
             scenario_name: &simulated.scenario_name,
@@ -262,7 +280,12 @@ pub fn write_outputs(
         .map(|(path, (_, text))| (path.as_path(), text.as_bytes()))
         .collect();
     write_all_atomically(&contents)
-        .map_err(|(path, e)| StudyError::io(format!("cannot write {}: {e}", path.display())))
+        .map_err(|(path, e)| StudyError::io(format!("cannot write {}: {e}", path.display())))?;
+    if let Some((dir, test)) = iso_mme {
+        lagrangian_crashdata::isomme::write(&test, dir)
+            .map_err(|e| StudyError::io(e.to_string()))?;
+    }
+    Ok(())
 }
 
 /// `model — description` of the scenario, or `model — scenario file` for a

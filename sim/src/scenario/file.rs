@@ -25,6 +25,26 @@ pub(super) struct File {
     pub(super) components: BTreeMap<String, ComponentSection>,
     #[serde(default)]
     pub(super) constraints: ConstraintsSection,
+    #[serde(default)]
+    pub(super) iso_mme: IsoMmeSection,
+}
+
+/// `[iso_mme]`: what `lpm simulate --iso-mme DIR` writes besides the
+/// vehicle's standard channels (see [`super::iso_mme`]).
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub(super) struct IsoMmeSection {
+    /// The test's name (its files' stem); by default the spec's stem.
+    pub(super) name: Option<String>,
+    /// The `.mme`'s `Title`; by default the scenario's description.
+    pub(super) title: Option<String>,
+    /// The `.mme`'s `Laboratory name`.
+    pub(super) laboratory: Option<String>,
+    /// The barrier force channel: a trajectory column or combination, or
+    /// `""` for none; by default the force of the contact elements.
+    pub(super) barrier_force: Option<String>,
+    /// Further channels: a trajectory column (or combination) → its code.
+    pub(super) channels: BTreeMap<String, String>,
 }
 
 /// `[constraints]`: Baumgarte's stabilization of a model's constraints

@@ -14,6 +14,8 @@
 //!                velocity = ["r_dot"], force = ["belt_force"]
 //! [components.front_end]  type = "crush", inputs = { force = "crush", … }, …
 //! [components.barrier]    type = "table", file = "../data/forces.csv", columns = { barrier_x1 = "Fx1" }
+//! [iso_mme]      name = "YARIS56", title = "…", laboratory = "…", barrier_force = "front_end.force"
+//! [iso_mme.channels]  "theta2" = "10SEAT000000ANYP"   # column = ISO-MME channel code ([`iso_mme`])
 //! ```
 //!
 //! Every name is checked against the spec, with a suggestion for typos.
@@ -54,6 +56,7 @@ pub(crate) mod bind;
 mod choice;
 mod discover;
 mod file;
+pub mod iso_mme;
 mod locate;
 pub mod options;
 mod overrides;
@@ -215,6 +218,9 @@ pub struct Scenario {
     /// What a step's stages see of a kink of an input of time inside it
     /// (`simulation.time_kinks`).
     pub time_kinks: TimeKinks,
+    /// What a run written as an ISO-MME test holds besides the vehicle's
+    /// standard channels (`[iso_mme]`).
+    pub iso_mme: iso_mme::IsoMme,
 }
 
 impl Scenario {

@@ -4,6 +4,7 @@
 use super::bind::bind_components;
 use super::choice::parse_choice;
 use super::file::{ClassChoice, File, InitialSection, MetricsSection};
+use super::iso_mme::resolve_iso_mme;
 use super::options::{SampleAccelerations, TimeKinks};
 use super::{Channel, Column, ModelNames, Role, Scenario, Signal};
 use crate::components::ComponentSection;
@@ -77,7 +78,14 @@ pub(super) fn resolve(
         .filter_map(|(n, v)| Some((names.inputs.iter().position(|i| *i == n)?, v)))
         .collect();
     let inputs = bind_components(&file.components, tables, names, constants)?;
-    let channels = channels(&file.metrics, &names.with_components(&inputs))?;
+    let with_components = names.with_components(&inputs);
+    let channels = channels(&file.metrics, &with_components)?;
+    let iso_mme = resolve_iso_mme(
+        &file.iso_mme,
+        &file.metrics,
+        &file.components,
+        &with_components,
+    )?;
     Ok(Scenario {
         file: None,
         spec: file.spec.as_ref().map(|s| base.join(s)),
@@ -99,6 +107,7 @@ pub(super) fn resolve(
         stabilization: stabilization(&file.constraints)?,
         accelerations,
         time_kinks,
+        iso_mme,
     })
 }
 

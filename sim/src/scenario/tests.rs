@@ -742,3 +742,83 @@ fn every_unit_a_component_section_declares_is_a_unit() {
         }
     }
 }
+
+/// A mass on a crush element: the contact of the `[iso_mme]` tests.
+const ON_A_WALL: &str = "model OnAWall;\ncoordinates { x [m], }\nparameters { m [kg] = 1.0, }\ninputs { crush(x [m], v [m/s]) [N], }\nkinetic = 0.5 * m * pow(dot(x), 2);\npotential = 0.0;\nforce x = crush(x, dot(x));\n";
+
+/// The crush element of [`ON_A_WALL`].
+const WALL: &str = "[metrics]\ncrush = \"-x\"\n[components.wall]\ntype = \"crush\"\ninputs = { force = \"crush\" }\ncompression = \"negative\"\nforce_breakpoints = [0.1]\nforce_values = [1e3]\ndamping_breakpoints = [1.0]\ndamping_values = [0.0, 0.0]\n";
+
+#[test]
+fn an_iso_mme_code_that_is_not_one_is_located_with_its_key() {
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    let text = format!("{PUSH}\n[iso_mme.channels]\nx = \"10VEHCCG0000QQXP\"\n");
+    let e = Scenario::parse(&text, Some(Path::new("s.toml")), &names, &[]).unwrap_err();
+    assert_eq!(e.key, Some(KeyPath::new("iso_mme.channels.x")));
+    assert_eq!(
+        e.to_string(),
+        "s.toml:6:5: iso_mme.channels.x = \"10VEHCCG0000QQXP\": channel code \"10VEHCCG0000QQXP\": \
+         the physical dimension (position 13) is \"QQ\"; expected a physical dimension of RED B \
+         (AC, VE, DS, DC, FO, MO, EN, AN, AV, AA, …, 00, or 1x/2x lab- or customer-specific)"
+    );
+    // A short code, a column the model does not have, a code given twice.
+    let e = error(
+        &format!("{PUSH}[iso_mme.channels]\nx = \"10VEHCCG\"\n"),
+        &[],
+    );
+    assert!(e.contains("has 8 characters; a channel code has 16"), "{e}");
+    let e = error(
+        &format!("{PUSH}[iso_mme.channels]\ny = \"10VEHCCG0000DSXP\"\n"),
+        &[],
+    );
+    assert!(e.starts_with("iso_mme.channels.y"), "{e}");
+    let twice = format!(
+        "{PUSH}[iso_mme.channels]\nx = \"10VEHCCG0000DSXP\"\nx_dot = \"10VEHCCG0000DSXP\"\n"
+    );
+    let e = error(&twice, &[]);
+    assert!(e.contains("the code is given to `x` already"), "{e}");
+    let e = error(&format!("{PUSH}[iso_mme]\nname = \"a/b\"\n"), &[]);
+    assert!(e.starts_with("iso_mme.name = \"a/b\""), "{e}");
+    let e = error(&format!("{PUSH}[iso_mme]\ncodes = 1\n"), &[]);
+    assert!(e.contains("unknown field `codes`"), "{e}");
+}
+
+#[test]
+fn an_iso_mme_section_resolves_its_channels_and_barrier_force() {
+    let spring = ModelNames::of_interpreted(&lagrangian_core::interpret(SPRING).unwrap());
+    // No section: no channels, no barrier without a contact element.
+    let none = Scenario::parse(PUSH, None, &spring, &[]).unwrap().iso_mme;
+    assert_eq!(none, iso_mme::IsoMme::default());
+    let names = ModelNames::of_interpreted(&lagrangian_core::interpret(ON_A_WALL).unwrap());
+    let parse = |text: &str| Scenario::parse(text, None, &names, &[]).unwrap().iso_mme;
+    // The one crush component is the barrier's load by default.
+    let with_wall = parse(WALL);
+    assert_eq!(with_wall.barrier_force.unwrap().name, "wall.force");
+    let text = format!(
+        "{WALL}[iso_mme]\ntitle = \"T\"\nlaboratory = \"L\"\nbarrier_force = \"\"\n[iso_mme.channels]\n\"x_ddot\" = \"11CHST0000H3ACXA\"\n\"wall.deflection\" = \"10VEHC000000DCXP\"\n"
+    );
+    let section = parse(&text);
+    assert_eq!(
+        (section.title.as_deref(), section.laboratory.as_deref()),
+        (Some("T"), Some("L"))
+    );
+    assert_eq!(section.barrier_force, None);
+    let channels: Vec<(&str, &str)> = (section.channels.iter())
+        .map(|c| (c.signal.name.as_str(), c.code.as_str()))
+        .collect();
+    assert_eq!(
+        channels,
+        [
+            ("wall.deflection", "10VEHC000000DCXP"),
+            ("x_ddot", "11CHST0000H3ACXA")
+        ]
+    );
+    // A --set reaches the section too.
+    let set = Override::parse_all(&["iso_mme.channels.x=\"10VEHCCG0000DSXW\""]).unwrap();
+    let e = Scenario::parse(WALL, None, &names, &set).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("--set iso_mme.channels.x=\"10VEHCCG0000DSXW\""),
+        "{e}"
+    );
+}
