@@ -222,19 +222,16 @@ fn a_filtered_line_of_uneven_samples_comes_back_at_the_sample_times() {
     let mut t: Vec<f64> = (0..=100).map(|k| k as f64 * 1e-3).collect();
     t.insert(51, 0.0504);
     let constant = vec![-9.5; t.len()];
-    let filtered = filtered(&t, &constant, 60.0).unwrap();
-    assert_eq!(filtered.len(), t.len());
-    assert!(
-        filtered.iter().all(|&x| (x + 9.5).abs() < 1e-9),
-        "{filtered:?}"
-    );
+    let level = filtered(&t, &constant, 60.0).unwrap();
+    assert_eq!(level.len(), t.len());
+    assert!(level.iter().all(|&x| (x + 9.5).abs() < 1e-9), "{level:?}");
     // A 1 kHz alternation is far above CFC 60's corner: filtered away.
     let t: Vec<f64> = (0..=200).map(|k| k as f64 * 1e-3).collect();
     let alternating: Vec<f64> = (0..=200)
         .map(|k| if k % 2 == 0 { 1.0 } else { -1.0 })
         .collect();
-    let filtered = filtered(&t, &alternating, 60.0).unwrap();
-    let inner = &filtered[50..150];
+    let smoothed = filtered(&t, &alternating, 60.0).unwrap();
+    let inner = &smoothed[50..150];
     assert!(inner.iter().all(|x| x.abs() < 1e-2), "{inner:?}");
 }
 
