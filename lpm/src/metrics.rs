@@ -1,10 +1,11 @@
-//! `lpm metrics FILE.csv`: crash-pulse metrics of a measured or exported pulse.
+//! `lpm metrics TEST`: crash-pulse metrics and injury criteria of a test
+//! (ISO-MME) or of a measured or exported pulse (CSV).
 
 use crate::failure::{Failure, Outcome};
-use lagrangian_sim::pulse::channels::{Quantity, read_time_histories};
-use lagrangian_sim::pulse::{Pulse, PulseMetrics};
-use lagrangian_sim::warning::{self, Warning};
+use lagrangian_sim::criteria::{Criterion, Rated};
+use lagrangian_sim::pulse::PulseMetrics;
 use lagrangian_studies::files::Files;
+use lagrangian_studies::metrics::{MetricsRequest, TestMetrics, test_metrics};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -12,7 +13,9 @@ use std::sync::Arc;
 /// Options of `lpm metrics`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The pulse: a CSV file with units in its header.
+    /// The test: an ISO-MME test (its folder, its `.mme` or a `.zip`: the
+    /// vehicle's pulse and every occupant's injury criteria), or the
+    /// vehicle's pulse as a CSV file with units in its header.
     file: PathBuf,
     /// Impact velocity [m/s], if the file has no velocity column.
     #[arg(long, allow_negative_numbers = true)]
@@ -27,52 +30,58 @@ pub struct Args {
 
 /// Runs `lpm metrics`.
 pub fn run(args: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
-    let (file, v0, json) = (args.file.as_path(), args.v0, args.format == "json");
-    let histories = read_time_histories(&**files, file).map_err(|e| Failure::channels(&e))?;
-    let Some(acceleration) = histories.channel(Quantity::Acceleration) else {
-        return Err(Failure::usage(format!(
-            "{}: the metrics need an acceleration (or deceleration) column",
-            file.display()
-        )));
+    let request = MetricsRequest {
+        test: args.file.clone(),
+        v0: args.v0,
     };
-    let v0 = match (v0, histories.channel(Quantity::Velocity)) {
-        (Some(v), _) => v,
-        (None, Some(v)) => v.values[0],
-        (None, None) => {
-            return Err(Failure::usage(format!(
-                "{}: no velocity column to take the impact velocity from; give it with --v0 <m/s>",
-                file.display()
-            )));
-        }
+    let metrics = test_metrics(&**files, &request).map_err(|e| Failure::from(&e))?;
+    let text = match args.format == "json" {
+        true => metrics.json(),
+        false => text_of(&metrics, &args.file),
     };
-    if !v0.is_finite() {
-        return Err(Failure::usage(format!(
-            "impact velocity {v0} is not a number"
-        )));
-    }
-    let mut warnings: Vec<Warning> =
-        warning::flipped_acceleration(&acceleration.header, &histories.t, &acceleration.values, v0)
-            .into_iter()
-            .collect();
-    let crush = histories
-        .channel(Quantity::Crush)
-        .map(|c| c.values.as_slice());
-    let evaluation = |e| Failure::evaluation(format!("{}: {e}", file.display()));
-    let pulse =
-        Pulse::resampled(&histories.t, &acceleration.values, v0, crush).map_err(evaluation)?;
-    let metrics = pulse.metrics().map_err(evaluation)?;
-    warnings.extend(pulse.filter_warnings());
-    let text = if json {
-        json_text(&metrics, &warnings)
-    } else {
-        text(&metrics, file)
-    };
-    Ok(crate::warnings::outcome(text, &warnings, args.strict))
+    Ok(crate::warnings::outcome(
+        text,
+        &metrics.warnings,
+        args.strict,
+    ))
 }
 
-/// The metrics as JSON, then their `warnings` (`[]` when none).
-fn json_text(metrics: &PulseMetrics, warnings: &[Warning]) -> String {
-    warning::json_with_warnings(metrics, warnings)
+/// The text report: the pulse's metrics, then the criteria of the vehicle
+/// and of each occupant.
+fn text_of(metrics: &TestMetrics, file: &Path) -> String {
+    let mut out = match &metrics.pulse {
+        Some(pulse) => text(pulse, file),
+        None => format!(
+            "{}\n  (no vehicle acceleration channel: no pulse metrics)\n",
+            file.display()
+        ),
+    };
+    let vehicle: Vec<&Rated> = (metrics.criteria.rated.iter())
+        .filter(|r| matches!(r.criterion, Criterion::Thiv | Criterion::Phd))
+        .collect();
+    for r in vehicle {
+        let _ = writeln!(out, "  {:<23}{}", r.criterion.label(), shown(r));
+    }
+    for occupant in &metrics.occupants {
+        let dummy = occupant.dummy.as_deref().unwrap_or("no dummy named");
+        let _ = writeln!(
+            out,
+            "  occupant of test object {}, seat {} ({dummy}):",
+            occupant.test_object, occupant.position
+        );
+        for r in &occupant.criteria.rated {
+            let _ = writeln!(out, "    {:<21}{}", r.criterion.label(), shown(r));
+        }
+    }
+    out
+}
+
+/// A criterion's value with its unit.
+fn shown(r: &Rated) -> String {
+    match r.criterion.unit() {
+        "" => format!("{:.3}", r.value),
+        unit => format!("{:.3} {unit}", r.value),
+    }
 }
 
 fn text(m: &PulseMetrics, file: &Path) -> String {

@@ -51,7 +51,7 @@ RUNS = {
         "yaris_occupant.lpm",
         {
             **VEHICLE,
-            "11OCCU000000ACXP": ("m/s^2", lambda c: -c["occupant_deceleration"]),
+            "11CHST0000H3ACXP": ("m/s^2", lambda c: -c["occupant_deceleration"]),
             "11OCCU000000DSXP": ("m", lambda c: c["s"]),
             "11SEBE000000FO0P": ("N", lambda c: c["belt_force"]),
         },
@@ -95,7 +95,7 @@ def test_the_test_header_names_the_run_and_its_laboratory(tmp_path):
     assert test.get_test_info("Laboratory name") == "lagrangian (simulation)"
     assert test.get_test_info("Title").startswith("2010 Toyota Yaris with a belted")
     assert channels["10VEHCCG0000ACXP"].unit.to_isomme() == "g"
-    chest = channels["11OCCU000000ACXP"]
+    chest = channels["11CHST0000H3ACXP"]
     assert chest.get_info("Sampling interval") == pytest.approx(1e-4, rel=1e-12)
     assert chest.get_info("Time of first sample") == 0
 

@@ -29,6 +29,7 @@ pub mod fit;
 #[cfg(all(feature = "fit", feature = "plot"))]
 pub mod fitting;
 pub mod mass;
+pub mod metrics;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod progress;
@@ -42,3 +43,4 @@ pub mod status;
 pub mod sweep;
 #[cfg(all(feature = "sweep", feature = "plot"))]
 pub mod sweeping;
+pub mod test_data;

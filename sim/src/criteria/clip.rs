@@ -1,53 +1,9 @@
 //! The 3 ms clip of FMVSS 208 (S6.3, chest; also read for the head): the
 //! highest level the magnitude of an acceleration stays at or above for a
-//! cumulative 3 ms.
+//! cumulative 3 ms. One definition, the pulse's ([`crate::pulse`]), which a
+//! channel's `clip3ms_g` in the summary reads too.
 
-/// The cumulative duration of the 3 ms clip \[s\].
-pub const CLIP_DURATION: f64 = 0.003;
-
-/// The highest level `L` at which the magnitude of `a`, sampled every `dt`
-/// and read as the piecewise-linear interpolant of its samples, spends a
-/// cumulative `duration` or more at or above `L` (each crossing between two
-/// samples counts its fraction of the interval). The duration above a level
-/// falls as the level rises, so `L` is found by bisection between 0 and the
-/// peak to the resolution of `f64`. `None` for a record shorter than
-/// `duration`, a period that is not positive, or a non-finite sample.
-pub fn clip(a: &[f64], dt: f64, duration: f64) -> Option<f64> {
-    let record = dt * a.len().saturating_sub(1) as f64;
-    if !(dt > 0.0 && dt.is_finite()) || record < duration || a.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    let magnitude: Vec<f64> = a.iter().map(|x| x.abs()).collect();
-    let (mut low, mut high) = (0.0, magnitude.iter().copied().fold(0.0, f64::max));
-    for _ in 0..200 {
-        let level = 0.5 * (low + high);
-        if level <= low || level >= high {
-            break;
-        }
-        if time_at_or_above(&magnitude, dt, level) >= duration {
-            low = level;
-        } else {
-            high = level;
-        }
-    }
-    Some(low)
-}
-
-/// How long the interpolant of `x` is at or above `level`.
-fn time_at_or_above(x: &[f64], dt: f64, level: f64) -> f64 {
-    let mut total = 0.0;
-    for pair in x.windows(2) {
-        let (a, b) = (pair[0], pair[1]);
-        total += match (a >= level, b >= level) {
-            (true, true) => dt,
-            (false, false) => 0.0,
-            // The fraction of the interval on the side above the level.
-            (true, false) => dt * (a - level) / (a - b),
-            (false, true) => dt * (b - level) / (b - a),
-        };
-    }
-    total
-}
+pub use crate::pulse::occupant::{CLIP_DURATION, clip};
 
 #[cfg(test)]
 mod tests {

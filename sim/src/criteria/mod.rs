@@ -12,6 +12,7 @@
 //! them as the standard asks and calls them.
 
 mod clip;
+pub mod codes;
 mod dummy;
 mod hic;
 pub mod limits;

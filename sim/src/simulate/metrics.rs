@@ -11,6 +11,7 @@
 use super::Sample;
 use super::Summary;
 use super::channels::{ChannelRecord, ChannelSummary, Channels};
+use super::criteria_channels::CriteriaRecords;
 use crate::ode::{Stats, hermite_weights};
 use crate::pulse::{FilteredMetrics, Pulse, STANDARD_GRAVITY, grid_period};
 use crate::scenario::{Columns, CoordinateCombination, Scenario};
@@ -158,6 +159,8 @@ pub struct Metrics {
     crush_acceleration: Vec<f64>,
     /// The records of the scenario's channels.
     channels: Vec<ChannelRecord>,
+    /// The records of the occupant channels the criteria read.
+    occupant: CriteriaRecords,
 }
 
 impl Metrics {
@@ -190,6 +193,7 @@ impl Metrics {
             channels: (scenario.channels.iter().cloned())
                 .map(|channel| ChannelRecord::new(channel, samples))
                 .collect(),
+            occupant: CriteriaRecords::new(scenario, samples),
         }
     }
 
@@ -280,7 +284,7 @@ impl Metrics {
             self.crush_history.push(CrushPoint { t, crush, rate });
             self.crush_acceleration.push(acceleration);
         }
-        if !self.channels.is_empty() {
+        if !self.channels.is_empty() || !self.occupant.is_empty() {
             let columns = Columns {
                 q: s.q,
                 v: s.v,
@@ -293,6 +297,7 @@ impl Metrics {
             for channel in &mut self.channels {
                 channel.push(&columns);
             }
+            self.occupant.push(&columns);
         }
     }
 
@@ -331,6 +336,7 @@ impl Metrics {
             rhs_evaluations: stats.rhs_evaluations,
             energy_balance_error_rel: self.energy_error(),
             channels: Channels(self.channel_summaries()),
+            criteria: self.occupant.criteria(&self.times),
             ..Summary::EMPTY
         };
         if let Some(peak) = Peak::of(&self.crush_history) {

@@ -3,6 +3,7 @@
 
 mod channels;
 pub mod constrained;
+mod criteria_channels;
 mod equilibrium;
 mod initial;
 mod kink_rates;
@@ -375,6 +376,7 @@ fn run_warnings(scenario: &Scenario, metrics: &Metrics, summary: &Summary) -> Ve
         warnings.extend(metrics.crush_warnings(&channel));
     }
     warnings.extend(metrics.filter_warnings());
+    warnings.extend(summary.criteria.warnings.iter().cloned());
     warnings.extend(warning::energy_balance(summary.energy_balance_error_rel));
     warnings
 }
