@@ -186,3 +186,41 @@ fn the_interval_is_given_in_seconds_or_with_a_unit() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A run and the same run written as an ISO-MME test: the belt force by
+/// its column and by its channel code, in N on both sides, rate 1 (to the
+/// digits the two files keep).
+#[test]
+fn a_run_against_its_iso_mme_test_scores_1() {
+    let dir = temporary("compare-iso-mme");
+    let (out, test) = (dir.join("out"), dir.join("test"));
+    let o = lpm(&[
+        "simulate",
+        "specs/yaris_occupant.lpm",
+        "--out",
+        out.to_str().unwrap(),
+        "--iso-mme",
+        test.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (out, test) = (out.to_str().unwrap(), test.to_str().unwrap());
+    let pair = "belt_force=11SEBE000000FO0P";
+    let document = json(&["compare", out, test, "--channel", pair, "--format", "json"]);
+    let rated = &document["pairs"][0];
+    assert_eq!(rated["comparison"], "11SEBE000000FO0P");
+    for score in SCORES {
+        let value = rated[score].as_f64().unwrap();
+        assert!((value - 1.0).abs() < 1e-9, "{score}: {document:#}");
+    }
+    // A code the test does not have is named, with the nearest it has.
+    let o = lpm(&[
+        "compare",
+        out,
+        test,
+        "--channel",
+        "belt_force=11SEBE000000FOXP",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("11SEBE000000FO0P"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

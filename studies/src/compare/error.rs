@@ -109,6 +109,10 @@ pub enum CompareError {
         /// Why.
         error: RatingError,
     },
+    /// An ISO-MME test that cannot be read or used (the file, line and
+    /// field in the reader's error).
+    #[error("{0}")]
+    IsoMme(lagrangian_crashdata::ReadError),
     /// Channels paired by name, none of which could be rated.
     #[error("no pair of channels could be rated: {}", .first)]
     NothingRated {
@@ -135,6 +139,7 @@ impl From<CompareError> for StudyError {
             | CompareError::NoChannels { .. }
             | CompareError::Units { .. }
             | CompareError::Rating { .. }
+            | CompareError::IsoMme(_)
             | CompareError::NothingRated { .. } => StudyError::data_file(e.to_string()),
         }
     }

@@ -2,10 +2,9 @@
 //! named [`Signal`]s, each with its own times (an ISO-MME channel has its
 //! own time base; a CSV's columns share theirs).
 //!
-//! A new kind of source — the ISO-MME test of `lagrangian-crashdata`, a
-//! `.mme` file or its folder — is one variant of [`Source`]: how
-//! [`Source::at`] recognises it and how [`Source::read`] reads it into
-//! signals. Pairing, rating and plotting take signals and do not change.
+//! A kind of source is one variant of [`Source`]: how [`Source::at`]
+//! recognises it and how [`Source::read`] reads it into signals. Pairing,
+//! rating and plotting take signals and do not change.
 
 use super::CompareError;
 use lagrangian_sim::files::Files;
@@ -33,6 +32,9 @@ pub enum Source {
     /// A simulation output folder (`lpm simulate --out`): its
     /// [`TRAJECTORY`].
     RunFolder(PathBuf),
+    /// An ISO-MME test (its folder, `.mme` or `.zip`): its channels, named
+    /// by their codes, each on its own time base.
+    IsoMme(PathBuf),
 }
 
 /// One curve of a source.
@@ -74,9 +76,13 @@ impl Signals {
 }
 
 impl Source {
-    /// The source at `path`: a folder is a simulation output folder, any
-    /// other path a CSV file.
+    /// The source at `path`: an ISO-MME test (an `.mme`, a `.zip`, a
+    /// folder holding an `.mme`), else a folder is a simulation output
+    /// folder, any other path a CSV file.
     pub fn at(path: &Path) -> Source {
+        if crate::test_data::is_iso_mme(path) {
+            return Source::IsoMme(path.to_path_buf());
+        }
         match path.is_dir() {
             true => Source::RunFolder(path.to_path_buf()),
             false => Source::Csv(path.to_path_buf()),
@@ -96,8 +102,33 @@ impl Source {
                 }
                 csv_signals(files, &file)
             }
+            Source::IsoMme(path) => iso_mme_signals(path),
         }
     }
+}
+
+/// The channels of the ISO-MME test at `path`, in its units (written as
+/// the project writes units: `m/s^2`, `N*m`).
+fn iso_mme_signals(path: &Path) -> Result<Signals, CompareError> {
+    let test = lagrangian_crashdata::isomme::read(path).map_err(CompareError::IsoMme)?;
+    let signals: Vec<Signal> = (test.channels.iter())
+        .filter(|c| c.values.len() >= 2)
+        .map(|c| Signal {
+            name: c.code.as_str().to_string(),
+            unit: Some(crate::test_data::unit_text(&c.unit)).filter(|u| !u.is_empty()),
+            t: c.times().into(),
+            y: c.values.clone(),
+        })
+        .collect();
+    if signals.is_empty() {
+        return Err(CompareError::NoChannels {
+            file: path.to_path_buf(),
+        });
+    }
+    Ok(Signals {
+        file: path.to_path_buf(),
+        signals,
+    })
 }
 
 /// A header's name without its `[unit]`.
