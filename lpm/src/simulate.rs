@@ -4,8 +4,12 @@ use crate::failure::{Failure, Outcome};
 use lagrangian_sim::ode::Method;
 use lagrangian_sim::report::text_summary;
 use lagrangian_sim::scenario::Override;
+use lagrangian_studies::compare::ChannelPair;
+use lagrangian_studies::error::StudyError;
 use lagrangian_studies::files::Files;
-use lagrangian_studies::simulate::{Extras, simulate_for_report, simulate_spec, write_outputs};
+use lagrangian_studies::simulate::{
+    Extras, TestOverlay, simulate_for_report, simulate_spec, write_outputs,
+};
 use lagrangian_studies::spec::out_dir;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -54,6 +58,15 @@ pub struct Args {
     /// output interval from 0.
     #[arg(long, value_name = "DIR")]
     iso_mme: Option<PathBuf>,
+    /// With --report: a test to rate the run against by ISO/TS 18571 and
+    /// overlay in the report (an ISO-MME test, a CSV or a run's folder).
+    #[arg(long, value_name = "TEST", requires = "report")]
+    test: Option<PathBuf>,
+    /// A test channel and the run's column it is rated against (REF=COMP,
+    /// or NAME for the same name in both), as `lpm compare --channel`;
+    /// by default the channels of the same name.
+    #[arg(long = "test-channel", value_name = "REF=COMP", requires = "test")]
+    test_channels: Vec<String>,
 }
 
 /// The method names `--method` takes: [`Method::NAMES`], and the former
@@ -117,9 +130,18 @@ pub fn run(options: Args, files: &Arc<dyn Files>) -> Result<Outcome, Failure> {
     }
     .map_err(|e| naming_flags(Failure::from(&e), &options))?;
     let out = out_dir(options.out.clone(), &options.spec, "");
+    let pairs = (options.test_channels.iter())
+        .map(|text| ChannelPair::parse(text).map_err(|e| Failure::from(&StudyError::from(e))))
+        .collect::<Result<Vec<_>, _>>()?;
+    let test = options.test.as_deref().map(|test| TestOverlay {
+        test,
+        channels: &pairs,
+        files: &**files,
+    });
     let extras = Extras {
         report: derived.as_ref(),
         iso_mme: options.iso_mme.as_deref(),
+        test,
     };
     write_outputs(&out, &simulated, extras).map_err(|e| Failure::from(&e))?;
     let mut text = text_summary(&simulated.result, &simulated.scenario_name);

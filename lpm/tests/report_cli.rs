@@ -133,3 +133,63 @@ fn a_report_is_written_on_request_only_and_for_every_shipped_scenario() {
         assert!(audited != none, "{spec}: the audit section");
     }
 }
+
+/// With a test, the report rates the run against it and overlays the pair;
+/// its scores are `lpm compare`'s of the same pair (one answer).
+#[test]
+fn a_report_with_a_test_has_the_ratings_of_lpm_compare_and_the_overlay() {
+    let out = temporary("report-test");
+    let (test, pair) = ("specs/data/yaris_pulse.csv", "deceleration=r_ddot");
+    let run = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--report",
+        "--test",
+        test,
+        "--test-channel",
+        pair,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert_self_contained(&page);
+    let compared = lpm(&[
+        "compare",
+        test,
+        out.to_str().unwrap(),
+        "--channel",
+        pair,
+        "--format",
+        "json",
+    ]);
+    assert!(compared.status.success(), "{}", stderr(&compared));
+    let rating: serde_json::Value = serde_json::from_str(&stdout(&compared)).unwrap();
+    let rated = &rating["pairs"][0];
+    let row = format!(
+        "<tr><th>deceleration</th><td>r_ddot</td><td class=\"value\">{:.3}</td><td class=\"value\">{:.3}</td>",
+        rated["corridor"].as_f64().unwrap(),
+        rated["phase"].as_f64().unwrap()
+    );
+    assert!(page.contains("<h2 id=\"test\">Against the test</h2>"));
+    assert!(page.contains(&row), "no row {row}");
+    assert!(page.contains(&format!(
+        "<td>{}</td></tr>",
+        rated["grade"].as_str().unwrap()
+    )));
+    // The overlay: one more SVG than the plots.
+    assert_eq!(page.matches("<svg").count(), 2);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_test_needs_the_report() {
+    let run = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--test",
+        "specs/data/yaris_pulse.csv",
+    ]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("--report"), "{}", stderr(&run));
+}

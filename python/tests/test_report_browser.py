@@ -64,7 +64,11 @@ def test_the_report_renders_in_chromium_without_console_messages_and_with_its_pl
     browser = shutil.which("chromium")
     if browser is None:
         pytest.fail("no chromium on PATH: python/test.sh installs Debian's chromium package")
-    run_lpm("simulate", SPECS / "yaris_double_pendulum.lpm", "--report", "--out", tmp_path)
+    # With a test: the report rates the run against it and overlays the pair.
+    run_lpm(
+        "simulate", SPECS / "yaris_double_pendulum.lpm", "--report", "--out", tmp_path,
+        "--test", SPECS / "data" / "yaris_pulse.csv", "--test-channel", "deceleration=r_ddot",
+    )
     page, shot = tmp_path / "report.html", tmp_path / "report.png"
     done = subprocess.run(
         [
@@ -73,7 +77,7 @@ def test_the_report_renders_in_chromium_without_console_messages_and_with_its_pl
             "--no-sandbox",
             "--disable-gpu",
             "--hide-scrollbars",
-            "--window-size=1200,2400",
+            "--window-size=1200,3400",
             "--enable-logging=stderr",
             "--v=0",
             f"--screenshot={shot}",
@@ -87,8 +91,10 @@ def test_the_report_renders_in_chromium_without_console_messages_and_with_its_pl
     console = [line for line in done.stderr.splitlines() if "CONSOLE" in line]
     assert console == [], console
     width, height, rows = read_png(shot)
-    assert (width, height) == (1200, 2400)
+    assert (width, height) == (1200, 3400)
     blue = sum(near(p, CURVE_BLUE) for row in rows for p in row)
-    # The curves are drawn: 2151 pixels of their blue on 2026-12-02; the
-    # same page with its <svg> removed has none.
-    assert blue > 1000, f"{blue} blue pixels"
+    # The curves are drawn: 2151 pixels of their blue in the plots on
+    # 2026-12-02, 3659 with the test's overlay below them on 2026-12-03
+    # (its reference curve is blue too); the same page with its <svg>s
+    # removed has none.
+    assert blue > 2600, f"{blue} blue pixels"

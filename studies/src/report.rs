@@ -4,6 +4,7 @@
 //! equations of motion. No script, no style sheet, font or image from
 //! elsewhere: the plots are inline SVG and the page works offline.
 
+use crate::compare::Comparison;
 use lagrangian_core::Compiled;
 use lagrangian_core::audit::{AuditReport, Part, Verdict, audit};
 use lagrangian_core::emit::{Notation, render_equations};
@@ -55,6 +56,8 @@ pub struct ReportParts<'a> {
     pub spec: &'a str,
     /// The plots, an SVG document.
     pub plots_svg: &'a str,
+    /// The run rated against a test, with the overlays of each pair.
+    pub test: Option<&'a Comparison>,
 }
 
 /// The page.
@@ -87,6 +90,7 @@ pub fn report_html(parts: &ReportParts) -> String {
         "<h2 id=\"plots\">Plots</h2>\n{}",
         inline_svg(parts.plots_svg)
     );
+    page.push_str(&test_section(parts.test));
     page.push_str(&events(result));
     page.push_str(&audit_section(parts.derived.audit.as_ref()));
     page.push_str(&equations(&parts.derived.equations));
@@ -199,6 +203,58 @@ fn judged(limit: &Limit, value: f64) -> String {
             higher.unwrap_or(lower)
         ),
     }
+}
+
+/// The run against the test: each pair's ISO/TS 18571 scores and grade,
+/// then its overlay (the test and the run over the interval rated);
+/// nothing without a test.
+fn test_section(comparison: Option<&Comparison>) -> String {
+    let Some(comparison) = comparison else {
+        return String::new();
+    };
+    let mut out = format!(
+        "<h2 id=\"test\">Against the test</h2>\n<p class=\"meta\">{} · ISO/TS 18571</p>\n<table>\n\
+         <tr><th>test channel</th><th>run</th><th>corridor</th><th>phase</th><th>magnitude</th>\
+         <th>slope</th><th>overall</th><th>grade</th></tr>\n",
+        escape(&comparison.reference.display().to_string())
+    );
+    for pair in &comparison.pairs {
+        let r = &pair.rating;
+        let _ = writeln!(
+            out,
+            "<tr><th>{}</th><td>{}</td><td class=\"value\">{:.3}</td><td class=\"value\">{:.3}</td>\
+             <td class=\"value\">{:.3}</td><td class=\"value\">{:.3}</td><td class=\"value\">{:.3}</td>\
+             <td>{}</td></tr>",
+            escape(&pair.reference.name),
+            escape(&pair.comparison.name),
+            r.corridor,
+            r.phase,
+            r.magnitude,
+            r.slope,
+            r.overall,
+            r.grade.name()
+        );
+    }
+    out.push_str("</table>\n");
+    for skipped in &comparison.skipped {
+        let _ = writeln!(
+            out,
+            "<p class=\"warning\">{}</p>",
+            escape(&skipped.reason())
+        );
+    }
+    match crate::compare::plots(comparison) {
+        Ok(plots) => {
+            for (_, svg) in plots {
+                out.push_str(inline_svg(&svg));
+                out.push('\n');
+            }
+        }
+        Err(e) => {
+            let _ = writeln!(out, "<p class=\"warning\">{}</p>", escape(&e.to_string()));
+        }
+    }
+    out
 }
 
 /// The scenario's channels (their extremes, an acceleration's peaks) and

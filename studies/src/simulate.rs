@@ -1,6 +1,8 @@
 //! One run of a spec file under a scenario, and the files it writes
 //! (`trajectory.csv`, `summary.json`, `plots.svg`).
 
+use crate::compare::source::TRAJECTORY;
+use crate::compare::{ChannelPair, CompareRequest, Comparison, compare};
 use crate::error::StudyError;
 use crate::plot::{PlotSetup, figure_svg};
 use crate::report::{Derived, ReportParts, report_html};
@@ -228,6 +230,58 @@ pub struct Extras<'a> {
     /// A folder to write the run into as an ISO-MME test
     /// ([`crate::iso_mme`]), beside the outputs.
     pub iso_mme: Option<&'a Path>,
+    /// A test the report rates the run against (ISO/TS 18571) and overlays
+    /// on it; only with `report`.
+    pub test: Option<TestOverlay<'a>>,
+}
+
+/// The test a report compares the run with: its file (an ISO-MME test, a
+/// CSV or another run's folder) and the pairs of a test channel and a run
+/// column to rate (`lpm compare`'s `--channel`).
+#[derive(Clone, Copy)]
+pub struct TestOverlay<'a> {
+    /// The test.
+    pub test: &'a Path,
+    /// The pairs; empty: the channels of the same name.
+    pub channels: &'a [ChannelPair],
+    /// Where the test's CSV is read from.
+    pub files: &'a dyn Files,
+}
+
+/// `files`, with the run's `trajectory.csv` at `path` from memory: the
+/// comparison of a report reads the run before its files are written.
+#[derive(Debug)]
+struct WithTrajectory<'a> {
+    path: PathBuf,
+    text: std::sync::Arc<str>,
+    files: &'a dyn Files,
+}
+
+impl Files for WithTrajectory<'_> {
+    fn text(&self, path: &Path) -> std::io::Result<std::sync::Arc<str>> {
+        match path == self.path {
+            true => Ok(std::sync::Arc::clone(&self.text)),
+            false => self.files.text(path),
+        }
+    }
+}
+
+/// The run compared with the test of `overlay`: the test the reference,
+/// the run's trajectory (`text`, not yet written to `out`) the comparison.
+fn against_test(overlay: &TestOverlay, out: &Path, text: &str) -> Result<Comparison, StudyError> {
+    let path = out.join(TRAJECTORY);
+    let files = WithTrajectory {
+        path: path.clone(),
+        text: text.into(),
+        files: overlay.files,
+    };
+    let request = CompareRequest {
+        reference: overlay.test.to_path_buf(),
+        comparison: path,
+        channels: overlay.channels.to_vec(),
+        interval: None,
+    };
+    compare(&request, &files)
 }
 
 /// Writes `trajectory.csv`, `summary.json` and `plots.svg` of `simulated`
@@ -260,8 +314,13 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
     };
     let svg =
         figure_svg(result, &setup).map_err(|e| StudyError::io(format!("plotting failed: {e}")))?;
+    let trajectory = simulated.trajectory_csv();
+    let comparison = match (extras.report, &extras.test) {
+        (Some(_), Some(overlay)) => Some(against_test(overlay, out, &trajectory)?),
+        _ => None,
+    };
     let mut files = vec![
-        ("trajectory.csv", simulated.trajectory_csv()),
+        ("trajectory.csv", trajectory),
         ("summary.json", summary_json(result)),
     ];
     if let Some(derived) = extras.report {
@@ -271,6 +330,7 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
             derived,
             spec: &simulated.spec.display().to_string(),
             plots_svg: &svg,
+            test: comparison.as_ref(),
         };
         files.push(("report.html", report_html(&parts)));
     }
