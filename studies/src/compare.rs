@@ -113,16 +113,23 @@ pub struct Comparison {
 pub fn compare(request: &CompareRequest, files: &dyn Files) -> Result<Comparison, StudyError> {
     let reference = Source::at(&request.reference).read(files)?;
     let comparison = Source::at(&request.comparison).read(files)?;
-    let interval = request.interval;
-    let (pairs, skipped) = match request.channels.is_empty() {
+    compare_signals(reference, comparison, &request.channels, request.interval)
+}
+
+/// The comparison of signals already read: the pairs `channels` asks for
+/// (by name where empty), over `interval` where given.
+pub fn compare_signals(
+    reference: Signals,
+    comparison: Signals,
+    channels: &[ChannelPair],
+    interval: Option<(f64, f64)>,
+) -> Result<Comparison, StudyError> {
+    let (pairs, skipped) = match channels.is_empty() {
         true => rate_by_name(&reference, &comparison, interval)?,
-        false => {
-            let asked = &request.channels;
-            (
-                rate_asked(asked, &reference, &comparison, interval)?,
-                Vec::new(),
-            )
-        }
+        false => (
+            rate_asked(channels, &reference, &comparison, interval)?,
+            Vec::new(),
+        ),
     };
     Ok(Comparison {
         reference: reference.file,

@@ -1,8 +1,8 @@
 //! One run of a spec file under a scenario, and the files it writes
 //! (`trajectory.csv`, `summary.json`, `plots.svg`).
 
-use crate::compare::source::TRAJECTORY;
-use crate::compare::{ChannelPair, CompareRequest, Comparison, compare};
+use crate::compare::source::{Source, TRAJECTORY, test_signals};
+use crate::compare::{ChannelPair, CompareRequest, Comparison, compare, compare_signals};
 use crate::error::StudyError;
 use crate::plot::{PlotSetup, figure_svg};
 use crate::report::{Derived, ReportParts, report_html};
@@ -266,9 +266,22 @@ impl Files for WithTrajectory<'_> {
     }
 }
 
-/// The run compared with the test of `overlay`: the test the reference,
-/// the run's trajectory (`text`, not yet written to `out`) the comparison.
-fn against_test(overlay: &TestOverlay, out: &Path, text: &str) -> Result<Comparison, StudyError> {
+/// The run compared with the test of `overlay`: the test the reference;
+/// the comparison the run as an ISO-MME test (channels by their codes,
+/// signed as ISO signs them) where the test is one, else the run's
+/// trajectory (`text`, not yet written to `out`).
+fn against_test(
+    overlay: &TestOverlay,
+    out: &Path,
+    text: &str,
+    run: crate::iso_mme::Run,
+) -> Result<Comparison, StudyError> {
+    if crate::test_data::is_iso_mme(overlay.test) {
+        let reference = Source::at(overlay.test).read(overlay.files)?;
+        let name = out.join("(the run as an ISO-MME test)");
+        let comparison = test_signals(&crate::iso_mme::run_test(run)?, &name)?;
+        return compare_signals(reference, comparison, overlay.channels, None);
+    }
     let path = out.join(TRAJECTORY);
     let files = WithTrajectory {
         path: path.clone(),
@@ -293,14 +306,8 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
         result, scenario, ..
     } = simulated;
     // Checked before anything is written.
-    let run = crate::iso_mme::Run {
-        result,
-        scenario,
-        spec: &simulated.spec,
-        scenario_name: &simulated.scenario_name,
-    };
     let iso_mme = (extras.iso_mme)
-        .map(|dir| crate::iso_mme::run_test(run).map(|test| (dir, test)))
+        .map(|dir| crate::iso_mme::run_test(run_parts(simulated)).map(|test| (dir, test)))
         .transpose()?;
     std::fs::create_dir_all(out)
         .map_err(|e| StudyError::io(format!("cannot create {}: {e}", out.display())))?;
@@ -316,7 +323,12 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
         figure_svg(result, &setup).map_err(|e| StudyError::io(format!("plotting failed: {e}")))?;
     let trajectory = simulated.trajectory_csv();
     let comparison = match (extras.report, &extras.test) {
-        (Some(_), Some(overlay)) => Some(against_test(overlay, out, &trajectory)?),
+        (Some(_), Some(overlay)) => Some(against_test(
+            overlay,
+            out,
+            &trajectory,
+            run_parts(simulated),
+        )?),
         _ => None,
     };
     let mut files = vec![
@@ -346,6 +358,16 @@ pub fn write_outputs(out: &Path, simulated: &Simulated, extras: Extras) -> Resul
             .map_err(|e| StudyError::io(e.to_string()))?;
     }
     Ok(())
+}
+
+/// What the ISO-MME test of a run is made of.
+fn run_parts(simulated: &Simulated) -> crate::iso_mme::Run<'_> {
+    crate::iso_mme::Run {
+        result: &simulated.result,
+        scenario: &simulated.scenario,
+        spec: &simulated.spec,
+        scenario_name: &simulated.scenario_name,
+    }
 }
 
 /// `model — description` of the scenario, or `model — scenario file` for a

@@ -111,6 +111,15 @@ impl Source {
 /// the project writes units: `m/s^2`, `N*m`).
 fn iso_mme_signals(path: &Path) -> Result<Signals, CompareError> {
     let test = lagrangian_crashdata::isomme::read(path).map_err(CompareError::IsoMme)?;
+    test_signals(&test, path)
+}
+
+/// The channels of `test` (read from `file`, as messages name it), each
+/// named by its code.
+pub fn test_signals(
+    test: &lagrangian_crashdata::isomme::Test,
+    file: &Path,
+) -> Result<Signals, CompareError> {
     let signals: Vec<Signal> = (test.channels.iter())
         .filter(|c| c.values.len() >= 2)
         .map(|c| Signal {
@@ -122,11 +131,11 @@ fn iso_mme_signals(path: &Path) -> Result<Signals, CompareError> {
         .collect();
     if signals.is_empty() {
         return Err(CompareError::NoChannels {
-            file: path.to_path_buf(),
+            file: file.to_path_buf(),
         });
     }
     Ok(Signals {
-        file: path.to_path_buf(),
+        file: file.to_path_buf(),
         signals,
     })
 }
