@@ -224,3 +224,23 @@ fn a_run_against_its_iso_mme_test_scores_1() {
     assert!(stderr(&o).contains("11SEBE000000FO0P"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An EV5 test's channels by number, in their units (`G'S` as g, `NWT` as
+/// N); against itself, 1.
+#[test]
+fn an_ev5_test_is_a_source_of_its_numbered_channels() {
+    let ev5 = "crashdata/tests/data/ev5/v99001.EV5";
+    let document = json(&["compare", ev5, ev5, "--format", "json"]);
+    let named: Vec<(&str, &str)> = (document["pairs"].as_array().unwrap().iter())
+        .map(|p| {
+            (
+                p["reference"].as_str().unwrap(),
+                p["unit"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(named, [("001", "g"), ("002", "g"), ("003", "N")]);
+    for pair in document["pairs"].as_array().unwrap() {
+        assert_eq!(pair["overall"], 1.0);
+    }
+}

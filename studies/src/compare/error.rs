@@ -109,8 +109,8 @@ pub enum CompareError {
         /// Why.
         error: RatingError,
     },
-    /// An ISO-MME test that cannot be read or used (the file, line and
-    /// field in the reader's error).
+    /// An ISO-MME or EV5 test that cannot be read or used (the file, line
+    /// and field in the reader's error).
     #[error("{0}")]
     IsoMme(lagrangian_crashdata::ReadError),
     /// Channels paired by name, none of which could be rated.

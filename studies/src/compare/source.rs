@@ -35,6 +35,9 @@ pub enum Source {
     /// An ISO-MME test (its folder, `.mme` or `.zip`): its channels, named
     /// by their codes, each on its own time base.
     IsoMme(PathBuf),
+    /// An NHTSA EV5 test (its `.EV5` card file): its recorded channels,
+    /// named by their numbers (`"001"`), each in its own unit.
+    Ev5(PathBuf),
 }
 
 /// One curve of a source.
@@ -83,6 +86,10 @@ impl Source {
         if crate::test_data::is_iso_mme(path) {
             return Source::IsoMme(path.to_path_buf());
         }
+        let extension = path.extension().map(|e| e.to_ascii_lowercase());
+        if extension.as_deref() == Some(std::ffi::OsStr::new("ev5")) {
+            return Source::Ev5(path.to_path_buf());
+        }
         match path.is_dir() {
             true => Source::RunFolder(path.to_path_buf()),
             false => Source::Csv(path.to_path_buf()),
@@ -103,6 +110,7 @@ impl Source {
                 csv_signals(files, &file)
             }
             Source::IsoMme(path) => iso_mme_signals(path),
+            Source::Ev5(path) => ev5_signals(path),
         }
     }
 }
@@ -112,6 +120,32 @@ impl Source {
 fn iso_mme_signals(path: &Path) -> Result<Signals, CompareError> {
     let test = lagrangian_crashdata::isomme::read(path).map_err(CompareError::IsoMme)?;
     test_signals(&test, path)
+}
+
+/// The recorded channels of the EV5 test at `path`, named by number
+/// (`"001"`), in their units as ISO-MME writes them.
+fn ev5_signals(path: &Path) -> Result<Signals, CompareError> {
+    let test = lagrangian_crashdata::ev5::read(path).map_err(CompareError::IsoMme)?;
+    let signals: Vec<Signal> = (test.channels.iter())
+        .filter_map(|c| {
+            let data = c.data.as_ref()?;
+            (data.times.len() >= 2).then(|| Signal {
+                name: format!("{:03}", c.number),
+                unit: c.unit().map(crate::test_data::unit_text),
+                t: data.times.clone().into(),
+                y: data.values.clone(),
+            })
+        })
+        .collect();
+    if signals.is_empty() {
+        return Err(CompareError::NoChannels {
+            file: path.to_path_buf(),
+        });
+    }
+    Ok(Signals {
+        file: path.to_path_buf(),
+        signals,
+    })
 }
 
 /// The channels of `test` (read from `file`, as messages name it), each
