@@ -72,6 +72,8 @@ def test_lpm_metrics_of_an_iso_mme_test_gives_pyisommes_criteria(tmp_path):
         "neck_tension_kn": np.max(fz.get_data(unit="kN")),
         "neck_compression_kn": -np.min(fz.get_data(unit="kN")),
         "neck_shear_kn": np.max(np.abs(fx.get_data(unit="kN"))),
+        "neck_flexion_nm": np.max(moc.get_data(unit="N*m")),
+        "neck_extension_nm": -np.min(moc.get_data(unit="N*m")),
     }
     driver = ours["occupants"][0]
     assert (driver["test_object"], driver["position"], driver["dummy"]) == ("1", "1", "hybrid3_50m")

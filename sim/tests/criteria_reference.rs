@@ -130,6 +130,8 @@ fn criteria_agree_with_pyisomme_on_the_same_channels() {
         ("chest_deflection_mm", 1e-12),
         ("vc_mps", 1e-9),
         ("nij", 1e-9),
+        ("neck_flexion_nm", 1e-12),
+        ("neck_extension_nm", 1e-12),
     ] {
         let ours = criteria.get(Criterion::of_key(key).unwrap()).unwrap();
         let pyisomme = theirs[key].as_f64().unwrap();

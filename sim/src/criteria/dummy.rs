@@ -17,6 +17,11 @@ pub enum Dummy {
     Hybrid3Male95,
 }
 
+/// The distance from the upper neck load cell's axis to the occipital
+/// condyle of the Hybrid III family \[m\] (0.7 in: SAE J1733), the same for
+/// the 5th, 50th and 95th, so also used where no dummy is named.
+pub const NECK_OFFSET: f64 = 0.01778;
+
 /// Every dummy, in the order of the tables below.
 pub const DUMMIES: [Dummy; 3] = [
     Dummy::Hybrid3Male50,
@@ -100,10 +105,10 @@ impl Dummy {
     }
 
     /// The distance from the upper neck load cell's axis to the occipital
-    /// condyle \[m\] (0.01778 m, 0.7 in, for the Hybrid III family: SAE J1733),
-    /// with which `M_oc = M_y − D·F_x`.
+    /// condyle \[m\], with which `M_oc = M_y − D·F_x`: [`NECK_OFFSET`] for
+    /// every dummy here.
     pub fn neck_offset(self) -> f64 {
-        0.01778
+        NECK_OFFSET
     }
 }
 

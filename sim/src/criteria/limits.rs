@@ -112,6 +112,7 @@ pub fn limits(protocol: Protocol, dummy: Dummy) -> Vec<Limit> {
             sliding(C::Head3ms, 72.0, 80.0),
             sliding(C::NeckTension, 1.7, 2.62),
             sliding(C::NeckShear, 1.2, 1.95),
+            sliding(C::NeckExtension, 36.0, 49.0),
             sliding(C::ChestDeflection, 18.0, 34.0),
             sliding(C::Vc, 0.5, 1.0),
             sliding(C::FemurMax, 2.6, 6.2),
@@ -139,7 +140,9 @@ mod tests {
         assert_eq!(hic.judge(600.0), Verdict::Points(2.0));
         assert_eq!(hic.judge(750.0), Verdict::Points(0.0));
         // A compression signed negative is rated on its magnitude.
-        let chest = limits(Protocol::EuroNcapFullWidth, Dummy::Hybrid3Female5)[4];
+        let chest = (limits(Protocol::EuroNcapFullWidth, Dummy::Hybrid3Female5).into_iter())
+            .find(|l| l.criterion == Criterion::ChestDeflection)
+            .unwrap();
         assert_eq!(chest.judge(-26.0), Verdict::Points(2.0));
     }
 

@@ -52,6 +52,10 @@ pub enum Criterion {
     NeckCompression,
     /// The largest upper neck shear, either way.
     NeckShear,
+    /// The largest flexion moment at the occipital condyle.
+    NeckFlexion,
+    /// The largest extension moment at the occipital condyle.
+    NeckExtension,
     /// The largest femur axial compression, of either femur.
     FemurMax,
     /// The vehicle's occupant load criterion.
@@ -68,7 +72,7 @@ pub enum Criterion {
 
 impl Criterion {
     /// Every criterion, in the order the outputs list them.
-    pub const ALL: [Criterion; 16] = [
+    pub const ALL: [Criterion; 18] = [
         Criterion::Hic15,
         Criterion::Hic36,
         Criterion::Head3ms,
@@ -79,6 +83,8 @@ impl Criterion {
         Criterion::NeckTension,
         Criterion::NeckCompression,
         Criterion::NeckShear,
+        Criterion::NeckFlexion,
+        Criterion::NeckExtension,
         Criterion::FemurMax,
         Criterion::Olc,
         Criterion::Asi,
@@ -100,6 +106,8 @@ impl Criterion {
             Criterion::NeckTension => "neck_tension_kn",
             Criterion::NeckCompression => "neck_compression_kn",
             Criterion::NeckShear => "neck_shear_kn",
+            Criterion::NeckFlexion => "neck_flexion_nm",
+            Criterion::NeckExtension => "neck_extension_nm",
             Criterion::FemurMax => "femur_max_kn",
             Criterion::Olc => "olc_g",
             Criterion::Asi => "asi",
@@ -122,6 +130,8 @@ impl Criterion {
             Criterion::NeckTension => "neck tension",
             Criterion::NeckCompression => "neck compression",
             Criterion::NeckShear => "neck shear",
+            Criterion::NeckFlexion => "neck flexion",
+            Criterion::NeckExtension => "neck extension",
             Criterion::FemurMax => "femur compression",
             Criterion::Olc => "OLC",
             Criterion::Asi => "ASI",
@@ -147,6 +157,7 @@ impl Criterion {
             | Criterion::NeckShear
             | Criterion::FemurMax => "kN",
             Criterion::Thiv => "km/h",
+            Criterion::NeckFlexion | Criterion::NeckExtension => "N·m",
         }
     }
 
@@ -159,6 +170,8 @@ impl Criterion {
             | Criterion::NeckTension
             | Criterion::NeckCompression
             | Criterion::NeckShear
+            | Criterion::NeckFlexion
+            | Criterion::NeckExtension
             | Criterion::FemurMax => Some(600.0),
             Criterion::Chest3ms
             | Criterion::ChestDeflection
@@ -188,6 +201,9 @@ impl Criterion {
             Criterion::Nij => "FMVSS 208 S6.6",
             Criterion::NeckTension | Criterion::NeckCompression => "FMVSS 208 S6.6(b)",
             Criterion::NeckShear => "Euro NCAP frontal protocol, ECE R94",
+            Criterion::NeckFlexion | Criterion::NeckExtension => {
+                "Euro NCAP frontal protocol (moment at the occipital condyle)"
+            }
             Criterion::FemurMax => "FMVSS 208 S6.5",
             Criterion::Olc => "Euro NCAP (Kübler et al.)",
             Criterion::Asi | Criterion::Thiv | Criterion::Phd => "EN 1317-1:2010",

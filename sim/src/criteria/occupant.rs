@@ -1,6 +1,7 @@
 //! The occupant criteria of a set of channels: which channels each
 //! criterion reads, the filter its standard asks for, and the criterion.
 
+use super::dummy::NECK_OFFSET;
 use super::{CLIP_DURATION, Criterion, Dummy, HIC15_WINDOW, HIC36_WINDOW};
 use super::{clip, hic, nij, occipital_moment, viscous_criterion};
 use crate::pulse::{STANDARD_GRAVITY, cfc::min_sample_rate, cfc_filter};
@@ -360,8 +361,36 @@ fn neck(channels: &[Measured], dummy: Option<Dummy>, out: &mut Criteria) {
             when: None,
         });
     }
-    let my_channel = find(channels, Body::UpperNeck, Measure::Moment(Axis::Y));
-    let (Some((fz_m, fz)), Some(my_m)) = (&fz, my_channel) else {
+    let Some(my_m) = find(channels, Body::UpperNeck, Measure::Moment(Axis::Y)) else {
+        return;
+    };
+    let Some(my) = at_class(my_m, 600.0, Criterion::NeckExtension, out) else {
+        return;
+    };
+    // The moment at the occipital condyle, where the shear is there.
+    let mut from = vec![my_m.name.to_string()];
+    let moment = match &fx {
+        Some((fx_m, fx)) if fx.len() == my.len() => {
+            from.push(fx_m.name.to_string());
+            occipital_moment(&my, fx, NECK_OFFSET)
+        }
+        _ => my,
+    };
+    let flexion = moment.iter().fold(0.0f64, |a, &m| a.max(m));
+    let extension = moment.iter().fold(0.0f64, |a, &m| a.max(-m));
+    for (criterion, value) in [
+        (Criterion::NeckFlexion, flexion),
+        (Criterion::NeckExtension, extension),
+    ] {
+        let from = from.clone();
+        out.insert(Rated {
+            criterion,
+            value,
+            from,
+            when: None,
+        });
+    }
+    let Some((fz_m, fz)) = &fz else {
         return;
     };
     let Some(intercepts) =
@@ -369,23 +398,14 @@ fn neck(channels: &[Measured], dummy: Option<Dummy>, out: &mut Criteria) {
     else {
         return;
     };
-    let Some(my) = at_class(my_m, 600.0, Criterion::Nij, out) else {
-        return;
-    };
-    let mut from = vec![fz_m.name.to_string(), my_m.name.to_string()];
-    let moment = match &fx {
-        Some((fx_m, fx)) if fx.len() == my.len() => {
-            from.push(fx_m.name.to_string());
-            occipital_moment(&my, fx, dummy.map_or(0.0, Dummy::neck_offset))
-        }
-        _ => my,
-    };
+    from.insert(0, fz_m.name.to_string());
     if let Some(n) = nij(fz, &moment, fz_m.t0, fz_m.dt, &intercepts) {
+        let when = Some((n.time, n.time));
         out.insert(Rated {
             criterion: Criterion::Nij,
             value: n.value,
             from,
-            when: Some((n.time, n.time)),
+            when,
         });
     }
 }

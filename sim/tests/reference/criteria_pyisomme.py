@@ -82,6 +82,8 @@ values = {
     "chest_deflection_mm": float(-np.min(signals["11CHST0000H3DSXC"]) * 1e3),
     "vc_mps": float(vc_peak.get_data()[0]),
     "nij": float(nij_peak.get_data()[0]),
+    "neck_flexion_nm": float(np.max(moc.get_data())),
+    "neck_extension_nm": float(-np.min(moc.get_data())),
 }
 out = {
     "generator": f"pyisomme {importlib.metadata.version('pyisomme')}: sim/tests/reference/criteria_pyisomme.py",
