@@ -7,8 +7,8 @@ use common::{lpm, stderr, temporary};
 
 use std::path::Path;
 
-/// `t [ms], deceleration [g]` up to 100 ms from a trajectory.csv.
-fn target_from(trajectory: &Path, target: &Path) {
+/// `t [ms], deceleration [g]` up to `end` \[s\] from a trajectory.csv.
+fn target_from(trajectory: &Path, target: &Path, end: f64) {
     let text = std::fs::read_to_string(trajectory).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -19,7 +19,7 @@ fn target_from(trajectory: &Path, target: &Path) {
     let mut out = String::from("t [ms],deceleration [g]\n");
     for line in lines {
         let cells: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
-        if cells[it] > 0.1 {
+        if cells[it] > end + 1e-12 {
             break;
         }
         // r < 0 is crush, so the vehicle's deceleration is r̈.
@@ -49,7 +49,7 @@ fn a_fit_recovers_the_scenario_and_writes_a_scenario_simulate_accepts() {
     ]);
     assert!(run.status.success(), "{}", stderr(&run));
     let target = dir.join("target.csv");
-    target_from(&dir.join("truth/trajectory.csv"), &target);
+    target_from(&dir.join("truth/trajectory.csv"), &target, 0.1);
     let out = dir.join("fit");
     let run = lpm(&[
         "fit",
@@ -260,6 +260,144 @@ fn every_curve_the_fit_suggests_is_accepted() {
             "{name} suggested, then: {}",
             stderr(&run)
         );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The ISO/TS 18571 rating `lpm compare --format json` gives `run` against
+/// the shipped target, its deceleration against the run's `r_ddot`.
+fn compare_rating(run: &Path) -> serde_json::Value {
+    let compared = lpm(&[
+        "compare",
+        "specs/data/yaris_pulse.csv",
+        run.to_str().unwrap(),
+        "--channel",
+        "deceleration=r_ddot",
+        "--format",
+        "json",
+    ]);
+    assert!(compared.status.success(), "{}", stderr(&compared));
+    let json: serde_json::Value = serde_json::from_slice(&compared.stdout).unwrap();
+    json["pairs"][0].clone()
+}
+
+/// The shipped fit (docs/book/fitting.md): the fitted run rates excellent
+/// by ISO/TS 18571, better than the scenario's own, and the ratings the fit
+/// reports are the ones `lpm compare` gives the two runs against the
+/// target. Up to 1e-8: `lpm compare` reads the run's trajectory.csv, which
+/// holds 11 significant digits, where the fit rates the run's own numbers.
+#[test]
+fn the_fit_reports_the_ratings_lpm_compare_gives_its_runs() {
+    let dir = temporary("rating");
+    let out = dir.join("fit");
+    let run = lpm(&[
+        "fit",
+        "specs/yaris_double_pendulum.lpm",
+        "--target",
+        "specs/data/yaris_pulse.csv",
+        "--fit",
+        "stiffness",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    let channel = &report["channels"][0];
+    let (initial, fitted) = (&channel["rating_initial"], &channel["rating"]);
+    let overall = |r: &serde_json::Value| r["overall"].as_f64().unwrap();
+    assert!(overall(fitted) > overall(initial), "{channel}");
+    assert!(overall(fitted) >= 0.94, "{channel}");
+    assert_eq!(fitted["grade"], "excellent", "{channel}");
+    let line = format!(
+        "ISO/TS 18571 deceleration [g]: overall {:.3} ({}) → {:.3} (excellent)",
+        overall(initial),
+        initial["grade"].as_str().unwrap(),
+        overall(fitted)
+    );
+    assert!(text.contains(&line), "{line}\n{text}");
+
+    let simulate = |name: &str, scenario: &[&str]| {
+        let folder = dir.join(name);
+        let mut args = vec!["simulate", "specs/yaris_double_pendulum.lpm"];
+        args.extend(scenario);
+        args.extend(["--out", folder.to_str().unwrap()]);
+        let run = lpm(&args);
+        assert!(run.status.success(), "{}", stderr(&run));
+        compare_rating(&folder)
+    };
+    let fitted_toml = out.join("fitted.toml");
+    let ratings = [
+        (initial, simulate("initial", &[])),
+        (
+            fitted,
+            simulate("fitted", &["--scenario", fitted_toml.to_str().unwrap()]),
+        ),
+    ];
+    for (reported, compared) in &ratings {
+        for key in ["corridor", "phase", "magnitude", "slope", "overall"] {
+            let (a, b) = (reported[key].as_f64().unwrap(), compared[key].as_f64());
+            assert!(
+                (a - b.unwrap()).abs() < 1e-8,
+                "{key}: fit {reported}, compare {compared}"
+            );
+        }
+        for key in ["grade", "time_shift_s", "interval_s"] {
+            assert_eq!(reported[key], compared[key], "{key}");
+        }
+    }
+    assert!(
+        std::fs::read_to_string(out.join("fit.svg"))
+            .unwrap()
+            .contains("ISO/TS 18571"),
+        "the overlay's panel names the rating"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A target of 0.8 ms (9 samples every 0.1 ms) is fitted, but it is
+/// shorter than the 11 samples of the rating's 10 kHz time base: the
+/// channel is reported not rated, with the reason, and the fit succeeds.
+#[test]
+fn a_channel_too_short_to_rate_is_reported_not_rated() {
+    let dir = temporary("short");
+    let run = lpm(&[
+        "simulate",
+        "specs/yaris_double_pendulum.lpm",
+        "--out",
+        dir.join("truth").to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let target = dir.join("target.csv");
+    target_from(&dir.join("truth/trajectory.csv"), &target, 0.8e-3);
+    let out = dir.join("fit");
+    let run = lpm(&[
+        "fit",
+        "specs/yaris_double_pendulum.lpm",
+        "--target",
+        target.to_str().unwrap(),
+        "--fit",
+        "stiffness",
+        "--starts",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    assert!(
+        text.contains("ISO/TS 18571 deceleration [g]: not rated: the common interval 0 s to 0.0008 s holds 9 samples"),
+        "{text}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    for key in ["rating_initial", "rating"] {
+        let rating = &report["channels"][0][key];
+        assert_eq!(rating["kind"], "not_rated", "{rating}");
+        assert!(rating["reason"].as_str().unwrap().contains("at least 11"));
     }
     std::fs::remove_dir_all(&dir).ok();
 }

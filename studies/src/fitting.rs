@@ -3,7 +3,9 @@
 //! and the fitted scenario, report and overlay plot it writes.
 
 use crate::error::StudyError;
-use crate::fit::{FitReport, FitSetup, Parameters, check_target_extent, fit};
+use crate::fit::{
+    ChannelFit, ChannelRating, FitReport, FitSetup, Parameters, check_target_extent, fit,
+};
 use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
@@ -182,6 +184,7 @@ pub fn text_report(report: &FitReport) -> String {
             100.0 * c.relative_rms_error,
             c.rms_error_initial
         );
+        let _ = writeln!(out, "  {}", rating_line(c));
     }
     for (a, b, rho) in &report.strong_correlations {
         let _ = writeln!(
@@ -190,6 +193,26 @@ pub fn text_report(report: &FitReport) -> String {
         );
     }
     out
+}
+
+/// The ISO/TS 18571 line of a channel: initial → fitted overall rating
+/// with its grade, and the fitted rating's scores, or why it has none.
+fn rating_line(c: &ChannelFit) -> String {
+    let prefix = format!("ISO/TS 18571 {}:", c.channel);
+    let (initial, fitted) = match (&c.rating_initial, &c.rating) {
+        (_, ChannelRating::NotRated(error)) => return format!("{prefix} not rated: {error}"),
+        (ChannelRating::NotRated(_), ChannelRating::Rated(fitted)) => {
+            ("not rated".to_string(), fitted)
+        }
+        (ChannelRating::Rated(initial), ChannelRating::Rated(fitted)) => (
+            format!("{:.3} ({})", initial.overall, initial.grade),
+            fitted,
+        ),
+    };
+    format!(
+        "{prefix} overall {initial} → {:.3} ({}); corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3}",
+        fitted.overall, fitted.grade, fitted.corridor, fitted.phase, fitted.magnitude, fitted.slope
+    )
 }
 
 /// The files of a fit for directory `out` (which exists): `fitted.toml`
@@ -308,11 +331,10 @@ fn relative(target: &Path, dir: &Path) -> PathBuf {
 }
 
 fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotError> {
-    let panels: Vec<(String, String, String, Vec<Series>)> = target
-        .channels
-        .iter()
+    let panels: Vec<(String, String, String, Vec<Series>)> = (target.channels.iter())
         .zip(&report.curves)
-        .map(|(c, (initial, fitted))| {
+        .zip(&report.channels)
+        .map(|((c, (initial, fitted)), quality)| {
             let line = |values: &[f64]| -> Vec<(f64, f64)> {
                 target
                     .t
@@ -322,7 +344,7 @@ fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotErr
                     .collect()
             };
             (
-                c.header.clone(),
+                panel_title(quality),
                 "t [ms]".to_string(),
                 format!("{} [{}]", c.quantity.name(), c.quantity.si_unit()),
                 vec![
@@ -334,4 +356,21 @@ fn overlay(report: &FitReport, target: &TimeHistories) -> Result<String, PlotErr
         })
         .collect();
     panels_svg("lpm fit: target, initial and fitted", &panels)
+}
+
+/// A channel's panel title: its header and its ISO/TS 18571 overall
+/// ratings, initial → fitted, where they were rated.
+fn panel_title(c: &ChannelFit) -> String {
+    let overall = |r: &ChannelRating| r.rating().map(|r| format!("{:.3}", r.overall));
+    match (overall(&c.rating_initial), &c.rating) {
+        (Some(initial), ChannelRating::Rated(fitted)) => format!(
+            "{}: ISO/TS 18571 {initial} → {:.3} ({})",
+            c.channel, fitted.overall, fitted.grade
+        ),
+        (None, ChannelRating::Rated(fitted)) => format!(
+            "{}: ISO/TS 18571 {:.3} ({})",
+            c.channel, fitted.overall, fitted.grade
+        ),
+        (_, ChannelRating::NotRated(_)) => c.channel.clone(),
+    }
 }

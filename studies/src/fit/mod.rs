@@ -8,9 +8,14 @@
 //! Least squares on `r = (sim(t_i) − y(t_i)) / (rms(y) √n)` over every target
 //! channel (acceleration, velocity, crush of the scenario's crush
 //! coordinate), so each channel weighs the same whatever its units.
+//!
+//! Each channel is also rated by ISO/TS 18571 against the target, with the
+//! scenario's own values and with the fitted ones ([`rating`]), as `lpm
+//! compare` rates a run against a test.
 
 pub mod parameters;
 mod problem;
+pub mod rating;
 mod statistics;
 
 use lagrangian_runtime::LagrangianSystem;
@@ -20,6 +25,7 @@ use lagrangian_sim::scenario::{BaseScenario, Override, ScenarioError};
 use lagrangian_sim::simulate::{SimulationError, simulate};
 pub use parameters::{ParameterError, Parameters};
 use problem::Problem;
+pub use rating::ChannelRating;
 use serde::Serialize;
 use statistics::Determined;
 pub use statistics::{NEGLIGIBLE_INFLUENCE, RANK_TOLERANCE};
@@ -205,6 +211,11 @@ pub struct ChannelFit {
     pub rms_error: f64,
     /// `rms_error / rms(target)`.
     pub relative_rms_error: f64,
+    /// The ISO/TS 18571 rating of the simulated channel against the
+    /// target's, with the scenario's own values.
+    pub rating_initial: ChannelRating,
+    /// The same with the fitted values.
+    pub rating: ChannelRating,
 }
 
 /// One start of the optimizer.
@@ -251,6 +262,25 @@ pub struct FitReport {
     pub curves: Vec<(Vec<f64>, Vec<f64>)>,
 }
 
+/// The simulated target channels at the simulation's output times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimulatedChannels {
+    /// The output times \[s\], from 0 to the target's last time.
+    pub t: Vec<f64>,
+    /// One per target channel, in its order: the simulated quantity at
+    /// `t`, in SI units.
+    pub channels: Vec<Vec<f64>>,
+}
+
+impl SimulatedChannels {
+    /// The channels interpolated linearly to `times` (within `t`).
+    pub fn at(&self, times: &[f64]) -> Vec<Vec<f64>> {
+        (self.channels.iter())
+            .map(|values| interpolate(&self.t, values, times))
+            .collect()
+    }
+}
+
 /// The simulated target channels at the target times, for `settings`.
 pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
     system: &S,
@@ -258,6 +288,17 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
     settings: &[Override],
     target: &TimeHistories,
 ) -> Result<Vec<Vec<f64>>, FitError> {
+    Ok(simulate_channels(system, base, settings, target)?.at(&target.t))
+}
+
+/// The simulated target channels for `settings`, at the simulation's own
+/// output times up to the target's last time.
+pub fn simulate_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
+    system: &S,
+    base: &BaseScenario,
+    settings: &[Override],
+    target: &TimeHistories,
+) -> Result<SimulatedChannels, FitError> {
     let mut all = settings.to_vec();
     all.push(Override::number(
         "simulation.t_end",
@@ -275,13 +316,9 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
             samples: t.len(),
         });
     }
-    Ok(target
-        .channels
-        .iter()
+    let channels = (target.channels.iter())
         .map(|c| {
-            let values: Vec<f64> = result
-                .samples
-                .iter()
+            (result.samples.iter())
                 .map(|s| {
                     let [value, rate, acceleration] = s.crush_motion(&crush);
                     match c.quantity {
@@ -290,10 +327,10 @@ pub fn simulated_channels<const N: usize, S: LagrangianSystem<N> + Clone>(
                         Quantity::Crush => value,
                     }
                 })
-                .collect();
-            interpolate(&t, &values, &target.t)
+                .collect()
         })
-        .collect())
+        .collect();
+    Ok(SimulatedChannels { t, channels })
 }
 
 fn rms(x: impl Iterator<Item = f64>) -> f64 {
@@ -356,26 +393,43 @@ fn check_target_values(target: &TimeHistories) -> Result<(), FitError> {
     Ok(())
 }
 
-/// The fit quality of each target channel, from the simulated channels
-/// with the initial and with the fitted values.
-fn channel_fits(
-    target: &TimeHistories,
-    initial: &[Vec<f64>],
-    fitted: &[Vec<f64>],
-) -> Vec<ChannelFit> {
-    target
-        .channels
-        .iter()
-        .zip(initial.iter().zip(fitted))
-        .map(|(c, (a, b))| {
+/// The simulated channels of one run: at the target times (what the
+/// residuals see) and at the run's own (what the rating sees).
+struct Run {
+    at_target: Vec<Vec<f64>>,
+    own: SimulatedChannels,
+}
+
+impl Run {
+    fn new(own: SimulatedChannels, target: &TimeHistories) -> Run {
+        Run {
+            at_target: own.at(&target.t),
+            own,
+        }
+    }
+
+    /// Its channel `k` rated against the target's.
+    fn rating(&self, target: &TimeHistories, k: usize) -> ChannelRating {
+        let values = &target.channels[k].values;
+        ChannelRating::of(&target.t, values, &self.own.t, &self.own.channels[k])
+    }
+}
+
+/// The fit quality of each target channel, from the runs with the initial
+/// and with the fitted values.
+fn channel_fits(target: &TimeHistories, initial: &Run, fitted: &Run) -> Vec<ChannelFit> {
+    (target.channels.iter().enumerate())
+        .map(|(k, c)| {
             let error = |sim: &[f64]| rms(sim.iter().zip(&c.values).map(|(s, y)| s - y));
-            let fitted = error(b);
+            let rms_error = error(&fitted.at_target[k]);
             ChannelFit {
                 channel: c.header.clone(),
                 unit: c.quantity.si_unit().into(),
-                rms_error_initial: error(a),
-                rms_error: fitted,
-                relative_rms_error: fitted / rms(c.values.iter().copied()),
+                rms_error_initial: error(&initial.at_target[k]),
+                rms_error,
+                relative_rms_error: rms_error / rms(c.values.iter().copied()),
+                rating_initial: initial.rating(target, k),
+                rating: fitted.rating(target, k),
             }
         })
         .collect()
@@ -407,10 +461,10 @@ where
     check_target_extent(&setup.target, &setup.base, setup.parameters.entries.len())?;
     let problem = Problem::new(system, setup, progress)?;
     let initial = setup.parameters.base_values();
-    let initial_channels = problem.channels_of(&initial)?;
+    let initial_run = Run::new(problem.run_of(&initial)?, &setup.target);
     let outcome = problem.minimize(setup.starts, setup.seed)?;
-    let fitted_channels = problem.channels_of(&outcome.values)?;
-    let channels = channel_fits(&setup.target, &initial_channels, &fitted_channels);
+    let fitted_run = Run::new(problem.run_of(&outcome.values)?, &setup.target);
+    let channels = channel_fits(&setup.target, &initial_run, &fitted_run);
     let stats = statistics::uncertainty(&problem, &outcome)?;
     let labels: Vec<String> = setup
         .parameters
@@ -449,6 +503,8 @@ where
         simulations: problem.simulations(),
         seconds: clock.elapsed().as_secs_f64(),
         settings: setup.parameters.settings(&outcome.values),
-        curves: initial_channels.into_iter().zip(fitted_channels).collect(),
+        curves: (initial_run.at_target.into_iter())
+            .zip(fitted_run.at_target)
+            .collect(),
     })
 }

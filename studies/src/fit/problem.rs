@@ -1,7 +1,7 @@
 //! The least-squares problem of a fit: residuals from simulations, forward
 //! difference Jacobians in parallel, and the Levenberg–Marquardt starts.
 
-use super::{FitError, FitSetup, StartReport, rms, simulated_channels};
+use super::{FitError, FitSetup, SimulatedChannels, StartReport, rms, simulate_channels};
 use lagrangian_runtime::LagrangianSystem;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra034::{DMatrix, DVector, Dyn, Owned};
@@ -117,26 +117,27 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         full
     }
 
-    /// The simulated channels for physical `values`.
-    pub fn channels_of<const N: usize>(&self, values: &[f64]) -> Result<Vec<Vec<f64>>, FitError>
+    /// The simulated channels for physical `values`, at the run's own
+    /// output times.
+    pub fn run_of<const N: usize>(&self, values: &[f64]) -> Result<SimulatedChannels, FitError>
     where
         S: LagrangianSystem<N>,
     {
         let system = self.system();
-        self.channels_with::<N>(&system, values)
+        self.run_with::<N>(&system, values)
     }
 
-    fn channels_with<const N: usize>(
+    fn run_with<const N: usize>(
         &self,
         system: &S,
         values: &[f64],
-    ) -> Result<Vec<Vec<f64>>, FitError>
+    ) -> Result<SimulatedChannels, FitError>
     where
         S: LagrangianSystem<N>,
     {
         self.simulations.fetch_add(1, Ordering::Relaxed);
         let settings = self.setup.parameters.overrides(values);
-        simulated_channels(system, &self.setup.base, &settings, &self.setup.target)
+        simulate_channels(system, &self.setup.base, &settings, &self.setup.target)
     }
 
     /// Residuals for the full unconstrained vector.
@@ -145,7 +146,9 @@ impl<'a, S: Clone + Send> Problem<'a, S> {
         S: LagrangianSystem<N>,
     {
         let values = self.setup.parameters.to_physical(full);
-        let sim = self.channels_with::<N>(system, &values)?;
+        let sim = self
+            .run_with::<N>(system, &values)?
+            .at(&self.setup.target.t);
         let mut r = Vec::new();
         for ((c, s), scale) in self
             .setup
