@@ -11,8 +11,10 @@
 //! And the services every host calls, failing with [`error::StudyError`]:
 //! [`spec`] (compile a spec, find its scenario), [`compare`] (the ISO/TS
 //! 18571 rating of a run's channels against a test's), [`simulate`] (one run and
-//! its files; [`iso_mme`] the run as an ISO-MME test), [`eval`] and [`mass`] (a model at one state), [`fitting`] (a fit
-//! and its files), [`sweeping`] (a sweep, its journal, shards and merge,
+//! its files; [`iso_mme`] the run as an ISO-MME test), [`test_data`] (a
+//! crash test's channels in SI units, its occupants, its vehicle channels
+//! as a fit's time histories), [`eval`] and [`mass`]
+//! (a model at one state), [`fitting`] (a fit and its files), [`sweeping`] (a sweep, its journal, shards and merge,
 //! its envelopes; [`progress::Progress`] the host's view of it), and the
 //! exit statuses a host ends with ([`status::ExitStatus`]). Every service
 //! reads its specs, scenarios and tables from the host's [`files::Files`].

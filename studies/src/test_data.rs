@@ -1,7 +1,13 @@
 //! A crash test read from the lab's files into what the studies take: the
 //! ISO-MME test ([`lagrangian_crashdata::isomme`]) of a folder, an `.mme`
 //! or a `.zip`; its channels in SI units; the occupants' channels as the
-//! criteria read them ([`lagrangian_sim::criteria`]); the vehicle's pulse.
+//! criteria read them ([`lagrangian_sim::criteria`]); the vehicle's pulse;
+//! the vehicle channels a fit is asked for, as its time histories
+//! ([`vehicle_histories`], in [`vehicle`]).
+
+pub mod vehicle;
+
+pub use vehicle::{ChannelRequest, TestDataError, vehicle_histories};
 
 use crate::error::StudyError;
 use lagrangian_crashdata::code::Dimension;
@@ -31,25 +37,75 @@ pub fn is_iso_mme(path: &Path) -> bool {
         })
 }
 
-/// The ISO-MME test at `path`; a file that cannot be read or used is a
+/// The ISO-MME test at `path`; a path that is not there is a
+/// [`StudyError::Io`], a file that cannot be read or used a
 /// [`StudyError::DataFile`] naming the file, line and field.
 pub fn read_iso_mme(path: &Path) -> Result<Test, StudyError> {
+    if !path.exists() {
+        let path = path.display();
+        return Err(StudyError::io(format!("{path}: no such file or folder")));
+    }
     isomme::read(path).map_err(|e| StudyError::data_file(e.to_string()))
 }
 
-/// An ISO-MME unit written as the project's units are (`m/s**2` and
-/// `m/(s*s)` as `m/s^2`, `Nm` and `N m` as `N*m`).
+/// An ISO-MME unit written as the project's units are: `**` a power
+/// (`m/s**2` as `m/s^2`), RED B's `m/(s*s)` as `m/s^2` and the factors of
+/// another parenthesised denominator each divided by, `Nm` and `N m` as
+/// `N*m`, and pint's spelling, which pyisomme writes (`m / s2` as `m/s^2`,
+/// `km / h` as `km/h`): spaces beside an operator dropped, a space between
+/// two symbols a product, a symbol followed by digits a power.
 pub fn unit_text(unit: &str) -> String {
-    let unit = unit
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join("*")
-        .replace("**", "^");
-    match unit.as_str() {
-        "m/(s*s)" => "m/s^2".into(),
-        "Nm" => "N*m".into(),
-        "kNm" => "kN*m".into(),
-        _ => unit.replace("(s*s)", "s^2"),
+    let unit = joined_words(&unit.replace("**", "^")).replace("(s*s)", "s^2");
+    let unit = match unit.split_once("/(") {
+        Some((numerator, rest)) if rest.ends_with(')') => {
+            let denominator = rest[..rest.len() - 1].replace('*', "/");
+            format!("{numerator}/{denominator}")
+        }
+        _ => unit,
+    };
+    let (mut out, mut factor) = (String::new(), String::new());
+    for c in unit.chars() {
+        match c {
+            '*' | '/' | '·' => {
+                out.push_str(&factor_text(&factor));
+                out.push(c);
+                factor.clear();
+            }
+            c => factor.push(c),
+        }
+    }
+    out.push_str(&factor_text(&factor));
+    out
+}
+
+/// The words of `unit` joined: directly beside an operator, by `*`
+/// between two symbols.
+fn joined_words(unit: &str) -> String {
+    let operator = |c: Option<char>| c.is_some_and(|c| matches!(c, '*' | '/' | '·' | '^'));
+    let mut out = String::new();
+    for word in unit.split_whitespace() {
+        if !out.is_empty() && !operator(out.chars().last()) && !operator(word.chars().next()) {
+            out.push('*');
+        }
+        out.push_str(word);
+    }
+    out
+}
+
+/// One factor of a unit: `Nm` as `N*m`, `s2` as `s^2` (a symbol of
+/// letters followed by digits), any other as it is.
+fn factor_text(factor: &str) -> String {
+    match factor {
+        "Nm" => return "N*m".into(),
+        "kNm" => return "kN*m".into(),
+        _ => {}
+    }
+    let letters = factor.trim_end_matches(|c: char| c.is_ascii_digit());
+    let digits = &factor[letters.len()..];
+    let symbol = !letters.is_empty() && letters.chars().all(char::is_alphabetic);
+    match symbol && !digits.is_empty() {
+        true => format!("{letters}^{digits}"),
+        false => factor.to_string(),
     }
 }
 
@@ -214,5 +270,23 @@ mod tests {
         assert_eq!(unit_text("Nm"), "N*m");
         assert_eq!(unit_text(" kN "), "kN");
         assert_eq!(unit_text("N m"), "N*m");
+        assert_eq!(unit_text("m / s2"), "m/s^2", "pyisomme's (pint's) spelling");
+        assert_eq!(unit_text("km / h"), "km/h");
+        assert_eq!(unit_text("m/s ** 2"), "m/s^2");
+        assert_eq!(unit_text("kg*m/(s*s*s)"), "kg*m/s/s/s");
+        assert_eq!(unit_text("N*m"), "N*m");
+        assert_eq!(unit_text("g"), "g");
+        for unit in ["m/(s*s)", "m/s**2", "m/s^2", "m / s2", "m/s²"] {
+            let one = value_in(&format!("1 {}", unit_text(unit)), "m/s^2");
+            assert_eq!(one, Ok(1.0), "{unit}");
+        }
+    }
+
+    #[test]
+    fn a_path_that_is_not_there_is_an_io_error() {
+        let e = read_iso_mme(Path::new("no/such/test.mme")).unwrap_err();
+        assert_eq!(e.status().code(), 1, "{e}");
+        let e = read_iso_mme(Path::new("Cargo.toml")).unwrap_err();
+        assert_eq!(e.status().code(), 7, "{e}");
     }
 }
