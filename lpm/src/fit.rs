@@ -4,9 +4,11 @@
 
 use crate::failure::{Failure, Outcome};
 use indicatif::{ProgressBar, ProgressStyle};
+use lagrangian_studies::error::StudyError;
 use lagrangian_studies::files::Files;
 use lagrangian_studies::fitting::{FitRequest, fitting, text_report, write_files};
 use lagrangian_studies::spec::out_dir;
+use lagrangian_studies::test_data::ChannelRequest;
 use std::fmt::Write;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -16,9 +18,15 @@ use std::sync::Arc;
 pub struct Args {
     /// The spec file (`.lpm`).
     pub spec: PathBuf,
-    /// Target time histories (CSV with units in the header).
+    /// Target time histories: a CSV with units in the header, or an
+    /// ISO-MME test (a folder, an `.mme` or a `.zip`) with `--channel`.
     #[arg(long)]
     pub target: PathBuf,
+    /// A channel of an ISO-MME target to fit to, by its code, and the
+    /// simulated quantity it is compared with (`acceleration`, `velocity`,
+    /// `crush`; by default the code's: AC, VE, DS); repeatable.
+    #[arg(long = "channel", value_name = "CODE[=QUANTITY]")]
+    pub channel: Vec<String>,
     /// The scenario (TOML); by default the one beside the spec that names it.
     #[arg(long)]
     pub scenario: Option<PathBuf>,
@@ -52,6 +60,9 @@ impl Args {
         Ok(FitRequest {
             spec: self.spec.clone(),
             target: self.target.clone(),
+            channels: (self.channel.iter())
+                .map(|text| ChannelRequest::parse(text).map_err(StudyError::from))
+                .collect::<Result<_, _>>()?,
             scenario: self.scenario.clone(),
             fit: self.fit.clone(),
             set: Failure::overrides(&self.set)?,

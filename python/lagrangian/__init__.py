@@ -551,6 +551,7 @@ def fit(
     scenario: Optional[Union[str, os.PathLike]] = None,
     *,
     fit: Optional[Union[str, List[str]]] = None,
+    channel: Optional[Union[str, List[str]]] = None,
     starts: int = 4,
     seed: int = 1,
     out: Optional[Union[str, os.PathLike]] = None,
@@ -560,7 +561,9 @@ def fit(
     """Runs ``lpm fit``: identifies ``fit`` (``"stiffness"``,
     ``"damping"``, spec parameters or dotted scenario entries; a list or a
     comma-separated string; by default stiffness and damping) from the
-    target time histories ``target`` (CSV with units in the header).
+    target time histories ``target``: a CSV with units in the header, or an
+    ISO-MME test (a folder, an ``.mme`` or a ``.zip``) whose channels
+    ``channel`` names, as ``--channel CODE[=QUANTITY]`` (a list, or one).
 
     ``scenario`` defaults to the one beside the spec that names it;
     ``starts`` and ``seed`` as ``--starts`` and ``--seed``; ``set`` and
@@ -573,6 +576,7 @@ def fit(
     options = {
         "spec": os.fspath(spec),
         "target": os.fspath(target),
+        "channel": [channel] if isinstance(channel, str) else list(channel or []),
         "scenario": path(scenario),
         "fit": [name.strip() for name in names],
         "set": _entries(set, settings),

@@ -10,6 +10,7 @@ use lagrangian_studies::error::StudyError;
 use lagrangian_studies::fitting::{self, FitRequest};
 use lagrangian_studies::sweeping::envelope::EnvelopeOptions;
 use lagrangian_studies::sweeping::{Progress, SweepRequest, memory};
+use lagrangian_studies::test_data::ChannelRequest;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -192,6 +193,7 @@ pub(crate) fn sweep_plan(py: Python<'_>, options: SweepOptions) -> PyResult<Stri
 pub(crate) struct FitOptions {
     spec: PathBuf,
     target: PathBuf,
+    channel: Vec<String>,
     scenario: Option<PathBuf>,
     fit: Vec<String>,
     set: Vec<String>,
@@ -213,6 +215,10 @@ pub(crate) fn fit(py: Python<'_>, options: FitOptions) -> PyResult<Fitted> {
     let request = FitRequest {
         spec: options.spec,
         target: options.target,
+        channels: (options.channel.iter())
+            .map(|text| ChannelRequest::parse(text))
+            .collect::<Result<_, _>>()
+            .map_err(raise)?,
         scenario: options.scenario,
         fit: options.fit,
         set: Override::parse_all(&options.set).map_err(raise)?,

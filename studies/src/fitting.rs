@@ -1,6 +1,8 @@
 //! A fit as a host runs it: identify the crush characteristic (or listed
 //! parameters) of a spec's scenario from target time histories ([`crate::fit`]),
-//! and the fitted scenario, report and overlay plot it writes.
+//! and the fitted scenario, report and overlay plot it writes. The target
+//! is a CSV file of time histories, or an ISO-MME test whose vehicle
+//! channels are asked for by code ([`crate::test_data`]).
 
 use crate::error::StudyError;
 use crate::fit::{
@@ -8,6 +10,7 @@ use crate::fit::{
 };
 use crate::plot::{PlotError, Series, panels_svg};
 use crate::spec::{compile, find_scenario};
+use crate::test_data::{ChannelRequest, is_iso_mme, read_iso_mme, vehicle_histories};
 use lagrangian_runtime::{Interpreted, InterpretedModel, WithDimension};
 use lagrangian_sim::files::Files;
 use lagrangian_sim::pulse::channels::{TimeHistories, read_time_histories};
@@ -22,8 +25,12 @@ use std::sync::Arc;
 pub struct FitRequest {
     /// The spec file (`.lpm`).
     pub spec: PathBuf,
-    /// Target time histories (CSV with units in the header).
+    /// Target time histories: a CSV with units in the header, or an
+    /// ISO-MME test (a folder, an `.mme` or a `.zip`).
     pub target: PathBuf,
+    /// The channels of an ISO-MME target to fit to, each with the
+    /// simulated quantity it is compared with (empty for a CSV target).
+    pub channels: Vec<ChannelRequest>,
     /// The scenario (TOML); `None`: the one beside the spec that names it.
     pub scenario: Option<PathBuf>,
     /// What to fit: curves of crush components (`NAME.stiffness`, …, or
@@ -72,8 +79,7 @@ pub fn fitting(
     };
     let text = (files.text(&scenario_path))
         .map_err(|e| StudyError::io(format!("cannot read {}: {e}", scenario_path.display())))?;
-    let target =
-        read_time_histories(&**files, &options.target).map_err(|e| StudyError::channels(&e))?;
+    let target = read_target(options, files)?;
     let document =
         Scenario::document(&text, &names, &options.set).map_err(|e| StudyError::scenario(&e))?;
     let fit_names = if options.fit.is_empty() {
@@ -108,6 +114,23 @@ pub fn fitting(
         names,
         scenario: scenario_path,
     })
+}
+
+/// The target of `options`: the channels asked for of an ISO-MME test, or
+/// the time histories of a CSV file (which takes no `--channel`).
+fn read_target(options: &FitRequest, files: &Arc<dyn Files>) -> Result<TimeHistories, StudyError> {
+    let path = &options.target;
+    if is_iso_mme(path) {
+        let test = read_iso_mme(path)?;
+        return Ok(vehicle_histories(&test, path, &options.channels)?);
+    }
+    if let Some(first) = options.channels.first() {
+        return Err(StudyError::usage(format!(
+            "--channel {first}: {} is a CSV file, whose columns are its channels (by their headers); --channel names the channels of an ISO-MME test (a folder, an .mme or a .zip)",
+            path.display()
+        )));
+    }
+    read_time_histories(&**files, path).map_err(|e| StudyError::channels(&e))
 }
 
 /// The lines `lpm fit` prints before naming its files.
