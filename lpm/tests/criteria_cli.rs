@@ -2,7 +2,7 @@
 //! occupant's in `summary.json`, and `lpm metrics` of the same run written
 //! as an ISO-MME test, agree; `lpm metrics` of a CSV pulse gives the
 //! vehicle's criteria beside its pulse metrics, with the same values.
-//! pyisomme's criteria on the same channels: python/tests/test_criteria.py.
+//! pyisomme's criteria on the same channels: python/tests/reference/test_criteria.py.
 
 mod common;
 

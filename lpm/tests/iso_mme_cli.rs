@@ -1,7 +1,7 @@
 //! `lpm simulate --iso-mme DIR`: the test it writes, read back by
 //! lagrangian-crashdata, holds the run's trajectory.csv columns as the
 //! scenario defines them (the pyisomme check of the same is
-//! python/tests/test_isomme.py).
+//! python/tests/reference/test_isomme.py).
 
 mod common;
 

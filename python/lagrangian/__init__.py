@@ -201,13 +201,23 @@ class Result:
     events: List[Event] = field(default_factory=list)
 
 
+def _dataframe(pandas, text: str):
+    """`text` (a CSV lpm wrote, every number in its shortest round-trip
+    form) as a DataFrame with exactly lpm's doubles. Before pandas 3 the
+    default parser may land one ulp off (0.00030000000000000003 read as
+    0.0003); pandas 3 parses exactly and deprecates the option."""
+    if int(pandas.__version__.split(".")[0]) < 3:
+        return pandas.read_csv(io.StringIO(text), float_precision="round_trip")
+    return pandas.read_csv(io.StringIO(text))
+
+
 def _trajectory(text: str):
     try:
         import pandas
     except ImportError:
         pandas = None
     if pandas is not None:
-        return pandas.read_csv(io.StringIO(text))
+        return _dataframe(pandas, text)
     rows = list(csv.reader(io.StringIO(text)))
     header, values = rows[0], np.array(rows[1:], dtype=np.float64).reshape(-1, len(rows[0]))
     return {name: values[:, k] for k, name in enumerate(header)}
@@ -365,7 +375,7 @@ def _table(text: str):
     except ImportError:
         pandas = None
     if pandas is not None:
-        return pandas.read_csv(io.StringIO(text))
+        return _dataframe(pandas, text)
     rows = list(csv.reader(io.StringIO(text)))
     header, body = rows[0], rows[1:]
     return {name: _column([row[k] for row in body]) for k, name in enumerate(header)}

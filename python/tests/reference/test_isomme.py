@@ -15,10 +15,9 @@ import pathlib
 
 import numpy as np
 import pytest
+import pyisomme
 
 from conftest import SPECS, run_lpm
-
-pyisomme = pytest.importorskip("pyisomme")
 
 G0 = 9.80665
 

@@ -15,11 +15,10 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+import pyisomme
 
 import lagrangian
 from conftest import SPECS, run_lpm
-
-pyisomme = pytest.importorskip("pyisomme")
 
 YARIS = SPECS / "yaris_double_pendulum.lpm"
 TARGET = SPECS / "data" / "yaris_pulse.csv"
