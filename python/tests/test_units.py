@@ -5,6 +5,7 @@ scenario written with units runs as `lpm simulate` does."""
 
 import json
 
+import pandas
 import pytest
 from fmpy import simulate_fmu
 
@@ -54,3 +55,20 @@ def test_an_fmu_of_a_scenario_written_with_units_runs_as_lpm_simulate(tmp_path):
                               output=["metrics.crush"])
         assert result["time"][-1] == pytest.approx(0.15)
         assert abs(result["metrics.crush"].max() - expected) / expected < 0.005, fmi_type
+
+
+def test_a_sweep_with_units_is_the_sweep_of_their_si_numbers(tmp_path):
+    # 43.2 km/h is 12 m/s and 64.8 km/h 18 m/s, exactly; 5e4 and 1e5 N/m.
+    grid = {"initial.velocities.r": ["-43.2 km/h", "-64.8 km/h"], "k1": ["50 kN/m", "100 kN/m"]}
+    with_units = lagrangian.sweep(scenario=SCENARIO, grid=grid, t_end="20 ms")
+    in_si = lagrangian.sweep(scenario=SCENARIO, grid={"initial.velocities.r": [-12.0, -18.0],
+                                                      "k1": [5e4, 1e5]}, t_end=0.02)
+    assert with_units.equals(in_si)
+    assert with_units["initial.velocities.r"].tolist() == [-12.0, -12.0, -18.0, -18.0]
+    out = tmp_path / "sampled.csv"
+    run_lpm("sweep", SCENARIO, "--samples", "4", "--vary", "k1=50 kN/m:100 kN/m",
+            "--set", "simulation.t_end=20 ms", "--quiet", "--out", out)
+    sampled = lagrangian.sweep(scenario=SCENARIO, samples=4, vary={"k1": (5e4, 1e5)}, t_end=0.02)
+    assert sampled.equals(pandas.read_csv(out))
+    with pytest.raises(lagrangian.UsageError, match="km is a length, but this entry needs a velocity"):
+        lagrangian.sweep(scenario=SCENARIO, grid={"initial.velocities.r": ["-36 km", "-40 km/h"]})

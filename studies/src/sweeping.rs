@@ -82,11 +82,13 @@ fn spec_of(scenario: &Path, text: &str) -> Result<PathBuf, StudyError> {
 }
 
 /// The plan of the command line: a grid or a sampled design.
-fn plan(options: &SweepRequest) -> Result<Plan, PlanError> {
+/// The runs `options` asks for, values with units read against `base`.
+fn plan(options: &SweepRequest, base: &BaseScenario) -> Result<Plan, PlanError> {
     let design = options.design;
+    let units = |key: &str, text: &str| base.si_value(key, text);
     match (options.grid.is_empty(), options.samples) {
-        (false, None) if options.vary.is_empty() => Plan::grid(&options.grid),
-        (true, Some(count)) => Plan::samples(count, &options.vary, options.seed, design),
+        (false, None) if options.vary.is_empty() => Plan::grid_in(&options.grid, &units),
+        (true, Some(count)) => Plan::samples_in(count, &options.vary, options.seed, design, &units),
         (true, None) => Err(PlanError::NoDesign),
         _ => Err(PlanError::GridAndSamples),
     }
@@ -176,8 +178,8 @@ struct Prepared {
 }
 
 fn prepare(options: &SweepRequest, files: &Arc<dyn Files>) -> Result<Prepared, StudyError> {
-    let plan = plan(options)?;
     let (model, base) = load(options, files)?;
+    let plan = plan(options, &base)?;
     let settings = Settings::new(&plan, &base, model.parameters())?;
     // A key the scenario does not know fails here, before any run starts.
     let first = match plan.is_empty() {

@@ -1,6 +1,7 @@
 //! Which runs a sweep makes: a full-factorial grid or a sampled design, the
 //! values of run `i`, and the block of runs of one shard.
 
+use lagrangian_sim::scenario::{EntryError, KeyPath};
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{Rng, SeedableRng};
 use std::fmt;
@@ -35,6 +36,28 @@ pub enum PlanError {
     /// A value of an axis that is no number.
     #[error("{flag} {axis}: `{text}` is not a number")]
     NotANumber {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The value as given.
+        text: String,
+    },
+    /// A value with a unit its entry does not take.
+    #[error("{flag} {axis}: `{text}`: {reason}")]
+    Quantity {
+        /// `--grid` or `--vary`.
+        flag: &'static str,
+        /// The axis (its keys, `a,b*`).
+        axis: String,
+        /// The value as given.
+        text: String,
+        /// Why the entry does not take it.
+        reason: String,
+    },
+    /// A factor (`KEY*=`) written with a unit.
+    #[error("{flag} {axis}: `{text}` is a factor of the entry: give a pure number")]
+    FactorWithUnit {
         /// `--grid` or `--vary`.
         flag: &'static str,
         /// The axis (its keys, `a,b*`).
@@ -284,27 +307,91 @@ fn tied_name(tied: &[Axis]) -> String {
     }
 }
 
-fn number(text: &str, flag: &'static str, axis: &str) -> Result<f64, PlanError> {
-    let (axis, text) = (axis.to_string(), text.to_string());
-    let value: f64 = (text.trim().parse()).map_err(|_| PlanError::NotANumber {
-        flag,
-        axis: axis.clone(),
-        text: text.clone(),
-    })?;
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(PlanError::NotFinite { flag, axis, text })
+/// Reads an axis value written with a unit (`56 km/h`) for the entry
+/// `key` as the SI number that entry takes, or says why it does not: the
+/// scenario's [`lagrangian_sim::scenario::BaseScenario::si_value`].
+pub type Units<'a> = &'a dyn Fn(&str, &str) -> Result<f64, EntryError>;
+
+/// For a plan made without a scenario: every value with a unit refused.
+fn no_units(_key: &str, _text: &str) -> Result<f64, EntryError> {
+    Err(EntryError::text(
+        KeyPath::new("sweep"),
+        "",
+        "units need the scenario".to_string(),
+    ))
+}
+
+/// Where an axis value is read: the flag, the tied axes it sets and how
+/// their units are read.
+#[derive(Clone, Copy)]
+struct Reading<'a> {
+    flag: &'static str,
+    tied: &'a [Axis],
+    units: Units<'a>,
+}
+
+impl Reading<'_> {
+    /// `text` as a number, or as a number with a unit in SI (every tied
+    /// entry reading it alike); finite.
+    fn number(&self, text: &str) -> Result<f64, PlanError> {
+        let (flag, axis, text) = (self.flag, tied_name(self.tied), text.trim().to_string());
+        let value = match text.parse::<f64>() {
+            Ok(value) => value,
+            Err(_) if has_unit(&text) => self.quantity(&text)?,
+            Err(_) => return Err(PlanError::NotANumber { flag, axis, text }),
+        };
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(PlanError::NotFinite { flag, axis, text })
+        }
+    }
+
+    fn quantity(&self, text: &str) -> Result<f64, PlanError> {
+        let (flag, axis, text) = (self.flag, tied_name(self.tied), text.to_string());
+        if self.tied.iter().any(|a| a.assignment == Assignment::Scale) {
+            return Err(PlanError::FactorWithUnit { flag, axis, text });
+        }
+        let mut values = Vec::new();
+        for tied in self.tied {
+            let value = (self.units)(&tied.key, &text).map_err(|e| PlanError::Quantity {
+                flag,
+                axis: axis.clone(),
+                text: text.clone(),
+                reason: match self.tied.len() {
+                    1 => e.reason,
+                    _ => format!("{}: {}", tied.key, e.reason),
+                },
+            })?;
+            values.push(value);
+        }
+        match values.windows(2).all(|w| w[0] == w[1]) {
+            true => Ok(values[0]),
+            false => Err(PlanError::Quantity {
+                flag,
+                axis,
+                text,
+                reason: "the tied entries read it as different numbers: tie entries of one unit"
+                    .into(),
+            }),
+        }
     }
 }
 
+/// Whether `text` reads as a number followed by a unit (`56 km/h`, `-2kN`).
+fn has_unit(text: &str) -> bool {
+    let digits = text.trim_start_matches(['+', '-']);
+    let number_first = digits.starts_with(|c: char| c.is_ascii_digit() || c == '.');
+    number_first && text.contains(|c: char| c.is_alphabetic() || c == '°' || c == 'µ')
+}
+
 /// `a,b,c` or `low:high:count` (count evenly spaced values, ends included).
-fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, PlanError> {
-    let flag = "--grid";
+fn grid_values(text: &str, reading: Reading<'_>) -> Result<Vec<f64>, PlanError> {
+    let axis = &tied_name(reading.tied);
     let parts: Vec<&str> = text.split(':').collect();
     match parts.as_slice() {
         [low, high, count] => {
-            let (low, high) = (number(low, flag, axis)?, number(high, flag, axis)?);
+            let (low, high) = (reading.number(low)?, reading.number(high)?);
             let count: usize = count
                 .trim()
                 .parse()
@@ -318,7 +405,7 @@ fn grid_values(text: &str, axis: &str) -> Result<Vec<f64>, PlanError> {
                 .map(|k| low + (high - low) * k as f64 / (count - 1) as f64)
                 .collect())
         }
-        [list] => list.split(',').map(|v| number(v, flag, axis)).collect(),
+        [list] => list.split(',').map(|v| reading.number(v)).collect(),
         _ => Err(PlanError::GridValues {
             axis: axis.to_string(),
             text: text.to_string(),
@@ -341,15 +428,27 @@ fn check_distinct<'a>(axes: impl Iterator<Item = &'a Axis>) -> Result<(), PlanEr
 }
 
 impl Plan {
-    /// A grid from `--grid KEY=a,b,c` / `KEY=low:high:count` / `KEY*=…` arguments.
+    /// A grid from `--grid KEY=a,b,c` / `KEY=low:high:count` / `KEY*=…`
+    /// arguments of plain numbers.
     pub fn grid(arguments: &[String]) -> Result<Plan, PlanError> {
+        Plan::grid_in(arguments, &no_units)
+    }
+
+    /// A grid whose values may carry units (`initial.speed=40 km/h,56 km/h`),
+    /// read by `units` as the SI numbers of their entries.
+    pub fn grid_in(arguments: &[String], units: Units<'_>) -> Result<Plan, PlanError> {
         if arguments.is_empty() {
             return Err(PlanError::NoGridAxis);
         }
         let mut axes = Vec::new();
         for argument in arguments {
             let (tied, values) = split_assignment(argument, "--grid")?;
-            let values = grid_values(&values, &tied_name(&tied))?;
+            let reading = Reading {
+                flag: "--grid",
+                tied: &tied,
+                units,
+            };
+            let values = grid_values(&values, reading)?;
             axes.push((tied, values));
         }
         check_distinct(axes.iter().flat_map(|(tied, _)| tied))?;
@@ -362,12 +461,25 @@ impl Plan {
         }
     }
 
-    /// `count` runs sampled from `--vary KEY=low:high[:log]` ranges.
+    /// `count` runs sampled from `--vary KEY=low:high[:log]` ranges of
+    /// plain numbers.
     pub fn samples(
         count: usize,
         arguments: &[String],
         seed: u64,
         design: Design,
+    ) -> Result<Plan, PlanError> {
+        Plan::samples_in(count, arguments, seed, design, &no_units)
+    }
+
+    /// `count` runs sampled from ranges whose ends may carry units
+    /// (`k1=50 kN/m:100 kN/m`), read by `units` as their entries' SI numbers.
+    pub fn samples_in(
+        count: usize,
+        arguments: &[String],
+        seed: u64,
+        design: Design,
+        units: Units<'_>,
     ) -> Result<Plan, PlanError> {
         if count == 0 || count > u32::MAX as usize {
             return Err(PlanError::SampleCount { count });
@@ -390,10 +502,12 @@ impl Plan {
                     });
                 }
             };
-            let (low, high) = (
-                number(low, "--vary", &axis)?,
-                number(high, "--vary", &axis)?,
-            );
+            let reading = Reading {
+                flag: "--vary",
+                tied: &tied,
+                units,
+            };
+            let (low, high) = (reading.number(low)?, reading.number(high)?);
             if logarithmic && (low <= 0.0 || high <= 0.0) {
                 return Err(PlanError::NonPositiveLogRange { axis, low, high });
             }
@@ -572,6 +686,56 @@ mod tests {
 
     fn strings(items: &[&str]) -> Vec<String> {
         items.iter().map(|s| s.to_string()).collect()
+    }
+
+    /// A stand-in for a scenario's units: `a` and `b` in kilonewtons
+    /// (`N` only), `c` a speed in km/h (`km/h` only).
+    fn units(key: &str, text: &str) -> Result<f64, EntryError> {
+        let refuse = || EntryError::text(KeyPath::new(key), text, "needs another unit".to_string());
+        let number = |unit: &str| {
+            text.strip_suffix(unit)
+                .and_then(|n| n.trim().parse::<f64>().ok())
+        };
+        match key {
+            "a" | "b" => number("kN").map(|n| n * 1e3).ok_or_else(refuse),
+            "c" => number("km/h").map(|n| n / 3.6).ok_or_else(refuse),
+            _ => Err(refuse()),
+        }
+    }
+
+    #[test]
+    fn values_with_units_are_read_by_their_entries_once() {
+        let grid = strings(&["a,b=2 kN,3e3", "c=36 km/h:72 km/h:2"]);
+        let plan = Plan::grid_in(&grid, &units).unwrap();
+        let points: Vec<Vec<f64>> = (0..4).map(|i| plan.point(i)).collect();
+        assert_eq!(points[0], [2e3, 2e3, 10.0]);
+        assert_eq!(points[3], [3e3, 3e3, 20.0]);
+        let sampled =
+            Plan::samples_in(3, &strings(&["a=1 kN:2 kN:log"]), 1, Design::Random, &units);
+        let sampled = sampled.unwrap();
+        assert!((0..3).all(|i| (1e3..=2e3).contains(&sampled.point(i)[0])));
+    }
+
+    #[test]
+    fn a_unit_an_entry_refuses_a_factors_unit_and_tied_readings_that_differ_are_errors() {
+        let error = |args: &[&str]| {
+            Plan::grid_in(&strings(args), &units)
+                .unwrap_err()
+                .to_string()
+        };
+        assert_eq!(error(&["c=2 kN"]), "--grid c: `2 kN`: needs another unit");
+        assert_eq!(
+            error(&["a,c=2 kN"]),
+            "--grid a,c: `2 kN`: c: needs another unit"
+        );
+        assert_eq!(
+            error(&["a*=2 kN"]),
+            "--grid a*: `2 kN` is a factor of the entry: give a pure number"
+        );
+        assert_eq!(error(&["a=two"]), "--grid a: `two` is not a number");
+        // Without a scenario, no unit is read.
+        let error = Plan::grid(&strings(&["a=2 kN"])).unwrap_err().to_string();
+        assert_eq!(error, "--grid a: `2 kN`: units need the scenario");
     }
 
     #[test]
