@@ -18,6 +18,8 @@ mod models {
     lagrangian::lagrangian!(file = "tests/specs/three_link_conical_pendulum.lpm");
     // An input inside another input's arguments.
     lagrangian::lagrangian!(file = "tests/specs/nested_inputs/friction_under_contact.lpm");
+    // Indexed families: elements `x[1]` … as the identifiers `x_1` ….
+    lagrangian::lagrangian!(file = "tests/specs/pioneer_families.lpm");
 }
 
 /// Random specs from the property tests' generator (`lagrangian-core/tests/
@@ -228,6 +230,7 @@ fn every_spec_agrees() {
         compare::<6, models::ThreeLinkConicalPendulum>(
             "tests/specs/three_link_conical_pendulum.lpm",
         ),
+        compare::<7, models::PioneerWagon>("tests/specs/pioneer_families.lpm"),
     ];
     println!("worst ulp difference per spec: {worst:?}");
 }

@@ -21,6 +21,7 @@ impl Locals {
     /// Locals for `model` that avoid `reserved`; `spell` writes a spec name
     /// as the target writes it.
     pub fn new(model: &Model, reserved: &[&str], spell: impl Fn(&str) -> String) -> Locals {
+        let spell = |name: &str| spell(&identifier(name));
         let mut taken: FxHashSet<String> = reserved.iter().map(|s| s.to_string()).collect();
         let mut fresh = |base: String| {
             let mut name = base;
@@ -92,6 +93,7 @@ pub(crate) fn input_constants(inputs: &[String]) -> Vec<Ident> {
     let mut taken = FxHashSet::default();
     (inputs.iter().enumerate())
         .map(|(k, input)| {
+            let input = identifier(input);
             let mut name = format!("INPUT_{}", input.trim_start_matches("r#").to_uppercase());
             if !taken.insert(name.clone()) {
                 name = format!("{name}_{k}");
@@ -102,8 +104,18 @@ pub(crate) fn input_constants(inputs: &[String]) -> Vec<Ident> {
         .collect()
 }
 
-/// An identifier for `name`, raw (`r#type`) where the spec wrote it so.
+/// A family's element as an identifier: `x[3]` is `x_3`.
+pub(crate) fn identifier(name: &str) -> std::borrow::Cow<'_, str> {
+    match name.contains('[') {
+        true => name.replace('[', "_").replace(']', "").into(),
+        false => name.into(),
+    }
+}
+
+/// An identifier for `name`, raw (`r#type`) where the spec wrote it so
+/// (a family's element `x[3]` as `x_3`).
 pub(crate) fn ident(name: &str) -> Ident {
+    let name = &*identifier(name);
     match name.strip_prefix("r#") {
         Some(raw) => Ident::new_raw(raw, Span::call_site()),
         None => Ident::new(name, Span::call_site()),

@@ -295,6 +295,21 @@ impl Store {
         self.intern(Node::Sym(s))
     }
 
+    /// Renames every symbol and input function `name` to `rename(name)`
+    /// where it gives a new name (a family's elements as users read them).
+    pub(crate) fn rename(&mut self, rename: impl Fn(&str) -> Option<String>) {
+        for symbol in &mut self.symbols {
+            if let Some(name) = rename(&symbol.name) {
+                symbol.name = name;
+            }
+        }
+        for input in &mut self.inputs {
+            if let Some(name) = rename(&input.name) {
+                input.name = name;
+            }
+        }
+    }
+
     /// Declares an input function with `arity` formal arguments named `argument_names`.
     pub fn declare_input(&mut self, name: &str, argument_names: &[String]) -> usize {
         let input = self.inputs.len();

@@ -19,18 +19,41 @@ pub struct UnitText {
     pub span: Span,
 }
 
+#[derive(Clone)]
 pub struct Declaration {
     pub doc: Vec<String>,
     pub name: Ident,
+    /// `[…]` after the name: a family (`x[7]`) or one of its elements
+    /// (`c[i]`); expansion ([`super::families`]) removes it.
+    pub subscript: Option<Subscript>,
     pub unit: Option<UnitText>,
 }
 
+/// `[…]` after a name: a family's elements where it is declared (`x[7]`,
+/// `m[i in 1..=7]`), one element where a statement defines it (`c[i]`).
+#[derive(Clone)]
+pub enum Subscript {
+    /// `[7]`: elements 1 to 7.
+    Count { count: usize, span: Span },
+    /// `[i in 1..=7]`: elements 1 to 7, `i` naming each in the
+    /// declaration's expressions.
+    Ranged {
+        index: Ident,
+        range: Expr,
+        span: Span,
+    },
+    /// `[expr]`: the element `expr` evaluates to.
+    Element(Expr),
+}
+
+#[derive(Clone)]
 pub struct ParameterDecl {
     pub decl: Declaration,
     /// Default value, a constant expression such as `2.0 * 30000.0`.
     pub value: Option<Expr>,
 }
 
+#[derive(Clone)]
 pub struct InputDecl {
     pub decl: Declaration,
     pub arguments: Vec<Declaration>,
@@ -39,15 +62,19 @@ pub struct InputDecl {
 }
 
 /// `output NAME [unit] = expr;`, with its `///` doc lines.
+#[derive(Clone)]
 pub struct OutputDecl {
     pub decl: Declaration,
     pub value: Expr,
 }
 
 /// `constraint NAME = expr;`, with its `///` doc lines: `expr(q, t) = 0`.
+#[derive(Clone)]
 pub struct ConstraintDecl {
     pub doc: Vec<String>,
     pub name: Ident,
+    /// `constraint g[i] = …;` in a loop (expansion removes it).
+    pub subscript: Option<Subscript>,
     pub value: Expr,
 }
 
@@ -82,6 +109,7 @@ impl EnergyKind {
     }
 }
 
+#[derive(Clone)]
 pub enum Item {
     Model {
         doc: Vec<String>,
@@ -99,6 +127,8 @@ pub enum Item {
     },
     Let {
         name: Ident,
+        /// `let c[i] = …;` (expansion removes it).
+        subscript: Option<Subscript>,
         value: Expr,
     },
     Energy {
@@ -110,6 +140,8 @@ pub enum Item {
     GeneralizedForce {
         keyword: Span,
         coordinate: Ident,
+        /// `force x[i] = …;` (expansion removes it).
+        subscript: Option<Subscript>,
         value: Expr,
     },
     /// `force at (x, z) = (Fx, Fz);` — a force applied at a point.
@@ -131,9 +163,18 @@ pub enum Item {
     },
     /// `hand_derived { … }` — equations derived by hand, for the audit.
     HandDerived(HandSection),
+    /// `for i in 1..=6 { … }` — the statements once for each `i`
+    /// (expansion replaces it by them).
+    For {
+        keyword: Span,
+        index: Ident,
+        range: Expr,
+        items: Vec<Item>,
+    },
 }
 
 /// A user's own equations of motion, to be audited against the derivation.
+#[derive(Clone)]
 pub struct HandSection {
     pub keyword: Span,
     pub doc: Vec<String>,

@@ -5,6 +5,7 @@ mod constant;
 mod dimensions;
 mod domain;
 mod expression;
+mod families;
 mod graph_lowering;
 mod hand;
 mod lower;
@@ -212,8 +213,11 @@ impl Model {
     pub fn from_tokens(tokens: TokenStream) -> Result<Model, SpecErrors> {
         let count = crate::depth::check_tokens(&tokens)?;
         crate::depth::with_stack_for_tokens(count, || {
-            let ast: ast::SpecAst = syn::parse2(tokens)?;
+            let ast: ast::SpecAst = syn::parse2(families::sum_syntax(tokens))?;
+            let ast = families::expand(ast).map_err(families::errors_as_read)?;
             lower::lower(ast)
+                .map(families::model_as_read)
+                .map_err(families::errors_as_read)
         })
     }
 

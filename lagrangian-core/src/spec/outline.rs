@@ -21,7 +21,8 @@ impl Outline {
     /// The outline of `tokens`; `None` when they do not parse as a spec or
     /// name no model.
     pub(crate) fn of(tokens: TokenStream) -> Option<Outline> {
-        let ast: SpecAst = syn::parse2(tokens).ok()?;
+        let ast: SpecAst = syn::parse2(super::families::sum_syntax(tokens)).ok()?;
+        let ast = super::families::expand(ast).ok()?;
         let mut outline = Outline::default();
         for item in &ast.items {
             match item {
@@ -46,7 +47,8 @@ impl Outline {
                 | Item::Output(_)
                 | Item::Constraint(_)
                 | Item::Jacobians { .. }
-                | Item::HandDerived(_) => {}
+                | Item::HandDerived(_)
+                | Item::For { .. } => {}
             }
         }
         (!outline.name.is_empty()).then_some(outline)
@@ -56,7 +58,7 @@ impl Outline {
 /// Appends the names not already in `list`.
 fn push_new<'a>(list: &mut Vec<String>, names: impl Iterator<Item = &'a syn::Ident>) {
     for name in names {
-        let name = name.to_string();
+        let name = super::families::display_name(&name.to_string()).into_owned();
         if !list.contains(&name) {
             list.push(name);
         }

@@ -14,8 +14,11 @@
 //!                    | "output" decl "=" EXPR ";"   (EXPR may use ddot(q))
 //!                    | "constraint" IDENT "=" EXPR ";"   (EXPR(q, t) = 0)
 //!                    | "jacobians" ";"
-//!                    | "hand_derived" "{" hand-entry* "}" )
-//! decl        = doc* IDENT unit?
+//!                    | "hand_derived" "{" hand-entry* "}"
+//!                    | "for" IDENT "in" INT-EXPR "..=" INT-EXPR "{" item* "}" )
+//! decl        = doc* IDENT family? unit?
+//! family      = "[" INT "]" | "[" IDENT "in" INT-EXPR "..=" INT-EXPR "]"
+//!               (in a statement, "[" INT-EXPR "]" names one element)
 //! unit        = "[" unit tokens "]"              e.g. [N*s/m], [m/s^2]
 //! derivs      = "{" ("d" "(" IDENT ")" "=" EXPR),* "}"
 //! hand-entry  = "convention" "=" IDENT ";" | "small_angle_order" "=" INT ";"
@@ -110,10 +113,15 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
     } else if look.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name = input.parse()?;
+        let subscript = parse_subscript(input, Place::Name)?;
         input.parse::<Token![=]>()?;
         let value = input.parse()?;
         input.parse::<Token![;]>()?;
-        Ok(Item::Let { name, value })
+        Ok(Item::Let {
+            name,
+            subscript,
+            value,
+        })
     } else if look.peek(kw::kinetic) || look.peek(kw::potential) || look.peek(kw::dissipation) {
         let (kind, keyword) = if input.peek(kw::kinetic) {
             (EnergyKind::Kinetic, input.parse::<kw::kinetic>()?.span)
@@ -147,6 +155,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         Ok(Item::Jacobians { keyword })
     } else if look.peek(kw::hand_derived) {
         parse_hand_section(input, doc)
+    } else if look.peek(Token![for]) {
+        parse_for(input)
     } else {
         Err(look.error())
     }
@@ -178,12 +188,14 @@ fn parse_force(input: ParseStream) -> syn::Result<Item> {
         })
     } else {
         let coordinate = input.parse()?;
+        let subscript = parse_subscript(input, Place::Name)?;
         input.parse::<Token![=]>()?;
         let value = input.parse()?;
         input.parse::<Token![;]>()?;
         Ok(Item::GeneralizedForce {
             keyword,
             coordinate,
+            subscript,
             value,
         })
     }
@@ -220,21 +232,33 @@ fn parse_torque(input: ParseStream) -> syn::Result<Item> {
 fn parse_constraint(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
     input.parse::<kw::constraint>()?;
     let name = input.parse()?;
+    let subscript = parse_subscript(input, Place::Name)?;
     input.parse::<Token![=]>()?;
     let value = input.parse()?;
     input.parse::<Token![;]>()?;
-    Ok(Item::Constraint(ConstraintDecl { doc, name, value }))
+    Ok(Item::Constraint(ConstraintDecl {
+        doc,
+        name,
+        subscript,
+        value,
+    }))
 }
 
 /// `output NAME [unit] = EXPR;`, its doc lines already read.
 fn parse_output(input: ParseStream, doc: Vec<String>) -> syn::Result<Item> {
     input.parse::<kw::output>()?;
     let name = input.parse()?;
+    let subscript = parse_subscript(input, Place::Statement)?;
     let unit = parse_unit(input)?;
     input.parse::<Token![=]>()?;
     let value = input.parse()?;
     input.parse::<Token![;]>()?;
-    let decl = Declaration { doc, name, unit };
+    let decl = Declaration {
+        doc,
+        name,
+        subscript,
+        unit,
+    };
     Ok(Item::Output(OutputDecl { decl, value }))
 }
 
@@ -272,8 +296,114 @@ fn parse_declaration(input: ParseStream) -> syn::Result<Declaration> {
     let attrs = input.call(Attribute::parse_outer)?;
     let doc = doc_lines(&attrs)?;
     let name = input.parse()?;
+    let subscript = parse_subscript(input, Place::Block)?;
     let unit = parse_unit(input)?;
-    Ok(Declaration { doc, name, unit })
+    Ok(Declaration {
+        doc,
+        name,
+        subscript,
+        unit,
+    })
+}
+
+/// Where a `[…]` after a name is read.
+#[derive(Clone, Copy, PartialEq)]
+enum Place {
+    /// In a `coordinates`, `parameters` or `inputs` block: `[N]` and
+    /// `[i in a..=b]` declare a family; another bracket is the unit.
+    Block,
+    /// After an output's name: a subscript unless it reads as a unit.
+    Statement,
+    /// After a `let`'s, a constraint's or a force's name: a subscript.
+    Name,
+}
+
+/// `i in a..=b`.
+fn ranged(input: ParseStream) -> syn::Result<(Ident, Expr)> {
+    let index: Ident = input.parse()?;
+    input.parse::<Token![in]>()?;
+    Ok((index, input.parse()?))
+}
+
+/// `[…]` after a name where it is a subscript rather than a unit: `[N]`,
+/// `[i in a..=b]`, a bracket followed by another (the unit), and, after an
+/// output's name, a bracket that is no unit.
+fn parse_subscript(input: ParseStream, place: Place) -> syn::Result<Option<Subscript>> {
+    use syn::parse::Parser;
+    if !input.peek(syn::token::Bracket) {
+        return Ok(None);
+    }
+    let fork = input.fork();
+    let content;
+    bracketed!(content in fork);
+    let tokens: TokenStream = content.parse()?;
+    let unit_follows = fork.peek(syn::token::Bracket);
+    // `[1]` alone is the unit of a pure number (`mu [1] = 0.5`), not a
+    // family of one.
+    let is_count = syn::parse2::<syn::LitInt>(tokens.clone())
+        .is_ok_and(|n| n.base10_digits() != "1" || unit_follows);
+    let is_ranged = ranged.parse2(tokens.clone()).is_ok();
+    let subscript = match place {
+        Place::Block => is_count || is_ranged || unit_follows,
+        Place::Statement => is_count || is_ranged || unit_follows || looks_like_index(&tokens),
+        Place::Name => true,
+    };
+    if !subscript {
+        return Ok(None);
+    }
+    let content;
+    let bracket = bracketed!(content in input);
+    let span = bracket.span.join();
+    let tokens: TokenStream = content.parse()?;
+    if is_ranged {
+        let (index, range) = ranged.parse2(tokens)?;
+        return Ok(Some(Subscript::Ranged { index, range, span }));
+    }
+    if place == Place::Block {
+        let count = syn::parse2::<syn::LitInt>(tokens).map_err(|_| {
+            syn::Error::new(span, "a family is declared as `x[7]` or `x[i in 1..=7]`")
+        })?;
+        let count = count.base10_parse::<usize>()?;
+        return Ok(Some(Subscript::Count { count, span }));
+    }
+    Ok(Some(Subscript::Element(syn::parse2(tokens)?)))
+}
+
+/// Whether a lone bracket after an output's name reads as an index rather
+/// than a unit: a one-letter name that is no unit symbol (`[i]`), or a sum
+/// or difference without the `^` and `/` of units (`[i + 1]`).
+fn looks_like_index(tokens: &TokenStream) -> bool {
+    use proc_macro2::TokenTree;
+    let trees: Vec<TokenTree> = tokens.clone().into_iter().collect();
+    let punct =
+        |c: char| (trees.iter()).any(|t| matches!(t, TokenTree::Punct(p) if p.as_char() == c));
+    match trees.as_slice() {
+        [TokenTree::Ident(i)] => {
+            let name = i.to_string();
+            name.len() == 1 && !["m", "s", "g", "N", "J", "W"].contains(&name.as_str())
+        }
+        _ => (punct('+') || punct('-')) && !punct('^') && !punct('/'),
+    }
+}
+
+/// `for i in a..=b { statements }`.
+fn parse_for(input: ParseStream) -> syn::Result<Item> {
+    let keyword = input.parse::<Token![for]>()?.span;
+    let index: Ident = input.parse()?;
+    input.parse::<Token![in]>()?;
+    let range = Expr::parse_without_eager_brace(input)?;
+    let body;
+    braced!(body in input);
+    let mut items = Vec::new();
+    while !body.is_empty() {
+        items.push(parse_item(&body)?);
+    }
+    Ok(Item::For {
+        keyword,
+        index,
+        range,
+        items,
+    })
 }
 
 fn parse_unit(input: ParseStream) -> syn::Result<Option<UnitText>> {
@@ -305,6 +435,7 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
     let attrs = input.call(Attribute::parse_outer)?;
     let doc = doc_lines(&attrs)?;
     let name: Ident = input.parse()?;
+    let subscript = parse_subscript(input, Place::Block)?;
     let content;
     parenthesized!(content in input);
     let mut arguments = Vec::new();
@@ -335,7 +466,12 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
         }
     }
     Ok(InputDecl {
-        decl: Declaration { doc, name, unit },
+        decl: Declaration {
+            doc,
+            name,
+            subscript,
+            unit,
+        },
         arguments,
         derivatives,
     })

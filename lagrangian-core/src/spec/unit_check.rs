@@ -200,7 +200,7 @@ pub(super) fn check(
         checker.derivatives(input);
     }
     for item in statements {
-        if let Item::Let { name, value } = item {
+        if let Item::Let { name, value, .. } = item {
             checker.definition(name, value);
         }
     }
@@ -322,7 +322,8 @@ impl Checker<'_> {
             | Item::Model { .. }
             | Item::Coordinates { .. }
             | Item::Parameters { .. }
-            | Item::Inputs { .. } => {}
+            | Item::Inputs { .. }
+            | Item::For { .. } => {}
         }
     }
 }

@@ -159,6 +159,7 @@ fn constraint_declarations(statements: &[Item]) -> impl Iterator<Item = &Constra
         | Item::PointForce { .. }
         | Item::Output(_)
         | Item::Jacobians { .. }
-        | Item::HandDerived(_) => None,
+        | Item::HandDerived(_)
+        | Item::For { .. } => None,
     })
 }

@@ -56,7 +56,8 @@ impl Items {
                 | Item::Output(_)
                 | Item::Constraint(_)
                 | Item::Jacobians { .. }
-                | Item::HandDerived(_)) => items.statements.push(other),
+                | Item::HandDerived(_)
+                | Item::For { .. }) => items.statements.push(other),
             }
         }
         items

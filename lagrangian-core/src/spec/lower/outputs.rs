@@ -83,6 +83,7 @@ fn output_declarations(statements: &[Item]) -> impl Iterator<Item = &OutputDecl>
         | Item::PointForce { .. }
         | Item::Constraint(_)
         | Item::Jacobians { .. }
-        | Item::HandDerived(_) => None,
+        | Item::HandDerived(_)
+        | Item::For { .. } => None,
     })
 }

@@ -31,7 +31,7 @@ impl Lowering {
     pub(super) fn definitions(&mut self, statements: &[Item]) -> Vec<(String, ExprId)> {
         let lets: Vec<(&Ident, &Expr)> = (statements.iter())
             .filter_map(|item| match item {
-                Item::Let { name, value } => Some((name, value)),
+                Item::Let { name, value, .. } => Some((name, value)),
                 _ => None,
             })
             .collect();
@@ -85,6 +85,7 @@ impl Lowering {
                     keyword,
                     coordinate,
                     value,
+                    ..
                 } => {
                     let force = self.generalized_force(coordinates, *keyword, coordinate, value);
                     dynamics.forces.extend(force);
@@ -112,7 +113,8 @@ impl Lowering {
                 | Item::Model { .. }
                 | Item::Coordinates { .. }
                 | Item::Parameters { .. }
-                | Item::Inputs { .. } => {}
+                | Item::Inputs { .. }
+                | Item::For { .. } => {}
             }
         }
         dynamics
