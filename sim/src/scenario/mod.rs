@@ -55,6 +55,7 @@ mod base;
 pub(crate) mod bind;
 mod choice;
 mod discover;
+mod families;
 mod file;
 pub mod iso_mme;
 mod locate;
@@ -347,6 +348,8 @@ impl Scenario {
         let positioned = || toml::de::Deserializer::from(read.clone());
         let (mut settled, constants) = with_settings(document.clone(), names, settings)
             .map_err(|e| ScenarioError::invalid(None, e.to_string()))?;
+        // A family's sections, one per element.
+        families::expand(&mut settled, names).map_err(located)?;
         quantities::in_si(&mut settled, names).map_err(located)?;
         let parsed: File = settled.try_into().map_err(|e: toml::de::Error| {
             // The settled document has no positions; the parsed text has
