@@ -101,3 +101,32 @@ fn an_element_is_set_by_its_name_as_a_scalar_is() {
     assert_eq!(unknown.status.code(), Some(4), "{}", stderr(&unknown));
     assert!(stderr(&unknown).contains("m[8]"), "{}", stderr(&unknown));
 }
+
+#[test]
+fn a_bad_entry_of_a_family_section_is_located_in_that_section() {
+    let dir = temporary("families-bad-entry");
+    let scenario = std::fs::read_to_string(format!("{}/{}", common::ROOT, FAMILIES[2])).unwrap();
+    let line = 1 + scenario.lines().position(|l| l == "fy = 4.4482e6").unwrap();
+    let spec = format!("{}/{}", common::ROOT, FAMILIES[0]);
+    let scenario = scenario
+        .replace("fy = 4.4482e6", "fy = -4.4482e6")
+        .replace("\"pioneer_families.lpm\"", &format!("{spec:?}"));
+    let file = dir.join("bad.toml");
+    std::fs::write(&file, scenario).unwrap();
+    let out = dir.join("out");
+    let done = lpm(&[
+        "simulate",
+        &spec,
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(done.status.code(), Some(4), "{}", stderr(&done));
+    let expected = format!(
+        "error: {}:{line}:1: components.\"spring[1]\".fy = -4448200: must be a positive, finite number",
+        file.display()
+    );
+    assert!(stderr(&done).starts_with(&expected), "{}", stderr(&done));
+    assert!(!out.exists(), "nothing written");
+}

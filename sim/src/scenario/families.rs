@@ -54,6 +54,22 @@ pub(super) fn expand(document: &mut Table, names: &ModelNames) -> Result<(), Ent
     Ok(())
 }
 
+/// Where an error about an element's section (`components."spring[3]".fy`)
+/// is in the file, when the family's section wrote it: the same key in
+/// the family's section (`components.spring.fy`); `None` for any other key.
+pub(super) fn family_key(key: &KeyPath) -> Option<KeyPath> {
+    let parts: Vec<&str> = key.parts().collect();
+    let ["components", element, rest @ ..] = parts.as_slice() else {
+        return None;
+    };
+    let (family, _) = element.strip_suffix(']')?.split_once('[')?;
+    let mut path = KeyPath::component(family);
+    for part in rest {
+        path = path.join(part);
+    }
+    Some(path)
+}
+
 /// A coordinate of `initial.moving`, or each element of a family (with its sign).
 fn moving_elements(value: &Value, names: &ModelNames) -> Vec<Value> {
     let Value::String(text) = value else {
@@ -176,6 +192,16 @@ mod tests {
         assert_eq!(second["inputs"]["stiffness"].as_str(), Some("tangent[2]"));
         assert_eq!(components["spring[1]"]["fy"].as_float(), Some(1.0));
         assert_eq!(components["wall"]["inputs"]["force"].as_str(), Some("wall"));
+    }
+
+    #[test]
+    fn an_element_s_entry_is_found_in_its_family_s_section() {
+        let key = KeyPath::component("spring[3]").join("fy");
+        assert_eq!(
+            family_key(&key).unwrap().to_string(),
+            "components.spring.fy"
+        );
+        assert!(family_key(&KeyPath::component("wall").join("fy")).is_none());
     }
 
     #[test]

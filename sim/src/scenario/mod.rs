@@ -332,8 +332,14 @@ impl Scenario {
                 ..ScenarioError::invalid(None, locate::blamed(setting, &e))
             },
             None => ScenarioError {
-                // Where it is: needed on this path alone.
-                location: Places::new(text, spanned.get_ref()).locate(&e),
+                // Where it is: needed on this path alone (an element's
+                // entry from its family's section is where the family's is).
+                location: (Places::new(text, spanned.get_ref()).locate(&e)).or_else(|| {
+                    let key = families::family_key(&e.key)?;
+                    let mut at = e.clone();
+                    at.key = key;
+                    Places::new(text, spanned.get_ref()).locate(&at)
+                }),
                 key: Some(e.key.clone()),
                 ..error(e.to_string())
             },
