@@ -1,6 +1,7 @@
 //! Indexed families (`x[7]`, `for`, `sum`, `x[i + 1]`) expand into exactly
 //! the written-out model: the Pioneer chain written with families
-//! (`tests/specs/pioneer_families.lpm`) derives the M, f, Q, Jacobians,
+//! (`tests/specs/pioneer_families.lpm`, its tangents left to the
+//! components: `d(x), d(v)`) derives the M, f, Q, Jacobians,
 //! energies and outputs of `specs/pioneer_wagon.lpm`, term for term, once
 //! its element names are read as the written-out spec spells them; and
 //! every misuse is an error at its span.
@@ -39,10 +40,13 @@ fn equations(compiled: &mut Compiled) -> Vec<String> {
 }
 
 /// `text` with the families' elements spelled as the written-out spec
-/// names them: `x[3]` is `x3`, `spring_stiffness[3]` is `spring3_stiffness`.
+/// names them: `x[3]` is `x3`, and the tangents the components supply,
+/// `spring[3]_dx` and `spring[3]_dv`, are its `spring3_stiffness` and
+/// `spring3_damping`.
 fn written_out(text: &str) -> String {
+    let text = text.replace("_dx", "_stiffness").replace("_dv", "_damping");
     let mut out = String::new();
-    let mut rest = text;
+    let mut rest = text.as_str();
     while let Some(open) = rest.find('[') {
         let close = open + rest[open..].find(']').unwrap();
         let (before, index) = (&rest[..open], &rest[open + 1..close]);
@@ -51,12 +55,7 @@ fn written_out(text: &str) -> String {
             .map_or(0, |k| k + 1);
         let name = &before[start..];
         out.push_str(&before[..start]);
-        match name.split_once('_') {
-            Some((family, tangent)) if family == "spring" => {
-                out.push_str(&format!("{family}{index}_{tangent}"))
-            }
-            _ => out.push_str(&format!("{name}{index}")),
-        }
+        out.push_str(&format!("{name}{index}"));
         rest = &rest[close + 1..];
     }
     out.push_str(rest);
@@ -81,7 +80,7 @@ fn the_pioneer_chain_with_families_derives_the_written_out_equations() {
             "x[1]", "x[2]", "x[3]", "x[4]", "x[5]", "x[6]", "x[7]", "m[1]"
         ]
     );
-    assert!(family_names.contains(&"spring_damping[6]".to_string()));
+    assert!(family_names.contains(&"spring[6]_dv".to_string()));
     let mut expected = names(&original);
     let mut found: Vec<String> = family_names.iter().map(|n| written_out(n)).collect();
     expected.sort();

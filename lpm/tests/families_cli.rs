@@ -130,3 +130,48 @@ fn a_bad_entry_of_a_family_section_is_located_in_that_section() {
     assert!(stderr(&done).starts_with(&expected), "{}", stderr(&done));
     assert!(!out.exists(), "nothing written");
 }
+
+#[test]
+fn the_components_supply_the_tangents_an_implicit_method_needs() {
+    // TR-BDF2 calls the springs' and the wall's tangent stiffness and
+    // damping. The written-out scenario binds the wall's but not the
+    // springs' (the run fails without them); bound explicitly, they give
+    // the run the family spec gets from `d(x), d(v)` alone.
+    let dir = temporary("families-tangents");
+    let settings = [
+        "--set",
+        "simulation.method=tr-bdf2",
+        "--set",
+        "simulation.t_end=0.05",
+    ];
+    let mut args = FAMILIES.to_vec();
+    args.extend(settings);
+    let (families, _) = run(&args, &dir.join("families"));
+    let mut original = vec!["specs/pioneer_wagon.lpm"];
+    original.extend(settings);
+    let unbound = lpm(&[
+        &["simulate"],
+        &original[..],
+        &["--out", dir.join("unbound").to_str().unwrap()],
+    ]
+    .concat());
+    assert!(
+        stderr(&unbound).contains("`spring1_stiffness` has no value"),
+        "{}",
+        stderr(&unbound)
+    );
+    let bindings: Vec<String> = (1..=6)
+        .flat_map(|k| {
+            [
+                format!("components.spring{k}.inputs.stiffness=spring{k}_stiffness"),
+                format!("components.spring{k}.inputs.damping=spring{k}_damping"),
+            ]
+        })
+        .collect();
+    for binding in &bindings {
+        original.extend(["--set", binding.as_str()]);
+    }
+    let (original, _) = run(&original, &dir.join("original"));
+    let rows = |text: &str| text.split_once('\n').unwrap().1.to_string();
+    assert_eq!(rows(&families), rows(&original));
+}

@@ -59,6 +59,9 @@ pub struct InputDecl {
     pub arguments: Vec<Declaration>,
     /// Declared partial derivatives: `d(arg) = expression`.
     pub derivatives: Vec<(Ident, Expr)>,
+    /// `d(arg)` without an expression: the derivative the component bound
+    /// to the input supplies (expansion makes it an input of its own).
+    pub supplied: Vec<Ident>,
 }
 
 /// `output NAME [unit] = expr;`, with its `///` doc lines.

@@ -386,6 +386,7 @@ impl Expansion {
             }
             Item::Inputs { decls } => {
                 let decls = self.block_with(&decls, |d: &InputDecl| &d.decl, Self::input);
+                let decls = decls.into_iter().flat_map(supplied_derivatives).collect();
                 out.push(Item::Inputs { decls });
             }
             Item::For {
@@ -476,6 +477,7 @@ impl Expansion {
             decl,
             arguments: input.arguments.clone(),
             derivatives,
+            supplied: input.supplied.clone(),
         })
     }
 
@@ -639,6 +641,61 @@ fn literal_integer(expr: &Expr) -> Option<i64> {
             lit: Lit::Int(i), ..
         }) => i.base10_parse().ok(),
         _ => None,
+    }
+}
+
+/// `input` with each derivative `d(a)` it leaves to its component written
+/// `d(a) = input_da(args…)`, followed by the input `input_da` of the same
+/// arguments, its unit the input's over `a`'s: the component bound to
+/// `input` supplies it (the scenario binds it to the component's tangent).
+fn supplied_derivatives(mut input: InputDecl) -> Vec<InputDecl> {
+    let supplied = std::mem::take(&mut input.supplied);
+    let mut tangents = Vec::new();
+    for argument in supplied {
+        let name = Ident::new(&format!("{}_d{argument}", input.decl.name), argument.span());
+        let of = (input.arguments.iter()).find(|a| a.name == argument);
+        let unit = match (&input.decl.unit, of.and_then(|a| a.unit.as_ref())) {
+            (Some(value), Some(by)) => Some(super::ast::UnitText {
+                text: unit_over(&value.text, &by.text),
+                span: value.span,
+            }),
+            _ => None,
+        };
+        let arguments: Vec<&Ident> = input.arguments.iter().map(|a| &a.name).collect();
+        let call: Expr = syn::parse_quote_spanned!(argument.span()=> #name(#(#arguments),*));
+        input.derivatives.push((argument.clone(), call));
+        let doc = format!(
+            "∂{}/∂{argument}, supplied by the component bound to `{}`.",
+            display_name(&input.decl.name.to_string()),
+            display_name(&input.decl.name.to_string())
+        );
+        tangents.push(InputDecl {
+            decl: Declaration {
+                doc: vec![doc],
+                name,
+                subscript: None,
+                unit,
+            },
+            arguments: input.arguments.clone(),
+            derivatives: Vec::new(),
+            supplied: Vec::new(),
+        });
+    }
+    let mut out = vec![input];
+    out.extend(tangents);
+    out
+}
+
+/// The unit `value / by` as units are written: `N/m`, `N*s/m` for `N`
+/// over `m/s`, parenthesized where `by` is more than one quotient.
+fn unit_over(value: &str, by: &str) -> String {
+    let simple = |u: &str| !u.contains(['/', '(', ')']);
+    match by.split_once('/') {
+        None if simple(by) && !by.contains('*') => format!("{value}/{by}"),
+        Some((above, below)) if simple(above) && simple(below) && !above.contains('*') => {
+            format!("{value}*{below}/{above}")
+        }
+        _ => format!("({value})/({by})"),
     }
 }
 

@@ -20,7 +20,8 @@
 //! family      = "[" INT "]" | "[" IDENT "in" INT-EXPR "..=" INT-EXPR "]"
 //!               (in a statement, "[" INT-EXPR "]" names one element)
 //! unit        = "[" unit tokens "]"              e.g. [N*s/m], [m/s^2]
-//! derivs      = "{" ("d" "(" IDENT ")" "=" EXPR),* "}"
+//! derivs      = "{" ("d" "(" IDENT ")" ("=" EXPR)?),* "}"   (no EXPR: the
+//!               bound component supplies it)
 //! hand-entry  = "convention" "=" IDENT ";" | "small_angle_order" "=" INT ";"
 //!             | ("symbols" | "assume") "{" (IDENT "=" EXPR),* "}"
 //!             | "force"? IDENT "=" EXPR ";"       (EXPR may use ddot(q))
@@ -448,6 +449,7 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
     }
     let unit = parse_unit(input)?;
     let mut derivatives = Vec::new();
+    let mut supplied = Vec::new();
     if input.peek(syn::token::Brace) {
         let body;
         braced!(body in input);
@@ -456,9 +458,13 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
             let arg;
             parenthesized!(arg in body);
             let argument: Ident = arg.parse()?;
-            body.parse::<Token![=]>()?;
-            let value: Expr = body.parse()?;
-            derivatives.push((argument, value));
+            if body.is_empty() || body.peek(Token![,]) {
+                supplied.push(argument);
+            } else {
+                body.parse::<Token![=]>()?;
+                let value: Expr = body.parse()?;
+                derivatives.push((argument, value));
+            }
             if body.is_empty() {
                 break;
             }
@@ -474,6 +480,7 @@ fn parse_input(input: ParseStream) -> syn::Result<InputDecl> {
         },
         arguments,
         derivatives,
+        supplied,
     })
 }
 

@@ -61,7 +61,8 @@ impl<'a> Binder<'a> {
 
     /// The components and the inputs bound to them, once every section has
     /// built and `--set` constants have overridden.
-    pub(crate) fn finish(self) -> Result<BoundInputs, EntryError> {
+    pub(crate) fn finish(mut self) -> Result<BoundInputs, EntryError> {
+        self.bind_supplied_derivatives();
         let event_arguments = self.event_arguments()?;
         Ok(BoundInputs::new(
             self.components,
@@ -69,6 +70,31 @@ impl<'a> Binder<'a> {
             event_arguments,
             self.names.inputs.clone(),
         ))
+    }
+
+    /// Binds each input a spec leaves to its component (`d(x)` without an
+    /// expression makes the input `F_dx` of `F`'s arguments) to the
+    /// tangent of the component `F` is bound to: `F`'s first argument's
+    /// derivative to its stiffness port, the second's to its damping port.
+    /// An input the scenario binds itself keeps that binding.
+    fn bind_supplied_derivatives(&mut self) {
+        let names = self.names;
+        for (k, input) in names.inputs.iter().enumerate() {
+            if self.bindings[k].is_some() {
+                continue;
+            }
+            let tangent = (names.inputs.iter().enumerate()).find_map(|(f, value)| {
+                let argument = input.strip_prefix(value.as_str())?.strip_prefix("_d")?;
+                let arguments = names.input_arguments.get(f)?.as_ref()?;
+                let position = arguments.iter().position(|a| a == argument)?;
+                let binding = self.bindings[f].filter(|b| b.port == Port::Value)?;
+                let port = [Port::Stiffness, Port::Damping].get(position).copied()?;
+                Some(Binding { port, ..binding })
+            });
+            if tangent.is_some() {
+                self.bindings[k] = tangent;
+            }
+        }
     }
 
     /// Adds `component` under `name`; returns its index, to bind inputs to.
