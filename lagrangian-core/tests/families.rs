@@ -244,3 +244,63 @@ fn a_problem_in_a_loop_s_body_is_reported_once() {
         "`x[6]` is outside `x`, whose elements are 1..=3"
     );
 }
+
+/// Replaces, deletes or duplicates one of `text`'s tokens (split at spaces
+/// and brackets), or swaps in a construct of the families' syntax.
+fn mutated(text: &str, rng: &mut lagrangian_core::random::Lcg) -> String {
+    const SNIPPETS: [&str; 12] = [
+        "[0]",
+        "[i]",
+        "[i + 1]",
+        "1..7",
+        "1..=0",
+        "sum(i in 1..=3, x)",
+        "x[",
+        "]",
+        "for i in 1..=2 {",
+        "}",
+        "[-1]",
+        "d(x)",
+    ];
+    let pieces: Vec<&str> = text.split_inclusive([' ', '[', ']', '\n']).collect();
+    let k = (rng.unit() * pieces.len() as f64) as usize % pieces.len();
+    let snippet = SNIPPETS[(rng.unit() * SNIPPETS.len() as f64) as usize % SNIPPETS.len()];
+    let mut out: Vec<&str> = pieces.clone();
+    match (rng.unit() * 3.0) as usize {
+        0 => out[k] = snippet,
+        1 => {
+            out.remove(k);
+        }
+        _ => out.insert(k, snippet),
+    }
+    out.concat()
+}
+
+#[test]
+fn mutated_family_specs_give_a_model_or_located_errors_never_a_panic() {
+    let originals = [
+        read("tests/specs/pioneer_families.lpm"),
+        read("tests/specs/chain/chain_50.lpm"),
+        CHAIN.replace("BAD", "for i in 1..=3 { output o[i] [m] = x[i]; }"),
+    ];
+    let mut rng = lagrangian_core::random::Lcg::new(37);
+    let (mut compiled, mut refused) = (0, 0);
+    for k in 0..600 {
+        let text = mutated(&originals[k % 3], &mut rng);
+        let outcome = std::panic::catch_unwind(|| lagrangian_core::Model::from_source(&text));
+        match outcome.unwrap_or_else(|_| panic!("panicked on:\n{text}")) {
+            Ok(_) => compiled += 1,
+            Err(errors) => {
+                assert!(
+                    !errors.diagnostics.is_empty(),
+                    "an error without a diagnostic:\n{text}"
+                );
+                refused += 1;
+            }
+        }
+    }
+    assert!(
+        compiled > 10 && refused > 100,
+        "{compiled} compiled, {refused} refused"
+    );
+}

@@ -604,6 +604,11 @@ impl Expansion {
     fn check_range(&mut self, name: &Ident, k: i64, at: &Expr) -> Option<()> {
         let count = self.families.get(&name.to_string()).and_then(|f| f.count);
         match count {
+            None if k < 1 => {
+                let why = format!("`{name}[{k}]`: a family's elements are numbered from 1");
+                self.problems.push(Diagnostic::new(SpanRange::of(at), why));
+                None
+            }
             Some(n) if !(1..=n).contains(&k) => {
                 let why = format!("`{name}[{k}]` is outside `{name}`, whose elements are 1..={n}");
                 self.problems.push(Diagnostic::new(SpanRange::of(at), why));
