@@ -33,6 +33,7 @@ pub(super) fn expand(document: &mut Table, names: &ModelNames) -> Result<(), Ent
         return Ok(());
     };
     let sections: Vec<String> = components.keys().cloned().collect();
+    let mut expanded: Vec<(String, Vec<String>)> = Vec::new();
     for name in sections {
         let Some(Value::Table(section)) = components.get(&name) else {
             continue;
@@ -42,6 +43,7 @@ pub(super) fn expand(document: &mut Table, names: &ModelNames) -> Result<(), Ent
         };
         let section = section.clone();
         components.remove(&name);
+        expanded.push((name.clone(), indices.clone()));
         for k in indices {
             let element = format!("{name}[{k}]");
             let mut made = element_section(&section, &k, names);
@@ -49,6 +51,32 @@ pub(super) fn expand(document: &mut Table, names: &ModelNames) -> Result<(), Ent
                 made.extend(own.iter().map(|(key, v)| (key.clone(), v.clone())));
             }
             components.insert(element, Value::Table(made));
+        }
+    }
+    no_stray_elements(components, &expanded)
+}
+
+/// An element section of a family section for an element the family does
+/// not have (`[components."spring[9]"]` beside `spring[1..6]`) is an error.
+fn no_stray_elements(
+    components: &Table,
+    expanded: &[(String, Vec<String>)],
+) -> Result<(), EntryError> {
+    for key in components.keys() {
+        let Some((family, rest)) = key.split_once('[') else {
+            continue;
+        };
+        let Some(k) = rest.strip_suffix(']') else {
+            continue;
+        };
+        if let Some((_, indices)) = expanded.iter().find(|(f, _)| f == family)
+            && !indices.iter().any(|i| i == k)
+        {
+            let range = format!("{}…{}", indices[0], indices[indices.len() - 1]);
+            let why = format!(
+                "`{key}` is not an element of the family section `{family}`, whose elements are {range}"
+            );
+            return Err(EntryError::at(KeyPath::component(key), why));
         }
     }
     Ok(())
@@ -192,6 +220,20 @@ mod tests {
         assert_eq!(second["inputs"]["stiffness"].as_str(), Some("tangent[2]"));
         assert_eq!(components["spring[1]"]["fy"].as_float(), Some(1.0));
         assert_eq!(components["wall"]["inputs"]["force"].as_str(), Some("wall"));
+    }
+
+    #[test]
+    fn an_element_section_beyond_the_family_is_an_error() {
+        let mut document: Table = r#"
+            [components.spring]
+            inputs = { force = "spring" }
+            [components."spring[3]"]
+            fy = 2.0
+        "#
+        .parse()
+        .unwrap();
+        let error = expand(&mut document, &names()).unwrap_err().to_string();
+        assert!(error.contains("`spring[3]` is not an element of the family section `spring`, whose elements are 1…2"), "{error}");
     }
 
     #[test]
