@@ -304,3 +304,23 @@ fn mutated_family_specs_give_a_model_or_located_errors_never_a_panic() {
         "{compiled} compiled, {refused} refused"
     );
 }
+
+#[test]
+fn a_lowering_problem_a_loop_repeats_is_reported_once() {
+    let body = "for i in 1..=2 { let a[i] = b[i]; let b[i] = x[i]; }";
+    let errors = Compiled::from_source(&CHAIN.replace("BAD", body))
+        .err()
+        .unwrap();
+    let messages: Vec<&str> = errors
+        .diagnostics
+        .iter()
+        .map(|d| d.message.as_str())
+        .collect();
+    assert_eq!(
+        messages,
+        [
+            "`b[1]` is defined below, by a later `let`",
+            "`b[2]` is defined below, by a later `let`"
+        ]
+    );
+}

@@ -854,9 +854,13 @@ fn diagnostic_as_read(mut d: Diagnostic) -> Diagnostic {
     d
 }
 
-/// The problems of a spec, its elements named as users read them.
+/// The problems of a spec, its elements named as users read them; one
+/// that a loop's body repeats (the same message at the same place) once.
 pub(super) fn errors_as_read(errors: SpecErrors) -> SpecErrors {
-    let diagnostics = errors.diagnostics.into_iter().map(diagnostic_as_read);
+    let mut seen = FxHashSet::default();
+    let diagnostics = (errors.diagnostics.into_iter())
+        .filter(|d| seen.insert((d.message.clone(), format!("{:?}", d.span.start))))
+        .map(diagnostic_as_read);
     SpecErrors {
         diagnostics: diagnostics.collect(),
     }
