@@ -36,7 +36,8 @@ fn the_pendulum_chain_with_families_has_the_written_out_equations() {
         .map(|n| n.to_string())
         .collect();
     let mut found: Vec<String> = names.iter().map(|n| written_out(n)).collect();
-    (expected.sort(), found.sort());
+    expected.sort();
+    found.sort();
     assert_eq!(found, expected);
     let mut rng = Lcg::new(10);
     let none = ConstantInputs(vec![]);
