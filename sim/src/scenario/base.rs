@@ -53,7 +53,7 @@ impl BaseScenario {
         let (mut document, _) =
             with_settings(document, &self.names, &settings).map_err(|e| why(e.to_string()))?;
         super::quantities::in_si(&mut document, &self.names)?;
-        match entry_at(&document, key).and_then(super::as_number) {
+        match super::scale::entry_at(&document, key).and_then(super::as_number) {
             Some(value) => Ok(value),
             None => Err(why("this entry takes no unit: write it as a number".into())),
         }
@@ -61,29 +61,13 @@ impl BaseScenario {
 
     /// A parameter's or an input's quantity in the unit the spec declares.
     fn model_quantity(&self, name: &str, text: &str) -> Result<f64, String> {
-        let names = &self.names;
-        let unit_of = |all: &[String], units: &[Option<String>]| {
-            let index = all.iter().position(|p| p == name)?;
-            Some(units.get(index).cloned().flatten())
-        };
-        let unit = (unit_of(&names.parameters, &names.parameter_units))
-            .or_else(|| unit_of(&names.inputs, &names.input_units))
+        let unit = super::overrides::declared_unit(name, &self.names)
             .ok_or_else(|| format!("`{name}` is neither a parameter nor an input of the model"))?
             .ok_or_else(|| {
                 format!("the spec declares no unit for `{name}`: write the number in SI units")
             })?;
         value_in(text, &unit).map_err(|e| e.problem.to_string())
     }
-}
-
-/// The value at dotted `key` of `document`.
-fn entry_at<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
-    let (path, last) = key.rsplit_once('.')?;
-    let mut table = document;
-    for part in path.split('.') {
-        table = table.get(part)?.as_table()?;
-    }
-    table.get(last)
 }
 
 #[cfg(test)]

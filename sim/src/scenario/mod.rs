@@ -334,12 +334,14 @@ impl Scenario {
             None => ScenarioError {
                 // Where it is: needed on this path alone (an element's
                 // entry from its family's section is where the family's is).
-                location: (Places::new(text, spanned.get_ref()).locate(&e)).or_else(|| {
-                    let key = families::family_key(&e.key)?;
-                    let mut at = e.clone();
-                    at.key = key;
-                    Places::new(text, spanned.get_ref()).locate(&at)
-                }),
+                location: {
+                    let places = Places::new(text, spanned.get_ref());
+                    places.locate(&e).or_else(|| {
+                        let mut at = e.clone();
+                        at.key = families::family_key(&e.key)?;
+                        places.locate(&at)
+                    })
+                },
                 key: Some(e.key.clone()),
                 ..error(e.to_string())
             },

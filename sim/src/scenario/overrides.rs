@@ -274,12 +274,7 @@ fn quantity_of(
     text: &str,
     names: &ModelNames,
 ) -> Result<f64, OverrideError> {
-    let unit_of = |all: &[String], units: &[Option<String>]| {
-        let index = all.iter().position(|p| p == name)?;
-        Some(units.get(index).cloned().flatten())
-    };
-    let unit = (unit_of(&names.parameters, &names.parameter_units))
-        .or_else(|| unit_of(&names.inputs, &names.input_units));
+    let unit = declared_unit(name, names);
     let error =
         |why: String| OverrideError::new(setting, format!("--set {name}=\"{text}\": {why}"));
     let Some(unit) = unit.flatten() else {
@@ -288,6 +283,17 @@ fn quantity_of(
         )));
     };
     crate::quantity::value_in(text, &unit).map_err(|e| error(e.problem.to_string()))
+}
+
+/// The unit the spec declares for parameter or input `name`: `None` if it
+/// is neither, `Some(None)` if it declares none.
+pub(super) fn declared_unit(name: &str, names: &ModelNames) -> Option<Option<String>> {
+    let unit_of = |all: &[String], units: &[Option<String>]| {
+        let index = all.iter().position(|p| p == name)?;
+        Some(units.get(index).cloned().flatten())
+    };
+    (unit_of(&names.parameters, &names.parameter_units))
+        .or_else(|| unit_of(&names.inputs, &names.input_units))
 }
 
 /// Whether `name` is a parameter or an input of the model.

@@ -37,13 +37,8 @@ pub fn factor_base(
             })?;
         return Ok(toml::Value::Float(base));
     }
-    let mut value: Option<&toml::Value> = None;
-    let mut table = Some(document);
-    for part in key.split('.') {
-        value = table.and_then(|t| t.get(part));
-        table = value.and_then(toml::Value::as_table);
-    }
-    let value = value.ok_or_else(|| error("the scenario has no such entry to scale".into()))?;
+    let value = entry_at(document, key)
+        .ok_or_else(|| error("the scenario has no such entry to scale".into()))?;
     if all_numbers(value) {
         Ok(value.clone())
     } else {
@@ -51,6 +46,17 @@ pub fn factor_base(
             "a factor scales a number, or a list or table of numbers, not `{value}`"
         )))
     }
+}
+
+/// The value at dotted `key` of `document`, if it has one.
+pub(super) fn entry_at<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let mut value: Option<&toml::Value> = None;
+    let mut table = Some(document);
+    for part in key.split('.') {
+        value = table.and_then(|t| t.get(part));
+        table = value.and_then(toml::Value::as_table);
+    }
+    value
 }
 
 /// A factor `KEY*=` with nothing to scale: `` `KEY*=`: reason ``.
