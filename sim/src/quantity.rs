@@ -303,6 +303,15 @@ fn split_number(text: &str) -> Option<(f64, &str)> {
     Some((number, text[end..].trim()))
 }
 
+/// Whether `text` reads as a number followed by a unit (`850 g`,
+/// `-56 km/h`) rather than as a number or a word: how `--set` and a
+/// sweep's axes tell a quantity from a plain value.
+pub fn has_unit(text: &str) -> bool {
+    let digits = text.trim_start_matches(['+', '-']);
+    let number_first = digits.starts_with(|c: char| c.is_ascii_digit() || c == '.');
+    number_first && text.contains(char::is_alphabetic)
+}
+
 /// The value of `text`, a number with a unit, in the unit `expected`
 /// (SI, as an entry's documentation gives it: `m/s`, `N/m`).
 pub fn value_in(text: &str, expected: &str) -> Result<f64, QuantityError> {

@@ -76,9 +76,7 @@ fn setting_number(setting: &str, name: &str, value: &str) -> Result<f64, Overrid
 fn quantity_text(text: &str) -> Option<&str> {
     let bare = text.strip_prefix('"').and_then(|t| t.strip_suffix('"'));
     let text = bare.unwrap_or(text).trim();
-    let digits = text.trim_start_matches(['+', '-']);
-    let number_first = digits.starts_with(|c: char| c.is_ascii_digit() || c == '.');
-    (number_first && text.contains(char::is_alphabetic)).then_some(text)
+    crate::quantity::has_unit(text).then_some(text)
 }
 
 /// `text` read as a TOML value, if it is one.

@@ -1,6 +1,7 @@
 //! Which runs a sweep makes: a full-factorial grid or a sampled design, the
 //! values of run `i`, and the block of runs of one shard.
 
+use lagrangian_sim::quantity::has_unit;
 use lagrangian_sim::scenario::{EntryError, KeyPath};
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{Rng, SeedableRng};
@@ -376,13 +377,6 @@ impl Reading<'_> {
             }),
         }
     }
-}
-
-/// Whether `text` reads as a number followed by a unit (`56 km/h`, `-2kN`).
-fn has_unit(text: &str) -> bool {
-    let digits = text.trim_start_matches(['+', '-']);
-    let number_first = digits.starts_with(|c: char| c.is_ascii_digit() || c == '.');
-    number_first && text.contains(|c: char| c.is_alphabetic() || c == '°' || c == 'µ')
 }
 
 /// `a,b,c` or `low:high:count` (count evenly spaced values, ends included).
