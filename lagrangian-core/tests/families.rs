@@ -324,3 +324,19 @@ fn a_lowering_problem_a_loop_repeats_is_reported_once() {
         ]
     );
 }
+
+#[test]
+fn a_family_s_values_are_counted_by_its_range_however_it_is_written() {
+    let source = CHAIN
+        .replace(
+            "m[3] [kg] = [1.0, 2.0, 3.0]",
+            "m[i in 1..=1 + 2] [kg] = [1.0, 2.0, 3.0]",
+        )
+        .replace("BAD", "");
+    let compiled = Compiled::from_source(&source).unwrap();
+    let masses: Vec<f64> = compiled.model.parameters[..3]
+        .iter()
+        .map(|p| p.default)
+        .collect();
+    assert_eq!(masses, [1.0, 2.0, 3.0]);
+}

@@ -370,7 +370,7 @@ impl Expansion {
         match item {
             Item::Coordinates { keyword, decls } => {
                 let families = decls.iter().any(|d| d.subscript.is_some());
-                let decls = self.block(&decls, |_, d, k| Some(Self::declaration(d, k)));
+                let decls = self.block_with(&decls, |d| d, |_, d, k| Some(Self::declaration(d, k)));
                 if families && decls.len() > MAX_COORDINATES {
                     let why = format!(
                         "{} coordinates: families may declare at most {MAX_COORDINATES}",
@@ -403,24 +403,7 @@ impl Expansion {
         }
     }
 
-    /// The declarations of a `coordinates` block, families written out.
-    fn block(
-        &mut self,
-        decls: &[Declaration],
-        mut make: impl FnMut(&mut Self, &Declaration, Option<i64>) -> Option<Declaration>,
-    ) -> Vec<Declaration> {
-        let mut out = Vec::new();
-        for decl in decls {
-            for element_of in self.elements(decl) {
-                let made = self.with_index(element_of, |s, k| make(s, decl, k));
-                out.extend(made);
-            }
-        }
-        out
-    }
-
-    /// The declarations of a `parameters` or `inputs` block, families
-    /// written out by `make`.
+    /// The declarations of a block, families written out by `make`.
     fn block_with<D>(
         &mut self,
         decls: &[D],
@@ -443,7 +426,8 @@ impl Expansion {
         let decl = Self::declaration(&p.decl, k);
         let value = match (&p.value, k) {
             (Some(Expr::Array(array)), Some(k)) => {
-                let count = p.decl_count();
+                let family = self.families.get(&p.decl.name.to_string());
+                let count = family.and_then(|f| f.count).unwrap_or(1);
                 if array.elems.len() as i64 != count {
                     if k == 1 {
                         let why = format!(
@@ -622,30 +606,6 @@ impl Expansion {
     fn expression(&mut self, mut expr: Expr) -> Expr {
         Rewrite { expansion: self }.visit_expr_mut(&mut expr);
         expr
-    }
-}
-
-impl ParameterDecl {
-    /// The number of elements its family declares (1 for a scalar).
-    fn decl_count(&self) -> i64 {
-        match &self.decl.subscript {
-            Some(Subscript::Count { count, .. }) => *count as i64,
-            Some(Subscript::Ranged {
-                range: Expr::Range(r),
-                ..
-            }) => r.end.as_deref().and_then(literal_integer).unwrap_or(1),
-            _ => 1,
-        }
-    }
-}
-
-/// An integer literal's value.
-fn literal_integer(expr: &Expr) -> Option<i64> {
-    match expr {
-        Expr::Lit(syn::ExprLit {
-            lit: Lit::Int(i), ..
-        }) => i.base10_parse().ok(),
-        _ => None,
     }
 }
 
