@@ -16,8 +16,8 @@ const FAMILIES: [&str; 3] = [
 ];
 
 /// The written-out spec's name of a family element: `x[3]` is `x3`,
-/// `spring_damping[3]` is `spring3_damping` (a unit `[1]` after a space
-/// is none).
+/// `spring[3].force` is `spring3.force` (a unit `[1]` after a space is
+/// none).
 fn written_out(name: &str) -> String {
     let element = name.split_once('[').and_then(|(family, rest)| {
         let (index, after) = rest.split_once(']')?;
@@ -27,10 +27,7 @@ fn written_out(name: &str) -> String {
     let Some((family, index, after)) = element else {
         return name.to_string();
     };
-    match family.split_once('_') {
-        Some(("spring", tangent)) => format!("spring{index}_{tangent}{after}"),
-        _ => format!("{family}{index}{}", written_out(after)),
-    }
+    format!("{family}{index}{}", written_out(after))
 }
 
 fn run(args: &[&str], out: &Path) -> (String, serde_json::Value) {
