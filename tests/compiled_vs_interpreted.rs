@@ -20,6 +20,8 @@ mod models {
     lagrangian::lagrangian!(file = "tests/specs/nested_inputs/friction_under_contact.lpm");
     // Indexed families: elements `x[1]` … as the identifiers `x_1` ….
     lagrangian::lagrangian!(file = "tests/specs/pioneer_families.lpm");
+    // Parts: `car[1].m` … as the identifiers `car_1_m` ….
+    lagrangian::lagrangian!(file = "tests/specs/parts/train_parts.lpm");
 }
 
 /// Random specs from the property tests' generator (`lagrangian-core/tests/
@@ -231,6 +233,7 @@ fn every_spec_agrees() {
             "tests/specs/three_link_conical_pendulum.lpm",
         ),
         compare::<7, models::PioneerWagon>("tests/specs/pioneer_families.lpm"),
+        compare::<4, models::TrainParts>("tests/specs/parts/train_parts.lpm"),
     ];
     println!("worst ulp difference per spec: {worst:?}");
 }

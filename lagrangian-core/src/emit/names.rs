@@ -104,10 +104,15 @@ pub(crate) fn input_constants(inputs: &[String]) -> Vec<Ident> {
         .collect()
 }
 
-/// A family's element as an identifier: `x[3]` is `x_3`.
+/// A family's element or a part's name as an identifier: `x[3]` is `x_3`,
+/// `car[2].m` is `car_2_m`.
 pub(crate) fn identifier(name: &str) -> std::borrow::Cow<'_, str> {
-    match name.contains('[') {
-        true => name.replace('[', "_").replace(']', "").into(),
+    match name.contains(['[', '.']) {
+        true => name
+            .replace('[', "_")
+            .replace(']', "")
+            .replace('.', "_")
+            .into(),
         false => name.into(),
     }
 }

@@ -174,6 +174,40 @@ pub enum Item {
         range: Expr,
         items: Vec<Item>,
     },
+    /// `part spring_damper(a [m], b [m]) { … }` — a reusable part
+    /// ([`super::parts`] writes each instance out).
+    PartDef(PartDef),
+    /// `part front = spring_damper(x[1], x[2]) { k = 2e5 };` — an instance
+    /// of a part.
+    PartInstance(PartInstance),
+}
+
+/// A part's definition: the coordinates it acts between (its ports) and
+/// the items it adds to a model for each instance.
+#[derive(Clone)]
+pub struct PartDef {
+    pub name: Ident,
+    /// The coordinates the part acts between, each a name and a unit.
+    pub ports: Vec<Declaration>,
+    /// Its blocks and statements, in the spec language.
+    pub items: Vec<Item>,
+}
+
+/// `part NAME = PART(ARG, …) { PARAMETER = VALUE, … };`
+#[derive(Clone)]
+pub struct PartInstance {
+    /// The instance's name, the prefix of its names (`front.k`).
+    pub name: Ident,
+    /// `part s[i] = …` in a loop (expansion removes it).
+    pub subscript: Option<Subscript>,
+    /// The part instantiated.
+    pub part: Ident,
+    /// An expression of the model's coordinates for each port, in order.
+    pub arguments: Vec<Expr>,
+    /// The parentheses around the arguments.
+    pub arguments_span: Span,
+    /// The part's parameter defaults this instance changes.
+    pub settings: Vec<(Ident, Expr)>,
 }
 
 /// A user's own equations of motion, to be audited against the derivation.

@@ -5,6 +5,7 @@
 //! model and its messages call it `x[k]` ([`display_name`]).
 
 use super::ast::{Declaration, InputDecl, Item, ParameterDecl, SpecAst, Subscript};
+use super::names::{MARK, MEMBER, display_name};
 use crate::diagnostic::{Diagnostic, SpanRange, SpecErrors};
 use proc_macro2::{Ident, Punct, Spacing, Span, TokenStream, TokenTree};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -12,8 +13,6 @@ use std::borrow::Cow;
 use syn::visit_mut::{self, VisitMut};
 use syn::{BinOp, Expr, Lit, RangeLimits, UnOp};
 
-/// Between a family's name and an element's number while lowering.
-const MARK: char = '‿';
 /// The most elements a family may have.
 const MAX_ELEMENTS: i64 = 100_000;
 /// The most coordinates families may declare: a derivation's time and
@@ -22,27 +21,6 @@ const MAX_ELEMENTS: i64 = 100_000;
 const MAX_COORDINATES: usize = 1000;
 /// The most statements and sum terms the loops of a spec may expand into.
 const MAX_EXPANDED: usize = 1_000_000;
-
-/// `name` as users read it: `x‿3` is `x[3]`.
-pub(crate) fn display_name(name: &str) -> Cow<'_, str> {
-    if !name.contains(MARK) {
-        return Cow::Borrowed(name);
-    }
-    let mut out = String::with_capacity(name.len() + 2);
-    let mut chars = name.chars().peekable();
-    while let Some(c) = chars.next() {
-        if c != MARK {
-            out.push(c);
-            continue;
-        }
-        out.push('[');
-        while let Some(d) = chars.next_if(|d| d.is_ascii_digit() || *d == '-') {
-            out.push(d);
-        }
-        out.push(']');
-    }
-    Cow::Owned(out)
-}
 
 /// Element `k` of family `name`, as lowering names it.
 fn element(name: &Ident, k: i64) -> Ident {
@@ -159,6 +137,9 @@ impl Expansion {
                 Item::Constraint(c) if c.subscript.is_some() => {
                     self.statement_family(&c.name, "constraints")
                 }
+                Item::PartInstance(p) if p.subscript.is_some() => {
+                    self.statement_family(&p.name, "part instances")
+                }
                 Item::For { items, .. } => self.collect(items),
                 _ => {}
             }
@@ -167,8 +148,8 @@ impl Expansion {
 
     fn declare(&mut self, decl: &Declaration, kind: &'static str) {
         let name = decl.name.to_string();
-        if name.contains(MARK) {
-            let why = format!("`{MARK}` is not allowed in a name");
+        if name.contains([MARK, MEMBER]) {
+            let why = format!("`{MARK}` and `{MEMBER}` are not allowed in a name");
             self.problems.push(Diagnostic::new(decl.name.span(), why));
         }
         let count = match &decl.subscript {
@@ -395,6 +376,18 @@ impl Expansion {
                 range,
                 items,
             } => self.for_loop(keyword, index, &range, items, out),
+            Item::PartDef(mut part) => {
+                // A part's names are its own: its body expands on its own.
+                let body = SpecAst {
+                    inner_doc: Vec::new(),
+                    items: std::mem::take(&mut part.items),
+                };
+                match expand(body) {
+                    Ok(body) => part.items = body.items,
+                    Err(errors) => self.problems.extend(errors.diagnostics),
+                }
+                out.push(Item::PartDef(part));
+            }
             other => {
                 if let Some(item) = self.statement(other) {
                     out.push(item);
@@ -490,6 +483,13 @@ impl Expansion {
         let Some((low, high)) = self.range(range) else {
             return;
         };
+        if let Some(Item::PartDef(def)) = items.iter().find(|i| matches!(i, Item::PartDef(_))) {
+            let why = format!("part `{}` is defined inside a loop", def.name);
+            let help = "define parts at the top level of the spec; instantiate them in the loop";
+            self.problems
+                .push(Diagnostic::new(def.name.span(), why).with_help(help));
+            return;
+        }
         let runs = (high - low + 1).max(0) as usize;
         if !self.count(runs.saturating_mul(items.len().max(1)), keyword) {
             return;
@@ -558,6 +558,16 @@ impl Expansion {
                 constraint.name = self.named(constraint.name, subscript)?;
                 constraint.value = self.expression(constraint.value);
                 Item::Constraint(constraint)
+            }
+            Item::PartInstance(mut instance) => {
+                let subscript = instance.subscript.take();
+                instance.name = self.named(instance.name, subscript)?;
+                let arguments = std::mem::take(&mut instance.arguments);
+                instance.arguments = arguments.into_iter().map(|a| self.expression(a)).collect();
+                for (_, value) in &mut instance.settings {
+                    *value = self.expression(value.clone());
+                }
+                Item::PartInstance(instance)
             }
             other => other,
         })
@@ -857,16 +867,4 @@ pub(super) fn model_as_read(mut model: super::Model) -> super::Model {
         .map(diagnostic_as_read)
         .collect();
     model
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn an_element_reads_with_its_brackets() {
-        assert_eq!(display_name("x‿12"), "x[12]");
-        assert_eq!(display_name("x‿3_dot"), "x[3]_dot");
-        assert_eq!(display_name("plain"), "plain");
-    }
 }

@@ -9,8 +9,10 @@ mod families;
 mod graph_lowering;
 mod hand;
 mod lower;
+mod names;
 mod outline;
 mod parse;
+mod parts;
 mod unit_check;
 
 pub use ast::{EnergyKind, UnitText};
@@ -205,6 +207,13 @@ pub struct Model {
     pub domain_checks: Vec<DomainCheck>,
 }
 
+/// The spec `tokens` parsed, its families and parts written out: the
+/// scalar spec that lowering resolves.
+fn expanded(tokens: TokenStream) -> Result<(ast::SpecAst, parts::Instances), SpecErrors> {
+    let ast: ast::SpecAst = syn::parse2(families::sum_syntax(tokens))?;
+    parts::expand(families::expand(ast)?)
+}
+
 impl Model {
     /// Parses and resolves a spec given as tokens (the macro's inline form).
     ///
@@ -213,11 +222,10 @@ impl Model {
     pub fn from_tokens(tokens: TokenStream) -> Result<Model, SpecErrors> {
         let count = crate::depth::check_tokens(&tokens)?;
         crate::depth::with_stack_for_tokens(count, || {
-            let ast: ast::SpecAst = syn::parse2(families::sum_syntax(tokens))?;
-            let ast = families::expand(ast).map_err(families::errors_as_read)?;
+            let (ast, instances) = expanded(tokens).map_err(families::errors_as_read)?;
             lower::lower(ast)
                 .map(families::model_as_read)
-                .map_err(families::errors_as_read)
+                .map_err(|e| families::errors_as_read(instances.noted(e)))
         })
     }
 

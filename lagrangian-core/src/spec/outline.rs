@@ -1,7 +1,7 @@
 //! The names a spec declares, read from its syntax alone: what the macro
 //! needs to stand in for a model whose spec has errors.
 
-use super::ast::{Item, SpecAst};
+use super::ast::Item;
 use proc_macro2::TokenStream;
 
 /// The declared names of a spec that parses, each once, in order.
@@ -21,8 +21,7 @@ impl Outline {
     /// The outline of `tokens`; `None` when they do not parse as a spec or
     /// name no model.
     pub(crate) fn of(tokens: TokenStream) -> Option<Outline> {
-        let ast: SpecAst = syn::parse2(super::families::sum_syntax(tokens)).ok()?;
-        let ast = super::families::expand(ast).ok()?;
+        let (ast, _) = super::expanded(tokens).ok()?;
         let mut outline = Outline::default();
         for item in &ast.items {
             match item {
@@ -48,7 +47,9 @@ impl Outline {
                 | Item::Constraint(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_)
-                | Item::For { .. } => {}
+                | Item::For { .. }
+                | Item::PartDef(_)
+                | Item::PartInstance(_) => {}
             }
         }
         (!outline.name.is_empty()).then_some(outline)
@@ -58,7 +59,7 @@ impl Outline {
 /// Appends the names not already in `list`.
 fn push_new<'a>(list: &mut Vec<String>, names: impl Iterator<Item = &'a syn::Ident>) {
     for name in names {
-        let name = super::families::display_name(&name.to_string()).into_owned();
+        let name = super::names::display_name(&name.to_string()).into_owned();
         if !list.contains(&name) {
             list.push(name);
         }

@@ -15,7 +15,10 @@
 //!                    | "constraint" IDENT "=" EXPR ";"   (EXPR(q, t) = 0)
 //!                    | "jacobians" ";"
 //!                    | "hand_derived" "{" hand-entry* "}"
-//!                    | "for" IDENT "in" INT-EXPR "..=" INT-EXPR "{" item* "}" )
+//!                    | "for" IDENT "in" INT-EXPR "..=" INT-EXPR "{" item* "}"
+//!                    | "part" IDENT "(" decl,* ")" "{" item* "}"     (a part)
+//!                    | "part" IDENT family? "=" IDENT "(" EXPR,* ")"
+//!                          ("{" (IDENT "=" EXPR),* "}")? ";"       (an instance) )
 //! decl        = doc* IDENT family? unit?
 //! family      = "[" INT "]" | "[" IDENT "in" INT-EXPR "..=" INT-EXPR "]"
 //!               (in a statement, "[" INT-EXPR "]" names one element)
@@ -53,6 +56,7 @@ mod kw {
     syn::custom_keyword!(small_angle_order);
     syn::custom_keyword!(symbols);
     syn::custom_keyword!(assume);
+    syn::custom_keyword!(part);
 }
 
 impl Parse for SpecAst {
@@ -158,6 +162,8 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
         parse_hand_section(input, doc)
     } else if look.peek(Token![for]) {
         parse_for(input)
+    } else if look.peek(kw::part) {
+        parse_part(input)
     } else {
         Err(look.error())
     }
@@ -405,6 +411,49 @@ fn parse_for(input: ParseStream) -> syn::Result<Item> {
         range,
         items,
     })
+}
+
+/// A part's definition, `part NAME(PORTS) { items }`, or an instance,
+/// `part NAME = PART(ARGS) { SETTINGS };`.
+fn parse_part(input: ParseStream) -> syn::Result<Item> {
+    input.parse::<kw::part>()?;
+    let name: Ident = input.parse()?;
+    if input.peek(syn::token::Paren) {
+        let content;
+        parenthesized!(content in input);
+        let ports = content.parse_terminated(parse_declaration, Token![,])?;
+        let body;
+        braced!(body in input);
+        let mut items = Vec::new();
+        while !body.is_empty() {
+            items.push(parse_item(&body)?);
+        }
+        let ports = ports.into_iter().collect();
+        return Ok(Item::PartDef(PartDef { name, ports, items }));
+    }
+    let subscript = parse_subscript(input, Place::Name)?;
+    input.parse::<Token![=]>()?;
+    let part: Ident = input.parse()?;
+    let content;
+    let paren = parenthesized!(content in input);
+    let arguments = content.parse_terminated(Expr::parse, Token![,])?;
+    let mut settings = Vec::new();
+    if input.peek(syn::token::Brace) {
+        settings = parse_braced_list(input, |entry| {
+            let name: Ident = entry.parse()?;
+            entry.parse::<Token![=]>()?;
+            Ok((name, entry.parse()?))
+        })?;
+    }
+    input.parse::<Token![;]>()?;
+    Ok(Item::PartInstance(PartInstance {
+        name,
+        subscript,
+        part,
+        arguments: arguments.into_iter().collect(),
+        arguments_span: paren.span.join(),
+        settings,
+    }))
 }
 
 fn parse_unit(input: ParseStream) -> syn::Result<Option<UnitText>> {

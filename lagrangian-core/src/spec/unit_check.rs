@@ -323,7 +323,9 @@ impl Checker<'_> {
             | Item::Coordinates { .. }
             | Item::Parameters { .. }
             | Item::Inputs { .. }
-            | Item::For { .. } => {}
+            | Item::For { .. }
+            | Item::PartDef(_)
+            | Item::PartInstance(_) => {}
         }
     }
 }

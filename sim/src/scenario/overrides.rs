@@ -218,7 +218,7 @@ impl Override {
         let error = |message: String| OverrideError::new(&self.text, message);
         let value = match &self.change {
             Change::Scale(factor) => return self.factor(*factor, names),
-            Change::Set(value) if key.contains('.') => {
+            Change::Set(value) if key.contains('.') && !names_model(key, names) => {
                 let (key, value) = (key.to_string(), value.clone());
                 return Ok(Setting::Entry { key, value });
             }
@@ -250,7 +250,8 @@ impl Override {
     /// `KEY*=FACTOR` for a parameter or a dotted entry.
     fn factor(&self, factor: f64, names: &ModelNames) -> Result<Setting, OverrideError> {
         let key = self.key.as_str();
-        if !key.contains('.') && !names.parameters.iter().any(|p| p == key) {
+        let parameter = names.parameters.iter().any(|p| p == key);
+        if !key.contains('.') && !parameter {
             let known = names.parameters.iter().map(String::as_str);
             let message = unknown(
                 "--set: a factor applies to a parameter or a dotted scenario entry; parameter",
@@ -314,12 +315,7 @@ fn apply(
     let error = |message: String| OverrideError::new(setting.text(), message);
     match setting.setting(names)? {
         Setting::Parameter { name, value } => {
-            let parameters = document
-                .entry("parameters")
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if let toml::Value::Table(t) = parameters {
-                t.insert(name, toml::Value::Float(value));
-            }
+            set_parameter(document, name, toml::Value::Float(value));
         }
         Setting::InputConstant { name, value } => {
             constants.insert(name, value);
@@ -329,14 +325,26 @@ fn apply(
             let base = factor_base(&key, document, names, &names.parameter_defaults)
                 .map_err(|e| error(format!("--set {e}")))?;
             let value = scaled_value(&base, factor);
-            let key = match key.contains('.') {
-                true => key,
-                false => format!("parameters.{key}"),
-            };
-            set_entry(document, &key, value).map_err(error)?;
+            if names.parameters.contains(&key) {
+                set_parameter(document, key, value);
+            } else {
+                set_entry(document, &key, value).map_err(error)?;
+            }
         }
     }
     Ok(())
+}
+
+/// Sets parameter `name` in the document's `[parameters]` table, made if
+/// missing (a `parameters` that is no table is left for the scenario to
+/// report).
+fn set_parameter(document: &mut toml::Table, name: String, value: toml::Value) {
+    let entry = document
+        .entry("parameters")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    if let toml::Value::Table(t) = entry {
+        t.insert(name, value);
+    }
 }
 
 /// Sets the entry at dotted `key`, making the tables on the way; else the

@@ -18,8 +18,9 @@ pub fn factor_base(
         key: key.to_string(),
         reason,
     };
-    if !key.contains('.') {
-        let Some(k) = names.parameters.iter().position(|p| p == key) else {
+    let parameter = names.parameters.iter().position(|p| p == key);
+    if parameter.is_some() || !key.contains('.') {
+        let Some(k) = parameter else {
             return Err(error(format!(
                 "a factor applies to a parameter or a dotted scenario entry, and `{key}` is no parameter"
             )));

@@ -160,6 +160,8 @@ fn constraint_declarations(statements: &[Item]) -> impl Iterator<Item = &Constra
         | Item::Output(_)
         | Item::Jacobians { .. }
         | Item::HandDerived(_)
-        | Item::For { .. } => None,
+        | Item::For { .. }
+        | Item::PartDef(_)
+        | Item::PartInstance(_) => None,
     })
 }

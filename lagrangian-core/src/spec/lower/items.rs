@@ -57,7 +57,9 @@ impl Items {
                 | Item::Constraint(_)
                 | Item::Jacobians { .. }
                 | Item::HandDerived(_)
-                | Item::For { .. }) => items.statements.push(other),
+                | Item::For { .. }
+                | Item::PartDef(_)
+                | Item::PartInstance(_)) => items.statements.push(other),
             }
         }
         items

@@ -84,6 +84,8 @@ fn output_declarations(statements: &[Item]) -> impl Iterator<Item = &OutputDecl>
         | Item::Constraint(_)
         | Item::Jacobians { .. }
         | Item::HandDerived(_)
-        | Item::For { .. } => None,
+        | Item::For { .. }
+        | Item::PartDef(_)
+        | Item::PartInstance(_) => None,
     })
 }

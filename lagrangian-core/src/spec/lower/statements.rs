@@ -114,7 +114,9 @@ impl Lowering {
                 | Item::Coordinates { .. }
                 | Item::Parameters { .. }
                 | Item::Inputs { .. }
-                | Item::For { .. } => {}
+                | Item::For { .. }
+                | Item::PartDef(_)
+                | Item::PartInstance(_) => {}
             }
         }
         dynamics
