@@ -215,3 +215,85 @@ fn a_problem_inside_a_part_names_the_instance_too() {
         "{found:?}"
     );
 }
+
+/// `text` with one piece replaced, removed or doubled by a snippet that
+/// misuses parts.
+fn mutated(text: &str, rng: &mut lagrangian_core::random::Lcg) -> String {
+    const SNIPPETS: [&str; 12] = [
+        "part ",
+        "part p = mass(x[1]);",
+        "part q(a [m]) { part r = q(a); }",
+        "(x[1], x[2])",
+        "(0.0)",
+        "{ m = 1.0 }",
+        "{ k = }",
+        "car[1].m",
+        "mass",
+        "stop(",
+        ")",
+        "force a = 0.0;",
+    ];
+    let pieces: Vec<&str> = text.split_inclusive([' ', '(', ')', '\n']).collect();
+    let k = (rng.unit() * pieces.len() as f64) as usize % pieces.len();
+    let snippet = SNIPPETS[(rng.unit() * SNIPPETS.len() as f64) as usize % SNIPPETS.len()];
+    let mut out: Vec<&str> = pieces.clone();
+    match (rng.unit() * 3.0) as usize {
+        0 => out[k] = snippet,
+        1 => {
+            out.remove(k);
+        }
+        _ => out.insert(k, snippet),
+    }
+    out.concat()
+}
+
+#[test]
+fn mutated_part_specs_give_a_model_or_located_errors_never_a_panic() {
+    let originals = [
+        read("tests/specs/parts/train_parts.lpm"),
+        read("tests/specs/parts/bottoming.lpm"),
+        SPEC.replace("BAD", "part l = link(x[1], x[2]) { k = 2.0 };")
+            .replace("LINK_BODY", "0.0"),
+    ];
+    let mut rng = lagrangian_core::random::Lcg::new(38);
+    let (mut compiled, mut refused) = (0, 0);
+    let runs: usize = std::env::var("PARTS_MUTATIONS").map_or(600, |n| n.parse().unwrap());
+    for k in 0..runs {
+        let text = mutated(&originals[k % 3], &mut rng);
+        let outcome = std::panic::catch_unwind(|| lagrangian_core::Model::from_source(&text));
+        match outcome.unwrap_or_else(|_| panic!("panicked on:\n{text}")) {
+            Ok(_) => compiled += 1,
+            Err(errors) => {
+                assert!(
+                    !errors.diagnostics.is_empty(),
+                    "an error without a diagnostic:\n{text}"
+                );
+                refused += 1;
+            }
+        }
+    }
+    assert!(
+        compiled > 10 && refused > 100,
+        "{compiled} compiled, {refused} refused"
+    );
+}
+
+#[test]
+fn parts_nested_past_the_limit_are_refused_not_expanded() {
+    let mut source = String::from("model Nest;\ncoordinates { x [m] }\n");
+    source.push_str("part p0(a [m]) { part m = mass(a); }\n");
+    for k in 1..=8 {
+        let inner: String = (0..10)
+            .map(|j| format!("part i{j} = p{}(a); ", k - 1))
+            .collect();
+        source.push_str(&format!("part p{k}(a [m]) {{ {inner}}}\n"));
+    }
+    source.push_str("part top = p8(x);\n");
+    let start = std::time::Instant::now();
+    let errors = Compiled::from_source(&source).err().expect("refused");
+    assert_eq!(
+        errors.diagnostics[0].message,
+        "the parts of this spec expand past 100000 instances"
+    );
+    assert!(start.elapsed().as_secs() < 60, "{:?}", start.elapsed());
+}

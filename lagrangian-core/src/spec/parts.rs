@@ -21,6 +21,9 @@ use syn::{Expr, Token};
 const LIBRARY: &str = include_str!("parts.lpm");
 /// The most parts one instance may nest (a part instantiating a part …).
 const MAX_DEPTH: usize = 16;
+/// The most instances a spec may expand into (parts nested in parts
+/// multiply).
+const MAX_INSTANCES: usize = 100_000;
 
 /// Where the instances of the spec's own parts are, to point at the
 /// instance from a problem found later inside a part.
@@ -87,9 +90,9 @@ fn within(span: SpanRange, range: SpanRange) -> bool {
 struct Parts {
     /// The spec's own parts, by name.
     defined: FxHashMap<String, PartDef>,
-    /// The standard library's parts, by name, with their spans where the
-    /// library was read (replaced by the instance's for each instance).
-    library: FxHashMap<String, PartDef>,
+    /// The tokens of the standard library's parts, by name (placed at the
+    /// instance for each instance).
+    library: FxHashMap<String, TokenStream>,
     /// The unit of each coordinate the model declares itself.
     coordinate_units: FxHashMap<String, Option<UnitText>>,
     /// `T`, `V`, `D` of the instances, by kind, with the first's keyword.
@@ -123,7 +126,7 @@ impl Parts {
             places: Vec::new(),
             problems: Vec::new(),
         };
-        parts.library = library();
+        parts.library = library_parts();
         for item in items {
             match item {
                 Item::PartDef(def) => parts.define(def),
@@ -156,8 +159,9 @@ impl Parts {
         if let Some(def) = self.defined.get(&name.to_string()) {
             return Some((def.clone(), true));
         }
-        if self.library.contains_key(&name.to_string()) {
-            return library_at(at).remove(&name.to_string()).map(|d| (d, false));
+        if let Some(tokens) = self.library.get(&name.to_string()) {
+            let mut parts = parts_of(respanned(tokens.clone(), at));
+            return parts.remove(&name.to_string()).map(|d| (d, false));
         }
         let mut known: Vec<&str> = (self.defined.keys())
             .chain(self.library.keys())
@@ -180,6 +184,15 @@ impl Parts {
         out: &mut Vec<Item>,
     ) {
         let name = instance.name.to_string();
+        if self.instances.len() >= MAX_INSTANCES {
+            if self.instances.len() == MAX_INSTANCES {
+                let why = format!("the parts of this spec expand past {MAX_INSTANCES} instances");
+                self.problems
+                    .push(Diagnostic::new(instance.name.span(), why));
+                self.instances.insert(String::new(), instance.name.span());
+            }
+            return;
+        }
         if let Some(first) = self.instances.get(&name) {
             let why = format!(
                 "`{}` names two instances",
@@ -676,17 +689,25 @@ fn item_end(item: &Item) -> Option<Span> {
     })
 }
 
-/// The standard library's parts, where the library was read.
-fn library() -> FxHashMap<String, PartDef> {
+/// The tokens of each part of the standard library, `part NAME (…) {…}`
+/// (its doc comments left out), by name.
+fn library_parts() -> FxHashMap<String, TokenStream> {
     let tokens: TokenStream = LIBRARY.parse().expect("the library of parts lexes");
-    parts_of(tokens)
-}
-
-/// The standard library's parts with every token at `at`, so that a
-/// problem inside one is reported at the instance.
-fn library_at(at: Span) -> FxHashMap<String, PartDef> {
-    let tokens: TokenStream = LIBRARY.parse().expect("the library of parts lexes");
-    parts_of(respanned(tokens, at))
+    let trees: Vec<TokenTree> = tokens.into_iter().collect();
+    let mut parts = FxHashMap::default();
+    for w in trees.windows(4) {
+        if let [
+            TokenTree::Ident(part),
+            TokenTree::Ident(name),
+            TokenTree::Group(_),
+            TokenTree::Group(_),
+        ] = w
+            && part == "part"
+        {
+            parts.insert(name.to_string(), w.iter().cloned().collect());
+        }
+    }
+    parts
 }
 
 fn parts_of(tokens: TokenStream) -> FxHashMap<String, PartDef> {
@@ -726,8 +747,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_library_parses_whole() {
-        let parts = library();
+    fn the_library_parses_whole_and_part_by_part() {
+        let tokens: TokenStream = LIBRARY.parse().unwrap();
+        let parts = parts_of(tokens);
+        for (name, tokens) in library_parts() {
+            let alone = parts_of(tokens);
+            assert_eq!(alone.len(), 1, "{name}");
+            assert_eq!(alone[&name].items.len(), parts[&name].items.len(), "{name}");
+        }
         let mut names: Vec<&str> = parts.keys().map(String::as_str).collect();
         names.sort_unstable();
         assert_eq!(
