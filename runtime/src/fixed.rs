@@ -4,7 +4,7 @@
 use crate::error::ModelError;
 use crate::interpreted::InterpretedModel;
 use crate::layout::{RoutineKind, unpack_dynamics};
-use crate::linalg::{LdltPattern, solve_with_pattern};
+use crate::linalg::{Envelope, LdltPattern, solve_in_envelope, solve_with_pattern};
 use crate::system::{Jacobians, LagrangianSystem};
 use crate::{Energies, InputFunctions, MechanicalEnergy};
 use nalgebra::{SMatrix, SVector};
@@ -12,7 +12,7 @@ use nalgebra::{SMatrix, SVector};
 /// An [`InterpretedModel`] of known dimension `N`, usable wherever a compiled
 /// model is (it implements [`LagrangianSystem<N>`]).
 #[derive(Clone, Debug)]
-pub struct Interpreted<const N: usize>(InterpretedModel, LdltPattern<N>);
+pub struct Interpreted<const N: usize>(InterpretedModel, Envelope<N>);
 
 impl<const N: usize> Interpreted<N> {
     /// Fails when the model does not have `N` coordinates.
@@ -33,11 +33,11 @@ impl<const N: usize> Interpreted<N> {
     }
 
     /// `model`, whose dimension is `N`, with the pattern of its solve: the
-    /// zeros of its `M`, as the emitted code has them.
+    /// zeros of its `M` and their envelope, as the emitted code has them.
     fn of_dimension(model: InterpretedModel) -> Self {
         let nonzero = model.mass_nonzeros();
         let rows = std::array::from_fn(|i| std::array::from_fn(|j| nonzero[i * N + j]));
-        Interpreted(model, LdltPattern::from_mass(rows))
+        Interpreted(model, Envelope::of(LdltPattern::from_mass(rows)))
     }
 }
 
@@ -181,7 +181,10 @@ impl<const N: usize> LagrangianSystem<N> for Interpreted<N> {
         mass: &SMatrix<f64, N, N>,
         b: &SVector<f64, N>,
     ) -> Option<SVector<f64, N>> {
-        solve_with_pattern(mass, b, &self.1)
+        match self.1.is_narrow() {
+            true => solve_in_envelope(mass, b, &self.1),
+            false => solve_with_pattern(mass, b, self.1.pattern()),
+        }
     }
 
     fn mass_matrix_and_forcing<I: InputFunctions + ?Sized>(

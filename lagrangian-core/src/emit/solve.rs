@@ -34,6 +34,23 @@ pub(super) fn solve_mass_method(program: &Program, rt: &TokenStream) -> TokenStr
     }
     let dim = Literal::usize_unsuffixed(program.dimension);
     let rows = nonzero.iter().map(|row| quote!([#(#row),*]));
+    if is_narrow(&nonzero) {
+        return quote! {
+            #[inline]
+            fn solve_mass(
+                &self,
+                mass: &#rt::nalgebra::SMatrix<f64, #dim, #dim>,
+                b: &#rt::nalgebra::SVector<f64, #dim>,
+            ) -> ::core::option::Option<#rt::nalgebra::SVector<f64, #dim>> {
+                /// Which entries of `M` can be nonzero (the others are zero by
+                /// the equations), and their envelope, a band.
+                const ENVELOPE: #rt::linalg::Envelope<#dim> = #rt::linalg::Envelope::of(
+                    #rt::linalg::LdltPattern::from_mass([#(#rows),*]),
+                );
+                #rt::linalg::solve_in_envelope(mass, b, &ENVELOPE)
+            }
+        };
+    }
     quote! {
         #[inline]
         fn solve_mass(
@@ -48,6 +65,17 @@ pub(super) fn solve_mass_method(program: &Program, rt: &TokenStream) -> TokenStr
             #rt::linalg::solve_with_pattern(mass, b, &PATTERN)
         }
     }
+}
+
+/// Whether the envelope of `M`'s zeros (which its factor's fill-in never
+/// leaves) is narrow enough for the runtime's envelope solve, as
+/// `Envelope::is_narrow` decides for the interpreter.
+fn is_narrow(nonzero: &[Vec<bool>]) -> bool {
+    let n = nonzero.len();
+    let size: usize = (0..n)
+        .map(|i| i - (0..i).find(|&j| nonzero[i][j]).unwrap_or(i))
+        .sum();
+    n >= 16 && 4 * size < n * (n - 1)
 }
 
 #[cfg(test)]
@@ -78,5 +106,30 @@ mod tests {
         let nonzero = mass_nonzeros(&yaris.program).unwrap();
         assert!(!nonzero[0][1] && !nonzero[1][0]);
         assert_eq!(nonzero.concat().iter().filter(|&&x| !x).count(), 2);
+    }
+
+    #[test]
+    fn a_chain_s_band_is_solved_in_its_envelope_a_small_model_s_is_not() {
+        let read = |path: &str| {
+            let file = format!("{}/../{path}", env!("CARGO_MANIFEST_DIR"));
+            Compiled::from_source(&std::fs::read_to_string(file).unwrap()).unwrap()
+        };
+        let rt = quote!(::lagrangian_runtime);
+        let chain = read("tests/specs/chain/chain_50.lpm");
+        let nonzero = mass_nonzeros(&chain.program).unwrap();
+        assert!(is_narrow(&nonzero));
+        let method = solve_mass_method(&chain.program, &rt).to_string();
+        assert!(method.contains("solve_in_envelope"), "{method}");
+        let pioneer = read("specs/pioneer_wagon.lpm");
+        assert!(!is_narrow(&mass_nonzeros(&pioneer.program).unwrap()));
+        let method = solve_mass_method(&pioneer.program, &rt).to_string();
+        assert!(method.contains("solve_with_pattern"), "{method}");
+        // A dense M of 16 is not narrow; a band of half-width 4 of 16 is.
+        let band = |w: usize| -> Vec<Vec<bool>> {
+            (0..16usize)
+                .map(|i| (0..16).map(|j| i.abs_diff(j) <= w).collect())
+                .collect()
+        };
+        assert!(is_narrow(&band(4)) && !is_narrow(&band(15)));
     }
 }
