@@ -89,6 +89,28 @@ fn a_part_s_parameter_is_set_and_swept_by_its_name() {
         );
         assert_eq!(rows(&parts), rows(&written), "--set {setting}");
     }
+    // A section whose name has a dot is addressed with quotes, as TOML does.
+    let written = run(
+        &WRITTEN,
+        &[
+            short[0],
+            short[1],
+            "--set",
+            "components.driver_belt.gap=0.05",
+        ],
+        &dir.join("written-gap"),
+    );
+    let parts = run(
+        &PARTS,
+        &[
+            short[0],
+            short[1],
+            "--set",
+            "components.\"driver.belt\".gap=0.05",
+        ],
+        &dir.join("parts-gap"),
+    );
+    assert_eq!(rows(&parts), rows(&written), "the belt's gap");
     let table = dir.join("sweep.csv");
     let done = lpm(&[
         "sweep",

@@ -6,6 +6,22 @@
 use lagrangian_runtime::names::closest;
 use std::fmt;
 
+/// The tables of dotted `key`, as TOML reads a dotted key: a part in
+/// double quotes may hold dots (`components."front.crush".gap`, a part
+/// instance's component), its quotes removed.
+pub fn key_segments(key: &str) -> Vec<String> {
+    let (mut parts, mut part, mut quoted) = (Vec::new(), String::new(), false);
+    for c in key.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            '.' if !quoted => parts.push(std::mem::take(&mut part)),
+            c => part.push(c),
+        }
+    }
+    parts.push(part);
+    parts
+}
+
 /// Where an entry sits in a scenario document: its dotted key, one part
 /// per table (`components.front_end.inputs.force`). A part that is not a
 /// bare TOML key, or that the message quotes (a channel name in
@@ -19,9 +35,9 @@ impl KeyPath {
     /// The path of dotted `key` (`simulation.t_end`); the empty path for
     /// an empty key.
     pub fn new(key: &str) -> KeyPath {
-        let parts = key.split('.').filter(|p| !p.is_empty());
+        let parts = key_segments(key).into_iter().filter(|p| !p.is_empty());
         KeyPath {
-            parts: parts.map(|p| (p.to_string(), false)).collect(),
+            parts: parts.map(|p| (p, false)).collect(),
         }
     }
 
@@ -295,5 +311,18 @@ pub(crate) fn non_negative(key: impl Into<KeyPath>, value: f64) -> Result<f64, E
             number(value),
             "must be a finite number ≥ 0",
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_quoted_part_of_a_key_keeps_its_dots() {
+        assert_eq!(key_segments("simulation.t_end"), ["simulation", "t_end"]);
+        let key = "components.\"front.crush\".gap";
+        assert_eq!(key_segments(key), ["components", "front.crush", "gap"]);
+        assert_eq!(key_segments("m[2]"), ["m[2]"]);
     }
 }

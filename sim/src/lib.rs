@@ -40,6 +40,7 @@ pub mod criteria;
 pub use components as crash;
 pub mod curve;
 pub(crate) mod entry;
+pub use entry::key_segments;
 pub mod failure;
 pub mod fault;
 pub mod files;

@@ -351,17 +351,17 @@ fn set_parameter(document: &mut toml::Table, name: String, value: toml::Value) {
 /// message of a part of the key that is not a table.
 fn set_entry(document: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
     let mut table = document;
-    let parts: Vec<&str> = key.split('.').collect();
+    let parts = crate::entry::key_segments(key);
     for part in &parts[..parts.len() - 1] {
         let entry = table
-            .entry(part.to_string())
+            .entry(part.clone())
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
         table = match entry {
             toml::Value::Table(t) => t,
             _ => return Err(format!("--set {key}: `{part}` is not a table")),
         };
     }
-    table.insert(parts[parts.len() - 1].to_string(), value);
+    table.insert(parts[parts.len() - 1].clone(), value);
     Ok(())
 }
 

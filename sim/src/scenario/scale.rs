@@ -53,8 +53,8 @@ pub fn factor_base(
 pub(super) fn entry_at<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     let mut value: Option<&toml::Value> = None;
     let mut table = Some(document);
-    for part in key.split('.') {
-        value = table.and_then(|t| t.get(part));
+    for part in crate::entry::key_segments(key) {
+        value = table.and_then(|t| t.get(&part));
         table = value.and_then(toml::Value::as_table);
     }
     value

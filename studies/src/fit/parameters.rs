@@ -187,8 +187,8 @@ fn number(v: &toml::Value) -> Option<f64> {
 fn lookup<'a>(document: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     let mut table = Some(document);
     let mut value = None;
-    for part in key.split('.') {
-        value = table.and_then(|t| t.get(part));
+    for part in lagrangian_sim::key_segments(key) {
+        value = table.and_then(|t| t.get(&part));
         table = value.and_then(toml::Value::as_table);
     }
     value
@@ -593,10 +593,10 @@ impl Parameters {
             } else {
                 toml::Value::Float(v[0])
             };
-            let path: Vec<&str> = if model.parameters.contains(&slot.key) {
-                vec!["parameters", slot.key.as_str()]
+            let path: Vec<String> = if model.parameters.contains(&slot.key) {
+                vec!["parameters".to_string(), slot.key.clone()]
             } else {
-                slot.key.split('.').collect()
+                lagrangian_sim::key_segments(&slot.key)
             };
             let mut table = &mut *document;
             for part in &path[..path.len() - 1] {
